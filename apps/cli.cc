@@ -1,0 +1,71 @@
+#include "apps/cli.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+#include <gflags/gflags.h>
+
+namespace ccma::cli {
+
+void ParseFlags(const std::vector<std::string>& args, const std::set<std::string>& allowed,
+                const std::string& command) {
+  std::set<std::string> seen;
+  for (const std::string& arg : args) {
+    if (arg.rfind("--", 0) != 0 || arg.size() == 2) {
+      throw UsageError("ccma " + command + ": unexpected argument '" + arg +
+                       "' (flags are --name=value)");
+    }
+    const size_t eq = arg.find('=');
+    const std::string name = arg.substr(2, eq == std::string::npos ? std::string::npos : eq - 2);
+    if (allowed.count(name) == 0) {
+      std::string known;
+      for (const std::string& a : allowed) known += " --" + a;
+      throw UsageError("ccma " + command + ": unknown flag '--" + name + "' (known:" + known + ")");
+    }
+    if (!seen.insert(name).second) {
+      throw UsageError("ccma " + command + ": flag '--" + name + "' given twice");
+    }
+    if (eq == std::string::npos) {
+      throw UsageError("ccma " + command + ": flag '--" + name + "' needs a value (--" + name +
+                       "=...)");
+    }
+    const std::string value = arg.substr(eq + 1);
+    // SetCommandLineOption validates the value's type and returns "" on error
+    // (unlike ParseCommandLineFlags, it never exits the process).
+    if (gflags::SetCommandLineOption(name.c_str(), value.c_str()).empty()) {
+      throw UsageError("ccma " + command + ": bad value '" + value + "' for --" + name);
+    }
+  }
+}
+
+Eigen::VectorXd ParseNumberList(const std::string& text, const std::string& flag) {
+  std::vector<double> values;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    const char* begin = item.c_str();
+    char* end = nullptr;
+    errno = 0;
+    const double v = std::strtod(begin, &end);
+    while (end != nullptr && *end == ' ') ++end;
+    if (item.empty() || end == begin || *end != '\0' || errno == ERANGE || !std::isfinite(v)) {
+      throw UsageError("--" + flag + ": '" + item + "' is not a finite number");
+    }
+    values.push_back(v);
+  }
+  if (!text.empty() && text.back() == ',') {
+    throw UsageError("--" + flag + ": trailing comma");
+  }
+  if (values.empty()) throw UsageError("--" + flag + ": no numbers given");
+  return Eigen::Map<Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
+}
+
+std::string RequireFlag(const std::string& value, const std::string& flag,
+                        const std::string& command) {
+  if (value.empty()) throw UsageError("ccma " + command + ": --" + flag + " is required");
+  return value;
+}
+
+}  // namespace ccma::cli

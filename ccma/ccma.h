@@ -1,0 +1,26 @@
+// ccma: simulation and kinematic control of Constrained Collaborative Mobile
+// Agents (Kumar & Coros). The one header a user includes:
+//
+//   #include <ccma/ccma.h>
+//   ccma::Model model = ccma::LoadModel("models/4dof_reduced.yaml");
+//   ccma::ForwardProblem forward(model);          // built once
+//   Eigen::VectorXd u = model.home_controls();    // 3 per base: x, y, theta
+//   u[0] += 0.01;
+//   ccma::ForwardResult r = forward.Solve(u);     // warm-started each call
+//   if (r.assembled) std::cout << forward.end_effector().position;
+//
+// Link with `target_link_libraries(app ccma::ccma)` after
+// `find_package(ccma CONFIG REQUIRED)`.
+#ifndef CCMA_CCMA_H_
+#define CCMA_CCMA_H_
+
+#include "ccma/constraint_set.h"
+#include "ccma/end_effector.h"
+#include "ccma/mobility.h"
+#include "ccma/model.h"
+#include "ccma/model_loader.h"
+#include "ccma/rotation.h"
+#include "ccma/state.h"
+#include "problems/forward_problem.h"
+
+#endif  // CCMA_CCMA_H_

@@ -1,0 +1,99 @@
+#include "ccma/constraint_set.h"
+
+#include "cost_functions/fixed_joint_cost.h"
+#include "cost_functions/omni_base_motor_cost.h"
+#include "cost_functions/omni_base_planar_cost.h"
+#include "cost_functions/prismatic_joint_cost.h"
+#include "cost_functions/revolute_joint_cost.h"
+#include "cost_functions/spherical_joint_cost.h"
+#include "cost_functions/universal_joint_cost.h"
+
+namespace ccma {
+namespace {
+
+std::unique_ptr<ceres::CostFunction> MakeJointCost(const Joint& j) {
+  switch (j.type) {
+    case JointType::kRevolute:
+      return std::make_unique<RevoluteJointCost>(j.p_A, j.p_B, j.a_A, j.a_B);
+    case JointType::kSpherical:
+      return std::make_unique<SphericalJointCost>(j.p_A, j.p_B);
+    case JointType::kUniversal:
+      return std::make_unique<UniversalJointCost>(j.p_A, j.p_B, j.a_A, j.b_B);
+    case JointType::kPrismatic:
+      return std::make_unique<PrismaticJointCost>(j.p_A, j.p_B, j.a_A, j.d1_A, j.d1_B,
+                                                  j.d2_A, j.d2_B);
+    case JointType::kFixed:
+      return std::make_unique<FixedJointCost>(j.p_A, j.p_B, j.d1_A, j.d1_B, j.d2_A,
+                                              j.d2_B);
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+ConstraintSet::ConstraintSet(const Model& model)
+    : state_size_(model.state_size()), num_controls_(model.num_controls()) {
+  auto add = [this](std::unique_ptr<ceres::CostFunction> cost, std::vector<int> bodies,
+                    int base, std::string label) {
+    ConstraintBlock block;
+    block.rows = cost->num_residuals();
+    block.cost = std::move(cost);
+    block.bodies = std::move(bodies);
+    block.base = base;
+    block.row = num_rows_;
+    block.label = std::move(label);
+    num_rows_ += block.rows;
+    blocks_.push_back(std::move(block));
+  };
+  for (size_t j = 0; j < model.joints.size(); ++j) {
+    const Joint& joint = model.joints[j];
+    add(MakeJointCost(joint), {joint.body_a, joint.body_b}, -1,
+        "joints[" + std::to_string(j) + "] (" + JointTypeName(joint.type) + " " +
+            model.bodies[joint.body_a].name + "-" + model.bodies[joint.body_b].name + ")");
+  }
+  for (int k = 0; k < model.num_bases(); ++k) {
+    const MobileBase& base = model.mobile_bases[k];
+    add(std::make_unique<OmniBasePlanarCost>(), {base.body}, -1, base.name + " (planar)");
+    add(std::make_unique<OmniBaseMotorCost>(), {base.body}, k, base.name + " (motor)");
+  }
+}
+
+void ConstraintSet::Evaluate(const State& s, const Eigen::VectorXd& u, Eigen::VectorXd* C,
+                             Eigen::MatrixXd* J_s, Eigen::MatrixXd* J_u) const {
+  C->resize(num_rows_);
+  if (J_s != nullptr) J_s->setZero(num_rows_, state_size_);
+  if (J_u != nullptr) J_u->setZero(num_rows_, num_controls_);
+  // Scratch for one block: at most 9 rows x 7 columns per parameter block.
+  double jac_storage[3][9 * 7];
+  std::vector<const double*> params;
+  for (const ConstraintBlock& block : blocks_) {
+    params.clear();
+    for (int body : block.bodies) params.push_back(s.pose(body));
+    if (block.base >= 0) params.push_back(u.data() + 3 * block.base);
+    double* jacobians[3] = {jac_storage[0], jac_storage[1], jac_storage[2]};
+    const bool want_jacobians = J_s != nullptr || J_u != nullptr;
+    block.cost->Evaluate(params.data(), C->data() + block.row,
+                         want_jacobians ? jacobians : nullptr);
+    if (!want_jacobians) continue;
+    for (size_t p = 0; p < block.bodies.size(); ++p) {
+      if (J_s == nullptr) break;
+      const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 7, Eigen::RowMajor>> J(
+          jac_storage[p], block.rows, 7);
+      J_s->block(block.row, kPoseTangentSize * block.bodies[p], block.rows, 6) =
+          J.leftCols<6>();
+    }
+    if (block.base >= 0 && J_u != nullptr) {
+      const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>> J(
+          jac_storage[block.bodies.size()], block.rows, 3);
+      J_u->block(block.row, 3 * block.base, block.rows, 3) = J;
+    }
+  }
+}
+
+double ConstraintSet::Energy(const State& s, const Eigen::VectorXd& u) const {
+  Eigen::VectorXd C;
+  Evaluate(s, u, &C);
+  return 0.5 * C.squaredNorm();
+}
+
+}  // namespace ccma

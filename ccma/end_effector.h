@@ -1,0 +1,26 @@
+// The end-effector pose X_EE (model_format.md, "End-effector pose").
+#ifndef CCMA_END_EFFECTOR_H_
+#define CCMA_END_EFFECTOR_H_
+
+#include <Eigen/Core>
+
+#include "ccma/model.h"
+#include "ccma/state.h"
+
+namespace ccma {
+
+struct EndEffectorPose {
+  Eigen::Vector3d position;  // p_WE: the controlled point in world [m]
+  Eigen::Matrix3d rotation;  // R_EE = R_WB(now) R_WB(home)^T, world axes
+  Eigen::Vector3d rpy;       // rotation as [roll, pitch, yaw] [rad]
+};
+
+EndEffectorPose ComputeEndEffectorPose(const Model& model, const State& s);
+
+// d(X_EE)/ds (6 x state_size): rows 0-2 the position [m], rows 3-5 the
+// rotation increment in world axes [rad] (R_EE <- Exp(dtheta) R_EE).
+Eigen::MatrixXd EndEffectorJacobian(const Model& model, const State& s);
+
+}  // namespace ccma
+
+#endif  // CCMA_END_EFFECTOR_H_

@@ -1,0 +1,33 @@
+// Numerical mobility of a CCMA system at a configuration (`ccma check`).
+#ifndef CCMA_MOBILITY_H_
+#define CCMA_MOBILITY_H_
+
+#include <Eigen/Core>
+
+#include "ccma/constraint_set.h"
+#include "ccma/model.h"
+#include "ccma/state.h"
+
+namespace ccma {
+
+struct MobilityReport {
+  int constraint_rank = 0;  // rank of dC/ds (controls fixed)
+  // state_size - constraint_rank: free motions with the controls fixed.
+  int dof_with_controls_fixed = 0;
+  bool rigid_with_controls_fixed = false;
+  // Free motions (ds, du_effective) when the effective controls move too.
+  int dof_with_controls_free = 0;
+  // Rank of dX_EE over those motions: how many end-effector DOF the bases drive.
+  int end_effector_dof = 0;
+  double smallest_singular_value = 0;  // of dC/ds; ~0 means singular
+  double energy = 0;                   // E(s, u)
+};
+
+// Ranks use singular values above rank_tolerance * (largest singular value).
+MobilityReport AnalyzeMobility(const Model& model, const ConstraintSet& constraints,
+                               const State& s, const Eigen::VectorXd& u,
+                               double rank_tolerance = 1e-8);
+
+}  // namespace ccma
+
+#endif  // CCMA_MOBILITY_H_

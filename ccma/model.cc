@@ -1,0 +1,65 @@
+#include "ccma/model.h"
+
+#include "cost_functions/omni_base_motor_cost.h"
+#include "cost_functions/omni_base_planar_cost.h"
+
+namespace ccma {
+
+const std::array<const char*, 6> kEndEffectorComponentNames = {
+    "x", "y", "z", "roll", "pitch", "yaw"};
+
+const char* JointTypeName(JointType type) {
+  switch (type) {
+    case JointType::kRevolute: return "revolute";
+    case JointType::kSpherical: return "spherical";
+    case JointType::kUniversal: return "universal";
+    case JointType::kPrismatic: return "prismatic";
+    case JointType::kFixed: return "fixed";
+  }
+  return "?";
+}
+
+int JointResidualCount(JointType type) {
+  switch (type) {
+    case JointType::kRevolute: return 6;
+    case JointType::kSpherical: return 3;
+    case JointType::kUniversal: return 4;
+    case JointType::kPrismatic: return 9;
+    case JointType::kFixed: return 9;
+  }
+  return 0;
+}
+
+std::vector<int> Model::effective_control_indices() const {
+  std::vector<int> indices;
+  for (int k = 0; k < num_bases(); ++k) {
+    indices.push_back(3 * k);
+    indices.push_back(3 * k + 1);
+    if (mobile_bases[k].actuation == Actuation::kComplete) {
+      indices.push_back(3 * k + 2);
+    }
+  }
+  return indices;
+}
+
+int Model::num_constraints() const {
+  int rows = num_bases() * (OmniBasePlanarCost::kNumResiduals +
+                            OmniBaseMotorCost::kNumResiduals);
+  for (const Joint& joint : joints) rows += JointResidualCount(joint.type);
+  return rows;
+}
+
+Eigen::VectorXd Model::home_controls() const {
+  Eigen::VectorXd u(num_controls());
+  for (int k = 0; k < num_bases(); ++k) u.segment<3>(3 * k) = mobile_bases[k].home_pose;
+  return u;
+}
+
+int Model::FindBody(const std::string& body_name) const {
+  for (int i = 0; i < num_bodies(); ++i) {
+    if (bodies[i].name == body_name) return i;
+  }
+  return -1;
+}
+
+}  // namespace ccma

@@ -1,0 +1,87 @@
+// Kinematic primitives shared by ccma's analytic cost functions.
+//
+// A body's pose block is [q (4), p_WB (3)] (ccma/state.h). Its tangent
+// increment is (dphi, dp) with R_WB <- Exp(dphi) R_WB, so for a body-fixed
+// point r_B and direction v_B:
+//   d(R r_B + p) / d(dphi) = -[R r_B]x,   d(R r_B + p) / d(dp) = I
+//   d(R v_B)     / d(dphi) = -[R v_B]x,   d(R v_B)     / d(dp) = 0
+// Jacobian blocks are Ceres row-major (rows x 7) with the lifted convention of
+// ccma/pose_manifold.h: tangent in columns 0-5, column 6 zero.
+#ifndef CCMA_COST_FUNCTIONS_BODY_FRAME_H_
+#define CCMA_COST_FUNCTIONS_BODY_FRAME_H_
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "ccma/rotation.h"
+
+namespace ccma {
+
+// Row-major Jacobian block of `Rows` residuals with respect to one pose block.
+template <int Rows>
+using PoseJacobian = Eigen::Map<Eigen::Matrix<double, Rows, 7, Eigen::RowMajor>>;
+
+// The world pose of one body, read from its parameter block.
+struct BodyFrame {
+  explicit BodyFrame(const double* pose)
+      : R_WB(Eigen::Quaterniond(Eigen::Map<const Eigen::Vector4d>(pose)).toRotationMatrix()),
+        p_WB(pose[4], pose[5], pose[6]) {}
+  // Body-fixed vector r_B in world axes (also the lever arm of a point).
+  Eigen::Vector3d Rotate(const Eigen::Vector3d& r_B) const { return R_WB * r_B; }
+
+  Eigen::Matrix3d R_WB;
+  Eigen::Vector3d p_WB;
+};
+
+// Rows [row, row + 3) of r = (p_B - p_A) for body-fixed points r_A on body A
+// and r_B on body B, and their Jacobian rows (either pointer may be null).
+template <int Rows>
+inline void PointDifference(const BodyFrame& A, const Eigen::Vector3d& r_A,
+                            const BodyFrame& B, const Eigen::Vector3d& r_B, int row,
+                            double* residuals, double* jacobian_A, double* jacobian_B) {
+  const Eigen::Vector3d lever_A = A.Rotate(r_A);
+  const Eigen::Vector3d lever_B = B.Rotate(r_B);
+  Eigen::Map<Eigen::Vector3d>(residuals + row) = (lever_B + B.p_WB) - (lever_A + A.p_WB);
+  if (jacobian_A != nullptr) {
+    PoseJacobian<Rows> J(jacobian_A);
+    J.template block<3, 3>(row, 0) = Skew(lever_A);
+    J.template block<3, 3>(row, 3) = -Eigen::Matrix3d::Identity();
+  }
+  if (jacobian_B != nullptr) {
+    PoseJacobian<Rows> J(jacobian_B);
+    J.template block<3, 3>(row, 0) = -Skew(lever_B);
+    J.template block<3, 3>(row, 3) = Eigen::Matrix3d::Identity();
+  }
+}
+
+// Rows [row, row + 3) of r = (v_B - v_A) for body-fixed directions v_A on A
+// and v_B on B (world axes), and their Jacobian rows.
+template <int Rows>
+inline void DirectionDifference(const BodyFrame& A, const Eigen::Vector3d& d_A,
+                                const BodyFrame& B, const Eigen::Vector3d& d_B, int row,
+                                double* residuals, double* jacobian_A, double* jacobian_B) {
+  const Eigen::Vector3d v_A = A.Rotate(d_A);
+  const Eigen::Vector3d v_B = B.Rotate(d_B);
+  Eigen::Map<Eigen::Vector3d>(residuals + row) = v_B - v_A;
+  if (jacobian_A != nullptr) {
+    PoseJacobian<Rows>(jacobian_A).template block<3, 3>(row, 0) = Skew(v_A);
+  }
+  if (jacobian_B != nullptr) {
+    PoseJacobian<Rows>(jacobian_B).template block<3, 3>(row, 0) = -Skew(v_B);
+  }
+}
+
+// Zeroes a Jacobian block if it is requested (blocks are then filled sparsely).
+template <int Rows>
+inline void ZeroIfRequested(double* jacobian) {
+  if (jacobian != nullptr) PoseJacobian<Rows>(jacobian).setZero();
+}
+
+// The jacobians[k] entry, or null when Ceres asked for no Jacobians at all.
+inline double* JacobianOrNull(double** jacobians, int k) {
+  return jacobians == nullptr ? nullptr : jacobians[k];
+}
+
+}  // namespace ccma
+
+#endif  // CCMA_COST_FUNCTIONS_BODY_FRAME_H_

@@ -1,0 +1,43 @@
+// Fixed joint (0 DOF): welds bodies A and B.
+//   r = [ p_B(r_B) - p_A(r_A) ;  d1_B - d1_A ;  d2_B - d2_A ]   9 rows, 6 independent
+// d1, d2: two body-fixed directions (world x and y at home) expressed in A's
+// and B's frames; equal world directions lock the relative rotation.
+// Parameters: pose of A, pose of B (7 each, state.h).
+#ifndef CCMA_COST_FUNCTIONS_FIXED_JOINT_COST_H_
+#define CCMA_COST_FUNCTIONS_FIXED_JOINT_COST_H_
+
+#include <ceres/sized_cost_function.h>
+
+#include "cost_functions/body_frame.h"
+
+namespace ccma {
+
+class FixedJointCost final : public ceres::SizedCostFunction<9, 7, 7> {
+ public:
+  static constexpr int kNumResiduals = 9;
+
+  FixedJointCost(const Eigen::Vector3d& r_A, const Eigen::Vector3d& r_B,
+                 const Eigen::Vector3d& d1_A, const Eigen::Vector3d& d1_B,
+                 const Eigen::Vector3d& d2_A, const Eigen::Vector3d& d2_B)
+      : r_A_(r_A), r_B_(r_B), d1_A_(d1_A), d1_B_(d1_B), d2_A_(d2_A), d2_B_(d2_B) {}
+
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override {
+    const BodyFrame A(parameters[0]), B(parameters[1]);
+    double* J_A = JacobianOrNull(jacobians, 0);
+    double* J_B = JacobianOrNull(jacobians, 1);
+    ZeroIfRequested<9>(J_A);
+    ZeroIfRequested<9>(J_B);
+    PointDifference<9>(A, r_A_, B, r_B_, 0, residuals, J_A, J_B);
+    DirectionDifference<9>(A, d1_A_, B, d1_B_, 3, residuals, J_A, J_B);
+    DirectionDifference<9>(A, d2_A_, B, d2_B_, 6, residuals, J_A, J_B);
+    return true;
+  }
+
+ private:
+  const Eigen::Vector3d r_A_, r_B_, d1_A_, d1_B_, d2_A_, d2_B_;
+};
+
+}  // namespace ccma
+
+#endif  // CCMA_COST_FUNCTIONS_FIXED_JOINT_COST_H_

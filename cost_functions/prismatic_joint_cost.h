@@ -1,0 +1,65 @@
+// Prismatic joint (1 DOF): no relative rotation, relative translation only
+// along the axis a (fixed in body A).
+//   r = [ d1_B - d1_A ;  d2_B - d2_A ;  (I - a a^T) (p_B(r_B) - p_A(r_A)) ]
+// 9 rows (3 + 3 + 3), 5 independent. d1, d2 as in fixed_joint_cost.h;
+// a = R_A a_A, unit. Parameters: pose of A, pose of B (7 each, state.h).
+#ifndef CCMA_COST_FUNCTIONS_PRISMATIC_JOINT_COST_H_
+#define CCMA_COST_FUNCTIONS_PRISMATIC_JOINT_COST_H_
+
+#include <ceres/sized_cost_function.h>
+
+#include "cost_functions/body_frame.h"
+
+namespace ccma {
+
+class PrismaticJointCost final : public ceres::SizedCostFunction<9, 7, 7> {
+ public:
+  static constexpr int kNumResiduals = 9;
+
+  PrismaticJointCost(const Eigen::Vector3d& r_A, const Eigen::Vector3d& r_B,
+                     const Eigen::Vector3d& a_A, const Eigen::Vector3d& d1_A,
+                     const Eigen::Vector3d& d1_B, const Eigen::Vector3d& d2_A,
+                     const Eigen::Vector3d& d2_B)
+      : r_A_(r_A), r_B_(r_B), a_A_(a_A), d1_A_(d1_A), d1_B_(d1_B), d2_A_(d2_A),
+        d2_B_(d2_B) {}
+
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override {
+    const BodyFrame A(parameters[0]), B(parameters[1]);
+    double* J_A = JacobianOrNull(jacobians, 0);
+    double* J_B = JacobianOrNull(jacobians, 1);
+    ZeroIfRequested<9>(J_A);
+    ZeroIfRequested<9>(J_B);
+    DirectionDifference<9>(A, d1_A_, B, d1_B_, 0, residuals, J_A, J_B);
+    DirectionDifference<9>(A, d2_A_, B, d2_B_, 3, residuals, J_A, J_B);
+
+    // d = p_B - p_A (with its Jacobians in rows 6-8, scratch), then project.
+    PointDifference<9>(A, r_A_, B, r_B_, 6, residuals, J_A, J_B);
+    const Eigen::Vector3d d(residuals[6], residuals[7], residuals[8]);
+    const Eigen::Vector3d a = A.Rotate(a_A_);
+    const double a_dot_d = a.dot(d);
+    const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - a * a.transpose();
+    Eigen::Map<Eigen::Vector3d>(residuals + 6) = d - a_dot_d * a;
+    // r = P d: dr = P dd + (-(a.d) I - a d^T) da, with da = -[a]x dphi_A.
+    if (J_A != nullptr) {
+      PoseJacobian<9> J(J_A);
+      const Eigen::Matrix<double, 3, 6> dd = J.block<3, 6>(6, 0);
+      J.block<3, 6>(6, 0) = P * dd;
+      J.block<3, 3>(6, 0) +=
+          (a_dot_d * Eigen::Matrix3d::Identity() + a * d.transpose()) * Skew(a);
+    }
+    if (J_B != nullptr) {
+      PoseJacobian<9> J(J_B);
+      const Eigen::Matrix<double, 3, 6> dd = J.block<3, 6>(6, 0);
+      J.block<3, 6>(6, 0) = P * dd;
+    }
+    return true;
+  }
+
+ private:
+  const Eigen::Vector3d r_A_, r_B_, a_A_, d1_A_, d1_B_, d2_A_, d2_B_;
+};
+
+}  // namespace ccma
+
+#endif  // CCMA_COST_FUNCTIONS_PRISMATIC_JOINT_COST_H_

@@ -1,0 +1,40 @@
+// Revolute joint (1 DOF) between bodies A and B: the paper's C_rev.
+//   r = [ p_B(r_B) - p_A(r_A) ;  a_B - a_A ]          6 rows, 5 independent
+// r_A, r_B: the joint point in A's and B's frames [m]; a_A, a_B: the unit
+// axis in each frame. Parameters: pose of A, pose of B (7 each, state.h).
+#ifndef CCMA_COST_FUNCTIONS_REVOLUTE_JOINT_COST_H_
+#define CCMA_COST_FUNCTIONS_REVOLUTE_JOINT_COST_H_
+
+#include <ceres/sized_cost_function.h>
+
+#include "cost_functions/body_frame.h"
+
+namespace ccma {
+
+class RevoluteJointCost final : public ceres::SizedCostFunction<6, 7, 7> {
+ public:
+  static constexpr int kNumResiduals = 6;
+
+  RevoluteJointCost(const Eigen::Vector3d& r_A, const Eigen::Vector3d& r_B,
+                    const Eigen::Vector3d& a_A, const Eigen::Vector3d& a_B)
+      : r_A_(r_A), r_B_(r_B), a_A_(a_A), a_B_(a_B) {}
+
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override {
+    const BodyFrame A(parameters[0]), B(parameters[1]);
+    double* J_A = JacobianOrNull(jacobians, 0);
+    double* J_B = JacobianOrNull(jacobians, 1);
+    ZeroIfRequested<6>(J_A);
+    ZeroIfRequested<6>(J_B);
+    PointDifference<6>(A, r_A_, B, r_B_, 0, residuals, J_A, J_B);
+    DirectionDifference<6>(A, a_A_, B, a_B_, 3, residuals, J_A, J_B);
+    return true;
+  }
+
+ private:
+  const Eigen::Vector3d r_A_, r_B_, a_A_, a_B_;
+};
+
+}  // namespace ccma
+
+#endif  // CCMA_COST_FUNCTIONS_REVOLUTE_JOINT_COST_H_

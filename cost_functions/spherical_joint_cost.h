@@ -1,0 +1,38 @@
+// Spherical joint (3 DOF) between bodies A and B: the paper's C_sph.
+//   r = p_B(r_B) - p_A(r_A)                           3 rows
+// r_A, r_B: the joint centre in A's and B's frames [m].
+// Parameters: pose of A, pose of B (7 each, state.h).
+#ifndef CCMA_COST_FUNCTIONS_SPHERICAL_JOINT_COST_H_
+#define CCMA_COST_FUNCTIONS_SPHERICAL_JOINT_COST_H_
+
+#include <ceres/sized_cost_function.h>
+
+#include "cost_functions/body_frame.h"
+
+namespace ccma {
+
+class SphericalJointCost final : public ceres::SizedCostFunction<3, 7, 7> {
+ public:
+  static constexpr int kNumResiduals = 3;
+
+  SphericalJointCost(const Eigen::Vector3d& r_A, const Eigen::Vector3d& r_B)
+      : r_A_(r_A), r_B_(r_B) {}
+
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override {
+    const BodyFrame A(parameters[0]), B(parameters[1]);
+    double* J_A = JacobianOrNull(jacobians, 0);
+    double* J_B = JacobianOrNull(jacobians, 1);
+    ZeroIfRequested<3>(J_A);
+    ZeroIfRequested<3>(J_B);
+    PointDifference<3>(A, r_A_, B, r_B_, 0, residuals, J_A, J_B);
+    return true;
+  }
+
+ private:
+  const Eigen::Vector3d r_A_, r_B_;
+};
+
+}  // namespace ccma
+
+#endif  // CCMA_COST_FUNCTIONS_SPHERICAL_JOINT_COST_H_

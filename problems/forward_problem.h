@@ -1,0 +1,100 @@
+// The forward problem (simulation, paper Section III-A):
+//   s_hat(u) = argmin_s E(s, u) = 1/2 C(s, u)^T C(s, u)
+// as one ceres::Problem over the body poses, built once per model. The control
+// blocks are held constant; each Solve() warm-starts from the last state, so
+// a control loop can call it thousands of times without rebuilding anything.
+//
+// Honest reporting: a solve converges to dE/ds = 0, not necessarily E = 0.
+// `assembled` says whether E fell below ForwardOptions::assembly_tolerance;
+// controls the mechanism cannot reach leave E > 0 and assembled = false.
+#ifndef CCMA_PROBLEMS_FORWARD_PROBLEM_H_
+#define CCMA_PROBLEMS_FORWARD_PROBLEM_H_
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "ccma/constraint_set.h"
+#include "ccma/end_effector.h"
+#include "ccma/model.h"
+#include "ccma/state.h"
+
+namespace ceres {
+class Problem;
+}
+
+namespace ccma {
+
+enum class LinearSolverChoice { kAuto, kDenseQr, kDenseNormalCholesky, kSparseNormalCholesky };
+
+struct ForwardOptions {
+  // E [m^2] below which the mechanism counts as assembled. 1e-16 means every
+  // constraint row is below ~1.4e-8 (m, or rad-like for directions). When the
+  // controls can be reached, solves end near E ~ 1e-28, far below.
+  double assembly_tolerance = 1e-16;
+  int max_iterations = 100;  // per Solve() (per sub-step in Assemble())
+  // Assemble() splits a control change into sub-steps no larger than this
+  // (max-norm over u; m and rad) to stay on the branch connected to the start.
+  double max_control_step = 0.02;
+  // kAuto: dense QR for small systems, sparse normal Cholesky for large ones.
+  LinearSolverChoice linear_solver = LinearSolverChoice::kAuto;
+};
+
+struct ForwardResult {
+  bool converged = false;   // Ceres reported convergence (dE/ds ~ 0)
+  bool assembled = false;   // residual_energy < assembly_tolerance
+  double residual_energy = 0;  // E(s_hat, u) [m^2]
+  int iterations = 0;       // Ceres iterations, summed over sub-steps
+  int substeps = 1;         // solves made (Assemble() may split the step)
+  double solve_time_ms = 0; // wall time of the solve(s)
+  std::string message;      // Ceres' termination message (last solve)
+};
+
+class ForwardProblem {
+ public:
+  explicit ForwardProblem(const Model& model, const ForwardOptions& options = {});
+  ~ForwardProblem();
+  ForwardProblem(const ForwardProblem&) = delete;
+  ForwardProblem& operator=(const ForwardProblem&) = delete;
+
+  // One warm-started solve at controls u (3 per base: x [m], y [m], theta
+  // [rad]), from the current state. Throws std::invalid_argument if u has the
+  // wrong size or a non-finite entry.
+  ForwardResult Solve(const Eigen::VectorXd& u);
+
+  // Moves the controls from their current value to u in sub-steps of at most
+  // options.max_control_step, solving after each: follows the assembly branch
+  // from the current configuration. What `ccma simulate` uses.
+  ForwardResult Assemble(const Eigen::VectorXd& u);
+
+  // Back to the home configuration and home controls (no solve).
+  void ResetToHome();
+  // Replaces the state (e.g. to warm-start from a saved configuration).
+  void SetState(const State& s);
+
+  const Model& model() const { return model_; }
+  const ConstraintSet& constraints() const { return constraints_; }
+  const State& state() const { return state_; }
+  const Eigen::VectorXd& controls() const { return controls_; }
+  EndEffectorPose end_effector() const { return ComputeEndEffectorPose(model_, state_); }
+  // E at the current state and controls.
+  double Energy() const { return constraints_.Energy(state_, controls_); }
+  const ForwardOptions& options() const { return options_; }
+
+ private:
+  void CheckControls(const Eigen::VectorXd& u) const;
+
+  const Model model_;
+  const ForwardOptions options_;
+  const ConstraintSet constraints_;
+  State state_;
+  Eigen::VectorXd controls_;
+  struct CeresParts;
+  std::unique_ptr<CeresParts> ceres_;
+};
+
+}  // namespace ccma
+
+#endif  // CCMA_PROBLEMS_FORWARD_PROBLEM_H_
