@@ -1,6 +1,7 @@
 #include "ccma/model_loader.h"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <numeric>
@@ -375,6 +376,10 @@ Model LoadModelFromString(const std::string& text, const std::string& source_nam
 }
 
 Model LoadModel(const std::string& path, std::vector<std::string>* warnings) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    throw ModelError(path + ": is a directory, not a model file");
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ModelError(path + ": cannot open the model file");
   std::ostringstream text;
