@@ -8,6 +8,7 @@
 #include <ceres/solver.h>
 
 #include "ccma/pose_manifold.h"
+#include "ccma/rotation.h"
 
 namespace ccma {
 
@@ -76,7 +77,7 @@ ForwardProblem::ForwardProblem(const Model& model, const ForwardOptions& options
   so.initial_trust_region_radius = 1e8;  // warm starts are near-Newton steps
   so.num_threads = 1;
   so.logging_type = ceres::SILENT;
-  so.minimizer_progress_to_stdout = false;
+  so.minimizer_progress_to_stdout = options_.log_progress;
 }
 
 ForwardProblem::~ForwardProblem() = default;
@@ -118,13 +119,16 @@ ForwardResult ForwardProblem::Solve(const Eigen::VectorXd& u) {
 ForwardResult ForwardProblem::Assemble(const Eigen::VectorXd& u) {
   CheckControls(u);
   const Eigen::VectorXd from = controls_;
-  const double distance = (u - from).lpNorm<Eigen::Infinity>();
+  // Headings matter modulo 2 pi (motor rows use cos, sin): walk the short way.
+  Eigen::VectorXd change = u - from;
+  for (int k = 0; k < model_.num_bases(); ++k) change[3 * k + 2] = WrapAngle(change[3 * k + 2]);
+  const double distance = change.lpNorm<Eigen::Infinity>();
   const int substeps =
       std::max(1, static_cast<int>(std::ceil(distance / options_.max_control_step)));
   ForwardResult total;
   for (int i = 1; i <= substeps; ++i) {
     const Eigen::VectorXd u_i =
-        i == substeps ? u : Eigen::VectorXd(from + (u - from) * (double(i) / substeps));
+        i == substeps ? u : Eigen::VectorXd(from + change * (double(i) / substeps));
     const ForwardResult step = Solve(u_i);
     total.iterations += step.iterations;
     total.solve_time_ms += step.solve_time_ms;

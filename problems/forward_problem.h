@@ -40,6 +40,8 @@ struct ForwardOptions {
   double max_control_step = 0.02;
   // kAuto: dense QR for small systems, sparse normal Cholesky for large ones.
   LinearSolverChoice linear_solver = LinearSolverChoice::kAuto;
+  // Print Ceres' per-iteration progress to stdout (for studying convergence).
+  bool log_progress = false;
 };
 
 struct ForwardResult {
