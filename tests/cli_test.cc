@@ -1,0 +1,170 @@
+// The `ccma` tool as shared/cli.md fixes it: exit codes, stdout/stderr, keys.
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+namespace {
+
+struct ToolRun {
+  int status;
+  std::string out, err;
+};
+
+std::string Slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+ToolRun Ccma(const std::string& args) {
+  const std::string dir = ::testing::TempDir();
+  const std::string out = dir + "/ccma_out.txt", err = dir + "/ccma_err.txt";
+  const std::string cmd = std::string(CCMA_TOOL_PATH) + " " + args + " >" + out + " 2>" + err;
+  const int raw = std::system(cmd.c_str());
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, Slurp(out), Slurp(err)};
+}
+
+std::string Model(const std::string& name) {
+  return std::string("--model=") + CCMA_MODELS_DIR + "/" + name + ".yaml";
+}
+
+std::string WriteFile(const std::string& name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + "/" + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+TEST(Cli, CheckPrintsTheContractKeys) {
+  const ToolRun r = Ccma("check " + Model("4dof_reduced"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["model"], "4dof_reduced");
+  EXPECT_EQ(j["bodies"], 10);
+  EXPECT_EQ(j["mobile_bases"], 3);
+  EXPECT_EQ(j["joints"], 9);
+  EXPECT_EQ(j["state_size"], 60);
+  EXPECT_EQ(j["controls"], 9);
+  EXPECT_EQ(j["effective_controls"], 6);
+  EXPECT_EQ(j["constraints"], 81);
+  EXPECT_EQ(j["rigid_with_controls_fixed"], true);
+  EXPECT_EQ(j["end_effector_dof"], 4);
+  EXPECT_EQ(j["assembled_at_home"], true);
+}
+
+TEST(Cli, SimulatePrintsTheContractKeys) {
+  const ToolRun r = Ccma("simulate " + Model("6dof_six_agents"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  for (const char* key : {"model", "converged", "assembled", "residual_energy", "iterations",
+                          "solve_time_ms", "controls", "end_effector"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+  EXPECT_EQ(j["controls"].size(), 18u);
+  EXPECT_EQ(j["assembled"], true);
+  EXPECT_NEAR(j["end_effector"]["position"][2].get<double>(), 0.6, 1e-12);
+  EXPECT_EQ(j["end_effector"]["rotation"].size(), 3u);
+  EXPECT_EQ(j["end_effector"]["rpy"].size(), 3u);
+}
+
+TEST(Cli, SimulateMovesTheEndEffectorWithTheBases) {
+  // Every base 5 cm along +y: the mechanism translates rigidly.
+  const ToolRun r = Ccma("simulate " + Model("4dof_complete") +
+                     " --controls=0,0.633012702,1.570796327,-0.504903811,-0.241506351,"
+                     "-2.617993878,0.619801759,-0.307842712,-0.523598776");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["assembled"], true);
+  EXPECT_LT(j["residual_energy"].get<double>(), 1e-20);
+  EXPECT_NEAR(j["end_effector"]["position"][1].get<double>(), 0.05, 1e-10);
+}
+
+TEST(Cli, UnreachableControlsAreReportedNotForced) {
+  const ToolRun r = Ccma("simulate " + Model("4dof_reduced") +
+                     " --controls=0.02,0.583012702,1.570796327,-0.504903811,-0.291506351,"
+                     "-2.617993878,0.504903811,-0.291506351,-0.523598776");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["assembled"], false);
+  EXPECT_GT(j["residual_energy"].get<double>(), 1e-8);
+}
+
+struct BadCall {
+  std::string what, args;
+};
+void PrintTo(const BadCall& b, std::ostream* os) { *os << b.what; }
+
+class BadUsage : public ::testing::TestWithParam<BadCall> {};
+
+TEST_P(BadUsage, ExitsTwoWithAMessageAndNothingOnStdout) {
+  const ToolRun r = Ccma(GetParam().args);
+  EXPECT_EQ(r.status, 2) << GetParam().what << "\nstderr: " << r.err;
+  EXPECT_EQ(r.out, "") << GetParam().what;
+  EXPECT_FALSE(r.err.empty()) << GetParam().what;
+  EXPECT_EQ(r.err.find("terminate"), std::string::npos) << r.err;  // no crash text
+}
+
+const std::string kTwoBases = Model("4dof_reduced");
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, BadUsage,
+    ::testing::Values(
+        BadCall{"no arguments", ""}, BadCall{"unknown command", "assemble " + kTwoBases},
+        BadCall{"missing model", "check"}, BadCall{"empty model", "check --model="},
+        BadCall{"unknown flag", "check " + kTwoBases + " --verbose=1"},
+        BadCall{"flag without value", "simulate --model"},
+        BadCall{"positional argument", "check models/4dof_reduced.yaml"},
+        BadCall{"flag given twice", "check " + kTwoBases + " " + kTwoBases},
+        BadCall{"missing file", "check --model=/nonexistent.yaml"},
+        BadCall{"directory as model", std::string("simulate --model=") + CCMA_MODELS_DIR},
+        BadCall{"too few controls", "simulate " + kTwoBases + " --controls=1,2,3"},
+        BadCall{"not a number", "simulate " + kTwoBases + " --controls=0,0,0,0,0,0,0,0,abc"},
+        BadCall{"nan control", "simulate " + kTwoBases + " --controls=0,0,0,0,0,0,0,0,nan"},
+        BadCall{"inf control", "simulate " + kTwoBases + " --controls=0,0,0,0,0,0,0,0,inf"},
+        BadCall{"trailing comma", "simulate " + kTwoBases + " --controls=0,0,0,0,0,0,0,0,0,"},
+        BadCall{"empty entry", "simulate " + kTwoBases + " --controls=0,0,0,,0,0,0,0,0"},
+        BadCall{"check takes no controls", "check " + kTwoBases + " --controls=1"}),
+    [](const auto& info) {
+      std::string n = info.param.what;
+      for (char& c : n) if (!isalnum(static_cast<unsigned char>(c))) c = '_';
+      return n;
+    });
+
+TEST(Cli, MalformedModelsExitTwoNamingFileAndLine) {
+  const std::string path = WriteFile("broken.yaml", R"(name: broken
+bodies: []
+mobile_bases:
+  - {name: b, actuation: sideways, pose: [0, 0, 0]}
+joints: []
+end_effector: {body: b, point: [0, 0, 0], controlled: [x]}
+)");
+  for (const std::string command : {"check", "simulate"}) {
+    const ToolRun r = Ccma(command + " --model=" + path);
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(r.out, "");
+    EXPECT_NE(r.err.find("broken.yaml:4"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("actuation"), std::string::npos) << r.err;
+  }
+}
+
+TEST(Cli, BinaryGarbageIsABadModel) {
+  const std::string path = WriteFile("garbage.yaml", std::string("\x01\x02\xff\xfe{{{[[[", 10));
+  const ToolRun r = Ccma("check --model=" + path);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.out, "");
+  EXPECT_NE(r.err.find("garbage.yaml"), std::string::npos) << r.err;
+}
+
+TEST(Cli, HelpGoesToStdout) {
+  const ToolRun r = Ccma("--help");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.out.find("ccma simulate"), std::string::npos);
+}
+
+}  // namespace
