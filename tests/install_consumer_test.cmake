@@ -1,0 +1,21 @@
+# Installs ccma into a scratch prefix, builds tests/consumer against it with
+# find_package(ccma CONFIG REQUIRED), and runs the result on a model.
+# Invoked by CTest: cmake -DBUILD_DIR=.. -DSOURCE_DIR=.. -DWORK_DIR=.. -P this
+file(REMOVE_RECURSE "${WORK_DIR}")
+function(run)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "failed (${rc}): ${ARGN}\n${out}\n${err}")
+  endif()
+  set(last_output "${out}" PARENT_SCOPE)
+endfunction()
+run(${CMAKE_COMMAND} --install "${BUILD_DIR}" --prefix "${WORK_DIR}/prefix")
+run(${CMAKE_COMMAND} -S "${SOURCE_DIR}/tests/consumer" -B "${WORK_DIR}/build"
+    -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix -DCMAKE_BUILD_TYPE=Release
+    -DEXAMPLE_SOURCE=${SOURCE_DIR}/apps/embed_example.cc)
+run(${CMAKE_COMMAND} --build "${WORK_DIR}/build")
+run("${WORK_DIR}/build/app" "${WORK_DIR}/prefix/share/ccma/models/6dof_six_agents.yaml")
+if(NOT last_output MATCHES "step 5: assembled=1")
+  message(FATAL_ERROR "consumer ran but did not assemble:\n${last_output}")
+endif()
+message(STATUS "consumer output:\n${last_output}")
