@@ -12,9 +12,6 @@
 
 namespace ccma {
 
-// Above this many state variables the sparse factorisation wins (bench).
-constexpr int kDenseStateLimit = 90;
-
 struct ForwardProblem::CeresParts {
   PoseManifold manifold;
   std::unique_ptr<ceres::Problem> problem;
@@ -54,16 +51,18 @@ ForwardProblem::ForwardProblem(const Model& model, const ForwardOptions& options
   so.minimizer_type = ceres::TRUST_REGION;
   so.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
   LinearSolverChoice choice = options_.linear_solver;
-  if (choice == LinearSolverChoice::kAuto) {
-    choice = model_.state_size() <= kDenseStateLimit ? LinearSolverChoice::kDenseQr
-                                                     : LinearSolverChoice::kSparseNormalCholesky;
-  }
+  if (choice == LinearSolverChoice::kAuto) choice = LinearSolverChoice::kEigenSparseNormalCholesky;
   switch (choice) {
     case LinearSolverChoice::kDenseNormalCholesky:
       so.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
       break;
     case LinearSolverChoice::kSparseNormalCholesky:
       so.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+      so.sparse_linear_algebra_library_type = ceres::SUITE_SPARSE;
+      break;
+    case LinearSolverChoice::kEigenSparseNormalCholesky:
+      so.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+      so.sparse_linear_algebra_library_type = ceres::EIGEN_SPARSE;
       break;
     default:
       so.linear_solver_type = ceres::DENSE_QR;
@@ -72,7 +71,7 @@ ForwardProblem::ForwardProblem(const Model& model, const ForwardOptions& options
   // Tight tolerances: a reachable assembly must end near E ~ 1e-28, and the
   // sensitivities of the control problem need dE/ds ~ 0 to machine precision.
   so.function_tolerance = 1e-15;
-  so.gradient_tolerance = 1e-16;
+  so.gradient_tolerance = 1e-12;
   so.parameter_tolerance = 1e-15;
   so.initial_trust_region_radius = 1e8;  // warm starts are near-Newton steps
   so.num_threads = 1;

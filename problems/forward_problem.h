@@ -27,7 +27,16 @@ class Problem;
 
 namespace ccma {
 
-enum class LinearSolverChoice { kAuto, kDenseQr, kDenseNormalCholesky, kSparseNormalCholesky };
+// Linear solver inside each Levenberg-Marquardt step. Sparse normal Cholesky
+// with Eigen's simplicial factorisation is the fastest on every reference
+// model (benchmarks/forward_benchmark.cc); the others remain for comparison.
+enum class LinearSolverChoice {
+  kAuto,
+  kDenseQr,
+  kDenseNormalCholesky,
+  kSparseNormalCholesky,       // SuiteSparse CHOLMOD
+  kEigenSparseNormalCholesky,  // Eigen::SimplicialLDLT
+};
 
 struct ForwardOptions {
   // E [m^2] below which the mechanism counts as assembled. 1e-16 means every
@@ -38,7 +47,7 @@ struct ForwardOptions {
   // Assemble() splits a control change into sub-steps no larger than this
   // (max-norm over u; m and rad) to stay on the branch connected to the start.
   double max_control_step = 0.02;
-  // kAuto: dense QR for small systems, sparse normal Cholesky for large ones.
+  // kAuto: Eigen sparse normal Cholesky (see LinearSolverChoice).
   LinearSolverChoice linear_solver = LinearSolverChoice::kAuto;
   // Print Ceres' per-iteration progress to stdout (for studying convergence).
   bool log_progress = false;

@@ -1,0 +1,97 @@
+// Warm-started forward solve after one paper-size control step, per
+// reference model and linear solver (Google Benchmark).
+//
+// Each iteration moves the controls between two reachable configurations:
+// home, and the closed-form controls (tests/leg_closed_form.h) of an
+// end-effector pose 10 mm + 0.005 rad away, the paper's control step, which
+// moves the bases by about 1 cm. The solve warm-starts from the previous
+// solution, as in a control loop.
+//   build/benchmarks/forward_benchmark --benchmark_repetitions=10 \
+//       --benchmark_report_aggregates_only=true
+#include <string>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "ccma/ccma.h"
+#include "tests/leg_closed_form.h"
+
+namespace {
+
+using ccma::ForwardOptions;
+using ccma::ForwardProblem;
+using ccma::LinearSolverChoice;
+
+Eigen::VectorXd StepControls(const ccma::Model& m) {
+  const Eigen::Vector3d direction = Eigen::Vector3d(1, 1, 1).normalized();
+  const Eigen::Vector3d p = m.end_effector.p_W_home + 0.010 * direction;
+  const Eigen::Matrix3d R = ccma::RotationFromRpy(
+      m.end_effector.controlled[ccma::kRoll] ? Eigen::Vector3d(0.005, 0.005, 0.005) / std::sqrt(3.0)
+                                              : Eigen::Vector3d(0, 0, 0.005));
+  Eigen::VectorXd u = m.home_controls();
+  for (const auto& leg : ccma::testing::FindLegs(m)) {
+    u.segment<3>(3 * leg.base) = ccma::testing::BasePoseForLeg(m, leg, p, R, 0.0);
+  }
+  return u;
+}
+
+void BM_ForwardWarmStep(benchmark::State& state, const std::string& name, LinearSolverChoice solver) {
+  const ccma::Model model = ccma::LoadModel(std::string(CCMA_MODELS_DIR) + "/" + name + ".yaml");
+  ForwardOptions options;
+  options.linear_solver = solver;
+  ForwardProblem forward(model, options);
+  const Eigen::VectorXd u[2] = {model.home_controls(), StepControls(model)};
+  const double base_move = (u[1] - u[0]).lpNorm<Eigen::Infinity>();
+  forward.Solve(u[0]);
+  int which = 1;
+  long iterations = 0, solves = 0, assembled = 0;
+  for (auto _ : state) {
+    const ccma::ForwardResult r = forward.Solve(u[which]);
+    which ^= 1;
+    iterations += r.iterations;
+    assembled += r.assembled;
+    ++solves;
+  }
+  state.counters["ceres_iterations"] = double(iterations) / solves;
+  state.counters["assembled_fraction"] = double(assembled) / solves;
+  state.counters["max_control_change_mm"] = 1000 * base_move;
+  state.counters["state_size"] = model.state_size();
+}
+
+// The fixed cost of one Solve() call: controls unchanged, nothing to do but
+// Ceres' preprocessing and one evaluation. Subtract it to see the iterations.
+void BM_ForwardAtRest(benchmark::State& state, const std::string& name) {
+  const ccma::Model model = ccma::LoadModel(std::string(CCMA_MODELS_DIR) + "/" + name + ".yaml");
+  ForwardProblem forward(model);
+  const Eigen::VectorXd u = model.home_controls();
+  for (auto _ : state) benchmark::DoNotOptimize(forward.Solve(u));
+}
+
+const std::vector<std::string> kModels = {"4dof_reduced", "4dof_complete", "6dof_symmetric",
+                                          "6dof_asymmetric", "6dof_six_agents"};
+
+int Register() {
+  const std::vector<std::pair<std::string, LinearSolverChoice>> solvers = {
+      {"auto", LinearSolverChoice::kAuto},
+      {"dense_qr", LinearSolverChoice::kDenseQr},
+      {"dense_normal_cholesky", LinearSolverChoice::kDenseNormalCholesky},
+      {"suitesparse_normal_cholesky", LinearSolverChoice::kSparseNormalCholesky},
+      {"eigen_sparse_normal_cholesky", LinearSolverChoice::kEigenSparseNormalCholesky}};
+  for (const std::string& model : kModels) {
+    benchmark::RegisterBenchmark(("ForwardAtRest/" + model).c_str(), BM_ForwardAtRest, model)
+        ->Unit(benchmark::kMicrosecond);
+  }
+  for (const auto& [solver_name, solver] : solvers) {
+    for (const std::string& model : kModels) {
+      benchmark::RegisterBenchmark(("ForwardWarmStep/" + model + "/" + solver_name).c_str(),
+                                   BM_ForwardWarmStep, model, solver)
+          ->Unit(benchmark::kMicrosecond);
+    }
+  }
+  return 0;
+}
+const int kRegistered = Register();
+
+}  // namespace
+
+BENCHMARK_MAIN();
