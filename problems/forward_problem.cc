@@ -71,7 +71,7 @@ ForwardProblem::ForwardProblem(const Model& model, const ForwardOptions& options
   // Tight tolerances: a reachable assembly must end near E ~ 1e-28, and the
   // sensitivities of the control problem need dE/ds ~ 0 to machine precision.
   so.function_tolerance = 1e-15;
-  so.gradient_tolerance = 1e-12;
+  so.gradient_tolerance = 1e-14;
   so.parameter_tolerance = 1e-15;
   so.initial_trust_region_radius = 1e8;  // warm starts are near-Newton steps
   so.num_threads = 1;
