@@ -1,5 +1,6 @@
 #include "apps/json_output.h"
 
+#include <algorithm>
 #include <iostream>
 
 namespace ccma::cli {
@@ -26,6 +27,49 @@ nlohmann::json BodiesToJson(const Model& model, const State& s) {
   return bodies;
 }
 
-void PrintJson(const nlohmann::json& document) { std::cout << document.dump(1) << std::endl; }
+namespace {
+
+// Objects one key per line; arrays of scalars (vectors, matrix rows) inline.
+void Write(const nlohmann::json& j, int indent, std::ostream& os) {
+  const std::string pad(indent, ' '), inner(indent + 2, ' ');
+  auto all_scalars = [](const nlohmann::json& a) {
+    for (const auto& e : a) {
+      if (e.is_structured() && !(e.is_array() && std::none_of(e.begin(), e.end(), [](const auto& x) {
+                                   return x.is_structured();
+                                 }))) {
+        return false;
+      }
+    }
+    return true;
+  };
+  if (j.is_object()) {
+    os << "{";
+    bool first = true;
+    for (auto it = j.begin(); it != j.end(); ++it) {
+      os << (first ? "\n" : ",\n") << inner << nlohmann::json(it.key()).dump() << ": ";
+      Write(it.value(), indent + 2, os);
+      first = false;
+    }
+    os << (first ? "}" : "\n" + pad + "}");
+  } else if (j.is_array() && !all_scalars(j)) {
+    os << "[";
+    bool first = true;
+    for (const auto& e : j) {
+      os << (first ? "\n" : ",\n") << inner;
+      Write(e, indent + 2, os);
+      first = false;
+    }
+    os << (first ? "]" : "\n" + pad + "]");
+  } else {
+    os << j.dump();
+  }
+}
+
+}  // namespace
+
+void PrintJson(const nlohmann::json& document) {
+  Write(document, 0, std::cout);
+  std::cout << std::endl;
+}
 
 }  // namespace ccma::cli
