@@ -5,6 +5,7 @@
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -25,7 +26,9 @@ std::string Slurp(const std::string& path) {
 
 ToolRun Ccma(const std::string& args) {
   const std::string dir = ::testing::TempDir();
-  const std::string out = dir + "/ccma_out.txt", err = dir + "/ccma_err.txt";
+  // Unique per process: CTest runs these tests in parallel.
+  const std::string tag = std::to_string(getpid());
+  const std::string out = dir + "/ccma_out_" + tag + ".txt", err = dir + "/ccma_err_" + tag + ".txt";
   const std::string cmd = std::string(CCMA_TOOL_PATH) + " " + args + " >" + out + " 2>" + err;
   const int raw = std::system(cmd.c_str());
   return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, Slurp(out), Slurp(err)};
@@ -36,7 +39,7 @@ std::string Model(const std::string& name) {
 }
 
 std::string WriteFile(const std::string& name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + "/" + name;
+  const std::string path = ::testing::TempDir() + "/" + std::to_string(getpid()) + "_" + name;
   std::ofstream(path) << text;
   return path;
 }
