@@ -32,6 +32,9 @@ void ParseFlags(const std::vector<std::string>& args, const std::set<std::string
                        "=...)");
     }
     const std::string value = arg.substr(eq + 1);
+    if (value.empty()) {
+      throw UsageError("ccma " + command + ": flag '--" + name + "' has an empty value");
+    }
     // SetCommandLineOption validates the value's type and returns "" on error
     // (unlike ParseCommandLineFlags, it never exits the process).
     if (gflags::SetCommandLineOption(name.c_str(), value.c_str()).empty()) {

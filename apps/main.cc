@@ -72,8 +72,15 @@ int main(int argc, char** argv) {
     std::cerr << "ccma: unknown command '" << command << "'\n\n" << kUsage;
     return 2;
   }
+  const std::vector<std::string> args(argv + 2, argv + argc);
+  for (const std::string& arg : args) {
+    if (arg == "--help" || arg == "-h") {
+      std::cout << kUsage;
+      return 0;
+    }
+  }
   try {
-    return it->second(std::vector<std::string>(argv + 2, argv + argc));
+    return it->second(args);
   } catch (const ccma::cli::UsageError& e) {
     std::cerr << e.what() << "\n";
     return 2;

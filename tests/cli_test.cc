@@ -131,6 +131,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadCall{"nan control", "simulate " + kTwoBases + " --controls=0,0,0,0,0,0,0,0,nan"},
         BadCall{"inf control", "simulate " + kTwoBases + " --controls=0,0,0,0,0,0,0,0,inf"},
         BadCall{"trailing comma", "simulate " + kTwoBases + " --controls=0,0,0,0,0,0,0,0,0,"},
+        BadCall{"empty controls value", "simulate " + kTwoBases + " --controls="},
+        BadCall{"single dash flag", "check -model=x.yaml"},
+        BadCall{"controls overflow", "simulate " + kTwoBases + " --controls=1e999,0,0,0,0,0,0,0,0"},
         BadCall{"empty entry", "simulate " + kTwoBases + " --controls=0,0,0,,0,0,0,0,0"},
         BadCall{"check takes no controls", "check " + kTwoBases + " --controls=1"}),
     [](const auto& info) {
@@ -165,9 +168,11 @@ TEST(Cli, BinaryGarbageIsABadModel) {
 }
 
 TEST(Cli, HelpGoesToStdout) {
-  const ToolRun r = Ccma("--help");
-  EXPECT_EQ(r.status, 0);
-  EXPECT_NE(r.out.find("ccma simulate"), std::string::npos);
+  for (const std::string args : {"--help", "check --help", "simulate --model=x.yaml -h"}) {
+    const ToolRun r = Ccma(args);
+    EXPECT_EQ(r.status, 0) << args;
+    EXPECT_NE(r.out.find("ccma simulate"), std::string::npos) << args;
+  }
 }
 
 }  // namespace
