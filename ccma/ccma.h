@@ -18,6 +18,7 @@
 #include "ccma/end_effector.h"
 #include "ccma/mobility.h"
 #include "ccma/model.h"
+#include "ccma/model_generator.h"
 #include "ccma/model_loader.h"
 #include "ccma/rotation.h"
 #include "ccma/state.h"

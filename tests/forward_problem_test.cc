@@ -15,6 +15,7 @@
 #include "ccma/rotation.h"
 #include "problems/forward_problem.h"
 #include "tests/leg_closed_form.h"
+#include "tests/model_text.h"
 
 namespace ccma {
 namespace {
@@ -98,21 +99,10 @@ TEST_P(EveryReferenceModel, SameAssemblyWhateverTheBodiesHomeOrientation) {
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> d(-M_PI, M_PI);
   for (const std::string& kind : {"pitched", "random"}) {
-    std::string text = ReadReference(GetParam());
-    const std::regex body(R"(\{name: (\w+), position: (\[[^\]]*\])\})");
-    std::string rotated;
-    auto begin = std::sregex_iterator(text.begin(), text.end(), body);
-    size_t last = 0;
-    for (auto it = begin; it != std::sregex_iterator(); ++it) {
-      const double roll = kind == "pitched" ? 0.3 : d(rng);
-      const double pitch = kind == "pitched" ? M_PI / 2 : d(rng) / 2;
-      const double yaw = kind == "pitched" ? -0.7 : d(rng);
-      rotated += text.substr(last, it->position() - last);
-      rotated += "{name: " + (*it)[1].str() + ", position: " + (*it)[2].str() + ", rpy: [" +
-                 std::to_string(roll) + ", " + std::to_string(pitch) + ", " + std::to_string(yaw) + "]}";
-      last = it->position() + it->length();
-    }
-    rotated += text.substr(last);
+    const std::string rotated = testing::WithBodyRpy(ReadReference(GetParam()), [&](const std::string&) {
+      return kind == "pitched" ? Eigen::Vector3d(0.3, M_PI / 2, -0.7)
+                               : Eigen::Vector3d(d(rng), d(rng) / 2, d(rng));
+    });
     ASSERT_NE(rotated.find("rpy"), std::string::npos);
     const Model turned = LoadModelFromString(rotated, GetParam() + "_" + kind + ".yaml");
 

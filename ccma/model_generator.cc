@@ -1,0 +1,59 @@
+#include "ccma/model_generator.h"
+
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+
+#include <Eigen/Core>
+
+namespace ccma {
+namespace {
+
+std::string Vec(const Eigen::Vector3d& v) {
+  std::ostringstream os;
+  os << std::setprecision(12) << "[" << v.x() << ", " << v.y() << ", " << v.z() << "]";
+  return os.str();
+}
+
+}  // namespace
+
+std::string GenerateStewartModel(const StewartOptions& o) {
+  if (o.agents < 3) throw std::invalid_argument("a Stewart-like model needs at least 3 agents");
+  std::ostringstream bodies, bases, joints;
+  const double z_base_joint = 0.1;
+  for (int k = 0; k < o.agents; ++k) {
+    const double angle = 2.0 * M_PI * k / o.agents;
+    // Alternate the attachment to either side, as a Stewart platform does.
+    const double attach = angle + (k % 2 == 0 ? 1 : -1) * o.attachment_offset;
+    const Eigen::Vector3d base(o.base_radius * std::cos(angle), o.base_radius * std::sin(angle), 0.0);
+    const Eigen::Vector3d post_joint = base + Eigen::Vector3d(0, 0, z_base_joint);
+    const Eigen::Vector3d post_top = base + Eigen::Vector3d(0, 0, o.post_height);
+    const Eigen::Vector3d sphere(o.platform_radius * std::cos(attach),
+                                 o.platform_radius * std::sin(attach), o.platform_height);
+    // The link swings in the vertical plane through the post and the sphere.
+    const Eigen::Vector3d reach = sphere - post_top;
+    const Eigen::Vector3d axis = Eigen::Vector3d(reach.y(), -reach.x(), 0).normalized();
+    const std::string n = std::to_string(k);
+    bodies << "  - {name: post" << n << ", position: " << Vec(post_joint) << "}\n"
+           << "  - {name: link" << n << ", position: " << Vec((post_top + sphere) / 2) << "}\n";
+    bases << "  - {name: base" << n << ", type: omni, actuation: reduced, pose: "
+          << Vec(Eigen::Vector3d(base.x(), base.y(), angle)) << "}\n";
+    joints << "  - {type: revolute, between: [base" << n << ", post" << n << "], point: "
+           << Vec(post_joint) << ", axis: [0, 0, 1]}\n"
+           << "  - {type: revolute, between: [post" << n << ", link" << n << "], point: "
+           << Vec(post_top) << ", axis: " << Vec(axis) << "}\n"
+           << "  - {type: spherical, between: [link" << n << ", ee], point: " << Vec(sphere) << "}\n";
+  }
+  std::ostringstream model;
+  model << "name: stewart_" << o.agents << "_agents\n"
+        << "description: \"Generated: " << o.agents
+        << " reduced omni bases, R-R-S legs, Stewart-like layout (family of 6dof_six_agents).\"\n"
+        << "bodies:\n  - {name: ee, position: " << Vec(Eigen::Vector3d(0, 0, o.platform_height)) << "}\n"
+        << bodies.str() << "mobile_bases:\n" << bases.str() << "joints:\n" << joints.str()
+        << "end_effector:\n  body: ee\n  point: " << Vec(Eigen::Vector3d(0, 0, o.platform_height))
+        << "\n  controlled: [x, y, z, roll, pitch, yaw]\n";
+  return model.str();
+}
+
+}  // namespace ccma

@@ -1,0 +1,27 @@
+// Generated model files: the Stewart-like family of 6dof_six_agents with any
+// number of agents, for scaling studies and tests.
+#ifndef CCMA_MODEL_GENERATOR_H_
+#define CCMA_MODEL_GENERATOR_H_
+
+#include <string>
+
+namespace ccma {
+
+struct StewartOptions {
+  int agents = 6;                  // >= 3 (rigid with controls fixed from 6 on)
+  double base_radius = 0.65;       // m, bases on a circle around the origin
+  double platform_radius = 0.15;   // m, spherical joints on the end-effector
+  double platform_height = 0.6;    // m, end-effector point
+  double post_height = 0.35;       // m, the horizontal revolute on each post
+  double attachment_offset = 0.7;  // rad, +- angle between a base and its joint
+};
+
+// A model file (YAML text, model_format.md) of `agents` reduced omni bases,
+// each with a vertical revolute to a post, a horizontal revolute to a link,
+// and a spherical joint on the end-effector: every leg constrains one
+// distance. Throws std::invalid_argument for agents < 3.
+std::string GenerateStewartModel(const StewartOptions& options);
+
+}  // namespace ccma
+
+#endif  // CCMA_MODEL_GENERATOR_H_
