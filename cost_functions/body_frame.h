@@ -71,6 +71,41 @@ inline void DirectionDifference(const BodyFrame& A, const Eigen::Vector3d& d_A,
   }
 }
 
+// ---- Second order (exact Hessian of E = 1/2 C^T C, paper Section III-B) ----
+// With R <- Exp(dphi) R, Exp(dphi) v = v + dphi x v + 1/2 dphi x (dphi x v) + ...,
+// so the Hessian at dphi = 0 of the scalar w . (Exp(dphi) v) is
+//   RotationHessian(w, v) = 1/2 (v w^T + w v^T) - (v . w) I.
+// Translations enter linearly: no second-order terms of their own.
+inline Eigen::Matrix3d RotationHessian(const Eigen::Vector3d& w, const Eigen::Vector3d& v) {
+  return 0.5 * (v * w.transpose() + w * v.transpose()) - v.dot(w) * Eigen::Matrix3d::Identity();
+}
+
+// Dense Hessian over the stacked tangents of a cost's pose blocks: 6 per
+// pose, [dphi_A, dp_A, dphi_B, dp_B].
+using TangentHessian = Eigen::Ref<Eigen::MatrixXd>;
+
+// Second-order terms of PointDifference / DirectionDifference rows weighted
+// by w (both are w . (R_B x_B) - w . (R_A x_A) plus linear terms).
+inline void AddDifferenceHessian(const BodyFrame& A, const Eigen::Vector3d& x_A, const BodyFrame& B,
+                                 const Eigen::Vector3d& x_B, const Eigen::Vector3d& w,
+                                 TangentHessian H) {
+  H.block<3, 3>(0, 0) -= RotationHessian(w, A.Rotate(x_A));
+  H.block<3, 3>(6, 6) += RotationHessian(w, B.Rotate(x_B));
+}
+
+// The second-order part of a ccma cost function: adds
+//   sum_k weights[k] * d^2 r_k / d(tangent)^2
+// at the given parameters into H (6 x 6 per pose block, in parameter order;
+// control blocks excluded: no ccma constraint couples s and u at second
+// order, so d^2 E / ds du = J_s^T J_u exactly). With weights = C this is the
+// term sum_i C_i Hess(C_i) of the exact Hessian of E.
+class ResidualHessian {
+ public:
+  virtual ~ResidualHessian() = default;
+  virtual void AddWeightedHessian(double const* const* parameters, const double* weights,
+                                  TangentHessian H) const = 0;
+};
+
 // Zeroes a Jacobian block if it is requested (blocks are then filled sparsely).
 template <int Rows>
 inline void ZeroIfRequested(double* jacobian) {

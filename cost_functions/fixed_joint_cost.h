@@ -12,7 +12,7 @@
 
 namespace ccma {
 
-class FixedJointCost final : public ceres::SizedCostFunction<9, 7, 7> {
+class FixedJointCost final : public ceres::SizedCostFunction<9, 7, 7>, public ResidualHessian {
  public:
   static constexpr int kNumResiduals = 9;
 
@@ -32,6 +32,14 @@ class FixedJointCost final : public ceres::SizedCostFunction<9, 7, 7> {
     DirectionDifference<9>(A, d1_A_, B, d1_B_, 3, residuals, J_A, J_B);
     DirectionDifference<9>(A, d2_A_, B, d2_B_, 6, residuals, J_A, J_B);
     return true;
+  }
+
+  void AddWeightedHessian(double const* const* parameters, const double* weights,
+                          TangentHessian H) const override {
+    const BodyFrame A(parameters[0]), B(parameters[1]);
+    AddDifferenceHessian(A, r_A_, B, r_B_, Eigen::Map<const Eigen::Vector3d>(weights), H);
+    AddDifferenceHessian(A, d1_A_, B, d1_B_, Eigen::Map<const Eigen::Vector3d>(weights + 3), H);
+    AddDifferenceHessian(A, d2_A_, B, d2_B_, Eigen::Map<const Eigen::Vector3d>(weights + 6), H);
   }
 
  private:

@@ -17,7 +17,7 @@
 
 namespace ccma {
 
-class OmniBaseMotorCost final : public ceres::SizedCostFunction<5, 7, 3> {
+class OmniBaseMotorCost final : public ceres::SizedCostFunction<5, 7, 3>, public ResidualHessian {
  public:
   static constexpr int kNumResiduals = 5;
 
@@ -50,6 +50,12 @@ class OmniBaseMotorCost final : public ceres::SizedCostFunction<5, 7, 3> {
       J(3, 2) = -c;
     }
     return true;
+  }
+
+  void AddWeightedHessian(double const* const* parameters, const double* weights,
+                          TangentHessian H) const override {
+    const BodyFrame base(parameters[0]);
+    H.block<3, 3>(0, 0) += RotationHessian(Eigen::Map<const Eigen::Vector3d>(weights + 2), base.R_WB.col(0));
   }
 };
 

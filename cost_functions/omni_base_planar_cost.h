@@ -11,7 +11,7 @@
 
 namespace ccma {
 
-class OmniBasePlanarCost final : public ceres::SizedCostFunction<4, 7> {
+class OmniBasePlanarCost final : public ceres::SizedCostFunction<4, 7>, public ResidualHessian {
  public:
   static constexpr int kNumResiduals = 4;
 
@@ -29,6 +29,12 @@ class OmniBasePlanarCost final : public ceres::SizedCostFunction<4, 7> {
       J.block<3, 3>(1, 0) = -Skew(n_W);
     }
     return true;
+  }
+
+  void AddWeightedHessian(double const* const* parameters, const double* weights,
+                          TangentHessian H) const override {
+    const BodyFrame base(parameters[0]);
+    H.block<3, 3>(0, 0) += RotationHessian(Eigen::Map<const Eigen::Vector3d>(weights + 1), base.R_WB.col(2));
   }
 };
 

@@ -12,7 +12,7 @@
 
 namespace ccma {
 
-class PrismaticJointCost final : public ceres::SizedCostFunction<9, 7, 7> {
+class PrismaticJointCost final : public ceres::SizedCostFunction<9, 7, 7>, public ResidualHessian {
  public:
   static constexpr int kNumResiduals = 9;
 
@@ -54,6 +54,41 @@ class PrismaticJointCost final : public ceres::SizedCostFunction<9, 7, 7> {
       J.block<3, 6>(6, 0) = P * dd;
     }
     return true;
+  }
+
+  void AddWeightedHessian(double const* const* parameters, const double* weights,
+                          TangentHessian H) const override {
+    const BodyFrame A(parameters[0]), B(parameters[1]);
+    AddDifferenceHessian(A, d1_A_, B, d1_B_, Eigen::Map<const Eigen::Vector3d>(weights), H);
+    AddDifferenceHessian(A, d2_A_, B, d2_B_, Eigen::Map<const Eigen::Vector3d>(weights + 3), H);
+    // w . (d - a (a . d)) = w . d - alpha beta, alpha = w . a, beta = a . d.
+    const Eigen::Vector3d w = Eigen::Map<const Eigen::Vector3d>(weights + 6);
+    AddDifferenceHessian(A, r_A_, B, r_B_, w, H);  // w . d
+    const Eigen::Vector3d l_A = A.Rotate(r_A_), l_B = B.Rotate(r_B_);
+    const Eigen::Vector3d d = (l_B + B.p_WB) - (l_A + A.p_WB);
+    const Eigen::Vector3d a = A.Rotate(a_A_);
+    const double alpha = w.dot(a), beta = a.dot(d);
+    // Gradients over [dphi_A, dp_A, dphi_B, dp_B] (12).
+    Eigen::Matrix<double, 12, 1> g_alpha = Eigen::Matrix<double, 12, 1>::Zero();
+    g_alpha.segment<3>(0) = a.cross(w);
+    Eigen::Matrix<double, 12, 1> g_beta;
+    g_beta << a.cross(d) + a.cross(l_A), -a, l_B.cross(a), a;
+    // Hessians: alpha only through a (rotation of A); beta through a and d.
+    Eigen::Matrix<double, 12, 12> h_beta = Eigen::Matrix<double, 12, 12>::Zero();
+    const Eigen::Matrix3d ax = Skew(a);
+    const Eigen::Matrix3d aa = ax * Skew(l_A);
+    h_beta.block<3, 3>(0, 0) = RotationHessian(d, a) - RotationHessian(a, l_A) + aa + aa.transpose();
+    h_beta.block<3, 3>(0, 3) = ax.transpose();
+    h_beta.block<3, 3>(0, 6) = ax.transpose() * Skew(l_B);
+    h_beta.block<3, 3>(0, 9) = -ax.transpose();
+    h_beta.block<3, 3>(6, 6) = RotationHessian(a, l_B);
+    h_beta.block<3, 3>(3, 0) = h_beta.block<3, 3>(0, 3).transpose();
+    h_beta.block<3, 3>(6, 0) = h_beta.block<3, 3>(0, 6).transpose();
+    h_beta.block<3, 3>(9, 0) = h_beta.block<3, 3>(0, 9).transpose();
+    Eigen::Matrix<double, 12, 12> h = g_alpha * g_beta.transpose() + g_beta * g_alpha.transpose() +
+                                      alpha * h_beta;
+    h.block<3, 3>(0, 0) += beta * RotationHessian(w, a);
+    H -= h;
   }
 
  private:

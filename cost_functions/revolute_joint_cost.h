@@ -11,7 +11,7 @@
 
 namespace ccma {
 
-class RevoluteJointCost final : public ceres::SizedCostFunction<6, 7, 7> {
+class RevoluteJointCost final : public ceres::SizedCostFunction<6, 7, 7>, public ResidualHessian {
  public:
   static constexpr int kNumResiduals = 6;
 
@@ -29,6 +29,13 @@ class RevoluteJointCost final : public ceres::SizedCostFunction<6, 7, 7> {
     PointDifference<6>(A, r_A_, B, r_B_, 0, residuals, J_A, J_B);
     DirectionDifference<6>(A, a_A_, B, a_B_, 3, residuals, J_A, J_B);
     return true;
+  }
+
+  void AddWeightedHessian(double const* const* parameters, const double* weights,
+                          TangentHessian H) const override {
+    const BodyFrame A(parameters[0]), B(parameters[1]);
+    AddDifferenceHessian(A, r_A_, B, r_B_, Eigen::Map<const Eigen::Vector3d>(weights), H);
+    AddDifferenceHessian(A, a_A_, B, a_B_, Eigen::Map<const Eigen::Vector3d>(weights + 3), H);
   }
 
  private:

@@ -11,7 +11,7 @@
 
 namespace ccma {
 
-class SphericalJointCost final : public ceres::SizedCostFunction<3, 7, 7> {
+class SphericalJointCost final : public ceres::SizedCostFunction<3, 7, 7>, public ResidualHessian {
  public:
   static constexpr int kNumResiduals = 3;
 
@@ -27,6 +27,12 @@ class SphericalJointCost final : public ceres::SizedCostFunction<3, 7, 7> {
     ZeroIfRequested<3>(J_B);
     PointDifference<3>(A, r_A_, B, r_B_, 0, residuals, J_A, J_B);
     return true;
+  }
+
+  void AddWeightedHessian(double const* const* parameters, const double* weights,
+                          TangentHessian H) const override {
+    const BodyFrame A(parameters[0]), B(parameters[1]);
+    AddDifferenceHessian(A, r_A_, B, r_B_, Eigen::Map<const Eigen::Vector3d>(weights), H);
   }
 
  private:

@@ -12,7 +12,7 @@
 
 namespace ccma {
 
-class UniversalJointCost final : public ceres::SizedCostFunction<4, 7, 7> {
+class UniversalJointCost final : public ceres::SizedCostFunction<4, 7, 7>, public ResidualHessian {
  public:
   static constexpr int kNumResiduals = 4;
 
@@ -36,6 +36,21 @@ class UniversalJointCost final : public ceres::SizedCostFunction<4, 7, 7> {
     if (J_A != nullptr) PoseJacobian<4>(J_A).block<1, 3>(3, 0) = a_cross_b.transpose();
     if (J_B != nullptr) PoseJacobian<4>(J_B).block<1, 3>(3, 0) = -a_cross_b.transpose();
     return true;
+  }
+
+  void AddWeightedHessian(double const* const* parameters, const double* weights,
+                          TangentHessian H) const override {
+    const BodyFrame A(parameters[0]), B(parameters[1]);
+    AddDifferenceHessian(A, r_A_, B, r_B_, Eigen::Map<const Eigen::Vector3d>(weights), H);
+    // c * (a . b): each factor turns with its own body; the cross term is
+    // c (dphi_A x a) . (dphi_B x b) = c dphi_A^T [a]x^T [b]x dphi_B.
+    const double c = weights[3];
+    const Eigen::Vector3d a = A.Rotate(a_A_), b = B.Rotate(b_B_);
+    H.block<3, 3>(0, 0) += c * RotationHessian(b, a);
+    H.block<3, 3>(6, 6) += c * RotationHessian(a, b);
+    const Eigen::Matrix3d cross = c * Skew(a).transpose() * Skew(b);
+    H.block<3, 3>(0, 6) += cross;
+    H.block<3, 3>(6, 0) += cross.transpose();
   }
 
  private:

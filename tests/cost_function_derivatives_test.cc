@@ -162,6 +162,78 @@ TEST_P(CostFunctionDerivatives, HardStates) {
   }
 }
 
+// The second-order terms (exact Hessian of E) against numeric second
+// differences, at random and hard states, with random weights.
+constexpr double kHessianTolerance = 1e-7;
+
+TEST_P(CostFunctionDerivatives, SecondOrderTermsMatchNumericHessian) {
+  const CostCase& c = GetParam();
+  for (int seed = 0; seed < 100; ++seed) {
+    std::mt19937 rng(5000 + seed);
+    const bool degenerate = seed % 5 == 4;
+    const auto cost = c.make(rng, degenerate);
+    const auto* second_order = dynamic_cast<const ResidualHessian*>(cost.get());
+    ASSERT_NE(second_order, nullptr) << c.name << " has no second-order terms";
+    Eigen::Quaterniond q_A = RandomRotation(rng), q_B = RandomRotation(rng);
+    if (seed % 10 == 1) q_A = Eigen::Quaterniond(RotationFromRpy({0.2, M_PI / 2, 0.5}));  // pitched 90
+    if (seed % 10 == 2) q_B = QuaternionExp(RandomUnit(rng) * (M_PI - 1e-7)) * q_A;  // near pi
+    const auto blocks = Blocks(c, Pose(q_A, RandomVector(rng)), Pose(q_B, RandomVector(rng)),
+                               RandomVector(rng, 4.0));
+    Eigen::VectorXd w(cost->num_residuals());
+    for (int i = 0; i < w.size(); ++i) w[i] = std::uniform_real_distribution<double>(-1, 1)(rng);
+    const int n = 6 * c.pose_blocks;
+    Eigen::MatrixXd analytic = Eigen::MatrixXd::Zero(n, n);
+    std::vector<const double*> params;
+    for (const auto& b : blocks) params.push_back(b.values.data());
+    second_order->AddWeightedHessian(params.data(), w.data(), analytic);
+    const Eigen::MatrixXd numeric = testing::NumericWeightedHessian(*cost, blocks, w);
+    EXPECT_LT((analytic - numeric).cwiseAbs().maxCoeff(), kHessianTolerance)
+        << c.name << " seed " << seed << "\nanalytic\n" << analytic << "\nnumeric\n" << numeric;
+    EXPECT_LT((analytic - analytic.transpose()).cwiseAbs().maxCoeff(), 1e-14);
+  }
+}
+
+TEST(SecondOrder, NoConstraintCouplesStateAndControlsAtSecondOrder) {
+  // d^2 (w . C) / ds du = 0 for the motor constraints, so dG/du = J_s^T J_u.
+  std::mt19937 rng(77);
+  const OmniBaseMotorCost motor;
+  for (int trial = 0; trial < 20; ++trial) {
+    const std::vector<ParameterBlock> blocks = {
+        Pose(RandomRotation(rng), RandomVector(rng)), {{0.3, -0.2, 2.0 * trial / 20 * M_PI}, false}};
+    Eigen::VectorXd w(5);
+    for (int i = 0; i < 5; ++i) w[i] = std::uniform_real_distribution<double>(-1, 1)(rng);
+    const double h = 1e-4;
+    for (int i = 0; i < 6; ++i) {
+      for (int k = 0; k < 3; ++k) {
+        auto f = [&](double si, double sk) {
+          Eigen::VectorXd d = Eigen::VectorXd::Zero(6), du = Eigen::VectorXd::Zero(3);
+          d[i] = si * h;
+          du[k] = sk * h;
+          return testing::WeightedResidual(motor, blocks, w, d, du);
+        };
+        const double mixed = (f(1, 1) - f(1, -1) - f(-1, 1) + f(-1, -1)) / (4 * h * h);
+        EXPECT_NEAR(mixed, 0.0, 1e-7) << "tangent " << i << ", control " << k;
+      }
+    }
+  }
+}
+
+TEST(DerivativeChecker, RejectsAWrongHessian) {
+  // Dropping the universal joint's cross term is caught.
+  std::mt19937 rng(21);
+  const UniversalJointCost cost(RandomVector(rng), RandomVector(rng), RandomUnit(rng), RandomUnit(rng));
+  const std::vector<ParameterBlock> blocks = {Pose(RandomRotation(rng), RandomVector(rng)),
+                                              Pose(RandomRotation(rng), RandomVector(rng))};
+  const Eigen::VectorXd w = Eigen::Vector4d(0, 0, 0, 1.0);
+  Eigen::MatrixXd analytic = Eigen::MatrixXd::Zero(12, 12);
+  std::vector<const double*> params = {blocks[0].values.data(), blocks[1].values.data()};
+  cost.AddWeightedHessian(params.data(), w.data(), analytic);
+  analytic.block<3, 3>(0, 6).setZero();  // the bug
+  analytic.block<3, 3>(6, 0).setZero();
+  const Eigen::MatrixXd numeric = testing::NumericWeightedHessian(cost, blocks, w);
+  EXPECT_GT((analytic - numeric).cwiseAbs().maxCoeff(), 1e-2);
+}
+
 INSTANTIATE_TEST_SUITE_P(AllCostFunctions, CostFunctionDerivatives,
                          ::testing::ValuesIn(AllCostCases()),
                          [](const auto& info) { return info.param.name; });
