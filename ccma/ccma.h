@@ -22,6 +22,9 @@
 #include "ccma/model_loader.h"
 #include "ccma/rotation.h"
 #include "ccma/state.h"
+#include "problems/control_problem.h"
+#include "problems/end_effector_error.h"
 #include "problems/forward_problem.h"
+#include "problems/sensitivity.h"
 
 #endif  // CCMA_CCMA_H_

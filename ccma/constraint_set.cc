@@ -1,5 +1,6 @@
 #include "ccma/constraint_set.h"
 
+#include "cost_functions/body_frame.h"
 #include "cost_functions/fixed_joint_cost.h"
 #include "cost_functions/omni_base_motor_cost.h"
 #include "cost_functions/omni_base_planar_cost.h"
@@ -37,6 +38,7 @@ ConstraintSet::ConstraintSet(const Model& model)
                     int base, std::string label) {
     ConstraintBlock block;
     block.rows = cost->num_residuals();
+    block.second_order = dynamic_cast<const ResidualHessian*>(cost.get());
     block.cost = std::move(cost);
     block.bodies = std::move(bodies);
     block.base = base;
@@ -86,6 +88,47 @@ void ConstraintSet::Evaluate(const State& s, const Eigen::VectorXd& u, Eigen::Ve
       const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>> J(
           jac_storage[block.bodies.size()], block.rows, 3);
       J_u->block(block.row, 3 * block.base, block.rows, 3) = J;
+    }
+  }
+}
+
+void ConstraintSet::EvaluateDerivatives(const State& s, const Eigen::VectorXd& u,
+                                        EnergyDerivatives* out) const {
+  Evaluate(s, u, &out->C, &out->J_s, &out->J_u);
+  const int n = state_size_;
+  out->energy = 0.5 * out->C.squaredNorm();
+  out->G.noalias() = out->J_s.transpose() * out->C;
+  out->dE_du.noalias() = out->J_u.transpose() * out->C;
+  out->H.setZero(n, n);
+  out->dG_du.setZero(n, num_controls_);
+  Eigen::MatrixXd local(12, 12);
+  std::vector<const double*> params;
+  for (const ConstraintBlock& block : blocks_) {
+    const int rows = block.rows;
+    const int poses = static_cast<int>(block.bodies.size());
+    // J^T J over the (at most two) bodies this block touches.
+    for (int a = 0; a < poses; ++a) {
+      const auto J_a = out->J_s.block(block.row, 6 * block.bodies[a], rows, 6);
+      for (int b = 0; b < poses; ++b) {
+        const auto J_b = out->J_s.block(block.row, 6 * block.bodies[b], rows, 6);
+        out->H.block<6, 6>(6 * block.bodies[a], 6 * block.bodies[b]).noalias() += J_a.transpose() * J_b;
+      }
+      if (block.base >= 0) {
+        out->dG_du.block(6 * block.bodies[a], 3 * block.base, 6, 3).noalias() +=
+            J_a.transpose() * out->J_u.block(block.row, 3 * block.base, rows, 3);
+      }
+    }
+    // sum_i C_i Hess(C_i).
+    params.clear();
+    for (int body : block.bodies) params.push_back(s.pose(body));
+    if (block.base >= 0) params.push_back(u.data() + 3 * block.base);
+    local.setZero();
+    block.second_order->AddWeightedHessian(params.data(), out->C.data() + block.row,
+                                           local.topLeftCorner(6 * poses, 6 * poses));
+    for (int a = 0; a < poses; ++a) {
+      for (int b = 0; b < poses; ++b) {
+        out->H.block<6, 6>(6 * block.bodies[a], 6 * block.bodies[b]) += local.block<6, 6>(6 * a, 6 * b);
+      }
     }
   }
 }

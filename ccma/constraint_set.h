@@ -19,13 +19,29 @@
 
 namespace ccma {
 
+class ResidualHessian;
+
 struct ConstraintBlock {
   std::unique_ptr<ceres::CostFunction> cost;
+  const ResidualHessian* second_order = nullptr;  // the same object
   std::vector<int> bodies;  // pose blocks it reads, in parameter order
   int base = -1;            // >= 0: it also reads that base's control block
   int row = 0;              // first row in C
   int rows = 0;
   std::string label;        // e.g. "joints[3] (revolute base0-post0)"
+};
+
+// E = 1/2 C^T C and its derivatives at (s, u), over the state tangent (n =
+// 6 per body, state.h) and all controls (3 per base).
+struct EnergyDerivatives {
+  Eigen::VectorXd C;      // constraints (m)
+  Eigen::MatrixXd J_s;    // dC/ds (m x n)
+  Eigen::MatrixXd J_u;    // dC/du (m x 3 n_bases)
+  Eigen::VectorXd G;      // dE/ds = J_s^T C (n)
+  Eigen::MatrixXd H;      // d2E/ds2 = J_s^T J_s + sum_i C_i Hess(C_i) (n x n), exact
+  Eigen::MatrixXd dG_du;  // d2E/ds du = J_s^T J_u (n x 3 n_bases), exact
+  Eigen::VectorXd dE_du;  // dE/du = J_u^T C (3 n_bases)
+  double energy = 0;
 };
 
 class ConstraintSet {
@@ -42,6 +58,10 @@ class ConstraintSet {
   // J_u = dC/du (num_rows x 3 n_bases). u: 3 per base [m, m, rad].
   void Evaluate(const State& s, const Eigen::VectorXd& u, Eigen::VectorXd* C,
                 Eigen::MatrixXd* J_s = nullptr, Eigen::MatrixXd* J_u = nullptr) const;
+
+  // All of EnergyDerivatives at (s, u). H is accumulated block by block (a
+  // constraint touches at most two bodies), with the second-order terms.
+  void EvaluateDerivatives(const State& s, const Eigen::VectorXd& u, EnergyDerivatives* out) const;
 
   // E(s, u) = 1/2 C^T C.
   double Energy(const State& s, const Eigen::VectorXd& u) const;

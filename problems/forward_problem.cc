@@ -146,11 +146,18 @@ void ForwardProblem::ResetToHome() {
   controls_ = model_.home_controls();
 }
 
+void ForwardProblem::Restore(const State& s, const Eigen::VectorXd& u) {
+  CheckControls(u);
+  SetState(s);
+  controls_ = u;  // same size: the control blocks keep their addresses
+}
+
 void ForwardProblem::SetState(const State& s) {
   if (s.num_bodies() != model_.num_bodies()) {
     throw std::invalid_argument("SetState: wrong number of bodies");
   }
   // Copy in place: Ceres holds pointers into state_'s storage.
+  if (&s == &state_) return;
   for (int i = 0; i < model_.num_bodies(); ++i) {
     std::copy(s.pose(i), s.pose(i) + kPoseAmbientSize, state_.pose(i));
   }

@@ -84,6 +84,8 @@ class ForwardProblem {
   void ResetToHome();
   // Replaces the state (e.g. to warm-start from a saved configuration).
   void SetState(const State& s);
+  // Replaces state and controls without solving (undoing a trial step).
+  void Restore(const State& s, const Eigen::VectorXd& u);
 
   const Model& model() const { return model_; }
   const ConstraintSet& constraints() const { return constraints_; }

@@ -1,0 +1,138 @@
+// Kinematic control (paper Section III-B): find controls u whose assembly
+// s_hat(u) puts the end-effector at a target,
+//   min_u O(u) = 1/2 |e(s_hat(u))|^2 + lambda E(s_hat(u), u),   0 < lambda < 1,
+// with e the end-effector error over the controlled components
+// (end_effector_error.h) and only the effective controls free (a reduced
+// base's heading is no control).
+//
+// Gradients come from implicit-function sensitivities (sensitivity.h):
+// ds/du = -(dG/ds)^-1 dG/du, dE_r/du = dE/du. Two outer loops:
+//  * Levenberg-Marquardt on r(u) = [e; sqrt(lambda) C], Jacobian
+//    [de/ds ds/du; sqrt(lambda) (J_s ds/du + J_u)] (the default: fewest
+//    iterations and fastest, see the control benchmark);
+//  * BFGS as in the paper (ceres::GradientProblemSolver), gradient
+//    dO/du by one adjoint solve.
+// Redundancy: among equivalent control changes LM's damped least-squares step
+// is the one of least norm (the SVD solve below), so the bases move as little
+// as possible from where they are; BFGS starts from the identity metric and
+// so also moves along the gradient's row space only.
+#ifndef CCMA_PROBLEMS_CONTROL_PROBLEM_H_
+#define CCMA_PROBLEMS_CONTROL_PROBLEM_H_
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "ccma/model.h"
+#include "problems/end_effector_error.h"
+#include "problems/forward_problem.h"
+#include "problems/sensitivity.h"
+
+namespace ccma {
+
+enum class ControlMethod { kLevenbergMarquardt, kBfgs };
+// kFiniteDifference: central differences of re-solved forward problems,
+// 2k solves per gradient (the baseline the paper avoids).
+enum class GradientMethod { kImplicit, kFiniteDifference };
+
+struct ControlOptions {
+  ControlMethod method = ControlMethod::kLevenbergMarquardt;
+  GradientMethod gradient = GradientMethod::kImplicit;
+  double lambda = 0.5;              // weight of the residual energy, 0 < lambda < 1
+  double max_step_m = 0.010;        // path: end-effector translation per step [m]
+  double max_step_rad = 0.005;      // path: end-effector rotation per step [rad]
+  int max_iterations = 100;         // outer iterations per step
+  // A step has reached its target when every controlled component is within
+  // this [m or rad] and the mechanism is assembled. The loops iterate to a
+  // tenth of it (and E <= 1e-24) when they can.
+  double target_tolerance = 1e-10;
+  double finite_difference_step = 1e-6;  // [m or rad], kFiniteDifference only
+  ForwardOptions forward;
+};
+
+// One solve toward one target (no path splitting).
+struct ControlStepResult {
+  bool reached = false;     // target within tolerance and assembled
+  bool assembled = false;
+  bool singular = false;    // dG/ds was singular at some accepted point
+  int iterations = 0;       // outer iterations
+  int forward_solves = 0;
+  double objective = 0;     // O at the returned controls
+  double error = 0;         // max |e| over the controlled components [m, rad]
+  double residual_energy = 0;
+  double rcond = 0;         // reciprocal condition of dG/ds at the end
+  double time_ms = 0;
+};
+
+struct ControlResult {
+  bool converged = false;   // final target reached (see ControlStepResult)
+  bool assembled = false;
+  int steps = 0;            // path steps taken
+  int iterations = 0;       // outer iterations, all steps
+  int forward_solves = 0;
+  double objective = 0;
+  double error = 0;
+  double residual_energy = 0;
+  double max_step_residual_energy = 0;  // worst E over the path's steps
+  double rcond = 0;                     // at the end
+  double min_rcond = 0;                 // over the path
+  double solve_time_ms = 0;
+  std::string warning;      // empty, or why the target was not reached
+};
+
+class ControlProblem {
+ public:
+  explicit ControlProblem(const Model& model, const ControlOptions& options = {});
+
+  // Assembles the mechanism at u (from the current state, following the
+  // branch) and makes u the starting controls.
+  ForwardResult SetControls(const Eigen::VectorXd& u);
+
+  // One outer solve toward `target`, warm-started from the current controls.
+  ControlStepResult SolveStep(const PoseTarget& target);
+
+  // Walks the end-effector to `target` in steps of at most max_step_m /
+  // max_step_rad (straight line, geodesic rotation), each warm-started from
+  // the last. `on_step` (optional) sees every step's target and result.
+  ControlResult MoveTo(const PoseTarget& target,
+                       const std::function<void(const PoseTarget&, const ControlStepResult&)>&
+                           on_step = nullptr);
+
+  // O and dO/du (effective controls) at the current, solved, controls.
+  double Objective(const PoseTarget& target, Eigen::VectorXd* gradient = nullptr);
+  // ds/du (state_size x k) at the current solution, by the chosen method.
+  Eigen::MatrixXd StateSensitivity();
+
+  const Eigen::VectorXd& controls() const { return forward_.controls(); }
+  const std::vector<int>& effective_controls() const { return effective_; }
+  const ForwardProblem& forward() const { return forward_; }
+  ForwardProblem& forward() { return forward_; }
+  const ControlOptions& options() const { return options_; }
+  // The current end-effector pose as a target (a path's starting point).
+  PoseTarget CurrentPose() const;
+
+ private:
+  friend class BfgsObjective;
+  // Re-solves the forward problem at u (effective entries replaced by ue)
+  // from `start`; returns false if the solve was not usable.
+  bool SolveAt(const Eigen::VectorXd& ue, const State& start);
+  // r = [e; sqrt(lambda) C] and, if J is not null, dr/du_eff at the current solution.
+  void Residuals(const PoseTarget& target, Eigen::VectorXd* r, Eigen::MatrixXd* J,
+                 Eigen::MatrixXd* ds_du, double* rcond, bool* singular);
+  ControlStepResult SolveStepLm(const PoseTarget& target);
+  ControlStepResult SolveStepBfgs(const PoseTarget& target);
+  void Finish(const PoseTarget& target, ControlStepResult* result);
+
+  const ControlOptions options_;
+  ForwardProblem forward_;
+  const EndEffectorError error_;
+  const std::vector<int> effective_;
+  HessianSolver hessian_solver_;  // symbolic analysis of dG/ds, done once
+  int forward_solves_ = 0;
+};
+
+}  // namespace ccma
+
+#endif  // CCMA_PROBLEMS_CONTROL_PROBLEM_H_
