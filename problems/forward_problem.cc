@@ -25,6 +25,7 @@ ForwardProblem::ForwardProblem(const Model& model, const ForwardOptions& options
       state_(State::Home(model_)),
       controls_(model_.home_controls()),
       ceres_(std::make_unique<CeresParts>()) {
+  // The Hessian solver for Newton polish is made on first use.
   ceres::Problem::Options problem_options;
   problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
@@ -112,7 +113,41 @@ ForwardResult ForwardProblem::Solve(const Eigen::VectorXd& u) {
                      result.residual_energy < options_.assembly_tolerance;
   result.iterations = summary.num_successful_steps + summary.num_unsuccessful_steps;
   result.message = summary.message;
+  if (!result.assembled && options_.max_newton_polish_steps > 0) {
+    NewtonPolish(&result);
+    result.solve_time_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  }
   return result;
+}
+
+void ForwardProblem::NewtonPolish(ForwardResult* result) {
+  if (!hessian_solver_) hessian_solver_ = std::make_unique<HessianSolver>(constraints_);
+  EnergyDerivatives d;
+  constraints_.EvaluateDerivatives(state_, controls_, &d);
+  for (int step = 0; step < options_.max_newton_polish_steps; ++step) {
+    if (d.G.lpNorm<Eigen::Infinity>() <= 1e-16 || !hessian_solver_->Factorize(d.H) ||
+        hessian_solver_->pivot_ratio() <= 0) {
+      break;  // stationary, or H not positive definite (not near a minimum)
+    }
+    const Eigen::VectorXd ds = -hessian_solver_->Solve(d.G);
+    const State before = state_;
+    state_.Plus(ds);
+    EnergyDerivatives next;
+    constraints_.EvaluateDerivatives(state_, controls_, &next);
+    // Near a minimum E changes by O(|ds|^2) ~ rounding: judge by the gradient.
+    if (!(next.G.lpNorm<Eigen::Infinity>() < d.G.lpNorm<Eigen::Infinity>()) ||
+        next.energy > d.energy * (1 + 1e-12) + 1e-30) {
+      SetState(before);
+      break;
+    }
+    d = std::move(next);
+    ++result->newton_steps;
+    if (ds.lpNorm<Eigen::Infinity>() < 1e-15) break;
+  }
+  result->residual_energy = d.energy;
+  result->gradient_norm = d.G.lpNorm<Eigen::Infinity>();
+  result->assembled = result->residual_energy < options_.assembly_tolerance;
 }
 
 ForwardResult ForwardProblem::Assemble(const Eigen::VectorXd& u) {

@@ -20,6 +20,7 @@
 #include "ccma/end_effector.h"
 #include "ccma/model.h"
 #include "ccma/state.h"
+#include "problems/sensitivity.h"
 
 namespace ceres {
 class Problem;
@@ -51,6 +52,11 @@ struct ForwardOptions {
   LinearSolverChoice linear_solver = LinearSolverChoice::kAuto;
   // Print Ceres' per-iteration progress to stdout (for studying convergence).
   bool log_progress = false;
+  // When E stays > assembly_tolerance, Levenberg-Marquardt (Gauss-Newton)
+  // converges only linearly and stops early; up to this many Newton steps on
+  // the exact Hessian of E (as in the paper) then make dE/ds ~ 0 to machine
+  // precision, which the control sensitivities assume.
+  int max_newton_polish_steps = 8;
 };
 
 struct ForwardResult {
@@ -59,6 +65,8 @@ struct ForwardResult {
   double residual_energy = 0;  // E(s_hat, u) [m^2]
   int iterations = 0;       // Ceres iterations, summed over sub-steps
   int substeps = 1;         // solves made (Assemble() may split the step)
+  int newton_steps = 0;     // exact-Newton polish steps after Ceres (E > 0)
+  double gradient_norm = 0; // max |dE/ds| at the end
   double solve_time_ms = 0; // wall time of the solve(s)
   std::string message;      // Ceres' termination message (last solve)
 };
@@ -98,6 +106,8 @@ class ForwardProblem {
 
  private:
   void CheckControls(const Eigen::VectorXd& u) const;
+  // Exact-Newton steps on E from the current state; updates `result`.
+  void NewtonPolish(ForwardResult* result);
 
   const Model model_;
   const ForwardOptions options_;
@@ -106,6 +116,7 @@ class ForwardProblem {
   Eigen::VectorXd controls_;
   struct CeresParts;
   std::unique_ptr<CeresParts> ceres_;
+  std::unique_ptr<HessianSolver> hessian_solver_;
 };
 
 }  // namespace ccma
