@@ -4,6 +4,7 @@
 #ifndef CCMA_APPS_COMMANDS_H_
 #define CCMA_APPS_COMMANDS_H_
 
+#include <set>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,12 @@ namespace ccma::cli {
 
 int RunCheck(const std::vector<std::string>& args);
 int RunSimulate(const std::vector<std::string>& args);
+int RunControl(const std::vector<std::string>& args);
+int RunTrajectory(const std::vector<std::string>& args);
+
+// Flags shared by control and trajectory, and the options they make.
+extern const std::set<std::string> kControlFlags;
+ControlOptions ControlOptionsFromFlags();
 
 // Loads the model, printing its warnings (unknown keys) on stderr.
 Model LoadModelOrThrow(const std::string& path);

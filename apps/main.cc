@@ -45,6 +45,9 @@ const char kUsage[] =
     "usage:\n"
     "  ccma check    --model=FILE\n"
     "  ccma simulate --model=FILE [--controls=u0,u1,...]\n"
+    "  ccma control  --model=FILE --target=x,y,z,roll,pitch,yaw [--controls=...]\n"
+    "                [--method=lm|bfgs] [--max_step_m=0.01] [--max_step_rad=0.005] [--lambda=0.5]\n"
+    "  ccma trajectory --model=FILE --waypoints=FILE.csv --out=FILE.csv [control flags]\n"
     "\n"
     "Results are one JSON document on stdout; diagnostics go to stderr.\n"
     "Exit status: 0 ok, 1 failure, 2 bad usage or bad model file.\n";
@@ -66,7 +69,10 @@ int main(int argc, char** argv) {
     return 0;
   }
   const std::map<std::string, int (*)(const std::vector<std::string>&)> commands = {
-      {"check", ccma::cli::RunCheck}, {"simulate", ccma::cli::RunSimulate}};
+      {"check", ccma::cli::RunCheck},
+      {"simulate", ccma::cli::RunSimulate},
+      {"control", ccma::cli::RunControl},
+      {"trajectory", ccma::cli::RunTrajectory}};
   const auto it = commands.find(command);
   if (it == commands.end()) {
     std::cerr << "ccma: unknown command '" << command << "'\n\n" << kUsage;

@@ -22,9 +22,11 @@
 #include "ccma/model_loader.h"
 #include "ccma/rotation.h"
 #include "ccma/state.h"
+#include "ccma/waypoints.h"
 #include "problems/control_problem.h"
 #include "problems/end_effector_error.h"
 #include "problems/forward_problem.h"
 #include "problems/sensitivity.h"
+#include "problems/trajectory.h"
 
 #endif  // CCMA_CCMA_H_

@@ -98,6 +98,47 @@ TEST(Cli, UnreachableControlsAreReportedNotForced) {
   EXPECT_GT(j["residual_energy"].get<double>(), 1e-8);
 }
 
+TEST(Cli, ControlPrintsTheContractKeysAndReachesTheTarget) {
+  const ToolRun r = Ccma("control " + Model("6dof_asymmetric") + " --target=0.02,0.01,0.61,0.01,-0.02,0.03");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  for (const char* key : {"model", "converged", "assembled", "steps", "iterations", "objective",
+                          "residual_energy", "solve_time_ms", "target", "controls", "end_effector"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+  EXPECT_EQ(j["converged"], true);
+  // 24.5 mm needs 3 steps of 10 mm; the rotation of |(0.01, -0.02, 0.03)| ~ 0.0374 rad
+  // needs 8 of 0.005 rad: the larger count wins.
+  EXPECT_EQ(j["steps"], 8);
+  EXPECT_NEAR(j["end_effector"]["position"][0].get<double>(), 0.02, 1e-9);
+  EXPECT_NEAR(j["end_effector"]["rpy"][2].get<double>(), 0.03, 1e-9);
+  EXPECT_LT(j["residual_energy"].get<double>(), 1e-20);
+}
+
+TEST(Cli, ControlReportsAnUnreachableTarget) {
+  const ToolRun r = Ccma("control " + Model("4dof_reduced") + " --target=0,0,1.5,0,0,0");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["converged"], false);
+  EXPECT_TRUE(j.contains("warning"));
+  EXPECT_NE(r.err.find("warning"), std::string::npos);
+}
+
+TEST(Cli, TrajectoryWritesOneRowPerStep) {
+  const std::string out = ::testing::TempDir() + "/" + std::to_string(getpid()) + "_traj.csv";
+  const ToolRun r = Ccma("trajectory " + Model("4dof_complete") + " --waypoints=" + CCMA_MODELS_DIR +
+                         "/paths/4dof_combined.csv --out=" + out);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["converged"], true);
+  EXPECT_LT(j["max_residual_energy"].get<double>(), 1e-16);
+  std::ifstream csv(out);
+  std::string line;
+  int rows = -1;  // header
+  while (std::getline(csv, line)) ++rows;
+  EXPECT_EQ(rows, j["steps"].get<int>());
+}
+
 struct BadCall {
   std::string what, args;
 };
@@ -135,7 +176,18 @@ INSTANTIATE_TEST_SUITE_P(
         BadCall{"single dash flag", "check -model=x.yaml"},
         BadCall{"controls overflow", "simulate " + kTwoBases + " --controls=1e999,0,0,0,0,0,0,0,0"},
         BadCall{"empty entry", "simulate " + kTwoBases + " --controls=0,0,0,,0,0,0,0,0"},
-        BadCall{"check takes no controls", "check " + kTwoBases + " --controls=1"}),
+        BadCall{"check takes no controls", "check " + kTwoBases + " --controls=1"},
+        BadCall{"control without target", "control " + kTwoBases},
+        BadCall{"target of five values", "control " + kTwoBases + " --target=0,0,0.6,0,0"},
+        BadCall{"unknown method", "control " + kTwoBases + " --target=0,0,0.6,0,0,0 --method=newton"},
+        BadCall{"negative step", "control " + kTwoBases + " --target=0,0,0.6,0,0,0 --max_step_m=-1"},
+        BadCall{"lambda out of range", "control " + kTwoBases + " --target=0,0,0.6,0,0,0 --lambda=1"},
+        BadCall{"step not a number", "control " + kTwoBases + " --target=0,0,0.6,0,0,0 --max_step_rad=x"},
+        BadCall{"trajectory without out", "trajectory " + kTwoBases + " --waypoints=" +
+                                              std::string(CCMA_MODELS_DIR) + "/paths/4dof_combined.csv"},
+        BadCall{"missing waypoint file", "trajectory " + kTwoBases + " --waypoints=/nonexistent.csv --out=/tmp/x.csv"},
+        BadCall{"model as waypoints", "trajectory " + kTwoBases + " --waypoints=" +
+                                          std::string(CCMA_MODELS_DIR) + "/4dof_reduced.yaml --out=/tmp/x.csv"}),
     [](const auto& info) {
       std::string n = info.param.what;
       for (char& c : n) if (!isalnum(static_cast<unsigned char>(c))) c = '_';
