@@ -63,8 +63,15 @@ ConstraintSet::ConstraintSet(const Model& model)
 void ConstraintSet::Evaluate(const State& s, const Eigen::VectorXd& u, Eigen::VectorXd* C,
                              Eigen::MatrixXd* J_s, Eigen::MatrixXd* J_u) const {
   C->resize(num_rows_);
-  if (J_s != nullptr) J_s->setZero(num_rows_, state_size_);
-  if (J_u != nullptr) J_u->setZero(num_rows_, num_controls_);
+  // Every block writes the same entries each time and nothing else, so the
+  // rest only needs zeroing when the matrix is (re)allocated: a workspace
+  // reused across calls (the control loop's) is neither reallocated nor cleared.
+  if (J_s != nullptr && (J_s->rows() != num_rows_ || J_s->cols() != state_size_)) {
+    J_s->setZero(num_rows_, state_size_);
+  }
+  if (J_u != nullptr && (J_u->rows() != num_rows_ || J_u->cols() != num_controls_)) {
+    J_u->setZero(num_rows_, num_controls_);
+  }
   // Scratch for one block: at most 9 rows x 7 columns per parameter block.
   double jac_storage[3][9 * 7];
   std::vector<const double*> params;

@@ -130,6 +130,7 @@ class ControlProblem {
   const EndEffectorError error_;
   const std::vector<int> effective_;
   HessianSolver hessian_solver_;  // symbolic analysis of dG/ds, done once
+  EnergyDerivatives workspace_;   // reused by every linearisation
   int forward_solves_ = 0;
 };
 

@@ -123,28 +123,30 @@ ForwardResult ForwardProblem::Solve(const Eigen::VectorXd& u) {
 
 void ForwardProblem::NewtonPolish(ForwardResult* result) {
   if (!hessian_solver_) hessian_solver_ = std::make_unique<HessianSolver>(constraints_);
-  EnergyDerivatives d;
-  constraints_.EvaluateDerivatives(state_, controls_, &d);
+  // Two workspaces, swapped: the current point and the candidate.
+  EnergyDerivatives* now = &polish_workspace_[0];
+  EnergyDerivatives* next = &polish_workspace_[1];
+  constraints_.EvaluateDerivatives(state_, controls_, now);
   for (int step = 0; step < options_.max_newton_polish_steps; ++step) {
-    if (d.G.lpNorm<Eigen::Infinity>() <= 1e-16 || !hessian_solver_->Factorize(d.H) ||
+    if (now->G.lpNorm<Eigen::Infinity>() <= 1e-16 || !hessian_solver_->Factorize(now->H) ||
         hessian_solver_->pivot_ratio() <= 0) {
       break;  // stationary, or H not positive definite (not near a minimum)
     }
-    const Eigen::VectorXd ds = -hessian_solver_->Solve(d.G);
+    const Eigen::VectorXd ds = -hessian_solver_->Solve(now->G);
     const State before = state_;
     state_.Plus(ds);
-    EnergyDerivatives next;
-    constraints_.EvaluateDerivatives(state_, controls_, &next);
+    constraints_.EvaluateDerivatives(state_, controls_, next);
     // Near a minimum E changes by O(|ds|^2) ~ rounding: judge by the gradient.
-    if (!(next.G.lpNorm<Eigen::Infinity>() < d.G.lpNorm<Eigen::Infinity>()) ||
-        next.energy > d.energy * (1 + 1e-12) + 1e-30) {
+    if (!(next->G.lpNorm<Eigen::Infinity>() < now->G.lpNorm<Eigen::Infinity>()) ||
+        next->energy > now->energy * (1 + 1e-12) + 1e-30) {
       SetState(before);
       break;
     }
-    d = std::move(next);
+    std::swap(now, next);
     ++result->newton_steps;
     if (ds.lpNorm<Eigen::Infinity>() < 1e-15) break;
   }
+  const EnergyDerivatives& d = *now;
   result->residual_energy = d.energy;
   result->gradient_norm = d.G.lpNorm<Eigen::Infinity>();
   result->assembled = result->residual_energy < options_.assembly_tolerance;

@@ -116,7 +116,8 @@ class ForwardProblem {
   Eigen::VectorXd controls_;
   struct CeresParts;
   std::unique_ptr<CeresParts> ceres_;
-  std::unique_ptr<HessianSolver> hessian_solver_;
+  std::unique_ptr<HessianSolver> hessian_solver_;  // for the Newton polish
+  EnergyDerivatives polish_workspace_[2];
 };
 
 }  // namespace ccma

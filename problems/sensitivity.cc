@@ -55,16 +55,16 @@ Eigen::MatrixXd ConstraintJacobianTimes(const ConstraintSet& constraints, const 
 
 Sensitivity::Sensitivity(const ConstraintSet& constraints, const State& s,
                          const Eigen::VectorXd& u, const std::vector<int>& controls,
-                         HessianSolver* solver)
-    : controls_(controls), solver_(solver) {
+                         HessianSolver* solver, EnergyDerivatives* workspace)
+    : d_(workspace != nullptr ? workspace : &own_derivatives_), controls_(controls), solver_(solver) {
   if (solver_ == nullptr) {
     own_solver_ = std::make_unique<HessianSolver>(constraints);
     solver_ = own_solver_.get();
   }
-  constraints.EvaluateDerivatives(s, u, &d_);
-  dG_du_.resize(d_.H.rows(), static_cast<Eigen::Index>(controls_.size()));
-  for (size_t c = 0; c < controls_.size(); ++c) dG_du_.col(c) = d_.dG_du.col(controls_[c]);
-  if (solver_->Factorize(d_.H)) rcond_ = solver_->pivot_ratio();
+  constraints.EvaluateDerivatives(s, u, d_);
+  dG_du_.resize(d_->H.rows(), static_cast<Eigen::Index>(controls_.size()));
+  for (size_t c = 0; c < controls_.size(); ++c) dG_du_.col(c) = d_->dG_du.col(controls_[c]);
+  if (solver_->Factorize(d_->H)) rcond_ = solver_->pivot_ratio();
   singular_ = !(rcond_ > kSingularRcond);
 }
 
@@ -72,7 +72,7 @@ Eigen::MatrixXd Sensitivity::StateSensitivity() const { return -solver_->Solve(d
 
 Eigen::VectorXd Sensitivity::ResidualEnergyGradient() const {
   Eigen::VectorXd g(static_cast<Eigen::Index>(controls_.size()));
-  for (size_t c = 0; c < controls_.size(); ++c) g[c] = d_.dE_du[controls_[c]];
+  for (size_t c = 0; c < controls_.size(); ++c) g[c] = d_->dE_du[controls_[c]];
   return g;
 }
 

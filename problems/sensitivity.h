@@ -50,11 +50,16 @@ class Sensitivity {
   // Evaluates the derivatives at (s, u) and factorises dG/ds. `controls`
   // are the indices into u that count as controls (typically
   // Model::effective_control_indices()).
-  // `solver` (optional) is reused across calls to skip the symbolic analysis.
+  // `solver` and `workspace` (optional) are reused across calls: no symbolic
+  // analysis and no allocation in a control loop. The workspace must outlive
+  // this object.
   Sensitivity(const ConstraintSet& constraints, const State& s, const Eigen::VectorXd& u,
-              const std::vector<int>& controls, HessianSolver* solver = nullptr);
+              const std::vector<int>& controls, HessianSolver* solver = nullptr,
+              EnergyDerivatives* workspace = nullptr);
+  Sensitivity(const Sensitivity&) = delete;
+  Sensitivity& operator=(const Sensitivity&) = delete;
 
-  const EnergyDerivatives& derivatives() const { return d_; }
+  const EnergyDerivatives& derivatives() const { return *d_; }
   // Conditioning figure of dG/ds: the ratio of the smallest to the largest
   // pivot of its LDLT factorisation (1 for a perfectly scaled matrix, ~0 at a
   // singular configuration, where ds/du is meaningless).
@@ -73,7 +78,8 @@ class Sensitivity {
   const Eigen::MatrixXd& dG_du() const { return dG_du_; }
 
  private:
-  EnergyDerivatives d_;
+  EnergyDerivatives own_derivatives_;
+  EnergyDerivatives* d_;
   Eigen::MatrixXd dG_du_;
   std::vector<int> controls_;
   std::unique_ptr<HessianSolver> own_solver_;

@@ -1,16 +1,26 @@
 #!/usr/bin/env bash
-# Sets up, builds and runs ccma's main job on the bundled reference models:
+# Sets up, builds and runs ccma's main jobs on the bundled reference models:
 # `ccma check` (counts and numerical mobility), `ccma simulate` (assembly),
-# and the embedding example (warm-started solves while every base drives).
+# `ccma control` (bases that put the end-effector 3 cm and 0.05 rad away),
+# and `ccma trajectory` on the paper's two 4-DOF paths (CSV in build/demo/).
 #   scripts/demo.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
+ccma=build/apps/ccma
+mkdir -p build/demo
 for model in models/*.yaml; do
-  echo "== build/apps/ccma check --model=$model"
-  build/apps/ccma check --model="$model"
-  echo "== build/apps/ccma simulate --model=$model"
-  build/apps/ccma simulate --model="$model"
-  echo "== build/apps/embed_example $model"
-  build/apps/embed_example "$model"
+  echo "== $ccma check --model=$model"
+  $ccma check --model="$model"
+  echo "== $ccma simulate --model=$model"
+  $ccma simulate --model="$model"
+  echo "== $ccma control --model=$model --target=0.03,-0.02,0.62,0,0,0.05"
+  $ccma control --model="$model" --target=0.03,-0.02,0.62,0,0,0.05
+done
+for model in 4dof_reduced 4dof_complete; do
+  for path in 4dof_sequential 4dof_combined; do
+    echo "== $ccma trajectory --model=models/$model.yaml --waypoints=models/paths/$path.csv --out=build/demo/${model}_$path.csv"
+    $ccma trajectory --model=models/$model.yaml --waypoints=models/paths/$path.csv \
+      --out=build/demo/${model}_$path.csv
+  done
 done
