@@ -80,7 +80,8 @@ int RunControl(const std::vector<std::string>& args) {
   out["residual_energy"] = result.residual_energy;
   out["max_step_residual_energy"] = result.max_step_residual_energy;
   out["conditioning"] = {{"dG_ds_pivot_ratio", result.rcond},
-                         {"min_dG_ds_pivot_ratio_on_path", result.min_rcond}};
+                         {"min_dG_ds_pivot_ratio_on_path", result.min_rcond},
+                         {"min_singular_value_dX_du", result.min_singular_value_dX_du}};
   out["solve_time_ms"] = result.solve_time_ms;
   out["target"] = ToJson(target_values);
   out["controls"] = ToJson(control.controls());

@@ -10,6 +10,7 @@
 #include <ceres/gradient_problem_solver.h>
 #include <ceres/iteration_callback.h>
 #include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
 
 #include "ccma/end_effector.h"
 #include "ccma/rotation.h"
@@ -232,8 +233,14 @@ ControlStepResult ControlProblem::SolveStepLm(const PoseTarget& target) {
   Residuals(target, &r, &J, &ds_du, &result.rcond, &singular);
   result.singular |= singular;
   double O = 0.5 * r.squaredNorm();
-  double mu = -1;
   const int ne = error_.size();
+  auto manipulability = [&] {
+    if (ne == 0) return 0.0;
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(J.topRows(ne));
+    return svd.singularValues().minCoeff();
+  };
+  result.min_singular_value_dX_du = manipulability();
+  double mu = -1;
   for (int it = 0; it < options_.max_iterations; ++it) {
     const double error = ne > 0 ? r.head(ne).lpNorm<Eigen::Infinity>() : 0.0;
     if (error <= 0.1 * options_.target_tolerance && forward_.Energy() <= kEnergyFloor) break;
@@ -280,6 +287,7 @@ ControlStepResult ControlProblem::SolveStepLm(const PoseTarget& target) {
     if (new_error <= 0.1 * options_.target_tolerance && forward_.Energy() <= kEnergyFloor) break;
     Residuals(target, &r, &J, &ds_du, &result.rcond, &singular);
     result.singular |= singular;
+    result.min_singular_value_dX_du = manipulability();
   }
   result.forward_solves = forward_solves_ - solves_before;
   Finish(target, &result);
@@ -314,9 +322,15 @@ ControlStepResult ControlProblem::SolveStepBfgs(const PoseTarget& target) {
   SolveAt(ue, here);
   result.iterations = static_cast<int>(summary.iterations.size()) - 1;
   result.forward_solves = forward_solves_ - solves_before;
-  result.rcond = Sensitivity(forward_.constraints(), forward_.state(), forward_.controls(),
-                             effective_, &hessian_solver_, &workspace_)
-                     .rcond();
+  {
+    Eigen::VectorXd r;
+    Eigen::MatrixXd J, ds_du;
+    Residuals(target, &r, &J, &ds_du, &result.rcond, &result.singular);
+    if (error_.size() > 0) {
+      result.min_singular_value_dX_du =
+          Eigen::JacobiSVD<Eigen::MatrixXd>(J.topRows(error_.size())).singularValues().minCoeff();
+    }
+  }
   Finish(target, &result);
   result.time_ms = Milliseconds(start);
   return result;
@@ -399,6 +413,7 @@ ControlResult ControlProblem::MoveTo(
   result.error = last.error;
   result.residual_energy = last.residual_energy;
   result.rcond = last.rcond;
+  result.min_singular_value_dX_du = last.min_singular_value_dX_du;
   result.solve_time_ms = Milliseconds(start);
   return result;
 }

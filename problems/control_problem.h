@@ -62,7 +62,12 @@ struct ControlStepResult {
   double objective = 0;     // O at the returned controls
   double error = 0;         // max |e| over the controlled components [m, rad]
   double residual_energy = 0;
-  double rcond = 0;         // reciprocal condition of dG/ds at the end
+  double rcond = 0;         // pivot ratio of dG/ds at the last linearisation
+  // Smallest singular value of dX_c/du (controlled end-effector components
+  // over the effective controls) at the last linearisation, m or rad per
+  // control unit: it falls to 0 at the edge of the workspace, where dG/ds
+  // may stay well conditioned.
+  double min_singular_value_dX_du = 0;
   double time_ms = 0;
 };
 
@@ -78,6 +83,7 @@ struct ControlResult {
   double max_step_residual_energy = 0;  // worst E over the path's steps
   double rcond = 0;                     // at the end
   double min_rcond = 0;                 // over the path
+  double min_singular_value_dX_du = 0;  // at the end (see ControlStepResult)
   double solve_time_ms = 0;
   std::string warning;      // empty, or why the target was not reached
 };

@@ -146,6 +146,27 @@ TEST(Control, UnreachableTargetIsReportedWithTheBestControls) {
   }
 }
 
+TEST(Control, ConditioningFiguresAnnounceTheWorkspaceBoundary) {
+  // Lifting the end-effector of 6dof_symmetric straightens its legs (full
+  // stretch near z = 0.85 m): the smallest singular value of dX/du falls
+  // steadily towards 0 while every step is still reached.
+  const Model m = LoadReference("6dof_symmetric");
+  ControlProblem control(m);
+  double first = 0, previous = 0;
+  for (double z = 0.60; z <= 0.845; z += 0.02) {
+    PoseTarget target = control.CurrentPose();
+    target.position.z() = z;
+    const ControlResult r = control.MoveTo(target);
+    ASSERT_TRUE(r.converged) << "z = " << z;
+    EXPECT_GT(r.rcond, 0.0);
+    if (first == 0) first = r.min_singular_value_dX_du;
+    if (z > 0.7) EXPECT_LT(r.min_singular_value_dX_du, previous) << "z = " << z;
+    previous = r.min_singular_value_dX_du;
+  }
+  EXPECT_GT(first, 0.5);
+  EXPECT_LT(previous, 0.25 * first);
+}
+
 TEST(Control, RedundantControlsChangeByTheLeastNorm) {
   // 6dof_symmetric: 9 controls for 6 end-effector DOF. To first order the
   // change must lie in the row space of dX/du: no motion in the 3 redundant
