@@ -97,6 +97,12 @@ PoseTarget ControlProblem::CurrentPose() const {
   return {pose.position, pose.rpy};
 }
 
+Eigen::VectorXd ControlProblem::EffectiveControls(const Eigen::VectorXd& u) const {
+  Eigen::VectorXd ue(static_cast<Eigen::Index>(effective_.size()));
+  for (size_t c = 0; c < effective_.size(); ++c) ue[c] = u[effective_[c]];
+  return ue;
+}
+
 bool ControlProblem::SolveAt(const Eigen::VectorXd& ue, const State& start) {
   if (!ue.allFinite()) return false;
   Eigen::VectorXd u = forward_.controls();
@@ -136,8 +142,7 @@ void ControlProblem::Residuals(const PoseTarget& target, Eigen::VectorXd* r, Eig
     forward_.constraints().Evaluate(s, u, &C);
     const State base = s;
     const Eigen::VectorXd u_base = u;
-    Eigen::VectorXd ue(k);
-    for (int c = 0; c < k; ++c) ue[c] = u_base[effective_[c]];
+    const Eigen::VectorXd ue = EffectiveControls(u_base);
     const double h = options_.finite_difference_step;
     J->resize(e.size() + C.size(), k);
     ds_du->resize(base.tangent_size(), k);
@@ -177,8 +182,7 @@ double ControlProblem::Objective(const PoseTarget& target, Eigen::VectorXd* grad
       const State base = s;
       const Eigen::VectorXd u_base = u;
       const int k = static_cast<int>(effective_.size());
-      Eigen::VectorXd ue(k);
-      for (int c = 0; c < k; ++c) ue[c] = u_base[effective_[c]];
+      const Eigen::VectorXd ue = EffectiveControls(u_base);
       const double h = options_.finite_difference_step;
       gradient->resize(k);
       for (int c = 0; c < k; ++c) {
@@ -224,8 +228,7 @@ ControlStepResult ControlProblem::SolveStepLm(const PoseTarget& target) {
   const int solves_before = forward_solves_;
   ControlStepResult result;
   const int k = static_cast<int>(effective_.size());
-  Eigen::VectorXd ue(k);
-  for (int c = 0; c < k; ++c) ue[c] = forward_.controls()[effective_[c]];
+  Eigen::VectorXd ue = EffectiveControls(forward_.controls());
 
   Eigen::VectorXd r, r_new;
   Eigen::MatrixXd J, ds_du;
@@ -300,8 +303,7 @@ ControlStepResult ControlProblem::SolveStepBfgs(const PoseTarget& target) {
   const int solves_before = forward_solves_;
   ControlStepResult result;
   const int k = static_cast<int>(effective_.size());
-  Eigen::VectorXd ue(k);
-  for (int c = 0; c < k; ++c) ue[c] = forward_.controls()[effective_[c]];
+  Eigen::VectorXd ue = EffectiveControls(forward_.controls());
 
   ceres::GradientProblemSolver::Options options;
   options.line_search_direction_type = ceres::BFGS;

@@ -121,6 +121,8 @@ class ControlProblem {
 
  private:
   friend class BfgsObjective;
+  // The entries of u (3 per base) that are controls.
+  Eigen::VectorXd EffectiveControls(const Eigen::VectorXd& u) const;
   // Re-solves the forward problem at u (effective entries replaced by ue)
   // from `start`; returns false if the solve was not usable.
   bool SolveAt(const Eigen::VectorXd& ue, const State& start);
