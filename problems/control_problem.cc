@@ -227,7 +227,6 @@ ControlStepResult ControlProblem::SolveStepLm(const PoseTarget& target) {
   const auto start = Clock::now();
   const int solves_before = forward_solves_;
   ControlStepResult result;
-  const int k = static_cast<int>(effective_.size());
   Eigen::VectorXd ue = EffectiveControls(forward_.controls());
 
   Eigen::VectorXd r, r_new;
@@ -302,7 +301,6 @@ ControlStepResult ControlProblem::SolveStepBfgs(const PoseTarget& target) {
   const auto start = Clock::now();
   const int solves_before = forward_solves_;
   ControlStepResult result;
-  const int k = static_cast<int>(effective_.size());
   Eigen::VectorXd ue = EffectiveControls(forward_.controls());
 
   ceres::GradientProblemSolver::Options options;
