@@ -33,6 +33,24 @@ struct BodyFrame {
   Eigen::Vector3d p_WB;
 };
 
+// The same, for any scalar (ceres::Jet in the autodiff twins): the pose
+// block's quaternion is normalised, so the twins differentiate the ambient
+// parameters exactly as Ceres would for a plain AutoDiffCostFunction.
+template <typename T>
+struct BodyFrameT {
+  explicit BodyFrameT(const T* pose)
+      : R_WB(Eigen::Quaternion<T>(pose[3], pose[0], pose[1], pose[2]).normalized().toRotationMatrix()),
+        p_WB(pose[4], pose[5], pose[6]) {}
+  Eigen::Matrix<T, 3, 1> Rotate(const Eigen::Vector3d& v_B) const { return R_WB * v_B.cast<T>(); }
+  Eigen::Matrix<T, 3, 1> Point(const Eigen::Vector3d& r_B) const { return Rotate(r_B) + p_WB; }
+
+  Eigen::Matrix<T, 3, 3> R_WB;
+  Eigen::Matrix<T, 3, 1> p_WB;
+};
+
+template <typename T>
+using Vec3Map = Eigen::Map<Eigen::Matrix<T, 3, 1>>;
+
 // Rows [row, row + 3) of r = (p_B - p_A) for body-fixed points r_A on body A
 // and r_B on body B, and their Jacobian rows (either pointer may be null).
 template <int Rows>

@@ -6,6 +6,7 @@
 #ifndef CCMA_COST_FUNCTIONS_FIXED_JOINT_COST_H_
 #define CCMA_COST_FUNCTIONS_FIXED_JOINT_COST_H_
 
+#include <ceres/autodiff_cost_function.h>
 #include <ceres/sized_cost_function.h>
 
 #include "cost_functions/body_frame.h"
@@ -45,6 +46,26 @@ class FixedJointCost final : public ceres::SizedCostFunction<9, 7, 7>, public Re
  private:
   const Eigen::Vector3d r_A_, r_B_, d1_A_, d1_B_, d2_A_, d2_B_;
 };
+
+
+// ---- Autodiff twin (tests and the Jacobian benchmark) ----
+// The same residual, templated; ceres::AutoDiffCostFunction differentiates
+// it with respect to the ambient parameters (quaternion, translation).
+struct FixedJointResidual {
+  Eigen::Vector3d r_A, r_B, d1_A, d1_B, d2_A, d2_B;
+  template <typename T>
+  bool operator()(const T* pose_A, const T* pose_B, T* r) const {
+    const BodyFrameT<T> A(pose_A), B(pose_B);
+    Vec3Map<T>{r} = B.Point(r_B) - A.Point(r_A);
+    Vec3Map<T>{r + 3} = B.Rotate(d1_B) - A.Rotate(d1_A);
+    Vec3Map<T>{r + 6} = B.Rotate(d2_B) - A.Rotate(d2_A);
+    return true;
+  }
+};
+
+inline ceres::CostFunction* MakeFixedJointAutoDiff(const Eigen::Vector3d& r_A, const Eigen::Vector3d& r_B, const Eigen::Vector3d& d1_A, const Eigen::Vector3d& d1_B, const Eigen::Vector3d& d2_A, const Eigen::Vector3d& d2_B) {
+  return new ceres::AutoDiffCostFunction<FixedJointResidual, 9, 7, 7>(new FixedJointResidual{r_A, r_B, d1_A, d1_B, d2_A, d2_B});
+}
 
 }  // namespace ccma
 

@@ -11,6 +11,7 @@
 
 #include <cmath>
 
+#include <ceres/autodiff_cost_function.h>
 #include <ceres/sized_cost_function.h>
 
 #include "cost_functions/body_frame.h"
@@ -58,6 +59,29 @@ class OmniBaseMotorCost final : public ceres::SizedCostFunction<5, 7, 3>, public
     H.block<3, 3>(0, 0) += RotationHessian(Eigen::Map<const Eigen::Vector3d>(weights + 2), base.R_WB.col(0));
   }
 };
+
+
+// ---- Autodiff twin (tests and the Jacobian benchmark) ----
+// The same residual, templated; ceres::AutoDiffCostFunction differentiates
+// it with respect to the ambient parameters (quaternion, translation).
+struct OmniBaseMotorResidual {
+  template <typename T>
+  bool operator()(const T* pose, const T* u, T* r) const {
+    using std::cos;
+    using std::sin;
+    const BodyFrameT<T> base(pose);
+    r[0] = base.p_WB.x() - u[0];
+    r[1] = base.p_WB.y() - u[1];
+    r[2] = base.R_WB(0, 0) - cos(u[2]);
+    r[3] = base.R_WB(1, 0) - sin(u[2]);
+    r[4] = base.R_WB(2, 0);
+    return true;
+  }
+};
+
+inline ceres::CostFunction* MakeOmniBaseMotorAutoDiff() {
+  return new ceres::AutoDiffCostFunction<OmniBaseMotorResidual, 5, 7, 3>(new OmniBaseMotorResidual{});
+}
 
 }  // namespace ccma
 

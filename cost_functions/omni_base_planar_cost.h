@@ -5,6 +5,7 @@
 #ifndef CCMA_COST_FUNCTIONS_OMNI_BASE_PLANAR_COST_H_
 #define CCMA_COST_FUNCTIONS_OMNI_BASE_PLANAR_COST_H_
 
+#include <ceres/autodiff_cost_function.h>
 #include <ceres/sized_cost_function.h>
 
 #include "cost_functions/body_frame.h"
@@ -37,6 +38,24 @@ class OmniBasePlanarCost final : public ceres::SizedCostFunction<4, 7>, public R
     H.block<3, 3>(0, 0) += RotationHessian(Eigen::Map<const Eigen::Vector3d>(weights + 1), base.R_WB.col(2));
   }
 };
+
+
+// ---- Autodiff twin (tests and the Jacobian benchmark) ----
+// The same residual, templated; ceres::AutoDiffCostFunction differentiates
+// it with respect to the ambient parameters (quaternion, translation).
+struct OmniBasePlanarResidual {
+  template <typename T>
+  bool operator()(const T* pose, T* r) const {
+    const BodyFrameT<T> base(pose);
+    r[0] = base.p_WB.z();
+    Vec3Map<T>{r + 1} = base.R_WB.col(2) - Eigen::Vector3d::UnitZ().cast<T>();
+    return true;
+  }
+};
+
+inline ceres::CostFunction* MakeOmniBasePlanarAutoDiff() {
+  return new ceres::AutoDiffCostFunction<OmniBasePlanarResidual, 4, 7>(new OmniBasePlanarResidual{});
+}
 
 }  // namespace ccma
 

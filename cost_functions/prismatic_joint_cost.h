@@ -6,6 +6,7 @@
 #ifndef CCMA_COST_FUNCTIONS_PRISMATIC_JOINT_COST_H_
 #define CCMA_COST_FUNCTIONS_PRISMATIC_JOINT_COST_H_
 
+#include <ceres/autodiff_cost_function.h>
 #include <ceres/sized_cost_function.h>
 
 #include "cost_functions/body_frame.h"
@@ -94,6 +95,28 @@ class PrismaticJointCost final : public ceres::SizedCostFunction<9, 7, 7>, publi
  private:
   const Eigen::Vector3d r_A_, r_B_, a_A_, d1_A_, d1_B_, d2_A_, d2_B_;
 };
+
+
+// ---- Autodiff twin (tests and the Jacobian benchmark) ----
+// The same residual, templated; ceres::AutoDiffCostFunction differentiates
+// it with respect to the ambient parameters (quaternion, translation).
+struct PrismaticJointResidual {
+  Eigen::Vector3d r_A, r_B, a_A, d1_A, d1_B, d2_A, d2_B;
+  template <typename T>
+  bool operator()(const T* pose_A, const T* pose_B, T* r) const {
+    const BodyFrameT<T> A(pose_A), B(pose_B);
+    Vec3Map<T>{r} = B.Rotate(d1_B) - A.Rotate(d1_A);
+    Vec3Map<T>{r + 3} = B.Rotate(d2_B) - A.Rotate(d2_A);
+    const Eigen::Matrix<T, 3, 1> d = B.Point(r_B) - A.Point(r_A);
+    const Eigen::Matrix<T, 3, 1> a = A.Rotate(a_A);
+    Vec3Map<T>{r + 6} = d - a * a.dot(d);
+    return true;
+  }
+};
+
+inline ceres::CostFunction* MakePrismaticJointAutoDiff(const Eigen::Vector3d& r_A, const Eigen::Vector3d& r_B, const Eigen::Vector3d& a_A, const Eigen::Vector3d& d1_A, const Eigen::Vector3d& d1_B, const Eigen::Vector3d& d2_A, const Eigen::Vector3d& d2_B) {
+  return new ceres::AutoDiffCostFunction<PrismaticJointResidual, 9, 7, 7>(new PrismaticJointResidual{r_A, r_B, a_A, d1_A, d1_B, d2_A, d2_B});
+}
 
 }  // namespace ccma
 

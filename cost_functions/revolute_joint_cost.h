@@ -5,6 +5,7 @@
 #ifndef CCMA_COST_FUNCTIONS_REVOLUTE_JOINT_COST_H_
 #define CCMA_COST_FUNCTIONS_REVOLUTE_JOINT_COST_H_
 
+#include <ceres/autodiff_cost_function.h>
 #include <ceres/sized_cost_function.h>
 
 #include "cost_functions/body_frame.h"
@@ -41,6 +42,25 @@ class RevoluteJointCost final : public ceres::SizedCostFunction<6, 7, 7>, public
  private:
   const Eigen::Vector3d r_A_, r_B_, a_A_, a_B_;
 };
+
+
+// ---- Autodiff twin (tests and the Jacobian benchmark) ----
+// The same residual, templated; ceres::AutoDiffCostFunction differentiates
+// it with respect to the ambient parameters (quaternion, translation).
+struct RevoluteJointResidual {
+  Eigen::Vector3d r_A, r_B, a_A, a_B;
+  template <typename T>
+  bool operator()(const T* pose_A, const T* pose_B, T* r) const {
+    const BodyFrameT<T> A(pose_A), B(pose_B);
+    Vec3Map<T>{r} = B.Point(r_B) - A.Point(r_A);
+    Vec3Map<T>{r + 3} = B.Rotate(a_B) - A.Rotate(a_A);
+    return true;
+  }
+};
+
+inline ceres::CostFunction* MakeRevoluteJointAutoDiff(const Eigen::Vector3d& r_A, const Eigen::Vector3d& r_B, const Eigen::Vector3d& a_A, const Eigen::Vector3d& a_B) {
+  return new ceres::AutoDiffCostFunction<RevoluteJointResidual, 6, 7, 7>(new RevoluteJointResidual{r_A, r_B, a_A, a_B});
+}
 
 }  // namespace ccma
 

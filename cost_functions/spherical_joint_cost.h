@@ -5,6 +5,7 @@
 #ifndef CCMA_COST_FUNCTIONS_SPHERICAL_JOINT_COST_H_
 #define CCMA_COST_FUNCTIONS_SPHERICAL_JOINT_COST_H_
 
+#include <ceres/autodiff_cost_function.h>
 #include <ceres/sized_cost_function.h>
 
 #include "cost_functions/body_frame.h"
@@ -38,6 +39,24 @@ class SphericalJointCost final : public ceres::SizedCostFunction<3, 7, 7>, publi
  private:
   const Eigen::Vector3d r_A_, r_B_;
 };
+
+
+// ---- Autodiff twin (tests and the Jacobian benchmark) ----
+// The same residual, templated; ceres::AutoDiffCostFunction differentiates
+// it with respect to the ambient parameters (quaternion, translation).
+struct SphericalJointResidual {
+  Eigen::Vector3d r_A, r_B;
+  template <typename T>
+  bool operator()(const T* pose_A, const T* pose_B, T* r) const {
+    const BodyFrameT<T> A(pose_A), B(pose_B);
+    Vec3Map<T>{r} = B.Point(r_B) - A.Point(r_A);
+    return true;
+  }
+};
+
+inline ceres::CostFunction* MakeSphericalJointAutoDiff(const Eigen::Vector3d& r_A, const Eigen::Vector3d& r_B) {
+  return new ceres::AutoDiffCostFunction<SphericalJointResidual, 3, 7, 7>(new SphericalJointResidual{r_A, r_B});
+}
 
 }  // namespace ccma
 

@@ -6,6 +6,7 @@
 #ifndef CCMA_COST_FUNCTIONS_UNIVERSAL_JOINT_COST_H_
 #define CCMA_COST_FUNCTIONS_UNIVERSAL_JOINT_COST_H_
 
+#include <ceres/autodiff_cost_function.h>
 #include <ceres/sized_cost_function.h>
 
 #include "cost_functions/body_frame.h"
@@ -56,6 +57,25 @@ class UniversalJointCost final : public ceres::SizedCostFunction<4, 7, 7>, publi
  private:
   const Eigen::Vector3d r_A_, r_B_, a_A_, b_B_;
 };
+
+
+// ---- Autodiff twin (tests and the Jacobian benchmark) ----
+// The same residual, templated; ceres::AutoDiffCostFunction differentiates
+// it with respect to the ambient parameters (quaternion, translation).
+struct UniversalJointResidual {
+  Eigen::Vector3d r_A, r_B, a_A, b_B;
+  template <typename T>
+  bool operator()(const T* pose_A, const T* pose_B, T* r) const {
+    const BodyFrameT<T> A(pose_A), B(pose_B);
+    Vec3Map<T>{r} = B.Point(r_B) - A.Point(r_A);
+    r[3] = A.Rotate(a_A).dot(B.Rotate(b_B));
+    return true;
+  }
+};
+
+inline ceres::CostFunction* MakeUniversalJointAutoDiff(const Eigen::Vector3d& r_A, const Eigen::Vector3d& r_B, const Eigen::Vector3d& a_A, const Eigen::Vector3d& b_B) {
+  return new ceres::AutoDiffCostFunction<UniversalJointResidual, 4, 7, 7>(new UniversalJointResidual{r_A, r_B, a_A, b_B});
+}
 
 }  // namespace ccma
 

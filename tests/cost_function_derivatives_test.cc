@@ -48,33 +48,44 @@ ParameterBlock Pose(const Eigen::Quaterniond& q, const Eigen::Vector3d& p) {
   return b;
 }
 
-// A cost function with random geometry; `degenerate` asks for the joint's
-// singular geometry (parallel universal axes, point at the body origin, ...).
+// A cost function with random geometry, and its autodiff twin with the same
+// geometry; `degenerate` asks for the joint's singular geometry (parallel
+// universal axes, point at the body origin, ...).
+using CostPair = std::pair<std::unique_ptr<ceres::CostFunction>, std::unique_ptr<ceres::CostFunction>>;
 struct CostCase {
   std::string name;
   int pose_blocks;  // 1 or 2 (then an optional 3-vector control block)
   bool has_control;
-  std::function<std::unique_ptr<ceres::CostFunction>(std::mt19937&, bool degenerate)> make;
+  std::function<CostPair(std::mt19937&, bool degenerate)> make_pair;
+  std::unique_ptr<ceres::CostFunction> make(std::mt19937& rng, bool degenerate) const {
+    return make_pair(rng, degenerate).first;
+  }
 };
 
+template <typename Analytic>
+std::unique_ptr<ceres::CostFunction> Own(Analytic* p) { return std::unique_ptr<ceres::CostFunction>(p); }
+
 std::vector<CostCase> AllCostCases() {
-  return {
+  std::vector<CostCase> cases = {
       {"revolute", 2, false,
        [](std::mt19937& rng, bool degenerate) {
          const Eigen::Vector3d r = degenerate ? Eigen::Vector3d::Zero() : RandomVector(rng);
-         return std::make_unique<RevoluteJointCost>(r, RandomVector(rng), RandomUnit(rng),
-                                                    RandomUnit(rng));
+         const Eigen::Vector3d r_B = RandomVector(rng), a = RandomUnit(rng), b = RandomUnit(rng);
+         return CostPair(Own(new RevoluteJointCost(r, r_B, a, b)), Own(MakeRevoluteJointAutoDiff(r, r_B, a, b)));
        }},
       {"spherical", 2, false,
        [](std::mt19937& rng, bool degenerate) {
          const Eigen::Vector3d r = degenerate ? Eigen::Vector3d::Zero() : RandomVector(rng);
-         return std::make_unique<SphericalJointCost>(r, RandomVector(rng));
+         const Eigen::Vector3d r_B = RandomVector(rng);
+         return CostPair(Own(new SphericalJointCost(r, r_B)), Own(MakeSphericalJointAutoDiff(r, r_B)));
        }},
       {"universal", 2, false,
        [](std::mt19937& rng, bool degenerate) {
          const Eigen::Vector3d a = RandomUnit(rng);
          const Eigen::Vector3d b = degenerate ? a : RandomUnit(rng);  // a x b = 0
-         return std::make_unique<UniversalJointCost>(RandomVector(rng), RandomVector(rng), a, b);
+         const Eigen::Vector3d r_A = RandomVector(rng), r_B = RandomVector(rng);
+         return CostPair(Own(new UniversalJointCost(r_A, r_B, a, b)),
+                         Own(MakeUniversalJointAutoDiff(r_A, r_B, a, b)));
        }},
       {"prismatic", 2, false,
        [](std::mt19937& rng, bool degenerate) {
@@ -82,20 +93,29 @@ std::vector<CostCase> AllCostCases() {
          // Degenerate: B's point on A's axis line, so the projection is ~0.
          const Eigen::Vector3d a = RandomUnit(rng);
          const Eigen::Vector3d r_B = degenerate ? Eigen::Vector3d(r_A + 0.3 * a) : RandomVector(rng);
-         return std::make_unique<PrismaticJointCost>(r_A, r_B, a, RandomUnit(rng), RandomUnit(rng),
-                                                     RandomUnit(rng), RandomUnit(rng));
+         const Eigen::Vector3d d1A = RandomUnit(rng), d1B = RandomUnit(rng), d2A = RandomUnit(rng),
+                               d2B = RandomUnit(rng);
+         return CostPair(Own(new PrismaticJointCost(r_A, r_B, a, d1A, d1B, d2A, d2B)),
+                         Own(MakePrismaticJointAutoDiff(r_A, r_B, a, d1A, d1B, d2A, d2B)));
        }},
       {"fixed", 2, false,
        [](std::mt19937& rng, bool) {
-         return std::make_unique<FixedJointCost>(RandomVector(rng), RandomVector(rng),
-                                                 RandomUnit(rng), RandomUnit(rng),
-                                                 RandomUnit(rng), RandomUnit(rng));
+         const Eigen::Vector3d r_A = RandomVector(rng), r_B = RandomVector(rng);
+         const Eigen::Vector3d d1A = RandomUnit(rng), d1B = RandomUnit(rng), d2A = RandomUnit(rng),
+                               d2B = RandomUnit(rng);
+         return CostPair(Own(new FixedJointCost(r_A, r_B, d1A, d1B, d2A, d2B)),
+                         Own(MakeFixedJointAutoDiff(r_A, r_B, d1A, d1B, d2A, d2B)));
        }},
       {"omni_base_planar", 1, false,
-       [](std::mt19937&, bool) { return std::make_unique<OmniBasePlanarCost>(); }},
+       [](std::mt19937&, bool) {
+         return CostPair(Own(new OmniBasePlanarCost()), Own(MakeOmniBasePlanarAutoDiff()));
+       }},
       {"omni_base_motor", 1, true,
-       [](std::mt19937&, bool) { return std::make_unique<OmniBaseMotorCost>(); }},
+       [](std::mt19937&, bool) {
+         return CostPair(Own(new OmniBaseMotorCost()), Own(MakeOmniBaseMotorAutoDiff()));
+       }},
   };
+  return cases;
 }
 
 // Parameter blocks: the given pose(s), then a control block if needed.
@@ -232,6 +252,59 @@ TEST(DerivativeChecker, RejectsAWrongHessian) {
   analytic.block<3, 3>(6, 0).setZero();
   const Eigen::MatrixXd numeric = testing::NumericWeightedHessian(cost, blocks, w);
   EXPECT_GT((analytic - numeric).cwiseAbs().maxCoeff(), 1e-2);
+}
+
+// d(x (+) delta)/d delta at 0 for a pose block (7 x 6): the true
+// PlusJacobian of the left quaternion increment, to project the twins'
+// ambient Jacobians onto the tangent.
+Eigen::Matrix<double, 7, 6> TruePlusJacobian(const std::vector<double>& x) {
+  const Eigen::Vector3d v(x[0], x[1], x[2]);
+  const double w = x[3];
+  Eigen::Matrix<double, 7, 6> P = Eigen::Matrix<double, 7, 6>::Zero();
+  P.block<3, 3>(0, 0) = 0.5 * (w * Eigen::Matrix3d::Identity() - Skew(v));
+  P.block<1, 3>(3, 0) = -0.5 * v.transpose();
+  P.block<3, 3>(4, 3).setIdentity();
+  return P;
+}
+
+TEST_P(CostFunctionDerivatives, AutodiffTwinAgrees) {
+  const CostCase& c = GetParam();
+  for (int seed = 0; seed < kRandomStates; ++seed) {
+    std::mt19937 rng(9000 + seed);
+    const auto [analytic, twin] = c.make_pair(rng, seed % 7 == 3);
+    Eigen::Quaterniond q_B = RandomRotation(rng);
+    const Eigen::Quaterniond q_A =
+        seed % 10 == 1 ? Eigen::Quaterniond(RotationFromRpy({0.2, M_PI / 2, 0.5})) : RandomRotation(rng);
+    if (seed % 10 == 2) q_B = QuaternionExp(RandomUnit(rng) * (M_PI - 1e-7)) * q_A;
+    const auto blocks = Blocks(c, Pose(q_A, RandomVector(rng)), Pose(q_B, RandomVector(rng)),
+                               RandomVector(rng, 4.0));
+    const int rows = analytic->num_residuals();
+    std::vector<const double*> params;
+    std::vector<std::vector<double>> Ja, Jt;
+    std::vector<double*> pa, pt;
+    for (const auto& b : blocks) {
+      params.push_back(b.values.data());
+      Ja.emplace_back(rows * b.values.size());
+      Jt.emplace_back(rows * b.values.size());
+    }
+    for (size_t i = 0; i < blocks.size(); ++i) {
+      pa.push_back(Ja[i].data());
+      pt.push_back(Jt[i].data());
+    }
+    Eigen::VectorXd ra(rows), rt(rows);
+    analytic->Evaluate(params.data(), ra.data(), pa.data());
+    twin->Evaluate(params.data(), rt.data(), pt.data());
+    EXPECT_LT((ra - rt).cwiseAbs().maxCoeff(), 1e-14) << c.name;
+    for (size_t i = 0; i < blocks.size(); ++i) {
+      using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+      const int cols = static_cast<int>(blocks[i].values.size());
+      const Eigen::Map<const RowMajor> A(Ja[i].data(), rows, cols), T(Jt[i].data(), rows, cols);
+      const Eigen::MatrixXd twin_tangent =
+          blocks[i].is_pose ? Eigen::MatrixXd(T * TruePlusJacobian(blocks[i].values)) : Eigen::MatrixXd(T);
+      const Eigen::MatrixXd analytic_tangent = blocks[i].is_pose ? Eigen::MatrixXd(A.leftCols(6)) : Eigen::MatrixXd(A);
+      EXPECT_LT((analytic_tangent - twin_tangent).cwiseAbs().maxCoeff(), 1e-12) << c.name << " seed " << seed;
+    }
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(AllCostFunctions, CostFunctionDerivatives,
