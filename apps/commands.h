@@ -16,6 +16,7 @@ int RunCheck(const std::vector<std::string>& args);
 int RunSimulate(const std::vector<std::string>& args);
 int RunControl(const std::vector<std::string>& args);
 int RunTrajectory(const std::vector<std::string>& args);
+int RunGenerate(const std::vector<std::string>& args);
 
 // Flags shared by control and trajectory, and the options they make.
 extern const std::set<std::string> kControlFlags;

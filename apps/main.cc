@@ -48,6 +48,7 @@ const char kUsage[] =
     "  ccma control  --model=FILE --target=x,y,z,roll,pitch,yaw [--controls=...]\n"
     "                [--method=lm|bfgs] [--max_step_m=0.01] [--max_step_rad=0.005] [--lambda=0.5]\n"
     "  ccma trajectory --model=FILE --waypoints=FILE.csv --out=FILE.csv [control flags]\n"
+    "  ccma generate --agents=N --out=FILE       (Stewart-like model with N bases)\n"
     "\n"
     "Results are one JSON document on stdout; diagnostics go to stderr.\n"
     "Exit status: 0 ok, 1 failure, 2 bad usage or bad model file.\n";
@@ -72,7 +73,8 @@ int main(int argc, char** argv) {
       {"check", ccma::cli::RunCheck},
       {"simulate", ccma::cli::RunSimulate},
       {"control", ccma::cli::RunControl},
-      {"trajectory", ccma::cli::RunTrajectory}};
+      {"trajectory", ccma::cli::RunTrajectory},
+      {"generate", ccma::cli::RunGenerate}};
   const auto it = commands.find(command);
   if (it == commands.end()) {
     std::cerr << "ccma: unknown command '" << command << "'\n\n" << kUsage;

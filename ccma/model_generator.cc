@@ -37,10 +37,15 @@ std::string GenerateStewartModel(const StewartOptions& o) {
     const std::string n = std::to_string(k);
     bodies << "  - {name: post" << n << ", position: " << Vec(post_joint) << "}\n"
            << "  - {name: link" << n << ", position: " << Vec((post_top + sphere) / 2) << "}\n";
-    bases << "  - {name: base" << n << ", type: omni, actuation: reduced, pose: "
+    // From 6 agents on, each reduced R-R-S leg constrains one distance; below
+    // that, complete bases with welded posts (F-R-S, as 6dof_symmetric)
+    // constrain two each, so every generated model is rigid.
+    const bool reduced = o.agents >= 6;
+    bases << "  - {name: base" << n << ", type: omni, actuation: "
+          << (reduced ? "reduced" : "complete") << ", pose: "
           << Vec(Eigen::Vector3d(base.x(), base.y(), angle)) << "}\n";
-    joints << "  - {type: revolute, between: [base" << n << ", post" << n << "], point: "
-           << Vec(post_joint) << ", axis: [0, 0, 1]}\n"
+    joints << "  - {type: " << (reduced ? "revolute" : "fixed") << ", between: [base" << n << ", post"
+           << n << "], point: " << Vec(post_joint) << (reduced ? ", axis: [0, 0, 1]}\n" : "}\n")
            << "  - {type: revolute, between: [post" << n << ", link" << n << "], point: "
            << Vec(post_top) << ", axis: " << Vec(axis) << "}\n"
            << "  - {type: spherical, between: [link" << n << ", ee], point: " << Vec(sphere) << "}\n";
@@ -48,7 +53,8 @@ std::string GenerateStewartModel(const StewartOptions& o) {
   std::ostringstream model;
   model << "name: stewart_" << o.agents << "_agents\n"
         << "description: \"Generated: " << o.agents
-        << " reduced omni bases, R-R-S legs, Stewart-like layout (family of 6dof_six_agents).\"\n"
+        << (o.agents >= 6 ? " reduced omni bases, R-R-S legs" : " complete omni bases, F-R-S legs")
+        << ", Stewart-like layout (family of 6dof_six_agents).\"\n"
         << "bodies:\n  - {name: ee, position: " << Vec(Eigen::Vector3d(0, 0, o.platform_height)) << "}\n"
         << bodies.str() << "mobile_bases:\n" << bases.str() << "joints:\n" << joints.str()
         << "end_effector:\n  body: ee\n  point: " << Vec(Eigen::Vector3d(0, 0, o.platform_height))

@@ -8,7 +8,7 @@
 namespace ccma {
 
 struct StewartOptions {
-  int agents = 6;                  // >= 3 (rigid with controls fixed from 6 on)
+  int agents = 6;                  // >= 3
   double base_radius = 0.65;       // m, bases on a circle around the origin
   double platform_radius = 0.15;   // m, spherical joints on the end-effector
   double platform_height = 0.6;    // m, end-effector point
@@ -16,10 +16,14 @@ struct StewartOptions {
   double attachment_offset = 0.7;  // rad, +- angle between a base and its joint
 };
 
-// A model file (YAML text, model_format.md) of `agents` reduced omni bases,
-// each with a vertical revolute to a post, a horizontal revolute to a link,
-// and a spherical joint on the end-effector: every leg constrains one
-// distance. Throws std::invalid_argument for agents < 3.
+// A model file (YAML text, model_format.md) of `agents` omni bases on a
+// circle, legs attached alternately to either side on the end-effector.
+// From 6 agents: reduced bases, each with a vertical revolute to a post, a
+// horizontal revolute to a link and a spherical joint on the end-effector
+// (every leg constrains one distance). Below 6: complete bases with the
+// post welded on (F-R-S legs, two constraints each), so the model is rigid
+// with its controls fixed either way. Throws std::invalid_argument for
+// agents < 3.
 std::string GenerateStewartModel(const StewartOptions& options);
 
 }  // namespace ccma

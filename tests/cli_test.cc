@@ -139,6 +139,18 @@ TEST(Cli, TrajectoryWritesOneRowPerStep) {
   EXPECT_EQ(rows, j["steps"].get<int>());
 }
 
+TEST(Cli, GenerateWritesAModelThatChecks) {
+  const std::string out = ::testing::TempDir() + "/" + std::to_string(getpid()) + "_gen.yaml";
+  ASSERT_EQ(Ccma("generate --agents=12 --out=" + out).status, 0);
+  const ToolRun r = Ccma("check --model=" + out);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["mobile_bases"], 12);
+  EXPECT_EQ(j["state_size"], 6 * (1 + 3 * 12));
+  EXPECT_EQ(j["rigid_with_controls_fixed"], true);
+  EXPECT_EQ(j["end_effector_dof"], 6);
+}
+
 struct BadCall {
   std::string what, args;
 };
@@ -186,6 +198,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadCall{"trajectory without out", "trajectory " + kTwoBases + " --waypoints=" +
                                               std::string(CCMA_MODELS_DIR) + "/paths/4dof_combined.csv"},
         BadCall{"missing waypoint file", "trajectory " + kTwoBases + " --waypoints=/nonexistent.csv --out=/tmp/x.csv"},
+        BadCall{"generate two agents", "generate --agents=2 --out=/tmp/x.yaml"},
+        BadCall{"generate non-integer agents", "generate --agents=3.5 --out=/tmp/x.yaml"},
+        BadCall{"generate without out", "generate --agents=6"},
         BadCall{"model as waypoints", "trajectory " + kTwoBases + " --waypoints=" +
                                           std::string(CCMA_MODELS_DIR) + "/4dof_reduced.yaml --out=/tmp/x.csv"}),
     [](const auto& info) {

@@ -75,6 +75,32 @@ TEST_P(GeneratedStewart, ClosedFormControlsPutTheEndEffectorOnTarget) {
 
 INSTANTIATE_TEST_SUITE_P(SixToTwelveAgents, GeneratedStewart, ::testing::Values(6, 7, 9, 12));
 
+TEST(GeneratedStewart, FewerThanSixAgentsAreRigidToo) {
+  for (int n : {3, 4, 5}) {
+    std::mt19937 rng(n);
+    const Model m = RotatedModel(n, rng);
+    const ConstraintSet constraints(m);
+    const MobilityReport r = AnalyzeMobility(m, constraints, State::Home(m), m.home_controls());
+    EXPECT_TRUE(r.rigid_with_controls_fixed) << n;
+    EXPECT_EQ(r.end_effector_dof, 6) << n;
+    EXPECT_EQ(static_cast<int>(m.effective_control_indices().size()), 3 * n);
+    const auto legs = testing::FindLegs(m);
+    ASSERT_EQ(static_cast<int>(legs.size()), n);
+    // F-R-S legs: closed-form controls reach seeded poses exactly.
+    std::uniform_real_distribution<double> d(-1.0, 1.0);
+    const Eigen::Vector3d p = m.end_effector.p_W_home + 0.02 * Eigen::Vector3d(d(rng), d(rng), d(rng));
+    const Eigen::Matrix3d R = RotationFromRpy(0.03 * Eigen::Vector3d(d(rng), d(rng), d(rng)));
+    Eigen::VectorXd u = m.home_controls();
+    for (const auto& leg : legs) {
+      ASSERT_EQ(leg.shape, "FRS");
+      u.segment<3>(3 * leg.base) = testing::BasePoseForLeg(m, leg, p, R, n == 3 ? 0.02 * d(rng) : 0.0);
+    }
+    ForwardProblem forward(m);
+    ASSERT_TRUE(forward.Assemble(u).assembled) << n;
+    EXPECT_LT((forward.end_effector().position - p).norm(), 1e-9);
+  }
+}
+
 TEST(GeneratedStewart, RejectsTooFewAgents) {
   StewartOptions options;
   options.agents = 2;
