@@ -27,11 +27,13 @@ void ParseFlags(const std::vector<std::string>& args, const std::set<std::string
     if (!seen.insert(name).second) {
       throw UsageError("ccma " + command + ": flag '--" + name + "' given twice");
     }
-    if (eq == std::string::npos) {
+    gflags::CommandLineFlagInfo info;
+    const bool is_bool = gflags::GetCommandLineFlagInfo(name.c_str(), &info) && info.type == "bool";
+    if (eq == std::string::npos && !is_bool) {
       throw UsageError("ccma " + command + ": flag '--" + name + "' needs a value (--" + name +
                        "=...)");
     }
-    const std::string value = arg.substr(eq + 1);
+    const std::string value = eq == std::string::npos ? "true" : arg.substr(eq + 1);
     if (value.empty()) {
       throw UsageError("ccma " + command + ": flag '--" + name + "' has an empty value");
     }

@@ -49,6 +49,7 @@ const char kUsage[] =
     "                [--method=lm|bfgs] [--max_step_m=0.01] [--max_step_rad=0.005] [--lambda=0.5]\n"
     "  ccma trajectory --model=FILE --waypoints=FILE.csv --out=FILE.csv [control flags]\n"
     "  ccma generate --agents=N --out=FILE       (Stewart-like model with N bases)\n"
+    "  ccma bench --model=FILE | --all | --scaling [--steps=N] [--seed=1] [--out=DIR]\n"
     "\n"
     "Results are one JSON document on stdout; diagnostics go to stderr.\n"
     "Exit status: 0 ok, 1 failure, 2 bad usage or bad model file.\n";
@@ -74,7 +75,8 @@ int main(int argc, char** argv) {
       {"simulate", ccma::cli::RunSimulate},
       {"control", ccma::cli::RunControl},
       {"trajectory", ccma::cli::RunTrajectory},
-      {"generate", ccma::cli::RunGenerate}};
+      {"generate", ccma::cli::RunGenerate},
+      {"bench", ccma::cli::RunBench}};
   const auto it = commands.find(command);
   if (it == commands.end()) {
     std::cerr << "ccma: unknown command '" << command << "'\n\n" << kUsage;

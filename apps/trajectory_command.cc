@@ -14,7 +14,7 @@
 DECLARE_string(model);
 DECLARE_string(method);
 DEFINE_string(waypoints, "", "waypoint CSV: time,x,y,z,roll,pitch,yaw (see ccma/waypoints.h)");
-DEFINE_string(out, "", "CSV file to write, one row per control step");
+DEFINE_string(out, "", "output: CSV file (trajectory), model file (generate), folder (bench)");
 
 namespace ccma::cli {
 

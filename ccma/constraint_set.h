@@ -63,6 +63,11 @@ class ConstraintSet {
   // constraint touches at most two bodies), with the second-order terms.
   void EvaluateDerivatives(const State& s, const Eigen::VectorXd& u, EnergyDerivatives* out) const;
 
+  // The autodiff twin of every block's cost function, in blocks() order
+  // (their Jacobians are with respect to the ambient pose parameters; see
+  // cost_functions/*.h). For tests and the Jacobian benchmark.
+  std::vector<std::unique_ptr<ceres::CostFunction>> MakeAutoDiffTwins(const Model& model) const;
+
   // E(s, u) = 1/2 C^T C.
   double Energy(const State& s, const Eigen::VectorXd& u) const;
 

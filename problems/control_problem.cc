@@ -74,13 +74,16 @@ class BfgsObjective final : public ceres::FirstOrderFunction {
 // component, and lambda E <= O.
 class TargetReached final : public ceres::IterationCallback {
  public:
-  explicit TargetReached(double objective) : objective_(objective) {}
+  TargetReached(double objective, std::function<void(const ceres::IterationSummary&)> report)
+      : objective_(objective), report_(std::move(report)) {}
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
+    report_(summary);
     return summary.cost <= objective_ ? ceres::SOLVER_TERMINATE_SUCCESSFULLY : ceres::SOLVER_CONTINUE;
   }
 
  private:
   const double objective_;
+  const std::function<void(const ceres::IterationSummary&)> report_;
 };
 
 ControlProblem::ControlProblem(const Model& model, const ControlOptions& options)
@@ -242,6 +245,13 @@ ControlStepResult ControlProblem::SolveStepLm(const PoseTarget& target) {
     return svd.singularValues().minCoeff();
   };
   result.min_singular_value_dX_du = manipulability();
+  auto report = [&](int iteration) {
+    if (options_.on_iteration) {
+      const double error = ne > 0 ? r.head(ne).lpNorm<Eigen::Infinity>() : 0.0;
+      options_.on_iteration(iteration, Milliseconds(start), 0.5 * r.squaredNorm(), error);
+    }
+  };
+  report(0);
   double mu = -1;
   for (int it = 0; it < options_.max_iterations; ++it) {
     const double error = ne > 0 ? r.head(ne).lpNorm<Eigen::Infinity>() : 0.0;
@@ -285,6 +295,7 @@ ControlStepResult ControlProblem::SolveStepLm(const PoseTarget& target) {
     // Converged on the new residual? Then no new linearisation is needed
     // (rcond stays that of the last one, a step of ~1e-8 away).
     r = r_new;
+    report(result.iterations);
     const double new_error = ne > 0 ? r.head(ne).lpNorm<Eigen::Infinity>() : 0.0;
     if (new_error <= 0.1 * options_.target_tolerance && forward_.Energy() <= kEnergyFloor) break;
     Residuals(target, &r, &J, &ds_du, &result.rcond, &singular);
@@ -311,7 +322,15 @@ ControlStepResult ControlProblem::SolveStepBfgs(const PoseTarget& target) {
   options.parameter_tolerance = 1e-16;
   options.logging_type = ceres::SILENT;
   const double tolerance = 0.1 * options_.target_tolerance;
-  TargetReached reached(std::min(0.5 * tolerance * tolerance, options_.lambda * kEnergyFloor));
+  TargetReached reached(
+      std::min(0.5 * tolerance * tolerance, options_.lambda * kEnergyFloor),
+      [&](const ceres::IterationSummary& summary) {
+        if (!options_.on_iteration) return;
+        Eigen::VectorXd e;  // the error at the last evaluated (accepted) point
+        error_.Evaluate(forward_.state(), target, &e, nullptr);
+        options_.on_iteration(summary.iteration, Milliseconds(start), summary.cost,
+                              e.size() > 0 ? e.lpNorm<Eigen::Infinity>() : 0.0);
+      });
   options.callbacks.push_back(&reached);
   ceres::GradientProblem problem(new BfgsObjective(this, target, ue));
   ceres::GradientProblemSolver::Summary summary;

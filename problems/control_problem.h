@@ -50,6 +50,10 @@ struct ControlOptions {
   double target_tolerance = 1e-10;
   double finite_difference_step = 1e-6;  // [m or rad], kFiniteDifference only
   ForwardOptions forward;
+  // Called at the start of every step (iteration 0) and after every outer
+  // iteration with the wall time since the step began [ms], the objective O
+  // and the largest end-effector error [m, rad] (convergence curves).
+  std::function<void(int iteration, double elapsed_ms, double objective, double error)> on_iteration;
 };
 
 // One solve toward one target (no path splitting).

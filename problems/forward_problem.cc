@@ -24,8 +24,8 @@ ForwardProblem::ForwardProblem(const Model& model, const ForwardOptions& options
       constraints_(model_),
       state_(State::Home(model_)),
       controls_(model_.home_controls()),
-      ceres_(std::make_unique<CeresParts>()) {
-  // The Hessian solver for Newton polish is made on first use.
+      ceres_(std::make_unique<CeresParts>()),
+      hessian_solver_(std::make_unique<HessianSolver>(constraints_)) {
   ceres::Problem::Options problem_options;
   problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
@@ -122,7 +122,6 @@ ForwardResult ForwardProblem::Solve(const Eigen::VectorXd& u) {
 }
 
 void ForwardProblem::NewtonPolish(ForwardResult* result) {
-  if (!hessian_solver_) hessian_solver_ = std::make_unique<HessianSolver>(constraints_);
   // Two workspaces, swapped: the current point and the candidate.
   EnergyDerivatives* now = &polish_workspace_[0];
   EnergyDerivatives* next = &polish_workspace_[1];

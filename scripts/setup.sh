@@ -7,7 +7,8 @@ cd "$(dirname "$0")/.."
 
 PACKAGES=(g++ make cmake pkg-config
           libceres-dev libeigen3-dev libgoogle-glog-dev libgflags-dev
-          libyaml-cpp-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev)
+          libyaml-cpp-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev
+          gnuplot-nox)  # gnuplot: plots of `ccma bench --out` (optional at run time)
 
 missing=()
 for p in "${PACKAGES[@]}"; do

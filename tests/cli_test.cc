@@ -151,6 +151,34 @@ TEST(Cli, GenerateWritesAModelThatChecks) {
   EXPECT_EQ(j["end_effector_dof"], 6);
 }
 
+TEST(Cli, BenchPrintsTheStudyAndWritesItsFiles) {
+  const std::string dir = ::testing::TempDir() + "/" + std::to_string(getpid()) + "_bench";
+  const ToolRun r = Ccma("bench " + Model("4dof_reduced") + " --steps=2 --out=" + dir);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["model"], "4dof_reduced");
+  EXPECT_EQ(j["steps"], 2);
+  for (const char* loop : {"lm", "bfgs"}) {
+    EXPECT_GT(j["control_ms"][loop]["median"].get<double>(), 0) << loop;
+    EXPECT_TRUE(j["control_ms"][loop].contains("p95"));
+    EXPECT_TRUE(j["control_ms"][loop].contains("median_iterations"));
+  }
+  EXPECT_GT(j["forward_us"]["median"].get<double>(), 0);
+  EXPECT_GE(j["forward_us"]["p95"].get<double>(), j["forward_us"]["median"].get<double>());
+  EXPECT_GT(j["finite_difference_ms"]["median"].get<double>(), j["control_ms"]["lm"]["median"].get<double>());
+  EXPECT_GT(j["jacobian_us"]["autodiff"].get<double>(), j["jacobian_us"]["analytic"].get<double>());
+  for (const char* key : {"cpu", "cores", "build_type"}) EXPECT_TRUE(j["machine"].contains(key)) << key;
+  EXPECT_TRUE(std::ifstream(dir + "/4dof_reduced_steps.csv").good());
+  EXPECT_TRUE(std::ifstream(dir + "/4dof_reduced_convergence_bfgs.dat").good());
+  if (std::system("command -v gnuplot > /dev/null 2>&1") == 0) {
+    for (const char* f : {"/convergence_lm.png", "/convergence_lm.svg", "/convergence_bfgs.png", "/convergence_bfgs.svg"}) {
+      EXPECT_TRUE(std::ifstream(dir + f).good()) << f;
+    }
+  } else {
+    EXPECT_NE(r.err.find("gnuplot not found"), std::string::npos) << r.err;
+  }
+}
+
 struct BadCall {
   std::string what, args;
 };
@@ -201,6 +229,10 @@ INSTANTIATE_TEST_SUITE_P(
         BadCall{"generate two agents", "generate --agents=2 --out=/tmp/x.yaml"},
         BadCall{"generate non-integer agents", "generate --agents=3.5 --out=/tmp/x.yaml"},
         BadCall{"generate without out", "generate --agents=6"},
+        BadCall{"bench without a mode", "bench"},
+        BadCall{"bench with two modes", "bench --all " + kTwoBases},
+        BadCall{"bench negative steps", "bench " + kTwoBases + " --steps=-3"},
+        BadCall{"bench unreadable models dir", "bench --all --models_dir=/nonexistent"},
         BadCall{"model as waypoints", "trajectory " + kTwoBases + " --waypoints=" +
                                           std::string(CCMA_MODELS_DIR) + "/4dof_reduced.yaml --out=/tmp/x.csv"}),
     [](const auto& info) {
