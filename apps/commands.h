@@ -18,6 +18,7 @@ int RunControl(const std::vector<std::string>& args);
 int RunTrajectory(const std::vector<std::string>& args);
 int RunGenerate(const std::vector<std::string>& args);
 int RunBench(const std::vector<std::string>& args);
+int RunReplay(const std::vector<std::string>& args);
 
 // Flags shared by control and trajectory, and the options they make.
 extern const std::set<std::string> kControlFlags;

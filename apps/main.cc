@@ -50,6 +50,7 @@ const char kUsage[] =
     "  ccma trajectory --model=FILE --waypoints=FILE.csv --out=FILE.csv [control flags]\n"
     "  ccma generate --agents=N --out=FILE       (Stewart-like model with N bases)\n"
     "  ccma bench --model=FILE | --all | --scaling [--steps=N] [--seed=1] [--out=DIR]\n"
+    "  ccma replay --model=FILE --waypoints=FILE.csv --out=DIR [--noise=default|none] [--seed=1]\n"
     "\n"
     "Results are one JSON document on stdout; diagnostics go to stderr.\n"
     "Exit status: 0 ok, 1 failure, 2 bad usage or bad model file.\n";
@@ -76,7 +77,8 @@ int main(int argc, char** argv) {
       {"control", ccma::cli::RunControl},
       {"trajectory", ccma::cli::RunTrajectory},
       {"generate", ccma::cli::RunGenerate},
-      {"bench", ccma::cli::RunBench}};
+      {"bench", ccma::cli::RunBench},
+      {"replay", ccma::cli::RunReplay}};
   const auto it = commands.find(command);
   if (it == commands.end()) {
     std::cerr << "ccma: unknown command '" << command << "'\n\n" << kUsage;

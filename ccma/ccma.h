@@ -14,18 +14,21 @@
 #ifndef CCMA_CCMA_H_
 #define CCMA_CCMA_H_
 
+#include "ccma/base_tracking.h"
 #include "ccma/constraint_set.h"
 #include "ccma/end_effector.h"
 #include "ccma/mobility.h"
 #include "ccma/model.h"
 #include "ccma/model_generator.h"
 #include "ccma/model_loader.h"
+#include "ccma/omni_wheels.h"
 #include "ccma/rotation.h"
 #include "ccma/state.h"
 #include "ccma/waypoints.h"
 #include "problems/control_problem.h"
 #include "problems/end_effector_error.h"
 #include "problems/forward_problem.h"
+#include "problems/replay.h"
 #include "problems/sensitivity.h"
 #include "problems/trajectory.h"
 

@@ -15,6 +15,8 @@
 
 #include <Eigen/Core>
 
+#include "ccma/omni_wheels.h"
+
 namespace ccma {
 
 enum class JointType { kRevolute, kSpherical, kUniversal, kPrismatic, kFixed };
@@ -43,6 +45,9 @@ struct MobileBase {
   int body = -1;  // index into Model::bodies
   Actuation actuation = Actuation::kComplete;
   Eigen::Vector3d home_pose = Eigen::Vector3d::Zero();  // x, y, theta
+  // Its wheels (optional `wheels:` block; default: DefaultWheels()). Only
+  // the base-driving layer (base_tracking.h) uses them.
+  std::vector<Wheel> wheels = DefaultWheels();
 };
 
 // A joint of the passive chain between bodies A and B (file order of

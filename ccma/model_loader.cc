@@ -214,6 +214,27 @@ Model Parse(const YAML::Node& root, const std::string& source,
              "unknown actuation '" + actuation + "' (known: complete, reduced)");
     }
     base.home_pose = r.Vector3(r.Require(node, "pose", path), path + ".pose");
+    if (node["wheels"].IsDefined() && !node["wheels"].IsNull()) {
+      const YAML::Node wheels = r.Sequence(node["wheels"], path + ".wheels");
+      base.wheels.clear();
+      for (size_t i = 0; i < wheels.size(); ++i) {
+        const std::string wpath = Indexed(path + ".wheels", i);
+        const YAML::Node w = r.Map(wheels[i], wpath);
+        r.WarnUnknownKeys(w, {"angle", "distance", "radius", "mounting", "roller"}, wpath);
+        Wheel wheel;
+        wheel.angle = r.Number(r.Require(w, "angle", wpath), wpath + ".angle");
+        wheel.distance = r.Number(r.Require(w, "distance", wpath), wpath + ".distance");
+        wheel.radius = r.Number(r.Require(w, "radius", wpath), wpath + ".radius");
+        if (w["mounting"].IsDefined()) wheel.mounting = r.Number(w["mounting"], wpath + ".mounting");
+        if (w["roller"].IsDefined()) wheel.roller = r.Number(w["roller"], wpath + ".roller");
+        base.wheels.push_back(wheel);
+      }
+      try {
+        OmniWheelKinematics check(base.wheels);
+      } catch (const std::invalid_argument& e) {
+        r.Fail(wheels, path + ".wheels", e.what());
+      }
+    }
     base.body = static_cast<int>(model.bodies.size());
     Body body;
     body.name = base.name;

@@ -179,6 +179,24 @@ TEST(Cli, BenchPrintsTheStudyAndWritesItsFiles) {
   }
 }
 
+TEST(Cli, ReplayWritesSimulationLabelledOutputs) {
+  const std::string dir = ::testing::TempDir() + "/" + std::to_string(getpid()) + "_replay";
+  const ToolRun r = Ccma("replay " + Model("4dof_complete") + " --waypoints=" + CCMA_MODELS_DIR +
+                         "/paths/4dof_combined.csv --out=" + dir + " --noise=none");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["simulation"], true);
+  EXPECT_LT(j["rmse"]["x_mm"].get<double>(), 1.0);
+  EXPECT_LT(j["rmse"]["yaw_rad"].get<double>(), 1e-3);
+  EXPECT_EQ(j["paper_hardware_rmse"].size(), 3u);
+  EXPECT_EQ(j["noise"]["mocap_position_sigma_m"], 0.0);
+  std::ifstream ee(dir + "/end_effector.csv");
+  std::string first;
+  std::getline(ee, first);
+  EXPECT_NE(first.find("SIMULATION"), std::string::npos);
+  EXPECT_NE(r.err.find("paper, reduced scheme, sequential"), std::string::npos);
+}
+
 struct BadCall {
   std::string what, args;
 };
@@ -233,6 +251,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadCall{"bench with two modes", "bench --all " + kTwoBases},
         BadCall{"bench negative steps", "bench " + kTwoBases + " --steps=-3"},
         BadCall{"bench unreadable models dir", "bench --all --models_dir=/nonexistent"},
+        BadCall{"replay unknown noise", "replay " + kTwoBases + " --waypoints=" + std::string(CCMA_MODELS_DIR) +
+                                            "/paths/4dof_combined.csv --out=/tmp/r --noise=loud"},
+        BadCall{"replay without waypoints", "replay " + kTwoBases + " --out=/tmp/r"},
         BadCall{"model as waypoints", "trajectory " + kTwoBases + " --waypoints=" +
                                           std::string(CCMA_MODELS_DIR) + "/4dof_reduced.yaml --out=/tmp/x.csv"}),
     [](const auto& info) {
