@@ -2,7 +2,8 @@
 # Sets up, builds and runs ccma's main jobs on the bundled reference models:
 # `ccma check` (counts and numerical mobility), `ccma simulate` (assembly),
 # `ccma control` (bases that put the end-effector 3 cm and 0.05 rad away),
-# and `ccma trajectory` on the paper's two 4-DOF paths (CSV in build/demo/).
+# `ccma trajectory` on the paper's two 4-DOF paths, and `ccma replay` of the first
+# (simulated base driving; CSV and plots in build/demo/).
 #   scripts/demo.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -24,3 +25,6 @@ for model in 4dof_reduced 4dof_complete; do
       --out=build/demo/${model}_$path.csv
   done
 done
+echo "== $ccma replay --model=models/4dof_reduced.yaml --waypoints=models/paths/4dof_sequential.csv --out=build/demo/replay"
+$ccma replay --model=models/4dof_reduced.yaml --waypoints=models/paths/4dof_sequential.csv \
+  --out=build/demo/replay
