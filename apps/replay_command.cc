@@ -25,6 +25,10 @@ DEFINE_double(mocap_noise_m, -1, "replay: motion-capture noise sigma on x, y [m]
 DEFINE_double(mocap_noise_rad, -1, "replay: motion-capture noise sigma on heading [rad]");
 DEFINE_double(latency_s, -1, "replay: motion-capture and radio latency [s]");
 DEFINE_double(slip, -1, "replay: mean wheel slip, fraction of wheel speed lost");
+DEFINE_double(kp, 4.0, "replay: PI proportional gain, position and heading [1/s]");
+DEFINE_double(ki, 4.0, "replay: PI integral gain, position and heading [1/s^2]");
+DEFINE_double(controller_hz, 100.0, "replay: PI controller rate [Hz]");
+DEFINE_double(max_wheel_speed, 30.0, "replay: wheel-speed saturation [rad/s]");
 
 namespace ccma::cli {
 namespace {
@@ -45,7 +49,8 @@ std::string Fixed(double v, int digits) {
 
 int RunReplay(const std::vector<std::string>& args) {
   std::set<std::string> allowed = kControlFlags;
-  for (const char* f : {"waypoints", "out", "noise", "seed", "mocap_noise_m", "mocap_noise_rad", "latency_s", "slip"}) {
+  for (const char* f : {"waypoints", "out", "noise", "seed", "mocap_noise_m", "mocap_noise_rad", "latency_s", "slip",
+                        "kp", "ki", "controller_hz", "max_wheel_speed"}) {
     allowed.insert(f);
   }
   ParseFlags(args, allowed, "replay");
@@ -72,6 +77,14 @@ int RunReplay(const std::vector<std::string>& args) {
     options.noise.slip = FLAGS_slip;
   }
   if (FLAGS_seed < 0) throw UsageError("ccma replay: --seed must not be negative");
+  if (!(FLAGS_kp > 0) || !(FLAGS_ki >= 0) || !(FLAGS_controller_hz > 0) || !(FLAGS_max_wheel_speed > 0) ||
+      FLAGS_controller_hz > 10000) {
+    throw UsageError("ccma replay: --kp, --controller_hz (<= 10000) and --max_wheel_speed must be positive, --ki >= 0");
+  }
+  options.gains.kp_position = options.gains.kp_heading = FLAGS_kp;
+  options.gains.ki_position = options.gains.ki_heading = FLAGS_ki;
+  options.gains.rate_hz = FLAGS_controller_hz;
+  options.gains.max_wheel_speed = FLAGS_max_wheel_speed;
   options.noise.seed = static_cast<unsigned>(FLAGS_seed);
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
@@ -82,8 +95,11 @@ int RunReplay(const std::vector<std::string>& args) {
   const nlohmann::json noise = {{"mocap_position_sigma_m", n.position_sigma}, {"mocap_heading_sigma_rad", n.heading_sigma},
                                 {"mocap_latency_s", n.mocap_latency},        {"mocap_hz", n.mocap_hz},
                                 {"command_latency_s", n.command_latency},   {"slip", n.slip},
-                                {"slip_sigma", n.slip_sigma},               {"controller_hz", options.gains.rate_hz},
-                                {"seed", n.seed}};
+                                {"slip_sigma", n.slip_sigma},               {"seed", n.seed}};
+  const nlohmann::json controller = {{"kp", options.gains.kp_position}, {"ki", options.gains.ki_position},
+                                     {"rate_hz", options.gains.rate_hz},
+                                     {"max_wheel_speed", options.gains.max_wheel_speed},
+                                     {"velocity_feedforward", options.gains.velocity_feedforward}};
 
   // CSV files, labelled as simulation.
   {
@@ -169,6 +185,7 @@ int RunReplay(const std::vector<std::string>& args) {
   out["duration_s"] = r.duration_s;
   out["samples"] = r.samples.size();
   out["noise"] = noise;
+  out["controller"] = controller;
   out["rmse"] = {{"x_mm", 1000 * r.rmse[0]},   {"y_mm", 1000 * r.rmse[1]},  {"z_mm", 1000 * r.rmse[2]},
                  {"roll_rad", r.rmse[3]},      {"pitch_rad", r.rmse[4]},    {"yaw_rad", r.rmse[5]}};
   nlohmann::json paper = nlohmann::json::array();

@@ -253,6 +253,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadCall{"bench unreadable models dir", "bench --all --models_dir=/nonexistent"},
         BadCall{"replay unknown noise", "replay " + kTwoBases + " --waypoints=" + std::string(CCMA_MODELS_DIR) +
                                             "/paths/4dof_combined.csv --out=/tmp/r --noise=loud"},
+        BadCall{"replay negative gain", "replay " + kTwoBases + " --waypoints=" + std::string(CCMA_MODELS_DIR) +
+                                            "/paths/4dof_combined.csv --out=/tmp/r --kp=-1"},
         BadCall{"replay without waypoints", "replay " + kTwoBases + " --out=/tmp/r"},
         BadCall{"model as waypoints", "trajectory " + kTwoBases + " --waypoints=" +
                                           std::string(CCMA_MODELS_DIR) + "/4dof_reduced.yaml --out=/tmp/x.csv"}),
