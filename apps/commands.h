@@ -26,6 +26,8 @@ ControlOptions ControlOptionsFromFlags();
 
 // Loads the model, printing its warnings (unknown keys) on stderr.
 Model LoadModelOrThrow(const std::string& path);
+// The --waypoints file, its errors turned into UsageError (exit 2).
+std::vector<Waypoint> WaypointsFlag(const std::string& command);
 // --controls parsed and checked against the model, or its home controls.
 Eigen::VectorXd ControlsFlagOrHome(const Model& model);
 

@@ -11,6 +11,7 @@
 #include "apps/commands.h"
 
 DEFINE_string(model, "", "model file (YAML or JSON, see model_format.md)");
+DECLARE_string(waypoints);
 DEFINE_string(controls, "",
               "comma-separated controls, 3 per mobile base: x [m], y [m], theta [rad]");
 
@@ -21,6 +22,14 @@ Model LoadModelOrThrow(const std::string& path) {
   Model model = LoadModel(path, &warnings);
   for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
   return model;
+}
+
+std::vector<Waypoint> WaypointsFlag(const std::string& command) {
+  try {
+    return LoadWaypoints(RequireFlag(FLAGS_waypoints, "waypoints", command));
+  } catch (const WaypointError& e) {
+    throw UsageError("ccma " + command + ": " + e.what());
+  }
 }
 
 Eigen::VectorXd ControlsFlagOrHome(const Model& model) {

@@ -55,12 +55,7 @@ int RunReplay(const std::vector<std::string>& args) {
   }
   ParseFlags(args, allowed, "replay");
   const Model model = LoadModelOrThrow(RequireFlag(FLAGS_model, "model", "replay"));
-  std::vector<Waypoint> waypoints;
-  try {
-    waypoints = LoadWaypoints(RequireFlag(FLAGS_waypoints, "waypoints", "replay"));
-  } catch (const WaypointError& e) {
-    throw UsageError(std::string("ccma replay: ") + e.what());
-  }
+  const std::vector<Waypoint> waypoints = WaypointsFlag("replay");
   const std::string dir = RequireFlag(FLAGS_out, "out", "replay");
   ReplayOptions options;
   options.control = ControlOptionsFromFlags();

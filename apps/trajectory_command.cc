@@ -24,12 +24,7 @@ int RunTrajectory(const std::vector<std::string>& args) {
   allowed.insert("out");
   ParseFlags(args, allowed, "trajectory");
   const Model model = LoadModelOrThrow(RequireFlag(FLAGS_model, "model", "trajectory"));
-  std::vector<Waypoint> waypoints;
-  try {
-    waypoints = LoadWaypoints(RequireFlag(FLAGS_waypoints, "waypoints", "trajectory"));
-  } catch (const WaypointError& e) {
-    throw UsageError(std::string("ccma trajectory: ") + e.what());
-  }
+  const std::vector<Waypoint> waypoints = WaypointsFlag("trajectory");
   const std::string out_path = RequireFlag(FLAGS_out, "out", "trajectory");
   const ControlOptions options = ControlOptionsFromFlags();
   const Eigen::VectorXd start = ControlsFlagOrHome(model);
