@@ -22,16 +22,16 @@
 #include <gflags/gflags.h>
 
 #include "apps/cli.h"
+#include "apps/flags.h"
 #include "apps/commands.h"
 #include "apps/json_output.h"
+#include "apps/plots.h"
+#include "ccma/internal/constraint_set.h"
 
-DECLARE_string(model);
-DECLARE_string(out);
-DEFINE_int32(steps, 0, "bench: path steps per model (default 20; 10 with --scaling)");
-DEFINE_int32(seed, 1, "bench: seed of the path's directions");
-DEFINE_bool(all, false, "bench: every model in --models_dir");
-DEFINE_bool(scaling, false, "bench: generated models with 3, 6, 12, 24, 48 agents");
-DEFINE_string(models_dir, "", "bench --all: folder of models (default: models/ here, else the source tree's)");
+DEFINE_int32(steps, 0, "path steps per model, 1..10000 (default 20; 10 with --scaling) [steps]");
+DEFINE_bool(all, false, "benchmark every .yaml model in --models_dir [flag]");
+DEFINE_bool(scaling, false, "benchmark generated models with 3, 6, 12, 24, 48 agents [flag]");
+DEFINE_string(models_dir, "", "bench --all: folder of models (default: models/ here, else the source tree's) [path]");
 
 namespace ccma::cli {
 namespace {
@@ -158,7 +158,7 @@ nlohmann::json JacobianTiming(const Model& model) {
       const ConstraintBlock& block = constraints.blocks()[b];
       params.clear();
       for (int body : block.bodies) params.push_back(s.pose(body));
-      if (block.base >= 0) params.push_back(u.data() + 3 * block.base);
+      if (block.control_size > 0) params.push_back(u.data() + block.control_offset);
       const ceres::CostFunction& cost = autodiff ? *twins[b] : *block.cost;
       cost.Evaluate(params.data(), residuals, jacobians);
       if (autodiff) {
@@ -200,47 +200,6 @@ void WriteCurve(const std::string& path, const Curve& curve) {
   std::ofstream out(path);
   out << "# time_ms objective error\n" << std::setprecision(10);
   for (const auto& p : curve.points) out << p[0] << " " << p[1] << " " << p[2] << "\n";
-}
-
-// Runs gnuplot on the convergence curves; returns the files written, or a
-// warning (gnuplot is optional at run time).
-nlohmann::json Plot(const std::string& dir, const std::vector<std::string>& models, std::string* warning) {
-  nlohmann::json files = nlohmann::json::array();
-  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) {
-    *warning = "gnuplot not found: plots skipped (apt-get install gnuplot-nox, or scripts/setup.sh)";
-    return files;
-  }
-  for (const std::string method : {"lm", "bfgs"}) {
-    std::ostringstream plots;
-    for (const std::string column : {"2", "3"}) {
-      plots << (column == "2" ? "set ylabel 'objective O [m^2]'\n" : "set ylabel 'end-effector error [m or rad]'\n");
-      plots << "plot ";
-      for (size_t i = 0; i < models.size(); ++i) {
-        plots << (i ? ", " : "") << "'" << dir << "/" << models[i] << "_convergence_" << method
-              << ".dat' using 1:" << column << " with linespoints lw 2 title '" << models[i] << "' noenhanced";
-      }
-      plots << "\n";
-    }
-    std::ostringstream script;
-    const std::string title = "ccma: one control step (10 mm + 0.005 rad), " +
-                              std::string(method == "lm" ? "Levenberg-Marquardt" : "BFGS") + " outer loop";
-    for (const std::string format : {"png", "svg"}) {
-      const std::string file = dir + "/convergence_" + method + "." + format;
-      script << (format == "png" ? "set terminal pngcairo size 1400,560 font 'sans,11'\n"
-                                 : "set terminal svg size 1400,560 font 'sans,11'\n")
-             << "set output '" << file << "'\n"
-             << "set multiplot layout 1,2 title '" << title << "' noenhanced\n"
-             << "set xlabel 'wall time [ms]'\nset logscale y\nset format y '1e%T'\nset key top right\nset grid\n"
-             << plots.str() << "unset multiplot\nset output\n";
-      files.push_back(file);
-    }
-    const std::string script_path = dir + "/convergence_" + method + ".gnuplot";
-    std::ofstream(script_path) << script.str();
-    if (std::system(("gnuplot '" + script_path + "' 2>/dev/null").c_str()) != 0) {
-      *warning = "gnuplot failed on " + script_path;
-    }
-  }
-  return files;
 }
 
 nlohmann::json BenchModel(const Model& model, int steps, const std::string& out_dir) {
@@ -386,7 +345,7 @@ void WriteScalingTable(const std::string& path, const nlohmann::json& scaling) {
 }  // namespace
 
 int RunBench(const std::vector<std::string>& args) {
-  ParseFlags(args, {"model", "all", "scaling", "steps", "seed", "out", "models_dir"}, "bench");
+  ParseCommandFlags(args, "bench");
   const int modes = !FLAGS_model.empty() + FLAGS_all + FLAGS_scaling;
   if (modes != 1) throw UsageError("ccma bench: give exactly one of --model=FILE, --all, --scaling");
   const int steps = FLAGS_steps > 0 ? FLAGS_steps : (FLAGS_scaling ? 10 : 20);
@@ -430,7 +389,7 @@ int RunBench(const std::vector<std::string>& args) {
   }
   if (!FLAGS_out.empty()) {
     std::string warning;
-    const nlohmann::json plots = Plot(FLAGS_out, names, &warning);
+    const nlohmann::json plots = PlotConvergence(FLAGS_out, names, &warning);
     if (!warning.empty()) std::cerr << "ccma bench: " << warning << "\n";
     for (auto& r : results) r["plots"] = plots;
     WriteModelTable(FLAGS_out + "/models.md", results);

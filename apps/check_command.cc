@@ -1,22 +1,21 @@
 // `ccma check --model=FILE`: validate a model and analyse its mobility at home.
-#include <gflags/gflags.h>
+#include <iostream>
 
 #include "apps/cli.h"
 #include "apps/commands.h"
+#include "apps/flags.h"
 #include "apps/json_output.h"
-
-DECLARE_string(model);
+#include "ccma/internal/format.h"
 
 namespace ccma::cli {
 
 int RunCheck(const std::vector<std::string>& args) {
-  ParseFlags(args, {"model"}, "check");
+  ParseCommandFlags(args, "check");
   const Model model = LoadModelOrThrow(RequireFlag(FLAGS_model, "model", "check"));
-  const ConstraintSet constraints(model);
   const State home = State::Home(model);
-  const Eigen::VectorXd u = model.home_controls();
-  const MobilityReport mobility = AnalyzeMobility(model, constraints, home, u);
+  const MobilityReport mobility = AnalyzeMobility(model, home, model.home_controls());
   const ForwardOptions defaults;
+  const bool assembled = mobility.energy < defaults.assembly_tolerance;
 
   nlohmann::json out;
   out["model"] = model.name;
@@ -26,20 +25,45 @@ int RunCheck(const std::vector<std::string>& args) {
   out["state_size"] = model.state_size();
   out["controls"] = model.num_controls();
   out["effective_controls"] = model.effective_control_indices().size();
-  out["constraints"] = constraints.num_rows();
+  out["constraints"] = mobility.constraint_rows;
   out["rigid_with_controls_fixed"] = mobility.rigid_with_controls_fixed;
   out["end_effector_dof"] = mobility.end_effector_dof;
-  out["assembled_at_home"] = mobility.energy < defaults.assembly_tolerance;
+  out["assembled_at_home"] = assembled;
   out["constraint_rank"] = mobility.constraint_rank;
   out["dof_with_controls_fixed"] = mobility.dof_with_controls_fixed;
   out["dof_with_controls_free"] = mobility.dof_with_controls_free;
   out["smallest_singular_value"] = mobility.smallest_singular_value;
   out["energy_at_home"] = mobility.energy;
   nlohmann::json controlled = nlohmann::json::array();
+  int controlled_count = 0;
   for (int c = 0; c < 6; ++c) {
-    if (model.end_effector.controlled[c]) controlled.push_back(kEndEffectorComponentNames[c]);
+    if (model.end_effector.controlled[c]) {
+      controlled.push_back(kEndEffectorComponentNames[c]);
+      ++controlled_count;
+    }
   }
   out["controlled"] = controlled;
+
+  // A mechanism that is not what a user expects is said so on stderr too.
+  nlohmann::json warnings = nlohmann::json::array();
+  if (!mobility.rigid_with_controls_fixed) {
+    warnings.push_back("not rigid with its controls fixed: " + std::to_string(mobility.dof_with_controls_fixed) +
+                       " free motion(s) remain (smallest singular value of dC/ds " +
+                       FormatG(mobility.smallest_singular_value) + "); simulation and control are ill-posed");
+  }
+  if (!assembled) {
+    warnings.push_back("not assembled at home: E = " + FormatG(mobility.energy) + " m^2 (above " +
+                       FormatG(defaults.assembly_tolerance) + "); check the joint points and axes");
+  }
+  if (mobility.end_effector_dof < controlled_count) {
+    warnings.push_back("the controls move only " + std::to_string(mobility.end_effector_dof) +
+                       " end-effector DOF at home, fewer than the " + std::to_string(controlled_count) +
+                       " controlled components");
+  }
+  if (!warnings.empty()) {
+    out["warnings"] = warnings;
+    for (const auto& w : warnings) std::cerr << "ccma check: warning: " << w.get<std::string>() << "\n";
+  }
   PrintJson(out);
   return 0;
 }

@@ -1,16 +1,41 @@
-// The `ccma` sub-commands. Each parses its own flags, prints one JSON
-// document on stdout and returns the exit status; errors are thrown
-// (UsageError / ModelError -> 2, anything else -> 1) and reported by main.
+// The `ccma` sub-commands: one registry (commands.cc) names each command, its
+// synopsis, what it does and the flags it accepts; `ccma SUB --help` is made
+// from it and from the flags' own descriptions (units) and defaults. Each
+// command parses its flags with ParseCommandFlags, prints one JSON document
+// on stdout and returns the exit status; errors are thrown (UsageError,
+// ModelError, std::invalid_argument -> 2, anything else -> 1) and reported by
+// main.cc.
 #ifndef CCMA_APPS_COMMANDS_H_
 #define CCMA_APPS_COMMANDS_H_
 
-#include <set>
 #include <string>
 #include <vector>
 
 #include "ccma/ccma.h"
 
 namespace ccma::cli {
+
+struct Command {
+  std::string name;
+  std::string synopsis;     // the usage line(s)
+  std::string description;  // what it does and prints
+  std::vector<std::string> flags;  // accepted flags, in help order
+  int (*run)(const std::vector<std::string>& args);
+};
+
+// Every sub-command, in help order.
+const std::vector<Command>& Commands();
+// The registry entry of `name`; throws std::logic_error for an unknown one.
+const Command& CommandNamed(const std::string& name);
+// `ccma SUB --help`: synopsis, description and every flag with its unit and default.
+std::string CommandHelp(const Command& command);
+// `ccma --help`: the list of commands.
+std::string GlobalHelp();
+// "ccma 0.1.0 (Release; Ceres 2.1.0, Eigen 3.4.0)".
+std::string VersionLine();
+
+// Parses `args` against the registry's flags of `command` (cli.h ParseFlags).
+void ParseCommandFlags(const std::vector<std::string>& args, const std::string& command);
 
 int RunCheck(const std::vector<std::string>& args);
 int RunSimulate(const std::vector<std::string>& args);
@@ -20,15 +45,15 @@ int RunGenerate(const std::vector<std::string>& args);
 int RunBench(const std::vector<std::string>& args);
 int RunReplay(const std::vector<std::string>& args);
 
-// Flags shared by control and trajectory, and the options they make.
-extern const std::set<std::string> kControlFlags;
+// The control flags (method, max_step_m, max_step_rad, lambda) as options;
+// throws UsageError when ControlOptions::IsValid says no.
 ControlOptions ControlOptionsFromFlags();
 
 // Loads the model, printing its warnings (unknown keys) on stderr.
 Model LoadModelOrThrow(const std::string& path);
 // The --waypoints file, its errors turned into UsageError (exit 2).
 std::vector<Waypoint> WaypointsFlag(const std::string& command);
-// --controls parsed and checked against the model, or its home controls.
+// --controls parsed and checked against the model (count, range), or its home controls.
 Eigen::VectorXd ControlsFlagOrHome(const Model& model);
 
 }  // namespace ccma::cli

@@ -1,71 +1,87 @@
-// `ccma control --model=FILE --target=x,y,z,roll,pitch,yaw [--controls=...]
-//  [--method=lm|bfgs] [--max_step_m=0.01] [--max_step_rad=0.005] [--lambda=0.5]`:
+// `ccma control --model=FILE --target=... [--controls=...] [control flags]`:
 // kinematic control, walking the end-effector to the target in small steps.
 #include <cmath>
 #include <iostream>
 
-#include <gflags/gflags.h>
-
 #include "apps/cli.h"
 #include "apps/commands.h"
+#include "apps/flags.h"
 #include "apps/json_output.h"
+#include "ccma/internal/format.h"
 
-DECLARE_string(model);
-DECLARE_string(controls);
-DEFINE_string(target, "", "end-effector target x,y,z [m], roll,pitch,yaw [rad]");
-DEFINE_string(method, "lm", "outer loop: lm (Levenberg-Marquardt, default) or bfgs (the paper's)");
-DEFINE_double(max_step_m, 0.010, "path step: end-effector translation per step [m]");
-DEFINE_double(max_step_rad, 0.005, "path step: end-effector rotation per step [rad]");
-DEFINE_double(lambda, 0.5, "weight of the residual energy in the objective, 0 < lambda < 1");
+DEFINE_string(target, "",
+              "end-effector target: x,y,z [m], roll,pitch,yaw [rad]; or only the model's controlled "
+              "components, in that order [m, rad]");
 
 namespace ccma::cli {
+namespace {
 
-ControlOptions ControlOptionsFromFlags() {
-  ControlOptions options;
-  if (FLAGS_method == "lm") {
-    options.method = ControlMethod::kLevenbergMarquardt;
-  } else if (FLAGS_method == "bfgs") {
-    options.method = ControlMethod::kBfgs;
+// --target: six values, or one per controlled component (the others keep
+// their home value; they are ignored).
+PoseTarget TargetFlag(const Model& model, const PoseTarget& home) {
+  const Eigen::VectorXd values = ParseNumberList(RequireFlag(FLAGS_target, "target", "control"), "target");
+  std::vector<int> components;
+  for (int c = 0; c < 6; ++c) {
+    if (model.end_effector.controlled[c]) components.push_back(c);
+  }
+  Eigen::Matrix<double, 6, 1> full;
+  full << home.position, home.rpy;
+  if (values.size() == 6) {
+    full = values;
+  } else if (values.size() == static_cast<int>(components.size())) {
+    for (size_t i = 0; i < components.size(); ++i) full[components[i]] = values[static_cast<int>(i)];
   } else {
-    throw UsageError("--method: '" + FLAGS_method + "' is not lm or bfgs");
+    std::string names;
+    for (int c : components) names += std::string(names.empty() ? "" : ",") + kEndEffectorComponentNames[c];
+    throw UsageError("--target: expected 6 values x,y,z,roll,pitch,yaw or " + std::to_string(components.size()) +
+                     " (the controlled " + names + "); got " + std::to_string(values.size()));
   }
-  if (!(FLAGS_max_step_m > 0) || !std::isfinite(FLAGS_max_step_m)) {
-    throw UsageError("--max_step_m must be a positive number");
+  for (int c = 0; c < 6; ++c) {
+    if (std::abs(full[c]) > kMaxMagnitude) {
+      throw UsageError(std::string("--target: ") + kEndEffectorComponentNames[c] + " (" + FormatG(full[c]) +
+                       ") must lie in [-1e4, 1e4] (m or rad)");
+    }
   }
-  if (!(FLAGS_max_step_rad > 0) || !std::isfinite(FLAGS_max_step_rad)) {
-    throw UsageError("--max_step_rad must be a positive number");
-  }
-  if (!(FLAGS_lambda > 0 && FLAGS_lambda < 1)) throw UsageError("--lambda must lie in (0, 1)");
-  options.max_step_m = FLAGS_max_step_m;
-  options.max_step_rad = FLAGS_max_step_rad;
-  options.lambda = FLAGS_lambda;
-  return options;
+  return {full.head<3>(), full.tail<3>()};
 }
 
-const std::set<std::string> kControlFlags = {"model", "controls", "method", "max_step_m",
-                                             "max_step_rad", "lambda"};
+// Do the returned controls, assembled from home the way `ccma simulate
+// --controls=...` does, give the same configuration? Not always: a path can
+// lead to another assembly branch of the same controls.
+nlohmann::json CheckReproducibleFromHome(const Model& model, const ControlProblem& control, std::string* warning) {
+  ForwardProblem from_home(model);
+  const ForwardResult r = from_home.Assemble(control.controls());
+  const double distance = (from_home.end_effector().position - control.forward().end_effector().position).norm();
+  const double state_distance = from_home.state().Minus(control.forward().state()).lpNorm<Eigen::Infinity>();
+  const bool same = r.assembled && state_distance < 1e-6;
+  if (!same) {
+    *warning += std::string(warning->empty() ? "" : "; ") +
+                "these controls, simulated from home (ccma simulate --controls=...), assemble to another "
+                "configuration (end-effector " + FormatG(distance) + " m away" +
+                (r.assembled ? "" : ", not assembled") +
+                "): the mechanism has several assembly branches here; reproduce this result exactly with "
+                "ccma simulate --from=<this JSON>";
+  }
+  return {{"reproducible", same}, {"end_effector_distance_m", distance}, {"max_state_difference", state_distance}};
+}
+
+}  // namespace
 
 int RunControl(const std::vector<std::string>& args) {
-  std::set<std::string> allowed = kControlFlags;
-  allowed.insert("target");
-  ParseFlags(args, allowed, "control");
+  ParseCommandFlags(args, "control");
   const Model model = LoadModelOrThrow(RequireFlag(FLAGS_model, "model", "control"));
-  const Eigen::VectorXd target_values = ParseNumberList(RequireFlag(FLAGS_target, "target", "control"), "target");
-  if (target_values.size() != 6) {
-    throw UsageError("--target: expected 6 values x,y,z,roll,pitch,yaw; got " +
-                     std::to_string(target_values.size()));
-  }
   const ControlOptions options = ControlOptionsFromFlags();
   const Eigen::VectorXd start = ControlsFlagOrHome(model);
-
   ControlProblem control(model, options);
+  const PoseTarget target = TargetFlag(model, control.CurrentPose());
+
   const ForwardResult start_assembly = control.SetControls(start);
-  const PoseTarget target{target_values.head<3>(), target_values.tail<3>()};
   ControlResult result = control.MoveTo(target);
   if (!start_assembly.assembled) {
-    result.warning = "the starting controls do not assemble (E = " +
-                     std::to_string(start_assembly.residual_energy) + "); " + result.warning;
+    result.warning = "the starting controls do not assemble (E = " + FormatG(start_assembly.residual_energy) +
+                     "); " + result.warning;
   }
+  const nlohmann::json from_home = CheckReproducibleFromHome(model, control, &result.warning);
 
   nlohmann::json out;
   out["model"] = model.name;
@@ -75,6 +91,7 @@ int RunControl(const std::vector<std::string>& args) {
   out["steps"] = result.steps;
   out["iterations"] = result.iterations;
   out["forward_solves"] = result.forward_solves;
+  out["branch_jumps_rejected"] = result.branch_jumps_rejected;
   out["objective"] = result.objective;
   out["error"] = result.error;
   out["residual_energy"] = result.residual_energy;
@@ -83,9 +100,12 @@ int RunControl(const std::vector<std::string>& args) {
                          {"min_dG_ds_pivot_ratio_on_path", result.min_rcond},
                          {"min_singular_value_dX_du", result.min_singular_value_dX_du}};
   out["solve_time_ms"] = result.solve_time_ms;
-  out["target"] = ToJson(target_values);
+  out["target"] = {target.position[0], target.position[1], target.position[2],
+                   target.rpy[0],      target.rpy[1],      target.rpy[2]};
   out["controls"] = ToJson(control.controls());
   out["end_effector"] = ToJson(control.forward().end_effector());
+  out["bodies"] = BodiesToJson(model, control.forward().state());
+  out["from_home"] = from_home;
   if (!result.warning.empty()) {
     out["warning"] = result.warning;
     std::cerr << "ccma control: warning: " << result.warning << "\n";

@@ -5,16 +5,17 @@
 #include <gflags/gflags.h>
 
 #include "apps/cli.h"
+#include "apps/flags.h"
 #include "apps/commands.h"
 #include "apps/json_output.h"
+#include "apps/output_file.h"
 
-DECLARE_string(out);
-DEFINE_int32(agents, 0, "number of mobile bases, >= 3");
+DEFINE_int32(agents, 0, "number of mobile bases, 3..1000 [agents]");
 
 namespace ccma::cli {
 
 int RunGenerate(const std::vector<std::string>& args) {
-  ParseFlags(args, {"agents", "out"}, "generate");
+  ParseCommandFlags(args, "generate");
   if (FLAGS_agents < 3) throw UsageError("ccma generate: --agents must be an integer >= 3");
   if (FLAGS_agents > 1000) throw UsageError("ccma generate: --agents must be at most 1000");
   const std::string out_path = RequireFlag(FLAGS_out, "out", "generate");
@@ -22,9 +23,9 @@ int RunGenerate(const std::vector<std::string>& args) {
   options.agents = FLAGS_agents;
   const std::string text = GenerateStewartModel(options);
   const Model model = LoadModelFromString(text, out_path);  // validate before writing
-  std::ofstream out(out_path);
-  if (!(out << text)) throw UsageError("ccma generate: --out: cannot write '" + out_path + "'");
-  out.close();
+  OutputFile out(out_path, "out");
+  out.stream() << text;
+  out.Commit();
   nlohmann::json summary = {{"model", model.name},       {"agents", model.num_bases()},
                             {"bodies", model.num_bodies()}, {"state_size", model.state_size()},
                             {"controls", model.num_controls()}, {"out", out_path}};

@@ -1,7 +1,10 @@
 #include "apps/json_output.h"
 
 #include <algorithm>
+#include <cmath>
 #include <iostream>
+
+#include "apps/cli.h"
 
 namespace ccma::cli {
 
@@ -20,11 +23,68 @@ nlohmann::json ToJson(const EndEffectorPose& pose) {
 nlohmann::json BodiesToJson(const Model& model, const State& s) {
   nlohmann::json bodies = nlohmann::json::array();
   for (int i = 0; i < model.num_bodies(); ++i) {
+    const Eigen::Quaterniond q = s.q_WB(i);
     bodies.push_back({{"name", model.bodies[i].name},
                       {"position", ToJson(s.p_WB(i))},
-                      {"rpy", ToJson(RpyFromRotation(s.R_WB(i)))}});
+                      {"rpy", ToJson(RpyFromRotation(s.R_WB(i)))},
+                      {"quaternion", {q.w(), q.x(), q.y(), q.z()}}});
   }
   return bodies;
+}
+
+namespace {
+
+Eigen::VectorXd Numbers(const nlohmann::json& j, size_t count, const std::string& where) {
+  if (!j.is_array() || j.size() != count) {
+    throw UsageError(where + ": must be a list of " + std::to_string(count) + " numbers");
+  }
+  Eigen::VectorXd v(static_cast<Eigen::Index>(count));
+  for (size_t i = 0; i < count; ++i) {
+    if (!j[i].is_number() || !(std::abs(j[i].get<double>()) <= kMaxMagnitude)) {
+      throw UsageError(where + ": entry " + std::to_string(i) + " must be a finite number of magnitude <= 1e4");
+    }
+    v[static_cast<Eigen::Index>(i)] = j[i].get<double>();
+  }
+  return v;
+}
+
+}  // namespace
+
+State StateFromJson(const Model& model, const nlohmann::json& document, const std::string& source) {
+  if (!document.is_object() || !document.contains("bodies") || !document["bodies"].is_array()) {
+    throw UsageError(source + ": bodies: missing (a JSON document printed by ccma simulate or ccma control)");
+  }
+  State s = State::Home(model);
+  std::vector<bool> seen(static_cast<size_t>(model.num_bodies()), false);
+  for (size_t k = 0; k < document["bodies"].size(); ++k) {
+    const nlohmann::json& body = document["bodies"][k];
+    const std::string where = source + ": bodies[" + std::to_string(k) + "]";
+    if (!body.is_object() || !body.contains("name") || !body["name"].is_string()) {
+      throw UsageError(where + ".name: missing");
+    }
+    const int index = model.FindBody(body["name"].get<std::string>());
+    if (index < 0) throw UsageError(where + ".name: the model has no body of that name");
+    if (!body.contains("position")) throw UsageError(where + ".position: missing");
+    const Eigen::Vector3d p = Numbers(body["position"], 3, where + ".position");
+    Eigen::Quaterniond q;
+    if (body.contains("quaternion")) {
+      const Eigen::VectorXd wxyz = Numbers(body["quaternion"], 4, where + ".quaternion");
+      if (!(wxyz.norm() > 0.5 && wxyz.norm() < 2)) throw UsageError(where + ".quaternion: not a unit quaternion");
+      q = Eigen::Quaterniond(wxyz[0], wxyz[1], wxyz[2], wxyz[3]);
+    } else if (body.contains("rpy")) {
+      q = Eigen::Quaterniond(RotationFromRpy(Numbers(body["rpy"], 3, where + ".rpy")));
+    } else {
+      throw UsageError(where + ": needs quaternion or rpy");
+    }
+    s.SetPose(index, q, p);
+    seen[static_cast<size_t>(index)] = true;
+  }
+  for (int i = 0; i < model.num_bodies(); ++i) {
+    if (!seen[static_cast<size_t>(i)]) {
+      throw UsageError(source + ": bodies: no entry for body '" + model.bodies[i].name + "'");
+    }
+  }
+  return s;
 }
 
 namespace {

@@ -11,8 +11,15 @@ namespace ccma::cli {
 nlohmann::json ToJson(const Eigen::VectorXd& v);
 // {"position": [..], "rotation": [[..],[..],[..]], "rpy": [..]}
 nlohmann::json ToJson(const EndEffectorPose& pose);
-// [{"name", "position", "rpy"}] for every body (rpy of R_WB, world axes).
+// [{"name", "position", "rpy", "quaternion"}] for every body: the body
+// frame's world position [m], R_WB as rpy [rad] and as the unit quaternion
+// [w, x, y, z] (exact, for `simulate --from`).
 nlohmann::json BodiesToJson(const Model& model, const State& s);
+
+// The state in `document["bodies"]` (as BodiesToJson writes it; quaternion
+// preferred, else rpy), every body of the model by name. Throws UsageError
+// naming `source` and the offending key.
+State StateFromJson(const Model& model, const nlohmann::json& document, const std::string& source);
 
 // Prints one JSON document on stdout.
 void PrintJson(const nlohmann::json& document);

@@ -2,61 +2,53 @@
 //  [--seed=1] [--mocap_noise_m] [--mocap_noise_rad] [--latency_s] [--slip]`:
 // the paper's closed loop, simulated (problems/replay.h). Writes
 // DIR/end_effector.csv, DIR/bases.csv, DIR/rmse.md and, with gnuplot,
-// DIR/end_effector.{png,svg} and DIR/bases_xy.{png,svg}.
-#include <cstdlib>
+// DIR/end_effector.{png,svg} and DIR/bases_xy.{png,svg} (apps/plots.h).
+// A replay that failed (plan not converged, chain torn) says so on stderr,
+// in rmse.md, in the plots and in the JSON.
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <iomanip>
 #include <iostream>
-#include <sstream>
+#include <string>
 
 #include <gflags/gflags.h>
 
 #include "apps/cli.h"
+#include "apps/flags.h"
 #include "apps/commands.h"
 #include "apps/json_output.h"
+#include "apps/plots.h"
 
-DECLARE_string(model);
-DECLARE_string(waypoints);
-DECLARE_string(out);
-DECLARE_int32(seed);
-DEFINE_string(noise, "default", "replay: 'default' (documented simulated imperfections) or 'none'");
-DEFINE_double(mocap_noise_m, -1, "replay: motion-capture noise sigma on x, y [m] (overrides --noise)");
-DEFINE_double(mocap_noise_rad, -1, "replay: motion-capture noise sigma on heading [rad]");
-DEFINE_double(latency_s, -1, "replay: motion-capture and radio latency [s]");
-DEFINE_double(slip, -1, "replay: mean wheel slip, fraction of wheel speed lost");
-DEFINE_double(kp, 4.0, "replay: PI proportional gain, position and heading [1/s]");
-DEFINE_double(ki, 4.0, "replay: PI integral gain, position and heading [1/s^2]");
-DEFINE_double(controller_hz, 100.0, "replay: PI controller rate [Hz]");
-DEFINE_double(max_wheel_speed, 30.0, "replay: wheel-speed saturation [rad/s]");
+DEFINE_string(noise, "default",
+              "simulated imperfections: 'default' (the documented ones, docs/cli.md) or 'none' [default|none]");
+DEFINE_double(mocap_noise_m, -1,
+              "motion-capture noise sigma on x and y, overrides --noise (default noise: 0.001) [m]");
+DEFINE_double(mocap_noise_rad, -1,
+              "motion-capture noise sigma on the heading, overrides --noise (default noise: 0.003) [rad]");
+DEFINE_double(latency_s, -1,
+              "motion-capture and radio latency, 0..10, overrides --noise (default noise: 0.01 and 0.02) [s]");
+DEFINE_double(slip, -1,
+              "mean wheel slip, fraction of wheel speed lost, 0..1, overrides --noise (default noise: 0.03) [1]");
+DEFINE_double(kp, 4.0, "PI proportional gain, position and heading [1/s]");
+DEFINE_double(ki, 4.0, "PI integral gain, position and heading [1/s^2]");
+DEFINE_double(controller_hz, 100.0, "PI controller rate, 1..10000 [Hz]");
+DEFINE_double(max_wheel_speed, 30.0, "wheel-speed saturation [rad/s]");
 
 namespace ccma::cli {
 namespace {
 
-// The paper's hardware RMSE (Section IV), in its plots' order y, z, x, yaw.
-const char* kPaperFigures[][5] = {
-    {"reduced scheme, sequential (Fig. 7)", "18", "12", "17", "0.09"},
-    {"reduced scheme, combined (Fig. 10)", "18", "22", "24", "0.13"},
-    {"complete scheme, combined", "10", "17", "13", "0.10"}};
-
-std::string Fixed(double v, int digits) {
-  std::ostringstream os;
-  os << std::fixed << std::setprecision(digits) << v;
-  return os.str();
+std::string G(double v) {
+  char text[64];
+  std::snprintf(text, sizeof(text), "%g", v);
+  return text;
 }
 
-}  // namespace
+// Whether a flag was given on the command line (the replay flags' -1 means "not given").
+bool Given(const char* flag) { return !gflags::GetCommandLineFlagInfoOrDie(flag).is_default; }
 
-int RunReplay(const std::vector<std::string>& args) {
-  std::set<std::string> allowed = kControlFlags;
-  for (const char* f : {"waypoints", "out", "noise", "seed", "mocap_noise_m", "mocap_noise_rad", "latency_s", "slip",
-                        "kp", "ki", "controller_hz", "max_wheel_speed"}) {
-    allowed.insert(f);
-  }
-  ParseFlags(args, allowed, "replay");
-  const Model model = LoadModelOrThrow(RequireFlag(FLAGS_model, "model", "replay"));
-  const std::vector<Waypoint> waypoints = WaypointsFlag("replay");
-  const std::string dir = RequireFlag(FLAGS_out, "out", "replay");
+// The options the flags ask for, checked by ReplayOptions::IsValid (UsageError).
+ReplayOptions ReplayOptionsFromFlags() {
   ReplayOptions options;
   options.control = ControlOptionsFromFlags();
   if (FLAGS_noise == "none") {
@@ -64,134 +56,119 @@ int RunReplay(const std::vector<std::string>& args) {
   } else if (FLAGS_noise != "default") {
     throw UsageError("ccma replay: --noise must be 'default' or 'none'");
   }
-  if (FLAGS_mocap_noise_m >= 0) options.noise.position_sigma = FLAGS_mocap_noise_m;
-  if (FLAGS_mocap_noise_rad >= 0) options.noise.heading_sigma = FLAGS_mocap_noise_rad;
-  if (FLAGS_latency_s >= 0) options.noise.mocap_latency = options.noise.command_latency = FLAGS_latency_s;
-  if (FLAGS_slip >= 0) {
-    if (FLAGS_slip >= 1) throw UsageError("ccma replay: --slip must be below 1");
-    options.noise.slip = FLAGS_slip;
-  }
+  SimulationNoise& n = options.noise;
+  if (Given("mocap_noise_m")) n.position_sigma = FLAGS_mocap_noise_m;
+  if (Given("mocap_noise_rad")) n.heading_sigma = FLAGS_mocap_noise_rad;
+  if (Given("latency_s")) n.mocap_latency = n.command_latency = FLAGS_latency_s;
+  if (Given("slip")) n.slip = FLAGS_slip;
   if (FLAGS_seed < 0) throw UsageError("ccma replay: --seed must not be negative");
-  if (!(FLAGS_kp > 0) || !(FLAGS_ki >= 0) || !(FLAGS_controller_hz > 0) || !(FLAGS_max_wheel_speed > 0) ||
-      FLAGS_controller_hz > 10000) {
-    throw UsageError("ccma replay: --kp, --controller_hz (<= 10000) and --max_wheel_speed must be positive, --ki >= 0");
-  }
-  options.gains.kp_position = options.gains.kp_heading = FLAGS_kp;
-  options.gains.ki_position = options.gains.ki_heading = FLAGS_ki;
-  options.gains.rate_hz = FLAGS_controller_hz;
-  options.gains.max_wheel_speed = FLAGS_max_wheel_speed;
-  options.noise.seed = static_cast<unsigned>(FLAGS_seed);
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec || !std::filesystem::is_directory(dir)) throw UsageError("ccma replay: --out: cannot create '" + dir + "'");
+  n.seed = static_cast<unsigned>(FLAGS_seed);
+  TrackingGains& g = options.gains;
+  g.kp_position = g.kp_heading = FLAGS_kp;
+  g.ki_position = g.ki_heading = FLAGS_ki;
+  g.rate_hz = FLAGS_controller_hz;
+  g.max_wheel_speed = FLAGS_max_wheel_speed;
+  std::string why;
+  if (!options.IsValid(&why)) throw UsageError("ccma replay: invalid options: " + why);
+  return options;
+}
 
-  const ReplayResult r = Replay(model, waypoints, options);
+// One sentence: what was simulated, for rmse.md.
+std::string Setting(const Model& model, const std::string& path_name, const ReplayOptions& o) {
+  const SimulationNoise& n = o.noise;
+  return model.name + " on " + path_name + " (noise: " + FLAGS_noise + ", mocap " + G(1000 * n.position_sigma) +
+         " mm / " + G(n.heading_sigma) + " rad, latency " + G(1000 * n.mocap_latency) + "+" +
+         G(1000 * n.command_latency) + " ms, slip " + G(100 * n.slip) + " +- " + G(100 * n.slip_sigma) +
+         " %, seed " + std::to_string(n.seed) + "; PI kp " + G(o.gains.kp_position) + "/s, ki " +
+         G(o.gains.ki_position) + "/s^2 at " + G(o.gains.rate_hz) + " Hz)";
+}
+
+nlohmann::json OptionsJson(const ReplayOptions& options) {
   const SimulationNoise& n = options.noise;
-  const nlohmann::json noise = {{"mocap_position_sigma_m", n.position_sigma}, {"mocap_heading_sigma_rad", n.heading_sigma},
-                                {"mocap_latency_s", n.mocap_latency},        {"mocap_hz", n.mocap_hz},
-                                {"command_latency_s", n.command_latency},   {"slip", n.slip},
-                                {"slip_sigma", n.slip_sigma},               {"seed", n.seed}};
-  const nlohmann::json controller = {{"kp", options.gains.kp_position}, {"ki", options.gains.ki_position},
-                                     {"rate_hz", options.gains.rate_hz},
-                                     {"max_wheel_speed", options.gains.max_wheel_speed},
-                                     {"velocity_feedforward", options.gains.velocity_feedforward}};
+  const TrackingGains& g = options.gains;
+  return {{"noise",
+           {{"mocap_position_sigma_m", n.position_sigma}, {"mocap_heading_sigma_rad", n.heading_sigma},
+            {"mocap_latency_s", n.mocap_latency}, {"mocap_hz", n.mocap_hz}, {"command_latency_s", n.command_latency},
+            {"slip", n.slip}, {"slip_sigma", n.slip_sigma}, {"seed", n.seed}}},
+          {"controller",
+           {{"kp", g.kp_position}, {"ki", g.ki_position}, {"rate_hz", g.rate_hz},
+            {"max_wheel_speed", g.max_wheel_speed}, {"velocity_feedforward", g.velocity_feedforward}}}};
+}
 
-  // CSV files, labelled as simulation.
-  {
-    std::ofstream ee(dir + "/end_effector.csv");
-    ee << "# SIMULATION (ccma replay): commanded = control solution, tracked = chain on the driven bases\n"
-       << "time,cmd_x,cmd_y,cmd_z,cmd_roll,cmd_pitch,cmd_yaw,x,y,z,roll,pitch,yaw,residual_energy\n"
-       << std::setprecision(12);
-    std::ofstream bases(dir + "/bases.csv");
-    bases << "# SIMULATION (ccma replay): set and true poses of every base\ntime";
-    for (int k = 0; k < model.num_bases(); ++k) {
-      bases << ",set" << k << "_x,set" << k << "_y,set" << k << "_theta,base" << k << "_x,base" << k << "_y,base" << k << "_theta";
-    }
-    bases << "\n" << std::setprecision(12);
-    for (const ReplaySample& s : r.samples) {
-      ee << s.time;
-      for (int c = 0; c < 6; ++c) ee << "," << s.commanded[c];
-      for (int c = 0; c < 6; ++c) ee << "," << s.tracked[c];
-      ee << "," << s.residual_energy << "\n";
-      bases << s.time;
-      for (int k = 0; k < model.num_bases(); ++k) {
-        for (int c = 0; c < 3; ++c) bases << "," << s.set_controls[3 * k + c];
-        for (int c = 0; c < 3; ++c) bases << "," << s.true_controls[3 * k + c];
-      }
-      bases << "\n";
-    }
+// RMSE of the reported components, with the existing keys (x_mm ... yaw_rad).
+nlohmann::json RmseJson(const Model& model, const ReplayResult& r) {
+  nlohmann::json rmse = nlohmann::json::object();
+  for (const int c : ReportedComponents(model)) {
+    rmse[ComponentName(c) + (IsAngle(c) ? "_rad" : "_mm")] = IsAngle(c) ? r.rmse[c] : 1000 * r.rmse[c];
   }
-  // The RMSE table next to the paper's hardware figures.
-  std::ostringstream table;
-  table << "RMSE of the end-effector, tracked against commanded. ccma: SIMULATION of " << model.name
-        << " on " << std::filesystem::path(FLAGS_waypoints).filename().string() << " (noise: "
-        << FLAGS_noise << ", mocap " << n.position_sigma * 1000 << " mm / " << n.heading_sigma << " rad, latency "
-        << n.mocap_latency * 1000 << "+" << n.command_latency * 1000 << " ms, slip " << n.slip * 100 << " +- "
-        << n.slip_sigma * 100 << " %, seed " << n.seed << "). Paper: hardware prototypes.\n\n"
-        << "| source | y [mm] | z [mm] | x [mm] | yaw [rad] |\n|---|---|---|---|---|\n"
-        << "| ccma simulation | " << Fixed(1000 * r.rmse[1], 3) << " | " << Fixed(1000 * r.rmse[2], 3) << " | "
-        << Fixed(1000 * r.rmse[0], 3) << " | " << Fixed(r.rmse[5], 5) << " |\n";
-  for (const auto& row : kPaperFigures) {
-    table << "| paper, " << row[0] << " | " << row[1] << " | " << row[2] << " | " << row[3] << " | " << row[4] << " |\n";
-  }
-  std::ofstream(dir + "/rmse.md") << table.str();
-  std::cerr << table.str();
+  return rmse;
+}
 
-  // Plots in the style of the paper's Figs. 7-12.
-  nlohmann::json plots = nlohmann::json::array();
-  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) {
-    std::cerr << "ccma replay: gnuplot not found: plots skipped (apt-get install gnuplot-nox)\n";
-  } else {
-    std::ostringstream script;
-    const char* labels[] = {"x [m]", "y [m]", "z [m]", "roll [rad]", "pitch [rad]", "yaw [rad]"};
-    for (const std::string format : {"png", "svg"}) {
-      script << (format == "png" ? "set terminal pngcairo size 1000,1100 font 'sans,10'\n"
-                                 : "set terminal svg size 1000,1100 font 'sans,10'\n")
-             << "set datafile separator ','\nset output '" << dir << "/end_effector." << format << "'\n"
-             << "set multiplot layout 4,1 title 'SIMULATION: " << model.name
-             << " end-effector, tracked vs commanded (ccma replay)' noenhanced\nset grid\nset key top right\n";
-      for (int c : {1, 2, 0, 5}) {  // the paper's order: y, z, x, yaw
-        script << "set xlabel 'time [s]'\nset ylabel '" << labels[c] << "'\n"
-               << "plot '" << dir << "/end_effector.csv' using 1:" << 2 + c
-               << " with lines lw 2 title 'commanded', '' using 1:" << 8 + c << " with lines lw 1 dt 2 title 'tracked'\n";
-      }
-      script << "unset multiplot\nset output '" << dir << "/bases_xy." << format << "'\n"
-             << "set size ratio -1\nset xlabel 'x [m]'\nset ylabel 'y [m]'\n"
-             << "set title 'SIMULATION: " << model.name << " bases in the ground plane (ccma replay)' noenhanced\nplot ";
-      for (int k = 0; k < model.num_bases(); ++k) {
-        script << (k ? ", " : "") << "'" << dir << "/bases.csv' using " << 2 + 6 * k << ":" << 3 + 6 * k
-               << " with lines lw 2 title '" << model.mobile_bases[k].name << " set' noenhanced, '' using "
-               << 5 + 6 * k << ":" << 6 + 6 * k << " with lines dt 2 title '" << model.mobile_bases[k].name
-               << " tracked' noenhanced";
-      }
-      script << "\nset size noratio\nunset title\nset output\n";
-      for (const char* name : {"end_effector", "bases_xy"}) plots.push_back(dir + "/" + name + "." + format);
-    }
-    std::ofstream(dir + "/replay.gnuplot") << script.str();
-    if (std::system(("gnuplot '" + dir + "/replay.gnuplot' 2>/dev/null").c_str()) != 0) {
-      std::cerr << "ccma replay: gnuplot failed on " << dir << "/replay.gnuplot\n";
-    }
-  }
+nlohmann::json NumberOrNull(double v) { return std::isnan(v) ? nlohmann::json(nullptr) : nlohmann::json(v); }
 
+nlohmann::json ReplayJson(const Model& model, const ReplayOptions& options, const ReplayResult& r,
+                          const std::string& dir, const std::vector<std::string>& plots) {
   nlohmann::json out;
   out["model"] = model.name;
   out["simulation"] = true;
   out["converged"] = r.converged;
+  out["torn"] = r.torn;
+  out["torn_samples"] = r.torn_samples;
+  out["first_torn_time_s"] = NumberOrNull(r.first_torn_time);
+  out["max_residual_energy"] = r.max_residual_energy;
+  out["torn_residual_energy"] = r.torn_residual_energy;
+  out["failed_step_time_s"] = NumberOrNull(r.failed_step_time);
+  out["trustworthy"] = r.trustworthy();
   out["duration_s"] = r.duration_s;
   out["samples"] = r.samples.size();
-  out["noise"] = noise;
-  out["controller"] = controller;
-  out["rmse"] = {{"x_mm", 1000 * r.rmse[0]},   {"y_mm", 1000 * r.rmse[1]},  {"z_mm", 1000 * r.rmse[2]},
-                 {"roll_rad", r.rmse[3]},      {"pitch_rad", r.rmse[4]},    {"yaw_rad", r.rmse[5]}};
-  nlohmann::json paper = nlohmann::json::array();
-  for (const auto& row : kPaperFigures) {
-    paper.push_back({{"experiment", row[0]}, {"y_mm", std::atof(row[1])}, {"z_mm", std::atof(row[2])},
-                     {"x_mm", std::atof(row[3])}, {"yaw_rad", std::atof(row[4])}});
+  out.update(OptionsJson(options));
+  out["rmse"] = RmseJson(model, r);
+  if (IsPaperModel(model)) {
+    nlohmann::json paper = nlohmann::json::array();
+    for (const PaperRow& row : PaperHardwareRmse()) {
+      paper.push_back({{"experiment", row.experiment}, {"y_mm", row.y_mm}, {"z_mm", row.z_mm},
+                       {"x_mm", row.x_mm}, {"yaw_rad", row.yaw_rad}});
+    }
+    out["paper_hardware_rmse"] = paper;
   }
-  out["paper_hardware_rmse"] = paper;
   out["files"] = {dir + "/end_effector.csv", dir + "/bases.csv", dir + "/rmse.md"};
   out["plots"] = plots;
-  if (!r.warning.empty()) out["warning"] = r.warning;
+  std::string warning;
+  for (const std::string& failure : ReplayFailures(r)) warning += (warning.empty() ? "" : "; ") + failure;
+  if (!warning.empty()) out["warning"] = warning;
+  return out;
+}
+
+void CreateOutputDirectory(const std::string& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec || !std::filesystem::is_directory(dir)) throw UsageError("ccma replay: --out: cannot create '" + dir + "'");
+}
+
+}  // namespace
+
+int RunReplay(const std::vector<std::string>& args) {
+  ParseCommandFlags(args, "replay");  // the registry's flags (commands.cc)
+  const Model model = LoadModelOrThrow(RequireFlag(FLAGS_model, "model", "replay"));
+  const std::vector<Waypoint> waypoints = WaypointsFlag("replay");
+  const std::string dir = RequireFlag(FLAGS_out, "out", "replay");
+  const ReplayOptions options = ReplayOptionsFromFlags();
+  std::string why;
+  if (!IsValidReplay(waypoints, options, &why)) throw UsageError("ccma replay: " + why);
+  CreateOutputDirectory(dir);
+
+  const ReplayResult r = Replay(model, waypoints, options);
+  const std::string path_name = std::filesystem::path(FLAGS_waypoints).filename().string();
+  WriteReplayCsv(dir, model, r);
+  const std::string table = ReplayRmseTable(model, r, Setting(model, path_name, options));
+  std::ofstream(dir + "/rmse.md") << table;
+  std::cerr << table;
+  for (const std::string& failure : ReplayFailures(r)) std::cerr << "ccma replay: warning: " << failure << "\n";
+  std::string plot_warning;
+  const std::vector<std::string> plots = PlotReplay(dir, model, r, path_name, &plot_warning);
+  if (!plot_warning.empty()) std::cerr << "ccma replay: " << plot_warning << "\n";
+  nlohmann::json out = ReplayJson(model, options, r, dir, plots);
+  if (!plot_warning.empty()) out["plot_warning"] = plot_warning;
   PrintJson(out);
   return 0;
 }

@@ -1,22 +1,85 @@
-// `ccma simulate --model=FILE [--controls=u0,u1,...]`: the forward problem,
-// from the home configuration to the given controls.
-#include <gflags/gflags.h>
+// `ccma simulate --model=FILE [--controls=u0,u1,...] [--from=RESULT.json]`:
+// the forward problem, from home (or a printed configuration) to the controls.
+#include <fstream>
+#include <iostream>
+#include <sstream>
 
 #include "apps/cli.h"
 #include "apps/commands.h"
+#include "apps/flags.h"
 #include "apps/json_output.h"
+#include "ccma/internal/format.h"
 
-DECLARE_string(model);
-DECLARE_string(controls);
+DEFINE_string(from, "",
+              "start from the configuration and controls of a JSON document printed by `ccma simulate` or "
+              "`ccma control` instead of home [path]");
 
 namespace ccma::cli {
+namespace {
+
+// The --from document, read with the same bounds as a model file.
+nlohmann::json ReadResultDocument(const std::string& path) {
+  std::string text, error;
+  if (!internal::ReadRegularFile(path, kMaxModelFileBytes, "result document", &text, &error)) {
+    throw UsageError("--from: " + error);
+  }
+  const nlohmann::json document = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (document.is_discarded()) throw UsageError("--from: " + path + ": not a JSON document");
+  return document;
+}
+
+// Starts `forward` from the --from document; returns its controls.
+Eigen::VectorXd StartFrom(const Model& model, const std::string& path, ForwardProblem* forward) {
+  const nlohmann::json document = ReadResultDocument(path);
+  if (document.contains("model") && document["model"] != model.name) {
+    std::cerr << "ccma simulate: warning: --from was printed for model " << document["model"].dump()
+              << ", not '" << model.name << "'\n";
+  }
+  if (!document.contains("controls") || !document["controls"].is_array() ||
+      document["controls"].size() != static_cast<size_t>(model.num_controls())) {
+    throw UsageError("--from: " + path + ": controls: expected " + std::to_string(model.num_controls()) + " numbers");
+  }
+  Eigen::VectorXd u(model.num_controls());
+  for (int i = 0; i < u.size(); ++i) {
+    const nlohmann::json& v = document["controls"][static_cast<size_t>(i)];
+    if (!v.is_number() || !(std::abs(v.get<double>()) <= kMaxMagnitude)) {
+      throw UsageError("--from: " + path + ": controls[" + std::to_string(i) + "]: not a number of magnitude <= 1e4");
+    }
+    u[i] = v.get<double>();
+  }
+  forward->Restore(StateFromJson(model, document, "--from: " + path), u);
+  return u;
+}
+
+void WarnOnFailure(const ForwardResult& result, nlohmann::json* out) {
+  std::string warning;
+  if (!result.assembled) {
+    warning = "not assembled: residual energy " + FormatG(result.residual_energy) +
+              " m^2 stays above the assembly tolerance; the controls cannot be reached from this start";
+  } else if (!result.converged) {
+    warning = "the solver did not report convergence (" + result.message + ")";
+  }
+  if (result.branch_jump) {
+    warning += std::string(warning.empty() ? "" : "; ") + "jumped to another assembly branch at sub-step " +
+               std::to_string(result.branch_jump_substep) + " of " + std::to_string(result.substeps) +
+               " (" + FormatG(result.branch_jump_size) + " m or rad beyond the prediction)";
+  }
+  if (warning.empty()) return;
+  (*out)["warning"] = warning;
+  std::cerr << "ccma simulate: warning: " << warning << "\n";
+}
+
+}  // namespace
 
 int RunSimulate(const std::vector<std::string>& args) {
-  ParseFlags(args, {"model", "controls"}, "simulate");
+  ParseCommandFlags(args, "simulate");
   const Model model = LoadModelOrThrow(RequireFlag(FLAGS_model, "model", "simulate"));
-  const Eigen::VectorXd u = ControlsFlagOrHome(model);
-
   ForwardProblem forward(model);
+  Eigen::VectorXd u = ControlsFlagOrHome(model);
+  if (!FLAGS_from.empty()) {
+    const Eigen::VectorXd from_controls = StartFrom(model, FLAGS_from, &forward);
+    if (FLAGS_controls.empty()) u = from_controls;
+  }
   const ForwardResult result = forward.Assemble(u);
 
   nlohmann::json out;
@@ -27,11 +90,14 @@ int RunSimulate(const std::vector<std::string>& args) {
   out["assembly_tolerance"] = forward.options().assembly_tolerance;
   out["iterations"] = result.iterations;
   out["substeps"] = result.substeps;
+  out["branch_jump"] = result.branch_jump;
   out["solve_time_ms"] = result.solve_time_ms;
+  out["start"] = FLAGS_from.empty() ? "home" : FLAGS_from;
   out["controls"] = ToJson(u);
   out["end_effector"] = ToJson(forward.end_effector());
   out["bodies"] = BodiesToJson(model, forward.state());
   out["message"] = result.message;
+  WarnOnFailure(result, &out);
   PrintJson(out);
   return 0;
 }

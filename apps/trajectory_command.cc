@@ -1,63 +1,57 @@
 // `ccma trajectory --model=FILE --waypoints=FILE.csv --out=FILE.csv [control flags]`:
 // follow end-effector waypoints in small steps; one CSV row per step.
-#include <cstdio>
-#include <fstream>
-#include <iostream>
 #include <iomanip>
-
-#include <gflags/gflags.h>
+#include <iostream>
 
 #include "apps/cli.h"
 #include "apps/commands.h"
+#include "apps/flags.h"
 #include "apps/json_output.h"
-
-DECLARE_string(model);
-DECLARE_string(method);
-DEFINE_string(waypoints, "", "waypoint CSV: time,x,y,z,roll,pitch,yaw (see ccma/waypoints.h)");
-DEFINE_string(out, "", "output: CSV file (trajectory), model file (generate), folder (bench)");
+#include "apps/output_file.h"
 
 namespace ccma::cli {
+namespace {
+
+// The header: every name carries its unit (_s, _m, _rad, _m2, _ms).
+void WriteHeader(const Model& model, std::ostream& csv) {
+  csv << "time_s,target_x_m,target_y_m,target_z_m,target_roll_rad,target_pitch_rad,target_yaw_rad,"
+         "x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad";
+  for (int k = 0; k < model.num_bases(); ++k) {
+    csv << ",u" << k << "_x_m,u" << k << "_y_m,u" << k << "_theta_rad";
+  }
+  csv << ",residual_energy_m2,error_m_or_rad,iterations,solve_time_ms,reached\n";
+}
+
+void WriteRow(const TrajectoryStep& s, std::ostream& csv) {
+  csv << s.time;
+  for (int i = 0; i < 3; ++i) csv << "," << s.target.position[i];
+  for (int i = 0; i < 3; ++i) csv << "," << s.target.rpy[i];
+  for (int i = 0; i < 3; ++i) csv << "," << s.reached.position[i];
+  for (int i = 0; i < 3; ++i) csv << "," << s.reached.rpy[i];
+  for (int i = 0; i < s.controls.size(); ++i) csv << "," << s.controls[i];
+  csv << "," << s.result.residual_energy << "," << s.result.error << "," << s.result.iterations << ","
+      << s.result.time_ms << "," << (s.result.reached ? 1 : 0) << "\n";
+}
+
+}  // namespace
 
 int RunTrajectory(const std::vector<std::string>& args) {
-  std::set<std::string> allowed = kControlFlags;
-  allowed.insert("waypoints");
-  allowed.insert("out");
-  ParseFlags(args, allowed, "trajectory");
+  ParseCommandFlags(args, "trajectory");
   const Model model = LoadModelOrThrow(RequireFlag(FLAGS_model, "model", "trajectory"));
   const std::vector<Waypoint> waypoints = WaypointsFlag("trajectory");
   const std::string out_path = RequireFlag(FLAGS_out, "out", "trajectory");
   const ControlOptions options = ControlOptionsFromFlags();
   const Eigen::VectorXd start = ControlsFlagOrHome(model);
 
-  // Write to a temporary file and rename at the end: nothing half-written.
-  const std::string temp_path = out_path + ".partial";
-  std::ofstream csv(temp_path);
-  if (!csv) throw UsageError("ccma trajectory: --out: cannot write '" + out_path + "'");
-  csv << std::setprecision(17);
-  csv << "time,target_x,target_y,target_z,target_roll,target_pitch,target_yaw,"
-         "x,y,z,roll,pitch,yaw";
-  for (int k = 0; k < model.num_bases(); ++k) {
-    csv << ",u" << k << "_x,u" << k << "_y,u" << k << "_theta";
-  }
-  csv << ",residual_energy,error,iterations,solve_time_ms,reached\n";
-
   ControlProblem control(model, options);
   control.SetControls(start);
-  const TrajectoryResult result = FollowWaypoints(control, waypoints, [&](const TrajectoryStep& s) {
-    csv << s.time;
-    for (int i = 0; i < 3; ++i) csv << "," << s.target.position[i];
-    for (int i = 0; i < 3; ++i) csv << "," << s.target.rpy[i];
-    for (int i = 0; i < 3; ++i) csv << "," << s.reached.position[i];
-    for (int i = 0; i < 3; ++i) csv << "," << s.reached.rpy[i];
-    for (int i = 0; i < s.controls.size(); ++i) csv << "," << s.controls[i];
-    csv << "," << s.result.residual_energy << "," << s.result.error << "," << s.result.iterations
-        << "," << s.result.time_ms << "," << (s.result.reached ? 1 : 0) << "\n";
-  });
-  csv.close();
-  if (!csv || std::rename(temp_path.c_str(), out_path.c_str()) != 0) {
-    std::remove(temp_path.c_str());
-    throw std::runtime_error("could not write '" + out_path + "'");
-  }
+  OutputFile file(out_path, "out");  // nothing half-written; links and devices kept
+  std::ostream& csv = file.stream();
+  csv << std::setprecision(17);
+  WriteHeader(model, csv);
+  const TrajectoryResult result =
+      FollowWaypoints(control, waypoints, [&](const TrajectoryStep& s) { WriteRow(s, csv); });
+  file.Commit();
 
   nlohmann::json out;
   out["model"] = model.name;

@@ -2,10 +2,58 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
+#include "ccma/limits.h"
 #include "ccma/rotation.h"
 
 namespace ccma {
+namespace {
+
+// True if value lies in the interval from lo to hi (closed unless lo_open /
+// hi_open; never for NaN); else false with a message naming the field, its
+// meaning, the interval with its unit, and the value (%g).
+bool InRange(double value, double lo, double hi, const char* field, const char* unit, std::string* why,
+             bool lo_open = false, bool hi_open = false) {
+  const bool above = lo_open ? value > lo : value >= lo;
+  const bool below = hi_open ? value < hi : value <= hi;
+  if (above && below) return true;
+  if (why != nullptr) {
+    char text[320];
+    std::snprintf(text, sizeof(text), "%s must lie in %c%g, %g%c %s; got %g", field, lo_open ? '(' : '[', lo, hi,
+                  hi_open ? ')' : ']', unit, value);
+    *why = text;
+  }
+  return false;
+}
+
+}  // namespace
+
+bool TrackingGains::IsValid(std::string* why) const {
+  constexpr double kMaxGain = 1e12;  // finite; larger gains only saturate
+  return InRange(kp_position, 0, kMaxGain, "TrackingGains::kp_position (PI proportional gain)", "1/s", why, true) &&
+         InRange(ki_position, 0, kMaxGain, "TrackingGains::ki_position (PI integral gain)", "1/s^2", why) &&
+         InRange(kp_heading, 0, kMaxGain, "TrackingGains::kp_heading (PI proportional gain)", "1/s", why, true) &&
+         InRange(ki_heading, 0, kMaxGain, "TrackingGains::ki_heading (PI integral gain)", "1/s^2", why) &&
+         InRange(max_wheel_speed, 0, kMaxGain, "TrackingGains::max_wheel_speed (wheel-speed saturation)",
+                 "rad/s", why, true) &&
+         InRange(rate_hz, kMinControllerHz, kMaxControllerHz, "TrackingGains::rate_hz (controller rate)", "Hz", why);
+}
+
+bool SimulationNoise::IsValid(std::string* why) const {
+  return InRange(position_sigma, 0, kMaxMagnitude, "SimulationNoise::position_sigma (motion-capture noise on x, y)",
+                 "m", why) &&
+         InRange(heading_sigma, 0, kMaxMagnitude, "SimulationNoise::heading_sigma (motion-capture noise on theta)",
+                 "rad", why) &&
+         InRange(mocap_latency, 0, kMaxLatency, "SimulationNoise::mocap_latency (motion-capture latency)", "s", why) &&
+         InRange(mocap_hz, 1, kMaxMocapHz, "SimulationNoise::mocap_hz (motion-capture rate)", "Hz", why) &&
+         InRange(command_latency, 0, kMaxLatency, "SimulationNoise::command_latency (radio latency)", "s", why) &&
+         InRange(slip, 0, 1, "SimulationNoise::slip (mean fraction of wheel speed lost)", "(fraction)", why,
+                 false, true) &&
+         InRange(slip_sigma, 0, 1, "SimulationNoise::slip_sigma (spread of the slip)", "(fraction)", why) &&
+         InRange(plant_hz, 1, kMaxPlantHz, "SimulationNoise::plant_hz (integration rate of the base motion)", "Hz",
+                 why);
+}
 
 BaseTracker::BaseTracker(OmniWheelKinematics kinematics, const TrackingGains& gains)
     : kinematics_(std::move(kinematics)), gains_(gains) {}

@@ -8,6 +8,7 @@
 
 #include <deque>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -28,6 +29,14 @@ struct TrackingGains {
   // Add the set-point's own velocity (known from the planned path) to the
   // PI output: the PI then only corrects errors, not the path itself.
   bool velocity_feedforward = true;
+
+  // Every field in its documented range (Ceres' Solver::Options::IsValid
+  // style): gains finite, kp > 0 and ki >= 0 [1/s, 1/s^2]; max_wheel_speed
+  // finite and > 0 [rad/s]; rate_hz in [kMinControllerHz, kMaxControllerHz].
+  // Otherwise false, with `why` (if not null) naming the field and its unit.
+  bool IsValid(std::string* why) const;
+  static constexpr double kMinControllerHz = 1.0;
+  static constexpr double kMaxControllerHz = 10000.0;
 };
 
 // PI on the pose error expressed in the base frame. Saturation scales all
@@ -78,6 +87,16 @@ struct SimulationNoise {
   unsigned seed = 1;
   // Perfect sensing and actuation (plant rate unchanged).
   static SimulationNoise None();
+
+  // Every field in its documented range: sigmas finite in [0, kMaxMagnitude]
+  // (m, rad); latencies in [0, kMaxLatency] s; mocap_hz in [1, 1e9] Hz (None()
+  // uses 1e9: every request sees the current pose); plant_hz in [1, 10000] Hz;
+  // slip in [0, 1) and slip_sigma in [0, 1]. Otherwise false, with `why` (if
+  // not null) naming the field and its unit.
+  bool IsValid(std::string* why) const;
+  static constexpr double kMaxLatency = 10.0;      // s
+  static constexpr double kMaxMocapHz = 1e9;       // Hz
+  static constexpr double kMaxPlantHz = 10000.0;   // Hz
 };
 
 // Bases that move by their wheels: commands take effect after the command

@@ -2,21 +2,24 @@
 // Agents (Kumar & Coros). The one header a user includes:
 //
 //   #include <ccma/ccma.h>
-//   ccma::Model model = ccma::LoadModel("models/4dof_reduced.yaml");
-//   ccma::ForwardProblem forward(model);          // built once
+//   const ccma::Model model = ccma::LoadModel("models/4dof_reduced.yaml");
+//   ccma::ForwardProblem forward(model);          // built once; keeps a
+//                                                 // reference to `model`
 //   Eigen::VectorXd u = model.home_controls();    // 3 per base: x, y, theta
 //   u[0] += 0.01;
 //   ccma::ForwardResult r = forward.Solve(u);     // warm-started each call
 //   if (r.assembled) std::cout << forward.end_effector().position;
 //
 // Link with `target_link_libraries(app ccma::ccma)` after
-// `find_package(ccma CONFIG REQUIRED)`.
+// `find_package(ccma CONFIG REQUIRED)`. Only the headers included here (and
+// the ones they include) are installed; `*/internal/` and `cost_functions/`
+// are the library's own.
 #ifndef CCMA_CCMA_H_
 #define CCMA_CCMA_H_
 
 #include "ccma/base_tracking.h"
-#include "ccma/constraint_set.h"
 #include "ccma/end_effector.h"
+#include "ccma/limits.h"
 #include "ccma/mobility.h"
 #include "ccma/model.h"
 #include "ccma/model_generator.h"
@@ -26,10 +29,9 @@
 #include "ccma/state.h"
 #include "ccma/waypoints.h"
 #include "problems/control_problem.h"
-#include "problems/end_effector_error.h"
 #include "problems/forward_problem.h"
+#include "problems/path.h"
 #include "problems/replay.h"
-#include "problems/sensitivity.h"
 #include "problems/trajectory.h"
 
 #endif  // CCMA_CCMA_H_

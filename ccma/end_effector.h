@@ -15,6 +15,14 @@ struct EndEffectorPose {
   Eigen::Vector3d rpy;       // rotation as [roll, pitch, yaw] [rad]
 };
 
+// A target pose for the end-effector: position [m] and the orientation
+// R* = RotationFromRpy(rpy) [rad]; components the model does not control are
+// ignored.
+struct PoseTarget {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Vector3d rpy = Eigen::Vector3d::Zero();
+};
+
 EndEffectorPose ComputeEndEffectorPose(const Model& model, const State& s);
 
 // d(X_EE)/ds (6 x state_size): rows 0-2 the position [m], rows 3-5 the

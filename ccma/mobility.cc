@@ -3,6 +3,7 @@
 #include <Eigen/SVD>
 
 #include "ccma/end_effector.h"
+#include "ccma/internal/constraint_set.h"
 
 namespace ccma {
 namespace {
@@ -15,10 +16,11 @@ int Rank(const Eigen::VectorXd& singular_values, double threshold) {
 
 }  // namespace
 
-MobilityReport AnalyzeMobility(const Model& model, const ConstraintSet& constraints,
-                               const State& s, const Eigen::VectorXd& u,
+MobilityReport AnalyzeMobility(const Model& model, const State& s, const Eigen::VectorXd& u,
                                double rank_tolerance) {
+  const ConstraintSet constraints(model);
   MobilityReport report;
+  report.constraint_rows = constraints.num_rows();
   Eigen::VectorXd C;
   Eigen::MatrixXd J_s, J_u;
   constraints.Evaluate(s, u, &C, &J_s, &J_u);

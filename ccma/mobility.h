@@ -4,13 +4,13 @@
 
 #include <Eigen/Core>
 
-#include "ccma/constraint_set.h"
 #include "ccma/model.h"
 #include "ccma/state.h"
 
 namespace ccma {
 
 struct MobilityReport {
+  int constraint_rows = 0;  // rows of C (cost_functions/: sizes stated there)
   int constraint_rank = 0;  // rank of dC/ds (controls fixed)
   // state_size - constraint_rank: free motions with the controls fixed.
   int dof_with_controls_fixed = 0;
@@ -23,9 +23,10 @@ struct MobilityReport {
   double energy = 0;                   // E(s, u)
 };
 
-// Ranks use singular values above rank_tolerance * (largest singular value).
-MobilityReport AnalyzeMobility(const Model& model, const ConstraintSet& constraints,
-                               const State& s, const Eigen::VectorXd& u,
+// The mobility of `model` at state s and controls u (model.h). Ranks use
+// singular values above rank_tolerance * (largest singular value), with
+// dense SVDs: meant for analysis (`ccma check`), not for a control loop.
+MobilityReport AnalyzeMobility(const Model& model, const State& s, const Eigen::VectorXd& u,
                                double rank_tolerance = 1e-8);
 
 }  // namespace ccma

@@ -1,7 +1,12 @@
 #include "ccma/model.h"
 
+#include "cost_functions/fixed_joint_cost.h"
 #include "cost_functions/omni_base_motor_cost.h"
 #include "cost_functions/omni_base_planar_cost.h"
+#include "cost_functions/prismatic_joint_cost.h"
+#include "cost_functions/revolute_joint_cost.h"
+#include "cost_functions/spherical_joint_cost.h"
+#include "cost_functions/universal_joint_cost.h"
 
 namespace ccma {
 
@@ -21,37 +26,42 @@ const char* JointTypeName(JointType type) {
 
 int JointResidualCount(JointType type) {
   switch (type) {
-    case JointType::kRevolute: return 6;
-    case JointType::kSpherical: return 3;
-    case JointType::kUniversal: return 4;
-    case JointType::kPrismatic: return 9;
-    case JointType::kFixed: return 9;
+    case JointType::kRevolute: return RevoluteJointCost::kNumResiduals;
+    case JointType::kSpherical: return SphericalJointCost::kNumResiduals;
+    case JointType::kUniversal: return UniversalJointCost::kNumResiduals;
+    case JointType::kPrismatic: return PrismaticJointCost::kNumResiduals;
+    case JointType::kFixed: return FixedJointCost::kNumResiduals;
   }
   return 0;
+}
+
+int BaseResidualCount() {
+  return OmniBasePlanarCost::kNumResiduals + OmniBaseMotorCost::kNumResiduals;
 }
 
 std::vector<int> Model::effective_control_indices() const {
   std::vector<int> indices;
   for (int k = 0; k < num_bases(); ++k) {
-    indices.push_back(3 * k);
-    indices.push_back(3 * k + 1);
+    indices.push_back(kBaseControlSize * k);
+    indices.push_back(kBaseControlSize * k + 1);
     if (mobile_bases[k].actuation == Actuation::kComplete) {
-      indices.push_back(3 * k + 2);
+      indices.push_back(kBaseControlSize * k + 2);
     }
   }
   return indices;
 }
 
 int Model::num_constraints() const {
-  int rows = num_bases() * (OmniBasePlanarCost::kNumResiduals +
-                            OmniBaseMotorCost::kNumResiduals);
+  int rows = num_bases() * BaseResidualCount();
   for (const Joint& joint : joints) rows += JointResidualCount(joint.type);
   return rows;
 }
 
 Eigen::VectorXd Model::home_controls() const {
   Eigen::VectorXd u(num_controls());
-  for (int k = 0; k < num_bases(); ++k) u.segment<3>(3 * k) = mobile_bases[k].home_pose;
+  for (int k = 0; k < num_bases(); ++k) {
+    u.segment<kBaseControlSize>(kBaseControlSize * k) = mobile_bases[k].home_pose;
+  }
   return u;
 }
 

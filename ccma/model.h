@@ -19,15 +19,20 @@
 
 namespace ccma {
 
+// Controls per mobile base: x [m], y [m], theta [rad].
+constexpr int kBaseControlSize = 3;
+
 enum class JointType { kRevolute, kSpherical, kUniversal, kPrismatic, kFixed };
 enum class Actuation { kComplete, kReduced };
 
 // "revolute", "spherical", ... (the model-file spelling).
 const char* JointTypeName(JointType type);
 
-// Number of constraint rows a joint contributes (revolute 6, spherical 3,
-// universal 4, prismatic 9, fixed 9).
+// Number of constraint rows a joint contributes (read from its cost
+// function, cost_functions/*_cost.h, where each size is stated once).
 int JointResidualCount(JointType type);
+// Constraint rows of one mobile base (planar and motor).
+int BaseResidualCount();
 
 // A rigid body; mobile bases are bodies too (is_mobile_base).
 struct Body {
@@ -93,7 +98,7 @@ struct Model {
   // 6 numbers per body: orientation increment (3, rad) then translation (3, m).
   int state_size() const { return 6 * num_bodies(); }
   // 3 per mobile base: x, y, theta.
-  int num_controls() const { return 3 * num_bases(); }
+  int num_controls() const { return kBaseControlSize * num_bases(); }
   // Indices into u of the controls the control solver may change
   // (x, y of every base; theta of complete ones).
   std::vector<int> effective_control_indices() const;

@@ -4,9 +4,14 @@
 // (where YAML gives one) and the offending key or name, e.g.
 //   models/bad.yaml:14: joints[2].axis: must not be the zero vector
 // Nothing here aborts or prints; callers decide how to report.
+//
+// Model text is untrusted: names, numbers, counts, sizes and nesting depth are
+// checked against the documented ranges of ccma/limits.h before use, and text
+// quoted back in a message is escaped and shortened.
 #ifndef CCMA_MODEL_LOADER_H_
 #define CCMA_MODEL_LOADER_H_
 
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -21,18 +26,31 @@ class ModelError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Reads and validates the model file at `path` (YAML, or JSON).
+// Reads and validates the model file at `path` (YAML, or JSON). Only a
+// regular file (symlinks followed) of at most kMaxModelFileBytes is read;
+// a directory, device or FIFO is rejected without being opened for reading.
 // Unknown keys are not errors (the format may be extended); each one adds a
 // line to `warnings` when it is given. Throws ModelError on any problem.
 Model LoadModel(const std::string& path,
                 std::vector<std::string>* warnings = nullptr);
 
 // The same for a model held in memory; `source_name` stands in for the file
-// name in messages.
+// name in messages. Text longer than kMaxModelFileBytes is rejected.
 Model LoadModelFromString(const std::string& text,
                           const std::string& source_name,
                           std::vector<std::string>* warnings = nullptr);
 
+namespace internal {
+
+// Reads the whole of `path`, which must be a regular file (after following
+// symlinks) of at most `max_bytes` bytes, into `text`. On failure returns
+// false and sets `error` to a message "path: what" (`noun` names the kind of
+// file, e.g. "model file"). Never blocks on a FIFO or reads a device.
+// Shared by the model and waypoint loaders.
+bool ReadRegularFile(const std::string& path, std::size_t max_bytes, const char* noun,
+                     std::string* text, std::string* error);
+
+}  // namespace internal
 }  // namespace ccma
 
 #endif  // CCMA_MODEL_LOADER_H_

@@ -1,7 +1,7 @@
 #include "ccma/state.h"
 
 #include "ccma/model.h"
-#include "ccma/pose_manifold.h"
+#include "ccma/internal/pose_manifold.h"
 
 namespace ccma {
 

@@ -2,63 +2,149 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
+
+#include "ccma/limits.h"
+#include "ccma/model_loader.h"
 
 namespace ccma {
+namespace {
 
-std::vector<Waypoint> LoadWaypoints(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw WaypointError(path + ": is a directory");
-  std::ifstream in(path);
-  if (!in) throw WaypointError(path + ": cannot open the waypoint file");
-  std::vector<Waypoint> waypoints;
-  std::string line;
-  int number = 0;
-  bool header = false;
-  auto fail = [&](const std::string& what) {
-    throw WaypointError(path + ":" + std::to_string(number) + ": " + what);
-  };
-  while (std::getline(in, line)) {
-    ++number;
+constexpr const char* kHeader = "time,x,y,z,roll,pitch,yaw";
+constexpr int kColumns = 7;
+// Characters of an untrusted field quoted back in a message.
+constexpr std::size_t kQuotedChars = 40;
+
+// A range bound as written in the docs: 10000, 1000000.
+std::string FormatBound(double x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.15g", x);
+  return buffer;
+}
+
+// 'text' for a message: non-printable bytes escaped, long text cut.
+std::string Quote(const std::string& text) {
+  std::string out = "'";
+  for (std::size_t i = 0; i < text.size() && i < kQuotedChars; ++i) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    if (c >= 0x20 && c < 0x7f && c != '\\') {
+      out += static_cast<char>(c);
+    } else {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\x%02x", c);
+      out += escaped;
+    }
+  }
+  if (text.size() > kQuotedChars) return out + "...' (" + std::to_string(text.size()) + " bytes)";
+  return out + "'";
+}
+
+// Parses one row of the file, in memory, line by line.
+class WaypointParser {
+ public:
+  explicit WaypointParser(const std::string& path) : path_(path) {}
+
+  std::vector<Waypoint> Parse(const std::string& text) {
+    std::size_t start = 0;
+    while (start < text.size()) {
+      std::size_t end = text.find('\n', start);
+      if (end == std::string::npos) end = text.size();
+      ++line_;
+      ParseLine(text.substr(start, end - start));
+      start = end + 1;
+    }
+    if (!header_) throw WaypointError(path_ + ": no header line (" + kHeader + ")");
+    if (waypoints_.empty()) throw WaypointError(path_ + ": no waypoints");
+    return std::move(waypoints_);
+  }
+
+ private:
+  [[noreturn]] void Fail(const std::string& what) const {
+    throw WaypointError(path_ + ":" + std::to_string(line_) + ": " + what);
+  }
+
+  void ParseLine(std::string line) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
-    const size_t first = line.find_first_not_of(" \t");
-    if (first == std::string::npos || line[first] == '#') continue;
-    if (!header) {
+    const std::size_t first = line.find_first_not_of(" \t");
+    if (first == std::string::npos || line[first] == '#') return;
+    if (!header_) {
       std::string compact;
-      for (char c : line) {
+      for (const char c : line) {
         if (c != ' ' && c != '\t') compact += c;
       }
-      if (compact != "time,x,y,z,roll,pitch,yaw") fail("the header must be time,x,y,z,roll,pitch,yaw");
-      header = true;
-      continue;
+      if (compact != kHeader) Fail(std::string("the header must be ") + kHeader);
+      header_ = true;
+      return;
     }
-    std::vector<double> values;
-    std::stringstream ss(line);
-    std::string item;
-    while (std::getline(ss, item, ',')) {
-      char* end = nullptr;
-      errno = 0;
-      const double v = std::strtod(item.c_str(), &end);
-      while (end != nullptr && (*end == ' ' || *end == '\t')) ++end;
-      if (end == item.c_str() || *end != '\0' || errno == ERANGE || !std::isfinite(v)) {
-        fail("'" + item + "' is not a finite number");
-      }
-      values.push_back(v);
+    if (waypoints_.size() >= static_cast<std::size_t>(kMaxWaypoints)) {
+      Fail("more than " + std::to_string(kMaxWaypoints) + " waypoints");
     }
-    if (values.size() != 7) fail("expected 7 values, got " + std::to_string(values.size()));
+    const std::vector<double> values = Values(line);
     Waypoint w;
     w.time = values[0];
     w.position = Eigen::Vector3d(values[1], values[2], values[3]);
     w.rpy = Eigen::Vector3d(values[4], values[5], values[6]);
-    if (!waypoints.empty() && w.time < waypoints.back().time) fail("time goes backwards");
-    waypoints.push_back(w);
+    if (!waypoints_.empty() && w.time < waypoints_.back().time) Fail("time goes backwards");
+    waypoints_.push_back(w);
   }
-  if (!header) throw WaypointError(path + ": no header line (time,x,y,z,roll,pitch,yaw)");
-  if (waypoints.empty()) throw WaypointError(path + ": no waypoints");
-  return waypoints;
+
+  // The 7 numbers of a row, each checked against its range.
+  std::vector<double> Values(const std::string& line) const {
+    static const char* const kNames[kColumns] = {"time", "x", "y", "z", "roll", "pitch", "yaw"};
+    std::vector<double> values;
+    std::size_t start = 0;
+    for (;;) {
+      std::size_t end = line.find(',', start);
+      if (end == std::string::npos) end = line.size();
+      if (values.size() == static_cast<std::size_t>(kColumns)) {
+        Fail("expected " + std::to_string(kColumns) + " values, got more");
+      }
+      const std::string item = line.substr(start, end - start);
+      const int column = static_cast<int>(values.size());
+      values.push_back(Number(item, kNames[column], column == 0 ? kMaxTime : kMaxMagnitude,
+                              column == 0 ? "s" : column <= 3 ? "m" : "rad"));
+      if (end == line.size()) break;
+      start = end + 1;
+    }
+    if (values.size() != static_cast<std::size_t>(kColumns)) {
+      Fail("expected " + std::to_string(kColumns) + " values, got " +
+           std::to_string(values.size()));
+    }
+    return values;
+  }
+
+  double Number(const std::string& item, const char* name, double max, const char* unit) const {
+    char* end = nullptr;
+    errno = 0;
+    const double v = std::strtod(item.c_str(), &end);
+    const char* const last = item.c_str() + item.size();  // an embedded NUL is not the end
+    while (end != last && (*end == ' ' || *end == '\t')) ++end;
+    if (end == item.c_str() || end != last || errno == ERANGE || !std::isfinite(v)) {
+      Fail(Quote(item) + " is not a finite number (" + name + ")");
+    }
+    if (!(std::abs(v) <= max)) {
+      Fail(Quote(item) + " must lie in [" + FormatBound(-max) + ", " + FormatBound(max) + "] (" +
+           name + ", " + unit + ")");
+    }
+    return v;
+  }
+
+  const std::string path_;
+  int line_ = 0;
+  bool header_ = false;
+  std::vector<Waypoint> waypoints_;
+};
+
+}  // namespace
+
+std::vector<Waypoint> LoadWaypoints(const std::string& path) {
+  std::string text;
+  std::string error;
+  if (!internal::ReadRegularFile(path, kMaxWaypointFileBytes, "waypoint file", &text, &error)) {
+    throw WaypointError(error);
+  }
+  return WaypointParser(path).Parse(text);
 }
 
 }  // namespace ccma

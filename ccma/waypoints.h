@@ -5,6 +5,11 @@
 //   0,0,0,0.6,0,0,0                     <- s, m, m, m, rad, rad, rad
 //   5,0,0.1,0.6,0,0,0
 // Times must not decrease. Components the model does not control are ignored.
+//
+// The file is untrusted: it must be a regular file of at most
+// kMaxModelFileBytes with at most kMaxWaypoints rows, times in
+// [-kMaxTime, kMaxTime] s and positions and angles in
+// [-kMaxMagnitude, kMaxMagnitude] m or rad (ccma/limits.h).
 #ifndef CCMA_WAYPOINTS_H_
 #define CCMA_WAYPOINTS_H_
 
@@ -28,6 +33,7 @@ class WaypointError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Reads and validates the waypoint file at `path`; throws WaypointError.
 std::vector<Waypoint> LoadWaypoints(const std::string& path);
 
 }  // namespace ccma

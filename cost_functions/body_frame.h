@@ -6,14 +6,17 @@
 //   d(R r_B + p) / d(dphi) = -[R r_B]x,   d(R r_B + p) / d(dp) = I
 //   d(R v_B)     / d(dphi) = -[R v_B]x,   d(R v_B)     / d(dp) = 0
 // Jacobian blocks are Ceres row-major (rows x 7) with the lifted convention of
-// ccma/pose_manifold.h: tangent in columns 0-5, column 6 zero.
+// ccma/internal/pose_manifold.h: tangent in columns 0-5, column 6 zero.
 #ifndef CCMA_COST_FUNCTIONS_BODY_FRAME_H_
 #define CCMA_COST_FUNCTIONS_BODY_FRAME_H_
 
+#include <ceres/autodiff_cost_function.h>
+#include <ceres/sized_cost_function.h>
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
 #include "ccma/rotation.h"
+#include "ccma/state.h"
 
 namespace ccma {
 
@@ -123,6 +126,31 @@ class ResidualHessian {
   virtual void AddWeightedHessian(double const* const* parameters, const double* weights,
                                   TangentHessian H) const = 0;
 };
+
+// The base of every ccma cost function: its sizes are stated once, here in
+// the template arguments (Rows residuals over parameter blocks of the given
+// sizes), and read back as Cost::kNumResiduals by the constraint set, the
+// model's row count and the autodiff twin.
+template <int Rows, int... BlockSizes>
+class SizedCost : public ceres::SizedCostFunction<Rows, BlockSizes...>, public ResidualHessian {
+ public:
+  static constexpr int kNumResiduals = Rows;
+};
+
+namespace internal {
+template <typename Functor, int Rows, int... BlockSizes>
+ceres::CostFunction* AutoDiffTwinOf(const SizedCost<Rows, BlockSizes...>* /*sizes*/, Functor* functor) {
+  return new ceres::AutoDiffCostFunction<Functor, Rows, BlockSizes...>(functor);
+}
+}  // namespace internal
+
+// The autodiff twin of the analytic cost `Cost`: the templated residual
+// `functor` (owned by the result) with the same sizes, differentiated by Ceres
+// with respect to the ambient parameters (tests and the Jacobian benchmark).
+template <typename Cost, typename Functor>
+ceres::CostFunction* MakeAutoDiffTwin(Functor* functor) {
+  return internal::AutoDiffTwinOf(static_cast<const Cost*>(nullptr), functor);
+}
 
 // Zeroes a Jacobian block if it is requested (blocks are then filled sparsely).
 template <int Rows>

@@ -13,9 +13,8 @@
 
 namespace ccma {
 
-class FixedJointCost final : public ceres::SizedCostFunction<9, 7, 7>, public ResidualHessian {
+class FixedJointCost final : public SizedCost<9, kPoseAmbientSize, kPoseAmbientSize> {
  public:
-  static constexpr int kNumResiduals = 9;
 
   FixedJointCost(const Eigen::Vector3d& r_A, const Eigen::Vector3d& r_B,
                  const Eigen::Vector3d& d1_A, const Eigen::Vector3d& d1_B,
@@ -27,11 +26,11 @@ class FixedJointCost final : public ceres::SizedCostFunction<9, 7, 7>, public Re
     const BodyFrame A(parameters[0]), B(parameters[1]);
     double* J_A = JacobianOrNull(jacobians, 0);
     double* J_B = JacobianOrNull(jacobians, 1);
-    ZeroIfRequested<9>(J_A);
-    ZeroIfRequested<9>(J_B);
-    PointDifference<9>(A, r_A_, B, r_B_, 0, residuals, J_A, J_B);
-    DirectionDifference<9>(A, d1_A_, B, d1_B_, 3, residuals, J_A, J_B);
-    DirectionDifference<9>(A, d2_A_, B, d2_B_, 6, residuals, J_A, J_B);
+    ZeroIfRequested<kNumResiduals>(J_A);
+    ZeroIfRequested<kNumResiduals>(J_B);
+    PointDifference<kNumResiduals>(A, r_A_, B, r_B_, 0, residuals, J_A, J_B);
+    DirectionDifference<kNumResiduals>(A, d1_A_, B, d1_B_, 3, residuals, J_A, J_B);
+    DirectionDifference<kNumResiduals>(A, d2_A_, B, d2_B_, 6, residuals, J_A, J_B);
     return true;
   }
 
@@ -64,7 +63,7 @@ struct FixedJointResidual {
 };
 
 inline ceres::CostFunction* MakeFixedJointAutoDiff(const Eigen::Vector3d& r_A, const Eigen::Vector3d& r_B, const Eigen::Vector3d& d1_A, const Eigen::Vector3d& d1_B, const Eigen::Vector3d& d2_A, const Eigen::Vector3d& d2_B) {
-  return new ceres::AutoDiffCostFunction<FixedJointResidual, 9, 7, 7>(new FixedJointResidual{r_A, r_B, d1_A, d1_B, d2_A, d2_B});
+  return MakeAutoDiffTwin<FixedJointCost>(new FixedJointResidual{r_A, r_B, d1_A, d1_B, d2_A, d2_B});
 }
 
 }  // namespace ccma

@@ -14,13 +14,13 @@
 #include <ceres/autodiff_cost_function.h>
 #include <ceres/sized_cost_function.h>
 
+#include "ccma/model.h"
 #include "cost_functions/body_frame.h"
 
 namespace ccma {
 
-class OmniBaseMotorCost final : public ceres::SizedCostFunction<5, 7, 3>, public ResidualHessian {
+class OmniBaseMotorCost final : public SizedCost<5, kPoseAmbientSize, kBaseControlSize> {
  public:
-  static constexpr int kNumResiduals = 5;
 
   bool Evaluate(double const* const* parameters, double* residuals,
                 double** jacobians) const override {
@@ -35,7 +35,7 @@ class OmniBaseMotorCost final : public ceres::SizedCostFunction<5, 7, 3>, public
     residuals[4] = heading_W.z();
     double* J_base = JacobianOrNull(jacobians, 0);
     if (J_base != nullptr) {
-      PoseJacobian<5> J(J_base);
+      PoseJacobian<kNumResiduals> J(J_base);
       J.setZero();
       J(0, 3) = 1.0;
       J(1, 4) = 1.0;
@@ -80,7 +80,7 @@ struct OmniBaseMotorResidual {
 };
 
 inline ceres::CostFunction* MakeOmniBaseMotorAutoDiff() {
-  return new ceres::AutoDiffCostFunction<OmniBaseMotorResidual, 5, 7, 3>(new OmniBaseMotorResidual{});
+  return MakeAutoDiffTwin<OmniBaseMotorCost>(new OmniBaseMotorResidual{});
 }
 
 }  // namespace ccma

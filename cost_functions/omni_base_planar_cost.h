@@ -12,9 +12,8 @@
 
 namespace ccma {
 
-class OmniBasePlanarCost final : public ceres::SizedCostFunction<4, 7>, public ResidualHessian {
+class OmniBasePlanarCost final : public SizedCost<4, kPoseAmbientSize> {
  public:
-  static constexpr int kNumResiduals = 4;
 
   bool Evaluate(double const* const* parameters, double* residuals,
                 double** jacobians) const override {
@@ -24,7 +23,7 @@ class OmniBasePlanarCost final : public ceres::SizedCostFunction<4, 7>, public R
     Eigen::Map<Eigen::Vector3d>(residuals + 1) = n_W - Eigen::Vector3d::UnitZ();
     double* J_base = JacobianOrNull(jacobians, 0);
     if (J_base != nullptr) {
-      PoseJacobian<4> J(J_base);
+      PoseJacobian<kNumResiduals> J(J_base);
       J.setZero();
       J(0, 5) = 1.0;
       J.block<3, 3>(1, 0) = -Skew(n_W);
@@ -54,7 +53,7 @@ struct OmniBasePlanarResidual {
 };
 
 inline ceres::CostFunction* MakeOmniBasePlanarAutoDiff() {
-  return new ceres::AutoDiffCostFunction<OmniBasePlanarResidual, 4, 7>(new OmniBasePlanarResidual{});
+  return MakeAutoDiffTwin<OmniBasePlanarCost>(new OmniBasePlanarResidual{});
 }
 
 }  // namespace ccma

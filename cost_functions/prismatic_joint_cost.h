@@ -13,9 +13,8 @@
 
 namespace ccma {
 
-class PrismaticJointCost final : public ceres::SizedCostFunction<9, 7, 7>, public ResidualHessian {
+class PrismaticJointCost final : public SizedCost<9, kPoseAmbientSize, kPoseAmbientSize> {
  public:
-  static constexpr int kNumResiduals = 9;
 
   PrismaticJointCost(const Eigen::Vector3d& r_A, const Eigen::Vector3d& r_B,
                      const Eigen::Vector3d& a_A, const Eigen::Vector3d& d1_A,
@@ -29,13 +28,13 @@ class PrismaticJointCost final : public ceres::SizedCostFunction<9, 7, 7>, publi
     const BodyFrame A(parameters[0]), B(parameters[1]);
     double* J_A = JacobianOrNull(jacobians, 0);
     double* J_B = JacobianOrNull(jacobians, 1);
-    ZeroIfRequested<9>(J_A);
-    ZeroIfRequested<9>(J_B);
-    DirectionDifference<9>(A, d1_A_, B, d1_B_, 0, residuals, J_A, J_B);
-    DirectionDifference<9>(A, d2_A_, B, d2_B_, 3, residuals, J_A, J_B);
+    ZeroIfRequested<kNumResiduals>(J_A);
+    ZeroIfRequested<kNumResiduals>(J_B);
+    DirectionDifference<kNumResiduals>(A, d1_A_, B, d1_B_, 0, residuals, J_A, J_B);
+    DirectionDifference<kNumResiduals>(A, d2_A_, B, d2_B_, 3, residuals, J_A, J_B);
 
     // d = p_B - p_A (with its Jacobians in rows 6-8, scratch), then project.
-    PointDifference<9>(A, r_A_, B, r_B_, 6, residuals, J_A, J_B);
+    PointDifference<kNumResiduals>(A, r_A_, B, r_B_, 6, residuals, J_A, J_B);
     const Eigen::Vector3d d(residuals[6], residuals[7], residuals[8]);
     const Eigen::Vector3d a = A.Rotate(a_A_);
     const double a_dot_d = a.dot(d);
@@ -43,14 +42,14 @@ class PrismaticJointCost final : public ceres::SizedCostFunction<9, 7, 7>, publi
     Eigen::Map<Eigen::Vector3d>(residuals + 6) = d - a_dot_d * a;
     // r = P d: dr = P dd + (-(a.d) I - a d^T) da, with da = -[a]x dphi_A.
     if (J_A != nullptr) {
-      PoseJacobian<9> J(J_A);
+      PoseJacobian<kNumResiduals> J(J_A);
       const Eigen::Matrix<double, 3, 6> dd = J.block<3, 6>(6, 0);
       J.block<3, 6>(6, 0) = P * dd;
       J.block<3, 3>(6, 0) +=
           (a_dot_d * Eigen::Matrix3d::Identity() + a * d.transpose()) * Skew(a);
     }
     if (J_B != nullptr) {
-      PoseJacobian<9> J(J_B);
+      PoseJacobian<kNumResiduals> J(J_B);
       const Eigen::Matrix<double, 3, 6> dd = J.block<3, 6>(6, 0);
       J.block<3, 6>(6, 0) = P * dd;
     }
@@ -115,7 +114,7 @@ struct PrismaticJointResidual {
 };
 
 inline ceres::CostFunction* MakePrismaticJointAutoDiff(const Eigen::Vector3d& r_A, const Eigen::Vector3d& r_B, const Eigen::Vector3d& a_A, const Eigen::Vector3d& d1_A, const Eigen::Vector3d& d1_B, const Eigen::Vector3d& d2_A, const Eigen::Vector3d& d2_B) {
-  return new ceres::AutoDiffCostFunction<PrismaticJointResidual, 9, 7, 7>(new PrismaticJointResidual{r_A, r_B, a_A, d1_A, d1_B, d2_A, d2_B});
+  return MakeAutoDiffTwin<PrismaticJointCost>(new PrismaticJointResidual{r_A, r_B, a_A, d1_A, d1_B, d2_A, d2_B});
 }
 
 }  // namespace ccma

@@ -12,9 +12,8 @@
 
 namespace ccma {
 
-class RevoluteJointCost final : public ceres::SizedCostFunction<6, 7, 7>, public ResidualHessian {
+class RevoluteJointCost final : public SizedCost<6, kPoseAmbientSize, kPoseAmbientSize> {
  public:
-  static constexpr int kNumResiduals = 6;
 
   RevoluteJointCost(const Eigen::Vector3d& r_A, const Eigen::Vector3d& r_B,
                     const Eigen::Vector3d& a_A, const Eigen::Vector3d& a_B)
@@ -25,10 +24,10 @@ class RevoluteJointCost final : public ceres::SizedCostFunction<6, 7, 7>, public
     const BodyFrame A(parameters[0]), B(parameters[1]);
     double* J_A = JacobianOrNull(jacobians, 0);
     double* J_B = JacobianOrNull(jacobians, 1);
-    ZeroIfRequested<6>(J_A);
-    ZeroIfRequested<6>(J_B);
-    PointDifference<6>(A, r_A_, B, r_B_, 0, residuals, J_A, J_B);
-    DirectionDifference<6>(A, a_A_, B, a_B_, 3, residuals, J_A, J_B);
+    ZeroIfRequested<kNumResiduals>(J_A);
+    ZeroIfRequested<kNumResiduals>(J_B);
+    PointDifference<kNumResiduals>(A, r_A_, B, r_B_, 0, residuals, J_A, J_B);
+    DirectionDifference<kNumResiduals>(A, a_A_, B, a_B_, 3, residuals, J_A, J_B);
     return true;
   }
 
@@ -59,7 +58,7 @@ struct RevoluteJointResidual {
 };
 
 inline ceres::CostFunction* MakeRevoluteJointAutoDiff(const Eigen::Vector3d& r_A, const Eigen::Vector3d& r_B, const Eigen::Vector3d& a_A, const Eigen::Vector3d& a_B) {
-  return new ceres::AutoDiffCostFunction<RevoluteJointResidual, 6, 7, 7>(new RevoluteJointResidual{r_A, r_B, a_A, a_B});
+  return MakeAutoDiffTwin<RevoluteJointCost>(new RevoluteJointResidual{r_A, r_B, a_A, a_B});
 }
 
 }  // namespace ccma

@@ -12,9 +12,8 @@
 
 namespace ccma {
 
-class SphericalJointCost final : public ceres::SizedCostFunction<3, 7, 7>, public ResidualHessian {
+class SphericalJointCost final : public SizedCost<3, kPoseAmbientSize, kPoseAmbientSize> {
  public:
-  static constexpr int kNumResiduals = 3;
 
   SphericalJointCost(const Eigen::Vector3d& r_A, const Eigen::Vector3d& r_B)
       : r_A_(r_A), r_B_(r_B) {}
@@ -24,9 +23,9 @@ class SphericalJointCost final : public ceres::SizedCostFunction<3, 7, 7>, publi
     const BodyFrame A(parameters[0]), B(parameters[1]);
     double* J_A = JacobianOrNull(jacobians, 0);
     double* J_B = JacobianOrNull(jacobians, 1);
-    ZeroIfRequested<3>(J_A);
-    ZeroIfRequested<3>(J_B);
-    PointDifference<3>(A, r_A_, B, r_B_, 0, residuals, J_A, J_B);
+    ZeroIfRequested<kNumResiduals>(J_A);
+    ZeroIfRequested<kNumResiduals>(J_B);
+    PointDifference<kNumResiduals>(A, r_A_, B, r_B_, 0, residuals, J_A, J_B);
     return true;
   }
 
@@ -55,7 +54,7 @@ struct SphericalJointResidual {
 };
 
 inline ceres::CostFunction* MakeSphericalJointAutoDiff(const Eigen::Vector3d& r_A, const Eigen::Vector3d& r_B) {
-  return new ceres::AutoDiffCostFunction<SphericalJointResidual, 3, 7, 7>(new SphericalJointResidual{r_A, r_B});
+  return MakeAutoDiffTwin<SphericalJointCost>(new SphericalJointResidual{r_A, r_B});
 }
 
 }  // namespace ccma

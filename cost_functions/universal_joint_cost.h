@@ -13,9 +13,8 @@
 
 namespace ccma {
 
-class UniversalJointCost final : public ceres::SizedCostFunction<4, 7, 7>, public ResidualHessian {
+class UniversalJointCost final : public SizedCost<4, kPoseAmbientSize, kPoseAmbientSize> {
  public:
-  static constexpr int kNumResiduals = 4;
 
   UniversalJointCost(const Eigen::Vector3d& r_A, const Eigen::Vector3d& r_B,
                      const Eigen::Vector3d& a_A, const Eigen::Vector3d& b_B)
@@ -26,16 +25,16 @@ class UniversalJointCost final : public ceres::SizedCostFunction<4, 7, 7>, publi
     const BodyFrame A(parameters[0]), B(parameters[1]);
     double* J_A = JacobianOrNull(jacobians, 0);
     double* J_B = JacobianOrNull(jacobians, 1);
-    ZeroIfRequested<4>(J_A);
-    ZeroIfRequested<4>(J_B);
-    PointDifference<4>(A, r_A_, B, r_B_, 0, residuals, J_A, J_B);
+    ZeroIfRequested<kNumResiduals>(J_A);
+    ZeroIfRequested<kNumResiduals>(J_B);
+    PointDifference<kNumResiduals>(A, r_A_, B, r_B_, 0, residuals, J_A, J_B);
     const Eigen::Vector3d a = A.Rotate(a_A_);
     const Eigen::Vector3d b = B.Rotate(b_B_);
     residuals[3] = a.dot(b);
     // d(a.b) = (dphi_A x a).b + a.(dphi_B x b) = dphi_A.(a x b) + dphi_B.(b x a)
     const Eigen::Vector3d a_cross_b = a.cross(b);
-    if (J_A != nullptr) PoseJacobian<4>(J_A).block<1, 3>(3, 0) = a_cross_b.transpose();
-    if (J_B != nullptr) PoseJacobian<4>(J_B).block<1, 3>(3, 0) = -a_cross_b.transpose();
+    if (J_A != nullptr) PoseJacobian<kNumResiduals>(J_A).block<1, 3>(3, 0) = a_cross_b.transpose();
+    if (J_B != nullptr) PoseJacobian<kNumResiduals>(J_B).block<1, 3>(3, 0) = -a_cross_b.transpose();
     return true;
   }
 
@@ -74,7 +73,7 @@ struct UniversalJointResidual {
 };
 
 inline ceres::CostFunction* MakeUniversalJointAutoDiff(const Eigen::Vector3d& r_A, const Eigen::Vector3d& r_B, const Eigen::Vector3d& a_A, const Eigen::Vector3d& b_B) {
-  return new ceres::AutoDiffCostFunction<UniversalJointResidual, 4, 7, 7>(new UniversalJointResidual{r_A, r_B, a_A, b_B});
+  return MakeAutoDiffTwin<UniversalJointCost>(new UniversalJointResidual{r_A, r_B, a_A, b_B});
 }
 
 }  // namespace ccma

@@ -1,10 +1,11 @@
 #include "problems/control_problem.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <algorithm>
 #include <limits>
 #include <memory>
+#include <stdexcept>
 
 #include <ceres/gradient_problem.h>
 #include <ceres/gradient_problem_solver.h>
@@ -12,9 +13,14 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 
-#include "ccma/end_effector.h"
+#include "ccma/internal/constraint_set.h"
+#include "ccma/internal/format.h"
+#include "ccma/limits.h"
 #include "ccma/rotation.h"
-#include "problems/sensitivity.h"
+#include "problems/internal/end_effector_error.h"
+#include "problems/internal/finite_differences.h"
+#include "problems/internal/sensitivity.h"
+#include "problems/path.h"
 
 namespace ccma {
 namespace {
@@ -29,7 +35,49 @@ double Milliseconds(Clock::time_point since) {
 // forward problem then sits at its own precision floor.
 constexpr double kEnergyFloor = 1e-24;
 
+bool InRange(double value, double lo, double hi) { return value >= lo && value <= hi; }
+
+// Smallest singular value of the end-effector rows of an LM Jacobian.
+double SmallestSingularValue(const Eigen::MatrixXd& J_end_effector) {
+  if (J_end_effector.rows() == 0 || J_end_effector.cols() == 0) return 0.0;
+  return Eigen::JacobiSVD<Eigen::MatrixXd>(J_end_effector).singularValues().minCoeff();
+}
+
 }  // namespace
+
+bool ControlOptions::IsValid(std::string* why) const {
+  auto fail = [why](const std::string& message) {
+    if (why != nullptr) *why = message;
+    return false;
+  };
+  if (!(lambda > 0 && lambda < 1)) return fail("lambda must lie in (0, 1), got " + FormatG(lambda));
+  if (!InRange(max_step_m, 1e-6, 1e3)) {
+    return fail("max_step_m must lie in [1e-6, 1000] (m), got " + FormatG(max_step_m));
+  }
+  if (!InRange(max_step_rad, 1e-6, 10)) {
+    return fail("max_step_rad must lie in [1e-6, 10] (rad), got " + FormatG(max_step_rad));
+  }
+  if (!InRange(max_iterations, 1, 100000)) {
+    return fail("max_iterations must lie in [1, 100000], got " + std::to_string(max_iterations));
+  }
+  if (!InRange(target_tolerance, 1e-14, 1)) {
+    return fail("target_tolerance must lie in [1e-14, 1] (m or rad), got " + FormatG(target_tolerance));
+  }
+  if (!InRange(finite_difference_step, 1e-12, 1e-1)) {
+    return fail("finite_difference_step must lie in [1e-12, 0.1] (m or rad), got " +
+                FormatG(finite_difference_step));
+  }
+  std::string forward_why;
+  if (!forward.IsValid(&forward_why)) return fail("forward." + forward_why);
+  return true;
+}
+
+struct ControlProblem::Workspace {
+  Workspace(const Model& model, const ConstraintSet& constraints) : error(model), hessian_solver(constraints) {}
+  EndEffectorError error;
+  HessianSolver hessian_solver;  // symbolic analysis of dG/ds, done once
+  EnergyDerivatives derivatives;  // reused by every linearisation
+};
 
 // ceres::GradientProblemSolver's view of O(u_eff) for the BFGS outer loop.
 // Trial controls farther than this from a step's start (max-norm, m or rad)
@@ -86,18 +134,38 @@ class TargetReached final : public ceres::IterationCallback {
   const std::function<void(const ceres::IterationSummary&)> report_;
 };
 
+namespace {
+ForwardOptions ValidatedForwardOptions(const ControlOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument("ControlOptions: " + why);
+  return options.forward;
+}
+}  // namespace
+
 ControlProblem::ControlProblem(const Model& model, const ControlOptions& options)
     : options_(options),
-      forward_(model, options.forward),
-      error_(forward_.model()),
-      effective_(forward_.model().effective_control_indices()),
-      hessian_solver_(forward_.constraints()) {}
+      forward_(model, ValidatedForwardOptions(options)),
+      effective_(model.effective_control_indices()),
+      workspace_(std::make_unique<Workspace>(model, forward_.constraints())) {}
+
+ControlProblem::~ControlProblem() = default;
 
 ForwardResult ControlProblem::SetControls(const Eigen::VectorXd& u) { return forward_.Assemble(u); }
 
 PoseTarget ControlProblem::CurrentPose() const {
   const EndEffectorPose pose = forward_.end_effector();
   return {pose.position, pose.rpy};
+}
+
+void ControlProblem::CheckTarget(const PoseTarget& target) const {
+  for (int i = 0; i < 6; ++i) {
+    const double v = i < 3 ? target.position[i] : target.rpy[i - 3];
+    if (!(std::abs(v) <= kMaxMagnitude)) {
+      throw std::invalid_argument(std::string("target: ") + kEndEffectorComponentNames[i] + " (" + FormatG(v) +
+                                  ") must be a finite number in [-" + FormatG(kMaxMagnitude) + ", " +
+                                  FormatG(kMaxMagnitude) + "] (m or rad)");
+    }
+  }
 }
 
 Eigen::VectorXd ControlProblem::EffectiveControls(const Eigen::VectorXd& u) const {
@@ -107,7 +175,7 @@ Eigen::VectorXd ControlProblem::EffectiveControls(const Eigen::VectorXd& u) cons
 }
 
 bool ControlProblem::SolveAt(const Eigen::VectorXd& ue, const State& start) {
-  if (!ue.allFinite()) return false;
+  if (!ue.allFinite() || ue.lpNorm<Eigen::Infinity>() > kMaxMagnitude) return false;
   Eigen::VectorXd u = forward_.controls();
   for (size_t c = 0; c < effective_.size(); ++c) u[effective_[c]] = ue[c];
   forward_.SetState(start);
@@ -116,94 +184,89 @@ bool ControlProblem::SolveAt(const Eigen::VectorXd& ue, const State& start) {
   return std::isfinite(r.residual_energy);
 }
 
-void ControlProblem::Residuals(const PoseTarget& target, Eigen::VectorXd* r, Eigen::MatrixXd* J,
+Eigen::VectorXd ControlProblem::Residuals(const PoseTarget& target) const {
+  Eigen::VectorXd e, C;
+  workspace_->error.Evaluate(forward_.state(), target, &e, nullptr);
+  forward_.constraints().Evaluate(forward_.state(), forward_.controls(), &C);
+  Eigen::VectorXd r(e.size() + C.size());
+  r << e, std::sqrt(options_.lambda) * C;
+  return r;
+}
+
+void ControlProblem::Linearize(const PoseTarget& target, Eigen::VectorXd* r, Eigen::MatrixXd* J,
                                Eigen::MatrixXd* ds_du, double* rcond, bool* singular) {
+  *r = Residuals(target);
   const State& s = forward_.state();
   const Eigen::VectorXd& u = forward_.controls();
-  const double sqrt_lambda = std::sqrt(options_.lambda);
-  Eigen::VectorXd e, C;
-  Eigen::MatrixXd de_ds;
-  error_.Evaluate(s, target, &e, J != nullptr ? &de_ds : nullptr);
-  const int k = static_cast<int>(effective_.size());
-
-  if (J == nullptr) {
-    forward_.constraints().Evaluate(s, u, &C);
-  } else if (options_.gradient == GradientMethod::kImplicit) {
-    const Sensitivity sensitivity(forward_.constraints(), s, u, effective_, &hessian_solver_, &workspace_);
-    const EnergyDerivatives& d = sensitivity.derivatives();
-    C = d.C;
-    *ds_du = sensitivity.StateSensitivity();
-    J->resize(e.size() + C.size(), k);
-    J->topRows(e.size()).noalias() = de_ds * *ds_du;
-    J->bottomRows(C.size()) =
-        sqrt_lambda * ConstraintJacobianTimes(forward_.constraints(), d.J_s, *ds_du);
-    for (int c = 0; c < k; ++c) J->bottomRows(C.size()).col(c) += sqrt_lambda * d.J_u.col(effective_[c]);
-    if (rcond != nullptr) *rcond = sensitivity.rcond();
-    if (singular != nullptr) *singular = sensitivity.singular();
-  } else {
-    // Central differences of re-solved forward problems: 2k solves.
-    forward_.constraints().Evaluate(s, u, &C);
-    const State base = s;
-    const Eigen::VectorXd u_base = u;
-    const Eigen::VectorXd ue = EffectiveControls(u_base);
-    const double h = options_.finite_difference_step;
-    J->resize(e.size() + C.size(), k);
-    ds_du->resize(base.tangent_size(), k);
-    for (int c = 0; c < k; ++c) {
-      Eigen::VectorXd r_side[2];
-      State s_side[2];
-      for (int side = 0; side < 2; ++side) {
-        Eigen::VectorXd moved = ue;
-        moved[c] += side == 0 ? h : -h;
-        SolveAt(moved, base);
-        Residuals(target, &r_side[side], nullptr, nullptr, nullptr, nullptr);
-        s_side[side] = forward_.state();
-      }
-      J->col(c) = (r_side[0] - r_side[1]) / (2 * h);
-      ds_du->col(c) = s_side[0].Minus(s_side[1]) / (2 * h);
-    }
-    forward_.Restore(base, u_base);
-    if (rcond != nullptr) {
-      *rcond = Sensitivity(forward_.constraints(), base, u_base, effective_, &hessian_solver_, &workspace_).rcond();
-    }
-    if (singular != nullptr) *singular = false;
+  const Sensitivity sensitivity(forward_.constraints(), s, u, effective_, &workspace_->hessian_solver,
+                                &workspace_->derivatives);
+  *rcond = sensitivity.rcond();
+  *singular = sensitivity.singular();
+  if (options_.gradient == GradientMethod::kFiniteDifference) {
+    LinearizeByFiniteDifferences(target, J, ds_du);
+    *singular = false;
+    return;
   }
-  r->resize(e.size() + C.size());
-  *r << e, sqrt_lambda * C;
+  const EnergyDerivatives& d = sensitivity.derivatives();
+  const double sqrt_lambda = std::sqrt(options_.lambda);
+  const int ne = workspace_->error.size();
+  const int k = static_cast<int>(effective_.size());
+  Eigen::VectorXd e;
+  Eigen::MatrixXd de_ds;
+  workspace_->error.Evaluate(s, target, &e, &de_ds);
+  *ds_du = sensitivity.StateSensitivity();
+  J->resize(ne + d.C.size(), k);
+  J->topRows(ne).noalias() = de_ds * *ds_du;
+  J->bottomRows(d.C.size()) = sqrt_lambda * ConstraintJacobianTimes(forward_.constraints(), d.J_s, *ds_du);
+  for (int c = 0; c < k; ++c) J->bottomRows(d.C.size()).col(c) += sqrt_lambda * d.J_u.col(effective_[c]);
+}
+
+void ControlProblem::LinearizeByFiniteDifferences(const PoseTarget& target, Eigen::MatrixXd* J,
+                                                  Eigen::MatrixXd* ds_du) {
+  // Central differences of re-solved forward problems: 2k solves each.
+  const State base = forward_.state();
+  const Eigen::VectorXd u_base = forward_.controls();
+  const double h = options_.finite_difference_step;
+  *J = CentralDifferenceJacobian(
+      [&](const Eigen::VectorXd& ue) {
+        SolveAt(ue, base);
+        return Residuals(target);
+      },
+      EffectiveControls(u_base), h);
+  *ds_du = CentralDifferenceJacobian(
+      [&](const Eigen::VectorXd& ue) {
+        SolveAt(ue, base);
+        return Eigen::VectorXd(forward_.state().Minus(base));
+      },
+      EffectiveControls(u_base), h);
+  forward_.Restore(base, u_base);
 }
 
 double ControlProblem::Objective(const PoseTarget& target, Eigen::VectorXd* gradient) {
   const State& s = forward_.state();
   const Eigen::VectorXd& u = forward_.controls();
   Eigen::VectorXd e;
-  Eigen::MatrixXd de_ds;
-  const bool implicit = options_.gradient == GradientMethod::kImplicit;
-  error_.Evaluate(s, target, &e, gradient != nullptr && implicit ? &de_ds : nullptr);
-  if (gradient == nullptr || !implicit) {
+  if (gradient == nullptr || options_.gradient == GradientMethod::kFiniteDifference) {
+    workspace_->error.Evaluate(s, target, &e, nullptr);
     const double O = 0.5 * e.squaredNorm() + options_.lambda * forward_.Energy();
     if (gradient != nullptr) {
       const State base = s;
       const Eigen::VectorXd u_base = u;
-      const int k = static_cast<int>(effective_.size());
-      const Eigen::VectorXd ue = EffectiveControls(u_base);
-      const double h = options_.finite_difference_step;
-      gradient->resize(k);
-      for (int c = 0; c < k; ++c) {
-        double O_side[2];
-        for (int side = 0; side < 2; ++side) {
-          Eigen::VectorXd moved = ue;
-          moved[c] += side == 0 ? h : -h;
-          SolveAt(moved, base);
-          O_side[side] = Objective(target, nullptr);
-        }
-        (*gradient)[c] = (O_side[0] - O_side[1]) / (2 * h);
-      }
+      *gradient = CentralDifferenceGradient(
+          [&](const Eigen::VectorXd& ue) {
+            SolveAt(ue, base);
+            return Objective(target, nullptr);
+          },
+          EffectiveControls(u_base), options_.finite_difference_step);
       forward_.Restore(base, u_base);
     }
     return O;
   }
   // Adjoint: dO/du = lambda dE/du - (dG/du)^T (dG/ds)^-1 (de/ds^T e + lambda G).
-  const Sensitivity sensitivity(forward_.constraints(), s, u, effective_, &hessian_solver_, &workspace_);
+  Eigen::MatrixXd de_ds;
+  workspace_->error.Evaluate(s, target, &e, &de_ds);
+  const Sensitivity sensitivity(forward_.constraints(), s, u, effective_, &workspace_->hessian_solver,
+                                &workspace_->derivatives);
   const EnergyDerivatives& d = sensitivity.derivatives();
   const Eigen::VectorXd dO_ds = de_ds.transpose() * e + options_.lambda * d.G;
   *gradient = sensitivity.TotalDerivative(dO_ds, options_.lambda * sensitivity.ResidualEnergyGradient());
@@ -213,94 +276,90 @@ double ControlProblem::Objective(const PoseTarget& target, Eigen::VectorXd* grad
 Eigen::MatrixXd ControlProblem::StateSensitivity() {
   if (options_.gradient == GradientMethod::kImplicit) {
     return Sensitivity(forward_.constraints(), forward_.state(), forward_.controls(), effective_,
-                       &hessian_solver_, &workspace_)
+                       &workspace_->hessian_solver, &workspace_->derivatives)
         .StateSensitivity();
   }
-  Eigen::VectorXd r;
   Eigen::MatrixXd J, ds_du;
-  Residuals(CurrentPose(), &r, &J, &ds_du, nullptr, nullptr);
+  LinearizeByFiniteDifferences(CurrentPose(), &J, &ds_du);
   return ds_du;
 }
 
 ControlStepResult ControlProblem::SolveStep(const PoseTarget& target) {
+  CheckTarget(target);
   return options_.method == ControlMethod::kBfgs ? SolveStepBfgs(target) : SolveStepLm(target);
+}
+
+bool ControlProblem::LmIteration(const PoseTarget& target, const Eigen::MatrixXd& J,
+                                 const Eigen::MatrixXd& ds_du, double* O, double* mu, Eigen::VectorXd* r,
+                                 ControlStepResult* result) {
+  // Damped least squares through the eigen-decomposition of J^T J (k x k,
+  // k <= a few dozen): step = -V (S + mu)^-1 V^T J^T r. Among equivalent
+  // steps (redundant controls) this is the one of least norm.
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(J.transpose() * J);
+  const Eigen::VectorXd sigma_sq = eig.eigenvalues().cwiseMax(0.0);
+  const Eigen::VectorXd Vt_g = eig.eigenvectors().transpose() * (J.transpose() * *r);
+  if (*mu < 0) *mu = 1e-12 * std::max(sigma_sq.maxCoeff(), 1e-30);
+  const State base = forward_.state();
+  const Eigen::VectorXd u_base = forward_.controls();
+  const Eigen::VectorXd ue = EffectiveControls(u_base);
+  const ForwardOptions& fo = forward_.options();
+  for (int trial = 0; trial < 16; ++trial) {
+    const Eigen::VectorXd step = -eig.eigenvectors() * (Vt_g.array() / (sigma_sq.array() + *mu)).matrix();
+    if (step.lpNorm<Eigen::Infinity>() <= 1e-15 * (1.0 + ue.lpNorm<Eigen::Infinity>())) return false;
+    // First-order predictor: start the forward solve at s + ds/du * step.
+    const Eigen::VectorXd ds_predicted = ds_du * step;
+    State predicted = base;
+    predicted.Plus(ds_predicted);
+    if (SolveAt(ue + step, predicted)) {
+      const double deviation = forward_.state().Minus(predicted).lpNorm<Eigen::Infinity>();
+      const bool jumped = deviation > fo.branch_jump_relative * ds_predicted.lpNorm<Eigen::Infinity>() +
+                                          fo.branch_jump_absolute;
+      const Eigen::VectorXd r_new = Residuals(target);
+      const double O_new = 0.5 * r_new.squaredNorm();
+      result->branch_jumps_rejected += jumped;
+      if (!jumped && O_new < *O) {
+        *O = O_new;
+        *r = r_new;
+        *mu = std::max(*mu * 0.1, 1e-30);
+        return true;
+      }
+    }
+    forward_.Restore(base, u_base);
+    *mu = *mu * 10 + 1e-30;
+  }
+  return false;
 }
 
 ControlStepResult ControlProblem::SolveStepLm(const PoseTarget& target) {
   const auto start = Clock::now();
   const int solves_before = forward_solves_;
   ControlStepResult result;
-  Eigen::VectorXd ue = EffectiveControls(forward_.controls());
-
-  Eigen::VectorXd r, r_new;
+  const int ne = workspace_->error.size();
+  Eigen::VectorXd r;
   Eigen::MatrixXd J, ds_du;
   bool singular = false;
-  Residuals(target, &r, &J, &ds_du, &result.rcond, &singular);
+  Linearize(target, &r, &J, &ds_du, &result.rcond, &singular);
   result.singular |= singular;
+  result.min_singular_value_dX_du = SmallestSingularValue(J.topRows(ne));
   double O = 0.5 * r.squaredNorm();
-  const int ne = error_.size();
-  auto manipulability = [&] {
-    if (ne == 0) return 0.0;
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(J.topRows(ne));
-    return svd.singularValues().minCoeff();
-  };
-  result.min_singular_value_dX_du = manipulability();
+  auto error_of = [&] { return ne > 0 ? r.head(ne).lpNorm<Eigen::Infinity>() : 0.0; };
+  auto done = [&] { return error_of() <= 0.1 * options_.target_tolerance && forward_.Energy() <= kEnergyFloor; };
   auto report = [&](int iteration) {
-    if (options_.on_iteration) {
-      const double error = ne > 0 ? r.head(ne).lpNorm<Eigen::Infinity>() : 0.0;
-      options_.on_iteration(iteration, Milliseconds(start), 0.5 * r.squaredNorm(), error);
-    }
+    if (options_.on_iteration) options_.on_iteration(iteration, Milliseconds(start), O, error_of());
   };
   report(0);
   double mu = -1;
-  for (int it = 0; it < options_.max_iterations; ++it) {
-    const double error = ne > 0 ? r.head(ne).lpNorm<Eigen::Infinity>() : 0.0;
-    if (error <= 0.1 * options_.target_tolerance && forward_.Energy() <= kEnergyFloor) break;
-    // Damped least squares through the eigen-decomposition of J^T J (k x k,
-    // k <= a few dozen): step = -V (S + mu)^-1 V^T J^T r. Among equivalent
-    // steps (redundant controls) this is the one of least norm.
-    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(J.transpose() * J);
-    const Eigen::VectorXd sigma_sq = eig.eigenvalues().cwiseMax(0.0);
-    const Eigen::VectorXd Vt_g = eig.eigenvectors().transpose() * (J.transpose() * r);
-    if (mu < 0) mu = 1e-12 * std::max(sigma_sq.maxCoeff(), 1e-30);
-    const State base = forward_.state();
-    const Eigen::VectorXd u_base = forward_.controls();
-    bool accepted = false, stationary = false;
-    for (int trial = 0; trial < 16 && !accepted; ++trial) {
-      const Eigen::VectorXd coeff = Vt_g.array() / (sigma_sq.array() + mu);
-      const Eigen::VectorXd step = -eig.eigenvectors() * coeff;
-      if (step.lpNorm<Eigen::Infinity>() <= 1e-15 * (1.0 + ue.lpNorm<Eigen::Infinity>())) {
-        stationary = true;
-        break;
-      }
-      // First-order predictor: start the forward solve at s + ds/du * step.
-      State predicted = base;
-      predicted.Plus(ds_du * step);
-      if (SolveAt(ue + step, predicted)) {
-        Residuals(target, &r_new, nullptr, nullptr, nullptr, nullptr);
-        const double O_new = 0.5 * r_new.squaredNorm();
-        if (O_new < O) {
-          ue += step;
-          O = O_new;
-          mu = std::max(mu * 0.1, 1e-30);
-          accepted = true;
-          break;
-        }
-      }
-      forward_.Restore(base, u_base);
-      mu = mu * 10 + 1e-30;
-    }
+  for (int it = 0; it < options_.max_iterations && !done(); ++it) {
+    const bool accepted = LmIteration(target, J, ds_du, &O, &mu, &r, &result);
     ++result.iterations;
-    if (!accepted || stationary) break;
+    if (!accepted) break;
+    report(result.iterations);
     // Converged on the new residual? Then no new linearisation is needed
     // (rcond stays that of the last one, a step of ~1e-8 away).
-    r = r_new;
-    report(result.iterations);
-    const double new_error = ne > 0 ? r.head(ne).lpNorm<Eigen::Infinity>() : 0.0;
-    if (new_error <= 0.1 * options_.target_tolerance && forward_.Energy() <= kEnergyFloor) break;
-    Residuals(target, &r, &J, &ds_du, &result.rcond, &singular);
+    if (done()) break;
+    Linearize(target, &r, &J, &ds_du, &result.rcond, &singular);
     result.singular |= singular;
-    result.min_singular_value_dX_du = manipulability();
+    result.min_singular_value_dX_du = SmallestSingularValue(J.topRows(ne));
   }
   result.forward_solves = forward_solves_ - solves_before;
   Finish(target, &result);
@@ -322,15 +381,14 @@ ControlStepResult ControlProblem::SolveStepBfgs(const PoseTarget& target) {
   options.parameter_tolerance = 1e-16;
   options.logging_type = ceres::SILENT;
   const double tolerance = 0.1 * options_.target_tolerance;
-  TargetReached reached(
-      std::min(0.5 * tolerance * tolerance, options_.lambda * kEnergyFloor),
-      [&](const ceres::IterationSummary& summary) {
-        if (!options_.on_iteration) return;
-        Eigen::VectorXd e;  // the error at the last evaluated (accepted) point
-        error_.Evaluate(forward_.state(), target, &e, nullptr);
-        options_.on_iteration(summary.iteration, Milliseconds(start), summary.cost,
-                              e.size() > 0 ? e.lpNorm<Eigen::Infinity>() : 0.0);
-      });
+  TargetReached reached(std::min(0.5 * tolerance * tolerance, options_.lambda * kEnergyFloor),
+                        [&](const ceres::IterationSummary& summary) {
+                          if (!options_.on_iteration) return;
+                          Eigen::VectorXd e;  // the error at the last evaluated (accepted) point
+                          workspace_->error.Evaluate(forward_.state(), target, &e, nullptr);
+                          options_.on_iteration(summary.iteration, Milliseconds(start), summary.cost,
+                                                e.size() > 0 ? e.lpNorm<Eigen::Infinity>() : 0.0);
+                        });
   options.callbacks.push_back(&reached);
   ceres::GradientProblem problem(new BfgsObjective(this, target, ue));
   ceres::GradientProblemSolver::Summary summary;
@@ -344,11 +402,8 @@ ControlStepResult ControlProblem::SolveStepBfgs(const PoseTarget& target) {
   {
     Eigen::VectorXd r;
     Eigen::MatrixXd J, ds_du;
-    Residuals(target, &r, &J, &ds_du, &result.rcond, &result.singular);
-    if (error_.size() > 0) {
-      result.min_singular_value_dX_du =
-          Eigen::JacobiSVD<Eigen::MatrixXd>(J.topRows(error_.size())).singularValues().minCoeff();
-    }
+    Linearize(target, &r, &J, &ds_du, &result.rcond, &result.singular);
+    result.min_singular_value_dX_du = SmallestSingularValue(J.topRows(workspace_->error.size()));
   }
   Finish(target, &result);
   result.time_ms = Milliseconds(start);
@@ -357,7 +412,7 @@ ControlStepResult ControlProblem::SolveStepBfgs(const PoseTarget& target) {
 
 void ControlProblem::Finish(const PoseTarget& target, ControlStepResult* result) {
   Eigen::VectorXd e;
-  error_.Evaluate(forward_.state(), target, &e, nullptr);
+  workspace_->error.Evaluate(forward_.state(), target, &e, nullptr);
   result->residual_energy = forward_.Energy();
   result->error = e.size() > 0 ? e.lpNorm<Eigen::Infinity>() : 0.0;
   result->objective = 0.5 * e.squaredNorm() + options_.lambda * result->residual_energy;
@@ -369,29 +424,8 @@ ControlResult ControlProblem::MoveTo(
     const PoseTarget& target,
     const std::function<void(const PoseTarget&, const ControlStepResult&)>& on_step) {
   const auto start = Clock::now();
-  const auto& controlled = forward_.model().end_effector.controlled;
-  const PoseTarget from = CurrentPose();
-
-  // Path length over the controlled components.
-  double distance = 0;
-  for (int k = 0; k < 3; ++k) {
-    if (controlled[k]) distance += std::pow(target.position[k] - from.position[k], 2);
-  }
-  distance = std::sqrt(distance);
-  const bool full_rotation = controlled[kRoll] && controlled[kPitch] && controlled[kYaw];
-  const Eigen::Matrix3d R_from = RotationFromRpy(from.rpy);
-  const Eigen::Vector3d phi =
-      QuaternionLog(Eigen::Quaterniond(RotationFromRpy(target.rpy) * R_from.transpose()));
-  Eigen::Vector3d angle_change = Eigen::Vector3d::Zero();
-  double angle = full_rotation ? phi.norm() : 0.0;
-  for (int k = 0; k < 3 && !full_rotation; ++k) {
-    if (!controlled[3 + k]) continue;
-    angle_change[k] = WrapAngle(target.rpy[k] - from.rpy[k]);
-    angle = std::max(angle, std::abs(angle_change[k]));
-  }
-  const int steps = std::max(
-      {1, static_cast<int>(std::ceil(distance / options_.max_step_m - 1e-9)),
-       static_cast<int>(std::ceil(angle / options_.max_step_rad - 1e-9))});
+  CheckTarget(target);
+  const PosePath path(forward_.model(), CurrentPose(), target, options_.max_step_m, options_.max_step_rad);
 
   ControlResult result;
   result.min_rcond = std::numeric_limits<double>::infinity();
@@ -400,29 +434,23 @@ ControlResult ControlProblem::MoveTo(
     ++result.steps;
     result.iterations += step.iterations;
     result.forward_solves += step.forward_solves;
+    result.branch_jumps_rejected += step.branch_jumps_rejected;
     result.max_step_residual_energy = std::max(result.max_step_residual_energy, step.residual_energy);
     result.min_rcond = std::min(result.min_rcond, step.rcond);
     if (on_step) on_step(step_target, step);
     last = step;
   };
-  for (int i = 1; i <= steps; ++i) {
-    const double t = double(i) / steps;
-    PoseTarget step_target = target;
-    if (i < steps) {
-      step_target.position = from.position + t * (target.position - from.position);
-      step_target.rpy = full_rotation
-                            ? RpyFromRotation(QuaternionExp(t * phi).toRotationMatrix() * R_from)
-                            : Eigen::Vector3d(from.rpy + t * angle_change);
-    }
+  for (int i = 1; i <= path.steps(); ++i) {
+    const PoseTarget step_target = path.At(i);
     const ControlStepResult step = SolveStep(step_target);
     account(step_target, step);
     if (!step.reached) {
-      result.warning = "path step " + std::to_string(i) + " of " + std::to_string(steps) +
-                       " not reached (error " + std::to_string(step.error) +
-                       ", residual energy " + std::to_string(step.residual_energy) +
-                       (step.singular ? ", dG/ds singular" : "") +
+      result.warning = "path step " + std::to_string(i) + " of " + std::to_string(path.steps()) +
+                       " not reached (error " + FormatG(step.error) + ", residual energy " +
+                       FormatG(step.residual_energy) + (step.singular ? ", dG/ds singular" : "") +
+                       (step.branch_jumps_rejected > 0 ? ", trial steps landed on another assembly branch" : "") +
                        "): the target may be outside the workspace or past a singularity";
-      if (i < steps) account(target, SolveStep(target));  // best controls for the real target
+      if (i < path.steps()) account(target, SolveStep(target));  // best controls for the real target
       break;
     }
   }

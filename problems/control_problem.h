@@ -1,11 +1,10 @@
 // Kinematic control (paper Section III-B): find controls u whose assembly
 // s_hat(u) puts the end-effector at a target,
 //   min_u O(u) = 1/2 |e(s_hat(u))|^2 + lambda E(s_hat(u), u),   0 < lambda < 1,
-// with e the end-effector error over the controlled components
-// (end_effector_error.h) and only the effective controls free (a reduced
-// base's heading is no control).
+// with e the end-effector error over the controlled components and only the
+// effective controls free (a reduced base's heading is no control).
 //
-// Gradients come from implicit-function sensitivities (sensitivity.h):
+// Gradients come from implicit-function sensitivities:
 // ds/du = -(dG/ds)^-1 dG/du, dE_r/du = dE/du. Two outer loops:
 //  * Levenberg-Marquardt on r(u) = [e; sqrt(lambda) C], Jacobian
 //    [de/ds ds/du; sqrt(lambda) (J_s ds/du + J_u)] (the default: fewest
@@ -13,22 +12,28 @@
 //  * BFGS as in the paper (ceres::GradientProblemSolver), gradient
 //    dO/du by one adjoint solve.
 // Redundancy: among equivalent control changes LM's damped least-squares step
-// is the one of least norm (the SVD solve below), so the bases move as little
-// as possible from where they are; BFGS starts from the identity metric and
-// so also moves along the gradient's row space only.
+// is the one of least norm, so the bases move as little as possible from where
+// they are; BFGS starts from the identity metric and so also moves along the
+// gradient's row space only.
+// Branches: every LM trial solve starts from the first-order prediction
+// s + ds/du du; a trial whose solution lands far from it (another assembly
+// branch) is rejected like a trial that does not decrease O.
+//
+// Like ForwardProblem, a ControlProblem keeps a reference to the Model (which
+// must outlive it) and owns only its workspace.
 #ifndef CCMA_PROBLEMS_CONTROL_PROBLEM_H_
 #define CCMA_PROBLEMS_CONTROL_PROBLEM_H_
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "ccma/end_effector.h"
 #include "ccma/model.h"
-#include "problems/end_effector_error.h"
 #include "problems/forward_problem.h"
-#include "problems/sensitivity.h"
 
 namespace ccma {
 
@@ -41,12 +46,12 @@ struct ControlOptions {
   ControlMethod method = ControlMethod::kLevenbergMarquardt;
   GradientMethod gradient = GradientMethod::kImplicit;
   double lambda = 0.5;              // weight of the residual energy, 0 < lambda < 1
-  double max_step_m = 0.010;        // path: end-effector translation per step [m]
-  double max_step_rad = 0.005;      // path: end-effector rotation per step [rad]
-  int max_iterations = 100;         // outer iterations per step
+  double max_step_m = 0.010;        // path: end-effector translation per step [m], in [1e-6, 1000]
+  double max_step_rad = 0.005;      // path: end-effector rotation per step [rad], in [1e-6, 10]
+  int max_iterations = 100;         // outer iterations per step, in [1, 100000]
   // A step has reached its target when every controlled component is within
   // this [m or rad] and the mechanism is assembled. The loops iterate to a
-  // tenth of it (and E <= 1e-24) when they can.
+  // tenth of it (and E <= 1e-24) when they can. In [1e-14, 1].
   double target_tolerance = 1e-10;
   double finite_difference_step = 1e-6;  // [m or rad], kFiniteDifference only
   ForwardOptions forward;
@@ -54,6 +59,10 @@ struct ControlOptions {
   // iteration with the wall time since the step began [ms], the objective O
   // and the largest end-effector error [m, rad] (convergence curves).
   std::function<void(int iteration, double elapsed_ms, double objective, double error)> on_iteration;
+
+  // True if every field is in range (including `forward`); otherwise false
+  // and, if `why` is not null, a message naming the field and its range.
+  bool IsValid(std::string* why) const;
 };
 
 // One solve toward one target (no path splitting).
@@ -63,6 +72,7 @@ struct ControlStepResult {
   bool singular = false;    // dG/ds was singular at some accepted point
   int iterations = 0;       // outer iterations
   int forward_solves = 0;
+  int branch_jumps_rejected = 0;  // LM trials that landed on another branch
   double objective = 0;     // O at the returned controls
   double error = 0;         // max |e| over the controlled components [m, rad]
   double residual_energy = 0;
@@ -81,6 +91,7 @@ struct ControlResult {
   int steps = 0;            // path steps taken
   int iterations = 0;       // outer iterations, all steps
   int forward_solves = 0;
+  int branch_jumps_rejected = 0;
   double objective = 0;
   double error = 0;
   double residual_energy = 0;
@@ -94,25 +105,35 @@ struct ControlResult {
 
 class ControlProblem {
  public:
+  // Throws std::invalid_argument if !options.IsValid().
   explicit ControlProblem(const Model& model, const ControlOptions& options = {});
+  // The problem keeps a reference to the model: a temporary would dangle.
+  explicit ControlProblem(const Model&& model, const ControlOptions& options = {}) = delete;
+  ~ControlProblem();
+  ControlProblem(const ControlProblem&) = delete;
+  ControlProblem& operator=(const ControlProblem&) = delete;
 
   // Assembles the mechanism at u (from the current state, following the
   // branch) and makes u the starting controls.
   ForwardResult SetControls(const Eigen::VectorXd& u);
 
   // One outer solve toward `target`, warm-started from the current controls.
+  // Throws std::invalid_argument for a target entry that is not finite or
+  // outside [-kMaxMagnitude, kMaxMagnitude].
   ControlStepResult SolveStep(const PoseTarget& target);
 
-  // Walks the end-effector to `target` in steps of at most max_step_m /
-  // max_step_rad (straight line, geodesic rotation), each warm-started from
-  // the last. `on_step` (optional) sees every step's target and result.
+  // Walks the end-effector to `target` along a PosePath (path.h) with steps of
+  // at most max_step_m / max_step_rad, each warm-started from the last.
+  // `on_step` (optional) sees every step's target and result. Throws
+  // std::invalid_argument as SolveStep() and PosePath do.
   ControlResult MoveTo(const PoseTarget& target,
                        const std::function<void(const PoseTarget&, const ControlStepResult&)>&
                            on_step = nullptr);
 
   // O and dO/du (effective controls) at the current, solved, controls.
   double Objective(const PoseTarget& target, Eigen::VectorXd* gradient = nullptr);
-  // ds/du (state_size x k) at the current solution, by the chosen method.
+  // ds/du (state tangent x effective controls) at the current solution, by
+  // the chosen gradient method.
   Eigen::MatrixXd StateSensitivity();
 
   const Eigen::VectorXd& controls() const { return forward_.controls(); }
@@ -125,24 +146,31 @@ class ControlProblem {
 
  private:
   friend class BfgsObjective;
-  // The entries of u (3 per base) that are controls.
+  struct Workspace;  // end-effector error, Hessian solver, derivative buffers
+  // The entries of u that are controls.
   Eigen::VectorXd EffectiveControls(const Eigen::VectorXd& u) const;
   // Re-solves the forward problem at u (effective entries replaced by ue)
   // from `start`; returns false if the solve was not usable.
   bool SolveAt(const Eigen::VectorXd& ue, const State& start);
-  // r = [e; sqrt(lambda) C] and, if J is not null, dr/du_eff at the current solution.
-  void Residuals(const PoseTarget& target, Eigen::VectorXd* r, Eigen::MatrixXd* J,
-                 Eigen::MatrixXd* ds_du, double* rcond, bool* singular);
+  // r = [e; sqrt(lambda) C] at the current solution.
+  Eigen::VectorXd Residuals(const PoseTarget& target) const;
+  // r, and dr/du_eff and ds/du (implicit or finite differences).
+  void Linearize(const PoseTarget& target, Eigen::VectorXd* r, Eigen::MatrixXd* J, Eigen::MatrixXd* ds_du,
+                 double* rcond, bool* singular);
+  void LinearizeByFiniteDifferences(const PoseTarget& target, Eigen::MatrixXd* J, Eigen::MatrixXd* ds_du);
+  // One LM iteration from the current solution; false when no trial step was
+  // accepted (or the step vanished).
+  bool LmIteration(const PoseTarget& target, const Eigen::MatrixXd& J, const Eigen::MatrixXd& ds_du,
+                   double* O, double* mu, Eigen::VectorXd* r, ControlStepResult* result);
   ControlStepResult SolveStepLm(const PoseTarget& target);
   ControlStepResult SolveStepBfgs(const PoseTarget& target);
   void Finish(const PoseTarget& target, ControlStepResult* result);
+  void CheckTarget(const PoseTarget& target) const;
 
   const ControlOptions options_;
   ForwardProblem forward_;
-  const EndEffectorError error_;
   const std::vector<int> effective_;
-  HessianSolver hessian_solver_;  // symbolic analysis of dG/ds, done once
-  EnergyDerivatives workspace_;   // reused by every linearisation
+  std::unique_ptr<Workspace> workspace_;
   int forward_solves_ = 0;
 };
 

@@ -7,51 +7,27 @@
 #include <ceres/problem.h>
 #include <ceres/solver.h>
 
-#include "ccma/pose_manifold.h"
+#include "ccma/internal/constraint_set.h"
+#include "ccma/internal/format.h"
+#include "ccma/internal/pose_manifold.h"
+#include "ccma/limits.h"
 #include "ccma/rotation.h"
+#include "problems/internal/sensitivity.h"
 
 namespace ccma {
+namespace {
 
-struct ForwardProblem::CeresParts {
-  PoseManifold manifold;
-  std::unique_ptr<ceres::Problem> problem;
-  ceres::Solver::Options solver_options;
-};
+using Clock = std::chrono::steady_clock;
 
-ForwardProblem::ForwardProblem(const Model& model, const ForwardOptions& options)
-    : model_(model),
-      options_(options),
-      constraints_(model_),
-      state_(State::Home(model_)),
-      controls_(model_.home_controls()),
-      ceres_(std::make_unique<CeresParts>()),
-      hessian_solver_(std::make_unique<HessianSolver>(constraints_)) {
-  ceres::Problem::Options problem_options;
-  problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  problem_options.enable_fast_removal = false;
-  ceres_->problem = std::make_unique<ceres::Problem>(problem_options);
-  ceres::Problem& problem = *ceres_->problem;
+double MillisecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
 
-  for (int i = 0; i < model_.num_bodies(); ++i) {
-    problem.AddParameterBlock(state_.pose(i), kPoseAmbientSize, &ceres_->manifold);
-  }
-  for (int k = 0; k < model_.num_bases(); ++k) {
-    problem.AddParameterBlock(controls_.data() + 3 * k, 3);
-    problem.SetParameterBlockConstant(controls_.data() + 3 * k);
-  }
-  std::vector<double*> blocks;
-  for (const ConstraintBlock& block : constraints_.blocks()) {
-    blocks.clear();
-    for (int body : block.bodies) blocks.push_back(state_.pose(body));
-    if (block.base >= 0) blocks.push_back(controls_.data() + 3 * block.base);
-    problem.AddResidualBlock(block.cost.get(), nullptr, blocks);
-  }
-
-  ceres::Solver::Options& so = ceres_->solver_options;
+ceres::Solver::Options SolverOptions(const ForwardOptions& options) {
+  ceres::Solver::Options so;
   so.minimizer_type = ceres::TRUST_REGION;
   so.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
-  LinearSolverChoice choice = options_.linear_solver;
+  LinearSolverChoice choice = options.linear_solver;
   if (choice == LinearSolverChoice::kAuto) choice = LinearSolverChoice::kEigenSparseNormalCholesky;
   switch (choice) {
     case LinearSolverChoice::kDenseNormalCholesky:
@@ -68,7 +44,7 @@ ForwardProblem::ForwardProblem(const Model& model, const ForwardOptions& options
     default:
       so.linear_solver_type = ceres::DENSE_QR;
   }
-  so.max_num_iterations = options_.max_iterations;
+  so.max_num_iterations = options.max_iterations;
   // Tight tolerances: a reachable assembly must end near E ~ 1e-28, and the
   // sensitivities of the control problem need dE/ds ~ 0 to machine precision.
   so.function_tolerance = 1e-15;
@@ -77,22 +53,96 @@ ForwardProblem::ForwardProblem(const Model& model, const ForwardOptions& options
   so.initial_trust_region_radius = 1e8;  // warm starts are near-Newton steps
   so.num_threads = 1;
   so.logging_type = ceres::SILENT;
-  so.minimizer_progress_to_stdout = options_.log_progress;
+  so.minimizer_progress_to_stdout = options.log_progress;
+  return so;
+}
+
+bool InRange(double value, double lo, double hi) { return value >= lo && value <= hi; }
+
+}  // namespace
+
+bool ForwardOptions::IsValid(std::string* why) const {
+  auto fail = [why](const std::string& message) {
+    if (why != nullptr) *why = message;
+    return false;
+  };
+  if (!InRange(assembly_tolerance, 1e-32, 1.0)) {
+    return fail("assembly_tolerance must lie in [1e-32, 1] (m^2), got " + FormatG(assembly_tolerance));
+  }
+  if (!InRange(max_iterations, 1, 100000)) {
+    return fail("max_iterations must lie in [1, 100000], got " + std::to_string(max_iterations));
+  }
+  if (!InRange(max_control_step, 1e-6, 1e3)) {
+    return fail("max_control_step must lie in [1e-6, 1000] (m or rad), got " + FormatG(max_control_step));
+  }
+  if (!InRange(max_newton_polish_steps, 0, 1000)) {
+    return fail("max_newton_polish_steps must lie in [0, 1000], got " + std::to_string(max_newton_polish_steps));
+  }
+  if (!InRange(branch_jump_relative, 0, 1e6) || !InRange(branch_jump_absolute, 0, 1e6)) {
+    return fail("branch_jump_relative and branch_jump_absolute must lie in [0, 1e6]");
+  }
+  return true;
+}
+
+// Everything a ForwardProblem owns besides its state and controls.
+struct ForwardProblem::Workspace {
+  explicit Workspace(const Model& model) : constraints(model), hessian_solver(constraints) {}
+  ConstraintSet constraints;
+  PoseManifold manifold;
+  std::unique_ptr<ceres::Problem> problem;
+  ceres::Solver::Options solver_options;
+  HessianSolver hessian_solver;           // Newton polish and Assemble's predictor
+  EnergyDerivatives derivatives[2];       // current point and candidate
+};
+
+ForwardProblem::ForwardProblem(const Model& model, const ForwardOptions& options)
+    : model_(model), options_(options) {
+  std::string why;
+  if (!options_.IsValid(&why)) throw std::invalid_argument("ForwardOptions: " + why);
+  state_ = State::Home(model_);
+  controls_ = model_.home_controls();
+  workspace_ = std::make_unique<Workspace>(model_);
+
+  ceres::Problem::Options problem_options;
+  problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  problem_options.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  problem_options.enable_fast_removal = false;
+  workspace_->problem = std::make_unique<ceres::Problem>(problem_options);
+  ceres::Problem& problem = *workspace_->problem;
+  for (int i = 0; i < model_.num_bodies(); ++i) {
+    problem.AddParameterBlock(state_.pose(i), kPoseAmbientSize, &workspace_->manifold);
+  }
+  std::vector<double*> blocks;
+  for (const ConstraintBlock& block : workspace_->constraints.blocks()) {
+    blocks.clear();
+    for (int body : block.bodies) blocks.push_back(state_.pose(body));
+    if (block.control_size > 0) {
+      double* control = controls_.data() + block.control_offset;
+      problem.AddParameterBlock(control, block.control_size);
+      problem.SetParameterBlockConstant(control);
+      blocks.push_back(control);
+    }
+    problem.AddResidualBlock(block.cost.get(), nullptr, blocks);
+  }
+  workspace_->solver_options = SolverOptions(options_);
 }
 
 ForwardProblem::~ForwardProblem() = default;
 
+const ConstraintSet& ForwardProblem::constraints() const { return workspace_->constraints; }
+
+double ForwardProblem::Energy() const { return workspace_->constraints.Energy(state_, controls_); }
+
 void ForwardProblem::CheckControls(const Eigen::VectorXd& u) const {
   if (u.size() != model_.num_controls()) {
-    throw std::invalid_argument("controls: expected " +
-                                std::to_string(model_.num_controls()) +
-                                " values (3 per mobile base), got " +
-                                std::to_string(u.size()));
+    throw std::invalid_argument("controls: expected " + std::to_string(model_.num_controls()) +
+                                " values (3 per mobile base), got " + std::to_string(u.size()));
   }
   for (int i = 0; i < u.size(); ++i) {
-    if (!std::isfinite(u[i])) {
-      throw std::invalid_argument("controls: entry " + std::to_string(i) +
-                                  " is not a finite number");
+    if (!(std::abs(u[i]) <= kMaxMagnitude)) {
+      throw std::invalid_argument("controls: entry " + std::to_string(i) + " (" + FormatG(u[i]) +
+                                  ") must be a finite number in [-" + FormatG(kMaxMagnitude) + ", " +
+                                  FormatG(kMaxMagnitude) + "] (m or rad)");
     }
   }
 }
@@ -100,41 +150,39 @@ void ForwardProblem::CheckControls(const Eigen::VectorXd& u) const {
 ForwardResult ForwardProblem::Solve(const Eigen::VectorXd& u) {
   CheckControls(u);
   controls_ = u;  // the control blocks alias controls_' storage
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = Clock::now();
   ceres::Solver::Summary summary;
-  ceres::Solve(ceres_->solver_options, ceres_->problem.get(), &summary);
-  const auto stop = std::chrono::steady_clock::now();
+  ceres::Solve(workspace_->solver_options, workspace_->problem.get(), &summary);
 
   ForwardResult result;
-  result.solve_time_ms = std::chrono::duration<double, std::milli>(stop - start).count();
+  result.solve_time_ms = MillisecondsSince(start);
   result.residual_energy = summary.final_cost;
   result.converged = summary.termination_type == ceres::CONVERGENCE;
-  result.assembled = summary.IsSolutionUsable() &&
-                     result.residual_energy < options_.assembly_tolerance;
+  result.assembled = summary.IsSolutionUsable() && result.residual_energy < options_.assembly_tolerance;
   result.iterations = summary.num_successful_steps + summary.num_unsuccessful_steps;
   result.message = summary.message;
   if (!result.assembled && options_.max_newton_polish_steps > 0) {
     NewtonPolish(&result);
-    result.solve_time_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    result.solve_time_ms = MillisecondsSince(start);
   }
   return result;
 }
 
 void ForwardProblem::NewtonPolish(ForwardResult* result) {
-  // Two workspaces, swapped: the current point and the candidate.
-  EnergyDerivatives* now = &polish_workspace_[0];
-  EnergyDerivatives* next = &polish_workspace_[1];
-  constraints_.EvaluateDerivatives(state_, controls_, now);
+  const ConstraintSet& constraints = workspace_->constraints;
+  HessianSolver& solver = workspace_->hessian_solver;
+  EnergyDerivatives* now = &workspace_->derivatives[0];
+  EnergyDerivatives* next = &workspace_->derivatives[1];
+  constraints.EvaluateDerivatives(state_, controls_, now);
   for (int step = 0; step < options_.max_newton_polish_steps; ++step) {
-    if (now->G.lpNorm<Eigen::Infinity>() <= 1e-16 || !hessian_solver_->Factorize(now->H) ||
-        hessian_solver_->pivot_ratio() <= 0) {
+    if (now->G.lpNorm<Eigen::Infinity>() <= 1e-16 || !solver.Factorize(now->H) ||
+        solver.pivot_ratio() <= 0) {
       break;  // stationary, or H not positive definite (not near a minimum)
     }
-    const Eigen::VectorXd ds = -hessian_solver_->Solve(now->G);
+    const Eigen::VectorXd ds = -solver.Solve(now->G);
     const State before = state_;
     state_.Plus(ds);
-    constraints_.EvaluateDerivatives(state_, controls_, next);
+    constraints.EvaluateDerivatives(state_, controls_, next);
     // Near a minimum E changes by O(|ds|^2) ~ rounding: judge by the gradient.
     if (!(next->G.lpNorm<Eigen::Infinity>() < now->G.lpNorm<Eigen::Infinity>()) ||
         next->energy > now->energy * (1 + 1e-12) + 1e-30) {
@@ -145,10 +193,21 @@ void ForwardProblem::NewtonPolish(ForwardResult* result) {
     ++result->newton_steps;
     if (ds.lpNorm<Eigen::Infinity>() < 1e-15) break;
   }
-  const EnergyDerivatives& d = *now;
-  result->residual_energy = d.energy;
-  result->gradient_norm = d.G.lpNorm<Eigen::Infinity>();
+  result->residual_energy = now->energy;
+  result->gradient_norm = now->G.lpNorm<Eigen::Infinity>();
   result->assembled = result->residual_energy < options_.assembly_tolerance;
+}
+
+int ForwardProblem::SubstepCount(const Eigen::VectorXd& change) const {
+  // Computed in double and bounded before any conversion to an integer.
+  const double count = std::ceil(change.lpNorm<Eigen::Infinity>() / options_.max_control_step);
+  if (!(count <= static_cast<double>(kMaxAssemblySubsteps))) {
+    throw std::invalid_argument("controls: moving them by " + FormatG(change.lpNorm<Eigen::Infinity>()) +
+                                " (m or rad) in sub-steps of " + FormatG(options_.max_control_step) +
+                                " would take more than " + std::to_string(kMaxAssemblySubsteps) +
+                                " sub-steps");
+  }
+  return std::max(1, static_cast<int>(count));
 }
 
 ForwardResult ForwardProblem::Assemble(const Eigen::VectorXd& u) {
@@ -156,20 +215,45 @@ ForwardResult ForwardProblem::Assemble(const Eigen::VectorXd& u) {
   const Eigen::VectorXd from = controls_;
   // Headings matter modulo 2 pi (motor rows use cos, sin): walk the short way.
   Eigen::VectorXd change = u - from;
-  for (int k = 0; k < model_.num_bases(); ++k) change[3 * k + 2] = WrapAngle(change[3 * k + 2]);
-  const double distance = change.lpNorm<Eigen::Infinity>();
-  const int substeps =
-      std::max(1, static_cast<int>(std::ceil(distance / options_.max_control_step)));
+  for (int k = 0; k < model_.num_bases(); ++k) {
+    change[kBaseControlSize * k + 2] = WrapAngle(change[kBaseControlSize * k + 2]);
+  }
+  const int substeps = SubstepCount(change);
+  std::vector<int> all_controls(static_cast<size_t>(model_.num_controls()));
+  for (int c = 0; c < model_.num_controls(); ++c) all_controls[c] = c;
+
   ForwardResult total;
   for (int i = 1; i <= substeps; ++i) {
-    const Eigen::VectorXd u_i =
-        i == substeps ? u : Eigen::VectorXd(from + change * (double(i) / substeps));
+    const Eigen::VectorXd u_i = i == substeps ? u : Eigen::VectorXd(from + change * (double(i) / substeps));
+    // First-order prediction of this sub-step, to tell continuation from a jump.
+    const Sensitivity sensitivity(workspace_->constraints, state_, controls_, all_controls,
+                                  &workspace_->hessian_solver, &workspace_->derivatives[0]);
+    Eigen::VectorXd du = u_i - controls_;
+    for (int k = 0; k < model_.num_bases(); ++k) {
+      du[kBaseControlSize * k + 2] = WrapAngle(du[kBaseControlSize * k + 2]);
+    }
+    const Eigen::VectorXd ds_predicted = sensitivity.StateSensitivity() * du;
+    const State before = state_;
     const ForwardResult step = Solve(u_i);
+    if (!sensitivity.singular()) {
+      State predicted = before;
+      predicted.Plus(ds_predicted);
+      const double deviation = state_.Minus(predicted).lpNorm<Eigen::Infinity>();
+      const double allowed = options_.branch_jump_relative * ds_predicted.lpNorm<Eigen::Infinity>() +
+                             options_.branch_jump_absolute;
+      if (deviation > allowed && deviation > total.branch_jump_size) {
+        total.branch_jump = true;
+        total.branch_jump_size = deviation;
+        total.branch_jump_substep = i;
+      }
+    }
     total.iterations += step.iterations;
+    total.newton_steps += step.newton_steps;
     total.solve_time_ms += step.solve_time_ms;
     total.converged = step.converged;
     total.assembled = step.assembled;
     total.residual_energy = step.residual_energy;
+    total.gradient_norm = step.gradient_norm;
     total.message = step.message;
   }
   total.substeps = substeps;
@@ -177,8 +261,7 @@ ForwardResult ForwardProblem::Assemble(const Eigen::VectorXd& u) {
 }
 
 void ForwardProblem::ResetToHome() {
-  const State home = State::Home(model_);
-  SetState(home);
+  SetState(State::Home(model_));
   controls_ = model_.home_controls();
 }
 
@@ -190,7 +273,8 @@ void ForwardProblem::Restore(const State& s, const Eigen::VectorXd& u) {
 
 void ForwardProblem::SetState(const State& s) {
   if (s.num_bodies() != model_.num_bodies()) {
-    throw std::invalid_argument("SetState: wrong number of bodies");
+    throw std::invalid_argument("SetState: expected " + std::to_string(model_.num_bodies()) +
+                                " bodies, got " + std::to_string(s.num_bodies()));
   }
   // Copy in place: Ceres holds pointers into state_'s storage.
   if (&s == &state_) return;

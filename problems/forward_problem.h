@@ -4,29 +4,29 @@
 // blocks are held constant; each Solve() warm-starts from the last state, so
 // a control loop can call it thousands of times without rebuilding anything.
 //
+// Model and workspace (as in Pinocchio): the Model is constant and shared;
+// the problem keeps a reference to it (the model must outlive the problem)
+// and owns only its per-problem workspace (state, Ceres problem, buffers).
+//
 // Honest reporting: a solve converges to dE/ds = 0, not necessarily E = 0.
 // `assembled` says whether E fell below ForwardOptions::assembly_tolerance;
 // controls the mechanism cannot reach leave E > 0 and assembled = false.
+// Assemble() also reports a jump to another assembly branch.
 #ifndef CCMA_PROBLEMS_FORWARD_PROBLEM_H_
 #define CCMA_PROBLEMS_FORWARD_PROBLEM_H_
 
 #include <memory>
 #include <string>
-#include <vector>
 
 #include <Eigen/Core>
 
-#include "ccma/constraint_set.h"
 #include "ccma/end_effector.h"
 #include "ccma/model.h"
 #include "ccma/state.h"
-#include "problems/sensitivity.h"
-
-namespace ceres {
-class Problem;
-}
 
 namespace ccma {
+
+class ConstraintSet;  // internal (ccma/internal/constraint_set.h)
 
 // Linear solver inside each Levenberg-Marquardt step. Sparse normal Cholesky
 // with Eigen's simplicial factorisation is the fastest on every reference
@@ -57,6 +57,16 @@ struct ForwardOptions {
   // the exact Hessian of E (as in the paper) then make dE/ds ~ 0 to machine
   // precision, which the control sensitivities assume.
   int max_newton_polish_steps = 8;
+  // Branch jumps in Assemble(): a sub-step whose solved state differs from
+  // the first-order prediction s + ds/du du by more than
+  //   branch_jump_relative * |ds/du du| + branch_jump_absolute
+  // (max-norm over the state tangent: m and rad) is reported as a jump.
+  double branch_jump_relative = 0.5;
+  double branch_jump_absolute = 0.01;
+
+  // True if every field is in range; otherwise false and, if `why` is not
+  // null, a message naming the field and its range.
+  bool IsValid(std::string* why) const;
 };
 
 struct ForwardResult {
@@ -68,24 +78,36 @@ struct ForwardResult {
   int newton_steps = 0;     // exact-Newton polish steps after Ceres (E > 0)
   double gradient_norm = 0; // max |dE/ds| at the end
   double solve_time_ms = 0; // wall time of the solve(s)
+  // Assemble() only: some sub-step left the branch its predictor followed
+  // (see ForwardOptions::branch_jump_relative); the largest deviation from
+  // the prediction [m or rad] and the sub-step where it happened.
+  bool branch_jump = false;
+  double branch_jump_size = 0;
+  int branch_jump_substep = -1;
   std::string message;      // Ceres' termination message (last solve)
 };
 
 class ForwardProblem {
  public:
+  // Throws std::invalid_argument if !options.IsValid().
   explicit ForwardProblem(const Model& model, const ForwardOptions& options = {});
+  // The problem keeps a reference to the model: a temporary would dangle.
+  explicit ForwardProblem(const Model&& model, const ForwardOptions& options = {}) = delete;
   ~ForwardProblem();
   ForwardProblem(const ForwardProblem&) = delete;
   ForwardProblem& operator=(const ForwardProblem&) = delete;
 
-  // One warm-started solve at controls u (3 per base: x [m], y [m], theta
-  // [rad]), from the current state. Throws std::invalid_argument if u has the
-  // wrong size or a non-finite entry.
+  // One warm-started solve at controls u (model.h: 3 per base, x [m], y [m],
+  // theta [rad]), from the current state. Throws std::invalid_argument if u
+  // has the wrong size or an entry that is not finite or outside
+  // [-kMaxMagnitude, kMaxMagnitude] (ccma/limits.h).
   ForwardResult Solve(const Eigen::VectorXd& u);
 
   // Moves the controls from their current value to u in sub-steps of at most
   // options.max_control_step, solving after each: follows the assembly branch
-  // from the current configuration. What `ccma simulate` uses.
+  // from the current configuration, and reports a branch jump (ForwardResult).
+  // What `ccma simulate` uses. Throws std::invalid_argument as Solve() does,
+  // and when more than kMaxAssemblySubsteps sub-steps would be needed.
   ForwardResult Assemble(const Eigen::VectorXd& u);
 
   // Back to the home configuration and home controls (no solve).
@@ -96,28 +118,29 @@ class ForwardProblem {
   void Restore(const State& s, const Eigen::VectorXd& u);
 
   const Model& model() const { return model_; }
-  const ConstraintSet& constraints() const { return constraints_; }
   const State& state() const { return state_; }
   const Eigen::VectorXd& controls() const { return controls_; }
   EndEffectorPose end_effector() const { return ComputeEndEffectorPose(model_, state_); }
-  // E at the current state and controls.
-  double Energy() const { return constraints_.Energy(state_, controls_); }
+  // E at the current state and controls [m^2].
+  double Energy() const;
   const ForwardOptions& options() const { return options_; }
 
+  // Internal: the model's constraints (ccma/internal/constraint_set.h).
+  const ConstraintSet& constraints() const;
+
  private:
+  struct Workspace;  // Ceres problem, constraint set, Newton buffers
   void CheckControls(const Eigen::VectorXd& u) const;
   // Exact-Newton steps on E from the current state; updates `result`.
   void NewtonPolish(ForwardResult* result);
+  // Number of sub-steps to move the controls by `change`; throws when too many.
+  int SubstepCount(const Eigen::VectorXd& change) const;
 
-  const Model model_;
+  const Model& model_;
   const ForwardOptions options_;
-  const ConstraintSet constraints_;
   State state_;
   Eigen::VectorXd controls_;
-  struct CeresParts;
-  std::unique_ptr<CeresParts> ceres_;
-  std::unique_ptr<HessianSolver> hessian_solver_;  // for the Newton polish
-  EnergyDerivatives polish_workspace_[2];
+  std::unique_ptr<Workspace> workspace_;
 };
 
 }  // namespace ccma

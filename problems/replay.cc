@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <stdexcept>
 
+#include "ccma/limits.h"
 #include "ccma/rotation.h"
 #include "problems/trajectory.h"
 
@@ -15,76 +18,105 @@ Eigen::Matrix<double, 6, 1> Pose6(const EndEffectorPose& p) {
   return x;
 }
 
-}  // namespace
+std::string Format(const char* format, double a, double b = 0, double c = 0) {
+  char text[320];
+  std::snprintf(text, sizeof(text), format, a, b, c);
+  return text;
+}
 
-ReplayResult Replay(const Model& model, const std::vector<Waypoint>& waypoints,
-                    const ReplayOptions& options) {
-  ReplayResult result;
-  // 1. The plan: control solution per path step, with its time.
-  ControlProblem control(model, options.control);
-  std::vector<double> times = {waypoints.front().time};
-  std::vector<Eigen::VectorXd> plan_u = {control.controls()};
-  std::vector<Eigen::Matrix<double, 6, 1>> plan_ee = {Pose6(control.forward().end_effector())};
-  const TrajectoryResult plan = FollowWaypoints(control, waypoints, [&](const TrajectoryStep& s) {
-    if (s.time <= times.back()) return;  // the zero-length first leg
-    times.push_back(s.time);
-    plan_u.push_back(s.controls);
-    plan_ee.push_back(Pose6(s.reached));
-  });
-  result.converged = plan.converged;
-  result.warning = plan.warning;
+bool Fail(const std::string& message, std::string* why) {
+  if (why != nullptr) *why = message;
+  return false;
+}
 
-  // Set-point at time t: linear between plan steps; its velocity: the slope.
-  auto segment = [&](double t) {
+// The plan: control solution per path step, with its time. The first entry
+// is the start (the first waypoint's time, the starting controls).
+struct Plan {
+  std::vector<double> times;
+  std::vector<Eigen::VectorXd> controls;
+  std::vector<Eigen::Matrix<double, 6, 1>> end_effector;
+
+  // Index i of the segment [times[i-1], times[i]] holding t (times.size() > 1).
+  size_t Segment(double t) const {
     const size_t i = std::upper_bound(times.begin(), times.end(), t) - times.begin();
     return std::min(std::max<size_t>(i, 1), times.size() - 1);
-  };
-  auto interpolate = [&](const auto& values, double t) {
+  }
+  // Linear between plan steps, held before the first and after the last.
+  template <typename T>
+  T Interpolate(const std::vector<T>& values, double t) const {
     if (times.size() == 1 || t <= times.front()) return values.front();
     if (t >= times.back()) return values.back();
-    const size_t i = segment(t);
+    const size_t i = Segment(t);
     const double a = (t - times[i - 1]) / (times[i] - times[i - 1]);
-    return decltype(values.front())((1 - a) * values[i - 1] + a * values[i]);
-  };
-  auto velocity = [&](double t) {
-    Eigen::VectorXd v = Eigen::VectorXd::Zero(model.num_controls());
+    return T((1 - a) * values[i - 1] + a * values[i]);
+  }
+  // The set-points' velocity: the slope of the current segment.
+  Eigen::VectorXd Velocity(double t) const {
+    Eigen::VectorXd v = Eigen::VectorXd::Zero(controls.front().size());
     if (times.size() < 2 || t < times.front() || t >= times.back()) return v;
-    const size_t i = segment(t);
-    return Eigen::VectorXd((plan_u[i] - plan_u[i - 1]) / (times[i] - times[i - 1]));
-  };
+    const size_t i = Segment(t);
+    return (controls[i] - controls[i - 1]) / (times[i] - times[i - 1]);
+  }
+};
 
-  // 2. The bases, their trackers and the chain that follows them.
+Plan MakePlan(const Model& model, const std::vector<Waypoint>& waypoints, const ReplayOptions& options,
+              ReplayResult* result) {
+  ControlProblem control(model, options.control);
+  Plan plan;
+  plan.times = {waypoints.front().time};
+  plan.controls = {control.controls()};
+  plan.end_effector = {Pose6(control.forward().end_effector())};
+  const TrajectoryResult trajectory = FollowWaypoints(control, waypoints, [&](const TrajectoryStep& s) {
+    if (!s.result.reached && std::isnan(result->failed_step_time)) result->failed_step_time = s.time;
+    if (s.time <= plan.times.back()) return;  // the zero-length first leg
+    plan.times.push_back(s.time);
+    plan.controls.push_back(s.controls);
+    plan.end_effector.push_back(Pose6(s.reached));
+  });
+  result->converged = trajectory.converged;
+  result->warning = trajectory.warning;
+  if (!result->converged && std::isnan(result->failed_step_time)) result->failed_step_time = plan.times.back();
+  return plan;
+}
+
+// Runs the bases and the chain along the plan; appends the samples.
+void Simulate(const Model& model, const Plan& plan, const ReplayOptions& options, ReplayResult* result) {
   std::vector<OmniWheelKinematics> kinematics;
   std::vector<BaseTracker> trackers;
   std::vector<Eigen::Vector3d> start;
   for (int k = 0; k < model.num_bases(); ++k) {
     kinematics.emplace_back(model.mobile_bases[k].wheels);
     trackers.emplace_back(kinematics.back(), options.gains);
-    start.push_back(plan_u.front().segment<3>(3 * k));
+    start.push_back(plan.controls.front().segment<3>(3 * k));
   }
   SimulatedBases bases(kinematics, start, options.noise);
   ForwardProblem chain(model, options.control.forward);
+  result->torn_residual_energy = options.torn_residual_energy;
 
-  const double t0 = times.front(), t_end = times.back() + options.settle_s;
+  const double t0 = plan.times.front();
+  result->duration_s = plan.times.back() + options.settle_s - t0;  // <= the checked duration
   const double dt = 1.0 / options.gains.rate_hz;
+  // Checked by IsValidReplay: at most kMaxReplayTicks, so the conversion is exact.
+  const long ticks = static_cast<long>(std::ceil(result->duration_s * options.gains.rate_hz));
   double next_output = t0;
-  const int ticks = static_cast<int>(std::ceil((t_end - t0) / dt));
-  for (int tick = 0; tick <= ticks; ++tick) {
-    const double t = t0 + tick * dt;
+  for (long tick = 0; tick <= ticks; ++tick) {
+    const double t = t0 + static_cast<double>(tick) * dt;
     if (t + 1e-9 >= next_output) {
       ReplaySample sample;
       sample.time = t;
-      sample.commanded = interpolate(plan_ee, t);
-      sample.set_controls = interpolate(plan_u, t);
+      sample.commanded = plan.Interpolate(plan.end_effector, t);
+      sample.set_controls = plan.Interpolate(plan.controls, t);
       sample.true_controls.resize(model.num_controls());
       for (int k = 0; k < model.num_bases(); ++k) sample.true_controls.segment<3>(3 * k) = bases.TruePose(k);
       sample.residual_energy = chain.Solve(sample.true_controls).residual_energy;
+      sample.assembled = sample.residual_energy <= options.control.forward.assembly_tolerance;
+      sample.torn = !(sample.residual_energy <= options.torn_residual_energy);
       sample.tracked = Pose6(chain.end_effector());
-      result.samples.push_back(sample);
+      result->samples.push_back(sample);
       next_output += 1.0 / options.output_hz;
     }
-    const Eigen::VectorXd set = interpolate(plan_u, t);
-    const Eigen::VectorXd set_velocity = velocity(t);
+    const Eigen::VectorXd set = plan.Interpolate(plan.controls, t);
+    const Eigen::VectorXd set_velocity = plan.Velocity(t);
     for (int k = 0; k < model.num_bases(); ++k) {
       const Eigen::VectorXd wheels = trackers[k].Update(set.segment<3>(3 * k), set_velocity.segment<3>(3 * k),
                                                         bases.MeasuredPose(k));
@@ -92,17 +124,103 @@ ReplayResult Replay(const Model& model, const std::vector<Waypoint>& waypoints,
     }
     bases.Advance(dt);
   }
+}
 
-  // 3. RMSE of tracked against commanded, per component (angles wrapped).
+// Torn samples, the worst E, and the RMSE of tracked against commanded per
+// component (angles wrapped).
+void Summarize(ReplayResult* result) {
+  for (const ReplaySample& s : result->samples) {
+    result->max_residual_energy = std::max(result->max_residual_energy, s.residual_energy);
+    if (std::isnan(s.residual_energy)) result->max_residual_energy = s.residual_energy;
+    if (!s.torn) continue;
+    if (result->torn_samples++ == 0) result->first_torn_time = s.time;
+    result->torn = true;
+  }
   for (int c = 0; c < 6; ++c) {
     double sum = 0;
-    for (const auto& s : result.samples) {
+    for (const ReplaySample& s : result->samples) {
       const double d = c < 3 ? s.tracked[c] - s.commanded[c] : WrapAngle(s.tracked[c] - s.commanded[c]);
       sum += d * d;
     }
-    result.rmse[c] = result.samples.empty() ? 0 : std::sqrt(sum / result.samples.size());
+    result->rmse[c] = result->samples.empty() ? 0 : std::sqrt(sum / static_cast<double>(result->samples.size()));
   }
-  result.duration_s = t_end - t0;
+}
+
+}  // namespace
+
+bool ReplayOptions::IsValid(std::string* why) const {
+  if (!gains.IsValid(why) || !noise.IsValid(why)) return false;
+  if (!(output_hz >= kMinOutputHz && output_hz <= kMaxOutputHz)) {
+    return Fail(Format("ReplayOptions::output_hz (output sample rate) must lie in [%g, %g] Hz; got %g", kMinOutputHz,
+                       kMaxOutputHz, output_hz),
+                why);
+  }
+  if (!(settle_s >= 0 && settle_s <= kMaxTime)) {
+    return Fail(Format("ReplayOptions::settle_s (time kept running after the last waypoint) must lie in [0, %g] s; "
+                       "got %g",
+                       kMaxTime, settle_s),
+                why);
+  }
+  if (!(torn_residual_energy > 0 && torn_residual_energy <= 1)) {
+    return Fail(Format("ReplayOptions::torn_residual_energy (chain residual energy of a torn sample) must lie in "
+                       "(0, 1] m^2; got %g",
+                       torn_residual_energy),
+                why);
+  }
+  return true;
+}
+
+bool IsValidReplay(const std::vector<Waypoint>& waypoints, const ReplayOptions& options, std::string* why) {
+  if (!options.IsValid(why)) return false;
+  if (waypoints.empty()) return Fail("no waypoints", why);
+  for (size_t i = 0; i < waypoints.size(); ++i) {
+    const double t = waypoints[i].time;
+    if (!(t >= -kMaxTime && t <= kMaxTime)) {
+      return Fail("waypoint " + std::to_string(i) +
+                      Format(": time %g s must lie in [%g, %g] s", t, -kMaxTime, kMaxTime),
+                  why);
+    }
+    if (i > 0 && t < waypoints[i - 1].time) {
+      return Fail("waypoint " + std::to_string(i) + Format(": time %g s is before the previous one (%g s)", t,
+                                                                   waypoints[i - 1].time),
+                  why);
+    }
+  }
+  // All in double (at most 2e6 + 1e6 s here, times rates of at most 1e4 Hz):
+  // no conversion happens before the comparisons.
+  const double duration = waypoints.back().time - waypoints.front().time + options.settle_s;
+  const double ticks = std::ceil(duration * options.gains.rate_hz);
+  const double plant_steps = std::ceil(duration * std::max(options.noise.plant_hz, options.gains.rate_hz));
+  const double samples = std::floor(duration * options.output_hz) + 1;
+  const std::string span = Format("waypoints spanning %g s plus %g s of settling", duration - options.settle_s,
+                                  options.settle_s);
+  if (!(ticks <= static_cast<double>(kMaxReplayTicks))) {
+    return Fail(span + Format(" at a controller rate of %g Hz make %g controller ticks; at most %g are allowed",
+                              options.gains.rate_hz, ticks, static_cast<double>(kMaxReplayTicks)),
+                why);
+  }
+  if (!(plant_steps <= static_cast<double>(kMaxReplayTicks))) {
+    return Fail(span + Format(" at a plant rate of %g Hz make %g plant steps; at most %g are allowed",
+                              std::max(options.noise.plant_hz, options.gains.rate_hz), plant_steps,
+                              static_cast<double>(kMaxReplayTicks)),
+                why);
+  }
+  if (!(samples <= static_cast<double>(kMaxReplaySamples))) {
+    return Fail(span + Format(" at an output rate of %g Hz make %g samples; at most %g are allowed", options.output_hz,
+                              samples, static_cast<double>(kMaxReplaySamples)),
+                why);
+  }
+  return true;
+}
+
+ReplayResult Replay(const Model& model, const std::vector<Waypoint>& waypoints,
+                    const ReplayOptions& options) {
+  std::string why;
+  if (!IsValidReplay(waypoints, options, &why)) throw std::invalid_argument(why);
+  ReplayResult result;
+  const Plan plan = MakePlan(model, waypoints, options, &result);
+  Simulate(model, plan, options, &result);
+  Summarize(&result);
   return result;
 }
 

@@ -5,10 +5,20 @@
 // bases' true poses by forward simulation. "Commanded" is the end-effector of
 // the control solution (the paper's "simulated"), "tracked" the one the
 // driven mechanism reaches (the paper's "tracked").
+//
+// Honest reporting: a replay can fail in two ways, and both are in the result.
+//  * The plan: a waypoint the control solution cannot reach (`converged`
+//    false, `warning`, `failed_step_time`); the replay then ends there.
+//  * The chain: bases that lag, oscillate or drift apart leave the chain
+//    unable to assemble at their true poses (`torn`, per sample and overall:
+//    residual energy above ReplayOptions::torn_residual_energy); its
+//    "tracked" end-effector is then not a pose of the mechanism.
+// Only a trustworthy() result's RMSE says how well the bases track.
 #ifndef CCMA_PROBLEMS_REPLAY_H_
 #define CCMA_PROBLEMS_REPLAY_H_
 
 #include <array>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -24,8 +34,24 @@ struct ReplayOptions {
   TrackingGains gains;
   SimulationNoise noise;
   ControlOptions control;
-  double output_hz = 20.0;  // samples of the end-effector and bases
-  double settle_s = 1.0;    // kept running after the last waypoint
+  double output_hz = 20.0;  // samples of the end-effector and bases, [0.1, 1000] Hz
+  double settle_s = 1.0;    // kept running after the last waypoint, [0, kMaxTime] s
+  // A sample whose chain residual energy E = |C|^2 / 2 exceeds this [m^2] is
+  // torn: the chain could not follow the bases (1e-5: constraints violated by
+  // ~4.5 mm). It is far above the forward problem's assembly tolerance
+  // (1e-16) on purpose: bases that track with sensing noise never sit exactly
+  // where an over-constrained chain closes, so the chain is always strained a
+  // little (E ~ 1e-7 with the default noise on the 4-DOF models and 48
+  // agents), while a chain that cannot follow ends with E ~ 1e-2 or more
+  // (0.2 s latency on 4dof_reduced). In (0, 1] m^2.
+  double torn_residual_energy = 1e-5;
+
+  // gains.IsValid, noise.IsValid, and output_hz, settle_s and
+  // torn_residual_energy in range.
+  // Otherwise false, with `why` (if not null) naming the field and its unit.
+  bool IsValid(std::string* why) const;
+  static constexpr double kMinOutputHz = 0.1;
+  static constexpr double kMaxOutputHz = 1000.0;
 };
 
 struct ReplaySample {
@@ -34,17 +60,43 @@ struct ReplaySample {
   Eigen::Matrix<double, 6, 1> tracked;
   Eigen::VectorXd set_controls;        // the bases' set poses (3 per base)
   Eigen::VectorXd true_controls;       // where the bases really are
-  double residual_energy = 0;          // of the chain at the true base poses
+  double residual_energy = 0;          // of the chain at the true base poses [m^2]
+  // residual_energy at most the forward problem's assembly tolerance: the
+  // chain closes exactly (rare with tracking bases: even without noise their
+  // lag leaves E ~ 1e-12).
+  bool assembled = false;
+  // residual_energy above ReplayOptions::torn_residual_energy (or not a
+  // number): the chain could not follow the bases, `tracked` is no pose of it.
+  bool torn = false;
 };
 
 struct ReplayResult {
   bool converged = true;    // every waypoint reached by the control solution
-  std::string warning;
+  std::string warning;      // why not (the plan's message); empty if converged
+  // Time [s] of the first plan step that did not reach its target; NaN if none.
+  double failed_step_time = std::numeric_limits<double>::quiet_NaN();
+  bool torn = false;        // some sample torn (see ReplaySample::torn)
+  int torn_samples = 0;
+  double first_torn_time = std::numeric_limits<double>::quiet_NaN();  // s; NaN if never torn
+  double max_residual_energy = 0;  // over the samples [m^2]
+  double torn_residual_energy = 0; // the E above which a sample is torn [m^2]
   std::vector<ReplaySample> samples;
-  std::array<double, 6> rmse{};  // tracked vs commanded, per component
+  std::array<double, 6> rmse{};  // tracked vs commanded, per component (m, rad)
   double duration_s = 0;
+
+  // Converged, never torn, with samples: only then does the RMSE measure tracking.
+  bool trustworthy() const { return converged && !torn && !samples.empty(); }
 };
 
+// Whether `waypoints` and `options` make a bounded replay: options.IsValid,
+// at least one waypoint, finite non-decreasing times in [-kMaxTime, kMaxTime],
+// and a duration (waypoints plus settle_s) of at most kMaxReplayTicks
+// controller ticks, kMaxReplayTicks plant steps and kMaxReplaySamples output
+// samples (ccma/limits.h). Otherwise false, with `why` (if not null).
+bool IsValidReplay(const std::vector<Waypoint>& waypoints, const ReplayOptions& options, std::string* why);
+
+// Throws std::invalid_argument (the message of IsValidReplay) when the input
+// is not valid; everything else is reported in the result.
 ReplayResult Replay(const Model& model, const std::vector<Waypoint>& waypoints,
                     const ReplayOptions& options);
 

@@ -1,11 +1,38 @@
 #include "problems/trajectory.h"
 
 #include <algorithm>
+#include <stdexcept>
+
+#include "ccma/internal/format.h"
+#include "ccma/limits.h"
+#include "problems/path.h"
 
 namespace ccma {
 
+namespace {
+
+// The whole path's step count, bounded before anything runs.
+void CheckStepCount(const ControlProblem& problem, const std::vector<Waypoint>& waypoints) {
+  const ControlOptions& o = problem.options();
+  PoseTarget from = problem.CurrentPose();
+  double total = 0;
+  for (const Waypoint& w : waypoints) {
+    const PoseTarget to{w.position, w.rpy};
+    total += PosePath(problem.forward().model(), from, to, o.max_step_m, o.max_step_rad).steps();
+    if (total > static_cast<double>(kMaxPathSteps)) {
+      throw std::invalid_argument("waypoints: the path takes more than " + std::to_string(kMaxPathSteps) +
+                                  " steps of " + FormatG(o.max_step_m) + " m and " + FormatG(o.max_step_rad) +
+                                  " rad");
+    }
+    from = to;
+  }
+}
+
+}  // namespace
+
 TrajectoryResult FollowWaypoints(ControlProblem& problem, const std::vector<Waypoint>& waypoints,
                                  const std::function<void(const TrajectoryStep&)>& on_step) {
+  CheckStepCount(problem, waypoints);
   TrajectoryResult out;
   double previous_time = waypoints.empty() ? 0.0 : waypoints.front().time;
   for (size_t w = 0; w < waypoints.size(); ++w) {
@@ -33,7 +60,7 @@ TrajectoryResult FollowWaypoints(ControlProblem& problem, const std::vector<Wayp
     out.max_error = std::max(out.max_error, leg.error);
     if (!leg.converged) {
       out.converged = false;
-      out.warning = "waypoint " + std::to_string(w) + " (time " + std::to_string(waypoint.time) +
+      out.warning = "waypoint " + std::to_string(w) + " (time " + FormatG(waypoint.time) +
                     " s) not reached: " + leg.warning;
       break;
     }

@@ -31,7 +31,8 @@ struct TrajectoryResult {
 };
 
 // Starts from the problem's current controls; stops at the first waypoint it
-// cannot reach (reported in the result).
+// cannot reach (reported in the result). Throws std::invalid_argument when
+// the whole path would take more than kMaxPathSteps steps (ccma/limits.h).
 TrajectoryResult FollowWaypoints(ControlProblem& problem, const std::vector<Waypoint>& waypoints,
                                  const std::function<void(const TrajectoryStep&)>& on_step);
 

@@ -1,5 +1,8 @@
 // The `ccma` tool as shared/cli.md fixes it: exit codes, stdout/stderr, keys.
+#include <algorithm>
 #include <cstdio>
+#include <map>
+#include <vector>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -290,11 +293,54 @@ TEST(Cli, BinaryGarbageIsABadModel) {
 }
 
 TEST(Cli, HelpGoesToStdout) {
-  for (const std::string args : {"--help", "check --help", "simulate --model=x.yaml -h"}) {
+  const ToolRun global = Ccma("--help");
+  EXPECT_EQ(global.status, 0);
+  for (const char* command : {"check", "simulate", "control", "trajectory", "generate", "bench", "replay"}) {
+    EXPECT_NE(global.out.find(std::string("ccma ") + command), std::string::npos) << command;
+  }
+  for (const std::string args : {"check --help", "simulate --model=x.yaml -h"}) {
     const ToolRun r = Ccma(args);
     EXPECT_EQ(r.status, 0) << args;
-    EXPECT_NE(r.out.find("ccma simulate"), std::string::npos) << args;
+    EXPECT_EQ(r.err, "") << args;
+    EXPECT_NE(r.out.find("usage: ccma " + args.substr(0, args.find(' '))), std::string::npos) << args;
   }
+}
+
+// Each sub-command's --help is its own: its synopsis, and exactly its flags,
+// each with a unit in brackets.
+TEST(Cli, EachCommandHasItsOwnHelpWithUnits) {
+  const std::map<std::string, std::vector<std::string>> flags = {
+      {"check", {"model"}},
+      {"simulate", {"model", "controls", "from"}},
+      {"control", {"model", "target", "controls", "method", "max_step_m", "max_step_rad", "lambda"}},
+      {"trajectory", {"model", "waypoints", "out", "controls", "method", "max_step_m", "max_step_rad", "lambda"}},
+      {"generate", {"agents", "out"}},
+      {"bench", {"model", "all", "models_dir", "scaling", "steps", "seed", "out"}},
+      {"replay", {"model", "waypoints", "out", "controls", "noise", "seed", "mocap_noise_m", "mocap_noise_rad",
+                  "latency_s", "slip", "kp", "ki", "controller_hz", "max_wheel_speed", "method", "max_step_m",
+                  "max_step_rad", "lambda"}}};
+  for (const auto& [command, expected] : flags) {
+    const ToolRun r = Ccma(command + " --help");
+    ASSERT_EQ(r.status, 0) << command;
+    EXPECT_EQ(r.out.rfind("usage: ccma " + command, 0), 0u) << r.out;
+    std::vector<std::string> listed;
+    std::istringstream lines(r.out);
+    for (std::string line; std::getline(lines, line);) {
+      if (line.rfind("  --", 0) != 0) continue;
+      listed.push_back(line.substr(4, line.find('=') == std::string::npos ? std::string::npos : line.find('=') - 4));
+      std::string description;
+      std::getline(lines, description);
+      EXPECT_NE(description.find('['), std::string::npos) << command << " --" << listed.back() << ": no unit";
+    }
+    EXPECT_EQ(listed, expected) << command;
+  }
+}
+
+TEST(Cli, VersionPrintsOneLine) {
+  const ToolRun r = Ccma("--version");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_EQ(r.out.rfind("ccma 0.1.0 (", 0), 0u) << r.out;
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1);
 }
 
 }  // namespace

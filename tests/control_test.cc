@@ -13,6 +13,7 @@
 #include "ccma/rotation.h"
 #include "ccma/waypoints.h"
 #include "problems/control_problem.h"
+#include "problems/internal/end_effector_error.h"
 #include "problems/trajectory.h"
 
 namespace ccma {

@@ -12,7 +12,7 @@
 #include <ceres/cost_function.h>
 #include <Eigen/Core>
 
-#include "ccma/pose_manifold.h"
+#include "ccma/internal/pose_manifold.h"
 
 namespace ccma::testing {
 

@@ -21,8 +21,7 @@ class ReferenceTable : public ::testing::TestWithParam<Expected> {};
 TEST_P(ReferenceTable, MatchesThePaperTable) {
   const Expected& e = GetParam();
   const Model m = LoadModel(std::string(CCMA_MODELS_DIR) + "/" + e.name + ".yaml");
-  const ConstraintSet constraints(m);
-  const MobilityReport r = AnalyzeMobility(m, constraints, State::Home(m), m.home_controls());
+  const MobilityReport r = AnalyzeMobility(m, State::Home(m), m.home_controls());
   EXPECT_EQ(m.num_bodies(), e.bodies);
   EXPECT_EQ(m.state_size(), e.state_size);
   EXPECT_EQ(m.num_controls(), e.controls);
@@ -45,8 +44,7 @@ INSTANTIATE_TEST_SUITE_P(FiveReferenceModels, ReferenceTable,
 
 MobilityReport Analyze(const std::string& text) {
   const Model m = LoadModelFromString(text, "hand.yaml");
-  const ConstraintSet constraints(m);
-  return AnalyzeMobility(m, constraints, State::Home(m), m.home_controls());
+  return AnalyzeMobility(m, State::Home(m), m.home_controls());
 }
 
 TEST(Mobility, PrismaticLiftOnOneBase) {

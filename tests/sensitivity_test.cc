@@ -9,7 +9,7 @@
 
 #include "ccma/model_loader.h"
 #include "problems/control_problem.h"
-#include "problems/sensitivity.h"
+#include "problems/internal/sensitivity.h"
 
 namespace ccma {
 namespace {

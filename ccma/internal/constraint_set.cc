@@ -1,4 +1,4 @@
-#include "ccma/constraint_set.h"
+#include "ccma/internal/constraint_set.h"
 
 #include "cost_functions/body_frame.h"
 #include "cost_functions/fixed_joint_cost.h"
@@ -64,13 +64,14 @@ std::vector<std::unique_ptr<ceres::CostFunction>> ConstraintSet::MakeAutoDiffTwi
 ConstraintSet::ConstraintSet(const Model& model)
     : state_size_(model.state_size()), num_controls_(model.num_controls()) {
   auto add = [this](std::unique_ptr<ceres::CostFunction> cost, std::vector<int> bodies,
-                    int base, std::string label) {
+                    int control_offset, int control_size, std::string label) {
     ConstraintBlock block;
     block.rows = cost->num_residuals();
     block.second_order = dynamic_cast<const ResidualHessian*>(cost.get());
     block.cost = std::move(cost);
     block.bodies = std::move(bodies);
-    block.base = base;
+    block.control_offset = control_offset;
+    block.control_size = control_size;
     block.row = num_rows_;
     block.label = std::move(label);
     num_rows_ += block.rows;
@@ -78,14 +79,15 @@ ConstraintSet::ConstraintSet(const Model& model)
   };
   for (size_t j = 0; j < model.joints.size(); ++j) {
     const Joint& joint = model.joints[j];
-    add(MakeJointCost(joint), {joint.body_a, joint.body_b}, -1,
+    add(MakeJointCost(joint), {joint.body_a, joint.body_b}, -1, 0,
         "joints[" + std::to_string(j) + "] (" + JointTypeName(joint.type) + " " +
             model.bodies[joint.body_a].name + "-" + model.bodies[joint.body_b].name + ")");
   }
   for (int k = 0; k < model.num_bases(); ++k) {
     const MobileBase& base = model.mobile_bases[k];
-    add(std::make_unique<OmniBasePlanarCost>(), {base.body}, -1, base.name + " (planar)");
-    add(std::make_unique<OmniBaseMotorCost>(), {base.body}, k, base.name + " (motor)");
+    add(std::make_unique<OmniBasePlanarCost>(), {base.body}, -1, 0, base.name + " (planar)");
+    add(std::make_unique<OmniBaseMotorCost>(), {base.body}, kBaseControlSize * k, kBaseControlSize,
+        base.name + " (motor)");
   }
 }
 
@@ -101,13 +103,14 @@ void ConstraintSet::Evaluate(const State& s, const Eigen::VectorXd& u, Eigen::Ve
   if (J_u != nullptr && (J_u->rows() != num_rows_ || J_u->cols() != num_controls_)) {
     J_u->setZero(num_rows_, num_controls_);
   }
-  // Scratch for one block: at most 9 rows x 7 columns per parameter block.
-  double jac_storage[3][9 * 7];
+  // Scratch for one block: at most kMaxRows rows x 7 columns per parameter block.
+  constexpr int kMaxRows = 9;
+  double jac_storage[3][kMaxRows * kPoseAmbientSize];
   std::vector<const double*> params;
   for (const ConstraintBlock& block : blocks_) {
     params.clear();
     for (int body : block.bodies) params.push_back(s.pose(body));
-    if (block.base >= 0) params.push_back(u.data() + 3 * block.base);
+    if (block.control_size > 0) params.push_back(u.data() + block.control_offset);
     double* jacobians[3] = {jac_storage[0], jac_storage[1], jac_storage[2]};
     const bool want_jacobians = J_s != nullptr || J_u != nullptr;
     block.cost->Evaluate(params.data(), C->data() + block.row,
@@ -115,15 +118,15 @@ void ConstraintSet::Evaluate(const State& s, const Eigen::VectorXd& u, Eigen::Ve
     if (!want_jacobians) continue;
     for (size_t p = 0; p < block.bodies.size(); ++p) {
       if (J_s == nullptr) break;
-      const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 7, Eigen::RowMajor>> J(
-          jac_storage[p], block.rows, 7);
-      J_s->block(block.row, kPoseTangentSize * block.bodies[p], block.rows, 6) =
-          J.leftCols<6>();
+      const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, kPoseAmbientSize, Eigen::RowMajor>> J(
+          jac_storage[p], block.rows, kPoseAmbientSize);
+      J_s->block(block.row, kPoseTangentSize * block.bodies[p], block.rows, kPoseTangentSize) =
+          J.leftCols<kPoseTangentSize>();
     }
-    if (block.base >= 0 && J_u != nullptr) {
-      const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>> J(
-          jac_storage[block.bodies.size()], block.rows, 3);
-      J_u->block(block.row, 3 * block.base, block.rows, 3) = J;
+    if (block.control_size > 0 && J_u != nullptr) {
+      using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+      J_u->block(block.row, block.control_offset, block.rows, block.control_size) =
+          Eigen::Map<const RowMajor>(jac_storage[block.bodies.size()], block.rows, block.control_size);
     }
   }
 }
@@ -149,15 +152,15 @@ void ConstraintSet::EvaluateDerivatives(const State& s, const Eigen::VectorXd& u
         const auto J_b = out->J_s.block(block.row, 6 * block.bodies[b], rows, 6);
         out->H.block<6, 6>(6 * block.bodies[a], 6 * block.bodies[b]).noalias() += J_a.transpose() * J_b;
       }
-      if (block.base >= 0) {
-        out->dG_du.block(6 * block.bodies[a], 3 * block.base, 6, 3).noalias() +=
-            J_a.transpose() * out->J_u.block(block.row, 3 * block.base, rows, 3);
+      if (block.control_size > 0) {
+        out->dG_du.block(6 * block.bodies[a], block.control_offset, 6, block.control_size).noalias() +=
+            J_a.transpose() * out->J_u.block(block.row, block.control_offset, rows, block.control_size);
       }
     }
     // sum_i C_i Hess(C_i).
     params.clear();
     for (int body : block.bodies) params.push_back(s.pose(body));
-    if (block.base >= 0) params.push_back(u.data() + 3 * block.base);
+    if (block.control_size > 0) params.push_back(u.data() + block.control_offset);
     local.setZero();
     block.second_order->AddWeightedHessian(params.data(), out->C.data() + block.row,
                                            local.topLeftCorner(6 * poses, 6 * poses));

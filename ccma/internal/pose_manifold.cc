@@ -1,4 +1,4 @@
-#include "ccma/pose_manifold.h"
+#include "ccma/internal/pose_manifold.h"
 
 #include <algorithm>
 

@@ -6,8 +6,8 @@
 // dE_r/du = dE/du at s_hat (the dE/ds term vanishes there).
 // One sparse LDLT factorisation of dG/ds (block-sparse: a constraint couples
 // at most two bodies) serves every right-hand side.
-#ifndef CCMA_PROBLEMS_SENSITIVITY_H_
-#define CCMA_PROBLEMS_SENSITIVITY_H_
+#ifndef CCMA_PROBLEMS_INTERNAL_SENSITIVITY_H_
+#define CCMA_PROBLEMS_INTERNAL_SENSITIVITY_H_
 
 #include <memory>
 #include <vector>
@@ -15,7 +15,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCholesky>
 
-#include "ccma/constraint_set.h"
+#include "ccma/internal/constraint_set.h"
 #include "ccma/model.h"
 #include "ccma/state.h"
 
@@ -90,4 +90,4 @@ class Sensitivity {
 
 }  // namespace ccma
 
-#endif  // CCMA_PROBLEMS_SENSITIVITY_H_
+#endif  // CCMA_PROBLEMS_INTERNAL_SENSITIVITY_H_

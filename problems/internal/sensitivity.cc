@@ -1,4 +1,4 @@
-#include "problems/sensitivity.h"
+#include "problems/internal/sensitivity.h"
 
 namespace ccma {
 

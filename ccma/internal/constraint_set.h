@@ -4,8 +4,8 @@
 // Row layout of C: the blocks in `blocks()` order (joints in file order, then
 // per base its planar and motor rows); block b starts at blocks()[b].row.
 // The cost functions are owned here and shared with Ceres problems.
-#ifndef CCMA_CONSTRAINT_SET_H_
-#define CCMA_CONSTRAINT_SET_H_
+#ifndef CCMA_INTERNAL_CONSTRAINT_SET_H_
+#define CCMA_INTERNAL_CONSTRAINT_SET_H_
 
 #include <memory>
 #include <string>
@@ -25,22 +25,25 @@ struct ConstraintBlock {
   std::unique_ptr<ceres::CostFunction> cost;
   const ResidualHessian* second_order = nullptr;  // the same object
   std::vector<int> bodies;  // pose blocks it reads, in parameter order
-  int base = -1;            // >= 0: it also reads that base's control block
+  // The control block it reads, if any: u[control_offset .. + control_size)
+  // (a mobile base's motor rows read its kBaseControlSize controls).
+  int control_offset = -1;
+  int control_size = 0;
   int row = 0;              // first row in C
   int rows = 0;
   std::string label;        // e.g. "joints[3] (revolute base0-post0)"
 };
 
 // E = 1/2 C^T C and its derivatives at (s, u), over the state tangent (n =
-// 6 per body, state.h) and all controls (3 per base).
+// 6 per body, state.h) and all controls (model.h).
 struct EnergyDerivatives {
   Eigen::VectorXd C;      // constraints (m)
   Eigen::MatrixXd J_s;    // dC/ds (m x n)
-  Eigen::MatrixXd J_u;    // dC/du (m x 3 n_bases)
+  Eigen::MatrixXd J_u;    // dC/du (m x num_controls)
   Eigen::VectorXd G;      // dE/ds = J_s^T C (n)
   Eigen::MatrixXd H;      // d2E/ds2 = J_s^T J_s + sum_i C_i Hess(C_i) (n x n), exact
-  Eigen::MatrixXd dG_du;  // d2E/ds du = J_s^T J_u (n x 3 n_bases), exact
-  Eigen::VectorXd dE_du;  // dE/du = J_u^T C (3 n_bases)
+  Eigen::MatrixXd dG_du;  // d2E/ds du = J_s^T J_u (n x num_controls), exact
+  Eigen::VectorXd dE_du;  // dE/du = J_u^T C (num_controls)
   double energy = 0;
 };
 
@@ -55,7 +58,7 @@ class ConstraintSet {
 
   // C(s, u) into `C` (size num_rows()); and, where not null, the dense
   // Jacobians J_s = dC/ds (num_rows x 6 n_bodies, tangent, see state.h) and
-  // J_u = dC/du (num_rows x 3 n_bases). u: 3 per base [m, m, rad].
+  // J_u = dC/du (num_rows x num_controls). u: the model's controls (model.h).
   void Evaluate(const State& s, const Eigen::VectorXd& u, Eigen::VectorXd* C,
                 Eigen::MatrixXd* J_s = nullptr, Eigen::MatrixXd* J_u = nullptr) const;
 
@@ -80,4 +83,4 @@ class ConstraintSet {
 
 }  // namespace ccma
 
-#endif  // CCMA_CONSTRAINT_SET_H_
+#endif  // CCMA_INTERNAL_CONSTRAINT_SET_H_

@@ -1,4 +1,4 @@
-#include "problems/end_effector_error.h"
+#include "problems/internal/end_effector_error.h"
 
 #include <cmath>
 

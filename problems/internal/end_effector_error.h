@@ -5,23 +5,18 @@
 // all controlled, the rotation vector Log(R_EE R*^T) (valid at any
 // orientation); otherwise the listed [roll, pitch, yaw] differences, wrapped
 // to (-pi, pi] (their Jacobian is singular only at pitch = +-90 degrees).
-#ifndef CCMA_PROBLEMS_END_EFFECTOR_ERROR_H_
-#define CCMA_PROBLEMS_END_EFFECTOR_ERROR_H_
+#ifndef CCMA_PROBLEMS_INTERNAL_END_EFFECTOR_ERROR_H_
+#define CCMA_PROBLEMS_INTERNAL_END_EFFECTOR_ERROR_H_
 
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "ccma/end_effector.h"
 #include "ccma/model.h"
 #include "ccma/state.h"
 
 namespace ccma {
-
-// A target pose: position [m] and R* = RotationFromRpy(rpy) [rad].
-struct PoseTarget {
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();
-  Eigen::Vector3d rpy = Eigen::Vector3d::Zero();
-};
 
 class EndEffectorError {
  public:
@@ -41,4 +36,4 @@ class EndEffectorError {
 
 }  // namespace ccma
 
-#endif  // CCMA_PROBLEMS_END_EFFECTOR_ERROR_H_
+#endif  // CCMA_PROBLEMS_INTERNAL_END_EFFECTOR_ERROR_H_

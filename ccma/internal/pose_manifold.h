@@ -9,8 +9,8 @@
 // PlusJacobian is therefore [I6; 0], so Ceres' product J * PlusJacobian is the
 // tangent Jacobian itself, at no cost. Only ccma's cost functions may be used
 // on blocks carrying this manifold.
-#ifndef CCMA_POSE_MANIFOLD_H_
-#define CCMA_POSE_MANIFOLD_H_
+#ifndef CCMA_INTERNAL_POSE_MANIFOLD_H_
+#define CCMA_INTERNAL_POSE_MANIFOLD_H_
 
 #include <ceres/manifold.h>
 
@@ -31,4 +31,4 @@ class PoseManifold final : public ceres::Manifold {
 
 }  // namespace ccma
 
-#endif  // CCMA_POSE_MANIFOLD_H_
+#endif  // CCMA_INTERNAL_POSE_MANIFOLD_H_

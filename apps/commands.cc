@@ -1,0 +1,179 @@
+#include "apps/commands.h"
+
+#include <iostream>
+#include <sstream>
+#include <stdexcept>
+
+#include <ceres/version.h>
+#include <gflags/gflags.h>
+
+#include "apps/cli.h"
+#include "apps/flags.h"
+#include "ccma/internal/format.h"
+
+namespace ccma::cli {
+namespace {
+
+const std::vector<std::string> kControlFlags = {"method", "max_step_m", "max_step_rad", "lambda"};
+
+std::vector<std::string> Concat(std::vector<std::string> a, const std::vector<std::string>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+}  // namespace
+
+const std::vector<Command>& Commands() {
+  static const std::vector<Command> commands = {
+      {"check", "ccma check --model=FILE",
+       "Validates the model and analyses it at home: counts, constraint rows, the numerical mobility\n"
+       "(rank of dC/ds with the controls fixed, end-effector DOF when the controls move) and whether\n"
+       "the home configuration is assembled. Warns on stderr when the mechanism is not rigid with its\n"
+       "controls fixed or not assembled at home.",
+       {"model"}, RunCheck},
+      {"simulate", "ccma simulate --model=FILE [--controls=u0,u1,...] [--from=RESULT.json]",
+       "Forward problem: assembles the mechanism for the controls, walking them from the start in\n"
+       "sub-steps (2 cm / 0.02 rad) so that it stays on the assembly branch it starts on. The start is\n"
+       "home, or the configuration and controls in a JSON document printed by `ccma simulate` or\n"
+       "`ccma control` (--from; then --controls defaults to that document's controls, so the result is\n"
+       "reproduced exactly). Warns on stderr when not assembled, not converged or a branch jump.",
+       {"model", "controls", "from"}, RunSimulate},
+      {"control",
+       "ccma control --model=FILE --target=x,y,z,roll,pitch,yaw [--controls=...] [--method=lm|bfgs]\n"
+       "             [--max_step_m=0.01] [--max_step_rad=0.005] [--lambda=0.5]",
+       "Kinematic control: finds controls that put the end-effector at the target, walking there in\n"
+       "small end-effector steps from the start controls (home, or --controls). --target takes all six\n"
+       "components, or only the model's controlled ones in the order x y z roll pitch yaw. Warns on\n"
+       "stderr when the target is not reached, and when the returned controls, simulated from home\n"
+       "(`ccma simulate --controls=...`), land on another assembly branch (reproduce the result with\n"
+       "`ccma simulate --from=<this JSON>`).",
+       Concat({"model", "target", "controls"}, kControlFlags), RunControl},
+      {"trajectory",
+       "ccma trajectory --model=FILE --waypoints=FILE.csv --out=FILE.csv [--controls=...] [control flags]",
+       "Follows end-effector waypoints (docs/waypoints.md) in small control steps and writes one CSV row\n"
+       "per step (header names carry units). Stops at the first waypoint it cannot reach and warns.",
+       Concat({"model", "waypoints", "out", "controls"}, kControlFlags), RunTrajectory},
+      {"generate", "ccma generate --agents=N --out=FILE.yaml",
+       "Writes a Stewart-like model with N mobile bases (the family of 6dof_six_agents), validated\n"
+       "before it is written.",
+       {"agents", "out"}, RunGenerate},
+      {"bench", "ccma bench --model=FILE | --all [--models_dir=DIR] | --scaling  [--steps=N] [--seed=1] [--out=DIR]",
+       "The paper's convergence study: seeded paper-size control steps (10 mm + 0.005 rad) solved by LM\n"
+       "and BFGS with implicit-function and finite-difference gradients, the warm forward solve and the\n"
+       "Jacobians, all in one run; medians and p95. --out writes per-step CSVs, tables and plots.",
+       {"model", "all", "models_dir", "scaling", "steps", "seed", "out"}, RunBench},
+      {"replay",
+       "ccma replay --model=FILE --waypoints=FILE.csv --out=DIR [--noise=default|none] [--seed=1]\n"
+       "            [noise, tracking and control flags]",
+       "The paper's closed loop, simulated: the control solution of every path step is fed to the bases,\n"
+       "each base tracks it with a PI controller from simulated motion capture, and the chain follows\n"
+       "by forward simulation. Writes CSVs, an RMSE table and plots into DIR (SIMULATION, not hardware).\n"
+       "Warns on stderr when the plan did not converge or the chain was torn.",
+       Concat({"model", "waypoints", "out", "controls", "noise", "seed", "mocap_noise_m", "mocap_noise_rad",
+               "latency_s", "slip", "kp", "ki", "controller_hz", "max_wheel_speed"},
+              kControlFlags),
+       RunReplay},
+  };
+  return commands;
+}
+
+const Command& CommandNamed(const std::string& name) {
+  for (const Command& command : Commands()) {
+    if (command.name == name) return command;
+  }
+  throw std::logic_error("no command '" + name + "'");
+}
+
+void ParseCommandFlags(const std::vector<std::string>& args, const std::string& command) {
+  const Command& entry = CommandNamed(command);
+  ParseFlags(args, std::set<std::string>(entry.flags.begin(), entry.flags.end()), command);
+}
+
+std::string CommandHelp(const Command& command) {
+  std::ostringstream os;
+  os << "usage: " << command.synopsis << "\n\n" << command.description << "\n\nflags:\n";
+  for (const std::string& name : command.flags) {
+    gflags::CommandLineFlagInfo info;
+    if (!gflags::GetCommandLineFlagInfo(name.c_str(), &info)) continue;
+    const std::string value = info.type == "bool" ? "" : "=" + std::string(info.type == "string" ? "TEXT" : info.type == "double" ? "NUMBER" : "INTEGER");
+    os << "  --" << name << value << "\n      " << info.description;
+    // -1: "not given" (the description says what applies then).
+    if (!info.default_value.empty() && info.default_value != "0" && info.default_value != "false" &&
+        info.default_value != "-1") {
+      os << " (default: " << (info.type == "double" ? FormatG(std::stod(info.default_value)) : info.default_value)
+         << ")";
+    }
+    os << "\n";
+  }
+  os << "\nResults: one JSON document on stdout; diagnostics and warnings on stderr.\n"
+        "Exit status: 0 ran (the JSON may still say it failed), 1 failure, 2 bad usage or bad input\n"
+        "(a message on stderr, nothing on stdout). Reference: docs/cli.md.\n";
+  return os.str();
+}
+
+std::string GlobalHelp() {
+  std::ostringstream os;
+  os << "ccma: simulation and kinematic control of Constrained Collaborative Mobile Agents\n\ncommands:\n";
+  for (const Command& command : Commands()) os << "  " << command.synopsis << "\n";
+  os << "\n`ccma COMMAND --help` describes a command and its flags (with units and defaults);\n"
+        "`ccma --version` prints the version. Results are one JSON document on stdout; diagnostics\n"
+        "go to stderr. Exit status: 0 ok, 1 failure, 2 bad usage or bad input. Reference: docs/cli.md.\n";
+  return os.str();
+}
+
+std::string VersionLine() {
+  return std::string("ccma ") + CCMA_VERSION + " (" + CCMA_BUILD_TYPE + "; Ceres " + CERES_VERSION_STRING +
+         ", Eigen " + std::to_string(EIGEN_WORLD_VERSION) + "." + std::to_string(EIGEN_MAJOR_VERSION) + "." +
+         std::to_string(EIGEN_MINOR_VERSION) + ")";
+}
+
+Model LoadModelOrThrow(const std::string& path) {
+  std::vector<std::string> warnings;
+  Model model = LoadModel(path, &warnings);
+  for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
+  return model;
+}
+
+std::vector<Waypoint> WaypointsFlag(const std::string& command) {
+  try {
+    return LoadWaypoints(RequireFlag(FLAGS_waypoints, "waypoints", command));
+  } catch (const WaypointError& e) {
+    throw UsageError("ccma " + command + ": " + e.what());
+  }
+}
+
+Eigen::VectorXd ControlsFlagOrHome(const Model& model) {
+  if (FLAGS_controls.empty()) return model.home_controls();
+  const Eigen::VectorXd u = ParseNumberList(FLAGS_controls, "controls");
+  if (u.size() != model.num_controls()) {
+    throw UsageError("--controls: model '" + model.name + "' has " + std::to_string(model.num_bases()) +
+                     " mobile bases, so " + std::to_string(model.num_controls()) + " controls; got " +
+                     std::to_string(u.size()));
+  }
+  for (int i = 0; i < u.size(); ++i) {
+    if (std::abs(u[i]) > kMaxMagnitude) {
+      throw UsageError("--controls: entry " + std::to_string(i) + " (" + FormatG(u[i]) + ") must lie in [-" +
+                       FormatG(kMaxMagnitude) + ", " + FormatG(kMaxMagnitude) + "] (m or rad)");
+    }
+  }
+  return u;
+}
+
+ControlOptions ControlOptionsFromFlags() {
+  ControlOptions options;
+  if (FLAGS_method == "lm") {
+    options.method = ControlMethod::kLevenbergMarquardt;
+  } else if (FLAGS_method == "bfgs") {
+    options.method = ControlMethod::kBfgs;
+  } else {
+    throw UsageError("--method: '" + FLAGS_method + "' is not lm or bfgs");
+  }
+  options.max_step_m = FLAGS_max_step_m;
+  options.max_step_rad = FLAGS_max_step_rad;
+  options.lambda = FLAGS_lambda;
+  std::string why;
+  if (!options.IsValid(&why)) throw UsageError("control options: --" + why);
+  return options;
+}
+
+}  // namespace ccma::cli

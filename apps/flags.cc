@@ -1,0 +1,13 @@
+#include "apps/flags.h"
+
+DEFINE_string(model, "", "model file, YAML or JSON (docs/model_format.md) [path]");
+DEFINE_string(controls, "",
+              "comma-separated controls, 3 per mobile base in file order: x [m], y [m], theta [rad] "
+              "(default: the model's home controls)");
+DEFINE_string(waypoints, "", "waypoint CSV: time,x,y,z,roll,pitch,yaw (docs/waypoints.md) [path]");
+DEFINE_string(out, "", "output file or folder (see the command) [path]");
+DEFINE_int32(seed, 1, "seed of every random draw [integer >= 0]");
+DEFINE_string(method, "lm", "control outer loop: lm (Levenberg-Marquardt) or bfgs (the paper's) [lm|bfgs]");
+DEFINE_double(max_step_m, 0.010, "path step: end-effector translation per control step, 1e-6..1000 [m]");
+DEFINE_double(max_step_rad, 0.005, "path step: end-effector rotation per control step, 1e-6..10 [rad]");
+DEFINE_double(lambda, 0.5, "weight of the residual energy in the control objective, 0 < lambda < 1 [1]");

@@ -1,0 +1,20 @@
+// The flags that several `ccma` sub-commands share, declared here once (and
+// defined in flags.cc): a command file that uses one of them includes this
+// header. Flags that only one command uses are defined in that command's file.
+// Every description ends with the unit, so `ccma SUB --help` shows it.
+#ifndef CCMA_APPS_FLAGS_H_
+#define CCMA_APPS_FLAGS_H_
+
+#include <gflags/gflags.h>
+
+DECLARE_string(model);       // check simulate control trajectory bench replay view
+DECLARE_string(controls);    // simulate control trajectory replay
+DECLARE_string(waypoints);   // trajectory replay
+DECLARE_string(out);         // trajectory generate bench replay
+DECLARE_int32(seed);         // bench replay
+DECLARE_string(method);      // control trajectory replay
+DECLARE_double(max_step_m);  // control trajectory replay
+DECLARE_double(max_step_rad);
+DECLARE_double(lambda);
+
+#endif  // CCMA_APPS_FLAGS_H_
