@@ -1,30 +1,50 @@
 #!/usr/bin/env bash
-# Sets up, builds and runs ccma's main jobs on the bundled reference models:
-# `ccma check` (counts and numerical mobility), `ccma simulate` (assembly),
-# `ccma control` (bases that put the end-effector 3 cm and 0.05 rad away),
-# `ccma trajectory` on the paper's two 4-DOF paths, and `ccma replay` of the first
-# (simulated base driving; CSV and plots in build/demo/).
+# Sets up, builds and runs ccma's main jobs on the bundled models, then says
+# what ran and where every output is:
+#   check and simulate (assembly) of every model in models/, control of each to
+#   a target 3 cm and 0.05 rad away, the paper's two 4-DOF paths with
+#   trajectory, and a simulated replay of the first with plots.
 #   scripts/demo.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
 ccma=build/apps/ccma
-mkdir -p build/demo
+out=build/demo
+mkdir -p "$out"
+summary=()
+
+# The value of a top-level JSON key (true/false/number) in a file.
+key() { sed -n "s/^  \"$2\": \([^,]*\),\{0,1\}$/\1/p" "$1" | head -n 1; }
+
 for model in models/*.yaml; do
-  echo "== $ccma check --model=$model"
-  $ccma check --model="$model"
-  echo "== $ccma simulate --model=$model"
-  $ccma simulate --model="$model"
-  echo "== $ccma control --model=$model --target=0.03,-0.02,0.62,0,0,0.05"
-  $ccma control --model="$model" --target=0.03,-0.02,0.62,0,0,0.05
+  name=$(basename "$model" .yaml)
+  echo "demo: $name: check, simulate, control"
+  $ccma check --model="$model" > "$out/${name}_check.json"
+  $ccma simulate --model="$model" > "$out/${name}_simulate.json"
+  $ccma control --model="$model" --target=0.03,-0.02,0.62,0,0,0.05 > "$out/${name}_control.json"
+  summary+=("$(printf '%-16s rigid %-5s  assembled at home %-5s  control converged %-5s in %s ms' "$name" \
+    "$(key "$out/${name}_check.json" rigid_with_controls_fixed)" "$(key "$out/${name}_simulate.json" assembled)" \
+    "$(key "$out/${name}_control.json" converged)" "$(key "$out/${name}_control.json" solve_time_ms | cut -c1-6)")")
 done
 for model in 4dof_reduced 4dof_complete; do
   for path in 4dof_sequential 4dof_combined; do
-    echo "== $ccma trajectory --model=models/$model.yaml --waypoints=models/paths/$path.csv --out=build/demo/${model}_$path.csv"
+    echo "demo: trajectory $model on $path"
     $ccma trajectory --model=models/$model.yaml --waypoints=models/paths/$path.csv \
-      --out=build/demo/${model}_$path.csv
+      --out=$out/${model}_$path.csv > "$out/${model}_${path}_trajectory.json"
+    summary+=("$(printf 'trajectory %-14s %-16s converged %-5s %s steps' "$model" "$path" \
+      "$(key "$out/${model}_${path}_trajectory.json" converged)" "$(key "$out/${model}_${path}_trajectory.json" steps)")")
   done
 done
-echo "== $ccma replay --model=models/4dof_reduced.yaml --waypoints=models/paths/4dof_sequential.csv --out=build/demo/replay"
+echo "demo: replay of 4dof_reduced on 4dof_sequential (simulated bases, about 10 s)"
 $ccma replay --model=models/4dof_reduced.yaml --waypoints=models/paths/4dof_sequential.csv \
-  --out=build/demo/replay
+  --out=$out/replay > "$out/replay.json" 2> "$out/replay.log"
+
+echo
+echo "demo: done. What ran (every JSON result is in $out/):"
+printf '  %s\n' "${summary[@]}"
+echo "  replay: converged $(key "$out/replay.json" converged), torn $(key "$out/replay.json" torn); RMSE table $out/replay/rmse.md"
+echo "Outputs:"
+echo "  $out/*_check.json, *_simulate.json, *_control.json   per model"
+echo "  $out/4dof_*_4dof_*.csv                                 trajectory rows (one per control step)"
+echo "  $out/replay/end_effector.png, bases_xy.png (+ .svg)    replay plots; CSVs beside them"
+echo "Next: build/apps/ccma --help, docs/README.md"

@@ -1,0 +1,267 @@
+// Hostile input and loud failures, as a user or an attacker meets them through
+// the `ccma` tool: every finding of the hardening issue reproduced and shown
+// fixed (exit 2 with a message and nothing on stdout; warnings on stderr; no
+// null or NaN printed; output files that never replace links or devices).
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct ToolRun {
+  int status = -1;  // exit status, or -1 if killed
+  std::string out, err;
+  double seconds = 0;
+};
+
+std::string Slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// Runs the tool with an argument vector (no shell), killed after `timeout_s`.
+ToolRun Ccma(const std::vector<std::string>& args, int timeout_s = 60) {
+  const std::string dir = ::testing::TempDir();
+  const std::string tag = std::to_string(getpid());
+  const std::string out = dir + "/hostile_out_" + tag, err = dir + "/hostile_err_" + tag;
+  const auto start = std::chrono::steady_clock::now();
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int o = open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    const int e = open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    dup2(o, 1);
+    dup2(e, 2);
+    alarm(static_cast<unsigned>(timeout_s));  // SIGALRM ends a hang
+    std::vector<char*> argv = {const_cast<char*>(CCMA_TOOL_PATH)};
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execv(CCMA_TOOL_PATH, argv.data());
+    _exit(127);
+  }
+  int raw = 0;
+  waitpid(pid, &raw, 0);
+  ToolRun r;
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  r.out = Slurp(out);
+  r.err = Slurp(err);
+  return r;
+}
+
+std::string ModelFlag(const std::string& name) {
+  return std::string("--model=") + CCMA_MODELS_DIR + "/" + name + ".yaml";
+}
+
+std::string Scratch(const std::string& name) {
+  const std::string dir = ::testing::TempDir() + "/hostile_" + std::to_string(getpid());
+  fs::create_directories(dir);
+  return dir + "/" + name;
+}
+
+// Bad input: exit 2, a message on stderr that mentions `what`, nothing on stdout.
+void ExpectRefused(const ToolRun& r, const std::string& what) {
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(r.out, "");
+  EXPECT_NE(r.err.find(what), std::string::npos) << r.err;
+}
+
+// A JSON result that never prints null or NaN as a number.
+nlohmann::json ParseClean(const ToolRun& r) {
+  EXPECT_EQ(r.out.find("null"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("nan"), std::string::npos) << r.out;
+  return nlohmann::json::parse(r.out);
+}
+
+const std::string kNineZeros = "0,0,0,0,0,0,0,0,0";
+
+TEST(HostileNumbers, HugeControlsAreRefused) {
+  for (const std::string big : {"1e9", "1e308", "-3e4"}) {
+    ExpectRefused(Ccma({"simulate", ModelFlag("4dof_reduced"), "--controls=" + big + ",0,0,0,0,0,0,0,0"}),
+                  "--controls");
+    ExpectRefused(Ccma({"control", ModelFlag("4dof_reduced"), "--target=0,0,0.6,0,0,0",
+                        "--controls=" + big + ",0,0,0,0,0,0,0,0"}),
+                  "--controls");
+  }
+}
+
+TEST(HostileNumbers, HugeTargetsAreRefused) {
+  for (const std::string big : {"1e9", "1e308"}) {
+    ExpectRefused(Ccma({"control", ModelFlag("4dof_reduced"), "--target=" + big + ",0,0.6,0,0,0"}), "--target");
+  }
+}
+
+TEST(HostileNumbers, TinyOrEndlessStepsAreRefused) {
+  ExpectRefused(Ccma({"control", ModelFlag("4dof_reduced"), "--target=0.1,0,0.6,0,0,0", "--max_step_m=1e-300"}),
+                "max_step_m");
+  // Allowed step, but a path of more than a million steps: refused up front.
+  const ToolRun r = Ccma({"control", ModelFlag("4dof_reduced"), "--target=9000,0,0.6,0,0,0", "--max_step_m=1e-6"});
+  ExpectRefused(r, "steps");
+  EXPECT_LT(r.seconds, 10);
+}
+
+TEST(HostileFiles, DevZeroAsModelIsRefusedAtOnce) {
+  const ToolRun r = Ccma({"check", "--model=/dev/zero"}, 20);
+  ExpectRefused(r, "not a regular file");
+  EXPECT_LT(r.seconds, 5);
+}
+
+TEST(HostileFiles, AQuoteInANameIsRefusedBeforeAnythingRuns) {
+  std::string text = Slurp(std::string(CCMA_MODELS_DIR) + "/4dof_reduced.yaml");
+  const std::string from = "name: base0,";
+  text.replace(text.find(from), from.size(), "name: \"b0'.system('touch X').'\",");
+  const std::string model = Scratch("quoted.yaml");
+  std::ofstream(model) << text;
+  const ToolRun r = Ccma({"check", "--model=" + model});
+  ExpectRefused(r, "must be 1-64 characters from [A-Za-z0-9_-]");
+}
+
+TEST(OutputFiles, ASymlinkStaysALinkAndItsTargetGetsTheCsv) {
+  const std::string target = Scratch("target.csv"), link = Scratch("link.csv");
+  std::ofstream(target) << "old\n";
+  fs::remove(link);
+  fs::create_symlink(target, link);
+  const ToolRun r = Ccma({"trajectory", ModelFlag("4dof_reduced"),
+                      std::string("--waypoints=") + CCMA_MODELS_DIR + "/paths/4dof_sequential.csv", "--out=" + link});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::is_symlink(link));
+  EXPECT_EQ(Slurp(target).rfind("time_s,target_x_m,", 0), 0u);
+  EXPECT_FALSE(fs::exists(target + ".partial." + std::to_string(getpid())));
+}
+
+TEST(OutputFiles, ADeviceIsWrittenInPlaceNeverReplaced) {
+  const ToolRun r = Ccma({"trajectory", ModelFlag("4dof_reduced"),
+                      std::string("--waypoints=") + CCMA_MODELS_DIR + "/paths/4dof_sequential.csv", "--out=/dev/null"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  struct stat st {};
+  ASSERT_EQ(stat("/dev/null", &st), 0);
+  EXPECT_TRUE(S_ISCHR(st.st_mode));
+}
+
+TEST(OutputFiles, ADirectoryIsRefused) {
+  const std::string dir = Scratch("a_directory");
+  fs::create_directories(dir);
+  ExpectRefused(Ccma({"trajectory", ModelFlag("4dof_reduced"),
+                      std::string("--waypoints=") + CCMA_MODELS_DIR + "/paths/4dof_sequential.csv", "--out=" + dir}),
+                "is a directory");
+  ExpectRefused(Ccma({"generate", "--agents=6", "--out=" + dir}), "is a directory");
+}
+
+TEST(OutputFiles, TrajectoryHeadersCarryUnits) {
+  const std::string csv = Scratch("units.csv");
+  ASSERT_EQ(Ccma({"trajectory", ModelFlag("4dof_reduced"),
+                  std::string("--waypoints=") + CCMA_MODELS_DIR + "/paths/4dof_combined.csv", "--out=" + csv})
+                .status,
+            0);
+  const std::string header = Slurp(csv).substr(0, Slurp(csv).find('\n'));
+  std::stringstream columns(header);
+  for (std::string column; std::getline(columns, column, ',');) {
+    const bool has_unit = column.size() > 2 &&
+                          (column.rfind("_s") == column.size() - 2 || column.rfind("_m") == column.size() - 2 ||
+                           column.rfind("_rad") == column.size() - 4 || column.rfind("_m2") == column.size() - 3 ||
+                           column.rfind("_ms") == column.size() - 3 || column == "iterations" ||
+                           column == "reached" || column == "error_m_or_rad");
+    EXPECT_TRUE(has_unit) << column;
+  }
+}
+
+TEST(LoudFailures, CheckWarnsWhenTheMechanismIsNotRigid) {
+  // Spherical joints at both ends of the legs: every leg spins about itself.
+  std::string text = Slurp(std::string(CCMA_MODELS_DIR) + "/6dof_six_agents.yaml");
+  size_t at = 0;
+  int replaced = 0;
+  while ((at = text.find("type: revolute", at)) != std::string::npos) {
+    const size_t line_end = text.find('\n', at);
+    if (text.substr(at, line_end - at).find("axis: [0, 0, 1]") == std::string::npos) {
+      text.replace(at, 14, "type: spherical");
+      ++replaced;
+    }
+    at += 14;
+  }
+  ASSERT_GT(replaced, 0);
+  const std::string model = Scratch("floppy.yaml");
+  std::ofstream(model) << text;
+  const ToolRun r = Ccma({"check", "--model=" + model});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json j = ParseClean(r);
+  EXPECT_EQ(j["rigid_with_controls_fixed"], false);
+  EXPECT_NE(r.err.find("ccma check: warning: not rigid with its controls fixed"), std::string::npos) << r.err;
+}
+
+TEST(LoudFailures, SimulateWarnsWhenItCannotAssembleWithNumbersInPercentG) {
+  // One base of an over-actuated system moved alone: unreachable.
+  const ToolRun r = Ccma({"simulate", ModelFlag("4dof_reduced"),
+                      "--controls=0.05,0.583012702,1.570796327,-0.504903811,-0.291506351,-2.617993878,0.504903811,"
+                      "-0.291506351,-0.523598776"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json j = ParseClean(r);
+  EXPECT_EQ(j["assembled"], false);
+  EXPECT_NE(r.err.find("ccma simulate: warning: not assembled: residual energy "), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("0.000000"), std::string::npos) << r.err;
+}
+
+TEST(LoudFailures, AnUnreachableControlTargetWarnsWithPercentG) {
+  const ToolRun r = Ccma({"control", ModelFlag("4dof_reduced"), "--target=0,0,0.95,0,0,0"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json j = ParseClean(r);
+  EXPECT_EQ(j["converged"], false);
+  EXPECT_NE(r.err.find("ccma control: warning: path step"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("0.000000"), std::string::npos) << r.err;
+}
+
+// 4dof_reduced turned half a turn: the controls that control finds assemble
+// on another branch when simulated from home. Control says so, and simulate
+// --from reproduces its configuration exactly.
+TEST(Branches, ControlWarnsAndSimulateFromReproduces) {
+  const ToolRun c = Ccma({"control", ModelFlag("4dof_reduced"), "--target=0,0,0.6,0,0,3.14159"});
+  ASSERT_EQ(c.status, 0) << c.err;
+  const nlohmann::json control = ParseClean(c);
+  EXPECT_EQ(control["converged"], true);
+  EXPECT_EQ(control["from_home"]["reproducible"], false);
+  EXPECT_GT(control["from_home"]["end_effector_distance_m"].get<double>(), 0.1);
+  EXPECT_NE(c.err.find("assemble to another configuration"), std::string::npos) << c.err;
+
+  const std::string saved = Scratch("control.json");
+  std::ofstream(saved) << c.out;
+  const ToolRun s = Ccma({"simulate", ModelFlag("4dof_reduced"), "--from=" + saved});
+  ASSERT_EQ(s.status, 0) << s.err;
+  const nlohmann::json simulated = ParseClean(s);
+  EXPECT_EQ(simulated["assembled"], true);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(simulated["end_effector"]["position"][i].get<double>(),
+                control["end_effector"]["position"][i].get<double>(), 1e-12);
+  }
+  // From home instead, the same controls report the jump on stderr.
+  std::string controls;
+  for (const auto& v : control["controls"]) controls += (controls.empty() ? "" : ",") + nlohmann::json(v).dump();
+  const ToolRun h = Ccma({"simulate", ModelFlag("4dof_reduced"), "--controls=" + controls});
+  ASSERT_EQ(h.status, 0) << h.err;
+  EXPECT_NE(h.err.find("ccma simulate: warning:"), std::string::npos) << h.err;
+}
+
+TEST(Targets, OnlyTheControlledComponentsMayBeGiven) {
+  const ToolRun r = Ccma({"control", ModelFlag("4dof_reduced"), "--target=0.01,-0.01,0.61,0.02"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json j = ParseClean(r);
+  EXPECT_EQ(j["converged"], true);
+  EXPECT_NEAR(j["end_effector"]["position"][2].get<double>(), 0.61, 1e-9);
+  EXPECT_NEAR(j["end_effector"]["rpy"][2].get<double>(), 0.02, 1e-9);
+  ExpectRefused(Ccma({"control", ModelFlag("4dof_reduced"), "--target=0.01,0.61,0.02"}), "x,y,z,yaw");
+}
+
+}  // namespace
