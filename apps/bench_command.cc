@@ -157,7 +157,7 @@ nlohmann::json JacobianTiming(const Model& model) {
     for (size_t b = 0; b < constraints.blocks().size(); ++b) {
       const ConstraintBlock& block = constraints.blocks()[b];
       params.clear();
-      for (int body : block.bodies) params.push_back(s.pose(body));
+      for (int body : block.bodies) params.push_back(ConstraintSet::Pose(s, body));
       if (block.control_size > 0) params.push_back(u.data() + block.control_offset);
       const ceres::CostFunction& cost = autodiff ? *twins[b] : *block.cost;
       cost.Evaluate(params.data(), residuals, jacobians);

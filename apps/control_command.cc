@@ -105,6 +105,8 @@ int RunControl(const std::vector<std::string>& args) {
   out["controls"] = ToJson(control.controls());
   out["end_effector"] = ToJson(control.forward().end_effector());
   out["bodies"] = BodiesToJson(model, control.forward().state());
+  out["joints"] = JointsToJson(model, control.forward().state());
+  out["limits_violated"] = LimitsViolatedToJson(model, control.forward().state());
   out["from_home"] = from_home;
   if (!result.warning.empty()) {
     out["warning"] = result.warning;

@@ -32,6 +32,22 @@ nlohmann::json BodiesToJson(const Model& model, const State& s) {
   return bodies;
 }
 
+nlohmann::json JointsToJson(const Model& model, const State& s) {
+  nlohmann::json joints = nlohmann::json::array();
+  for (const JointCoordinateReport& r : JointCoordinates(model, s)) {
+    const Joint& joint = model.joints[r.joint];
+    nlohmann::json entry = {{"name", joint.name}, {"type", JointTypeName(joint.type)}, {"q", r.q},
+                            {"actuated", joint.actuated}};
+    if (joint.limited) entry["limits"] = {joint.lower, joint.upper};
+    joints.push_back(entry);
+  }
+  return joints;
+}
+
+nlohmann::json LimitsViolatedToJson(const Model& model, const State& s) {
+  return nlohmann::json(LimitsViolated(model, s));
+}
+
 namespace {
 
 Eigen::VectorXd Numbers(const nlohmann::json& j, size_t count, const std::string& where) {

@@ -16,6 +16,12 @@ nlohmann::json ToJson(const EndEffectorPose& pose);
 // [w, x, y, z] (exact, for `simulate --from`).
 nlohmann::json BodiesToJson(const Model& model, const State& s);
 
+// [{"name", "type", "q", "actuated", "limits"?}] for every revolute and
+// prismatic joint in file order (q in rad or m; limits only when given).
+nlohmann::json JointsToJson(const Model& model, const State& s);
+// The names of the joints outside their limits (tolerance 1e-9).
+nlohmann::json LimitsViolatedToJson(const Model& model, const State& s);
+
 // The state in `document["bodies"]` (as BodiesToJson writes it; quaternion
 // preferred, else rpy), every body of the model by name. Throws UsageError
 // naming `source` and the offending key.

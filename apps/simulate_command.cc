@@ -51,6 +51,19 @@ Eigen::VectorXd StartFrom(const Model& model, const std::string& path, ForwardPr
   return u;
 }
 
+// An actuated joint's control outside its limits is bad input (exit 2).
+void CheckActuatedLimits(const Model& model, const Eigen::VectorXd& u) {
+  for (const Joint& joint : model.joints) {
+    if (!joint.actuated || !joint.limited) continue;
+    const double q = u[joint.control];
+    if (q < joint.lower || q > joint.upper) {
+      throw UsageError("--controls: entry " + std::to_string(joint.control) + " (" + FormatG(q) +
+                       ") drives joint '" + joint.name + "' outside its limits [" + FormatG(joint.lower) + ", " +
+                       FormatG(joint.upper) + "]");
+    }
+  }
+}
+
 void WarnOnFailure(const ForwardResult& result, nlohmann::json* out) {
   std::string warning;
   if (!result.assembled) {
@@ -80,6 +93,7 @@ int RunSimulate(const std::vector<std::string>& args) {
     const Eigen::VectorXd from_controls = StartFrom(model, FLAGS_from, &forward);
     if (FLAGS_controls.empty()) u = from_controls;
   }
+  CheckActuatedLimits(model, u);
   const ForwardResult result = forward.Assemble(u);
 
   nlohmann::json out;
@@ -96,8 +110,13 @@ int RunSimulate(const std::vector<std::string>& args) {
   out["controls"] = ToJson(u);
   out["end_effector"] = ToJson(forward.end_effector());
   out["bodies"] = BodiesToJson(model, forward.state());
+  out["joints"] = JointsToJson(model, forward.state());
+  out["limits_violated"] = LimitsViolatedToJson(model, forward.state());
   out["message"] = result.message;
   WarnOnFailure(result, &out);
+  if (!out["limits_violated"].empty()) {
+    std::cerr << "ccma simulate: warning: joints outside their limits: " << out["limits_violated"].dump() << "\n";
+  }
   PrintJson(out);
   return 0;
 }

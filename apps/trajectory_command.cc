@@ -19,18 +19,30 @@ void WriteHeader(const Model& model, std::ostream& csv) {
   for (int k = 0; k < model.num_bases(); ++k) {
     csv << ",u" << k << "_x_m,u" << k << "_y_m,u" << k << "_theta_rad";
   }
-  csv << ",residual_energy_m2,error_m_or_rad,iterations,solve_time_ms,reached\n";
+  auto unit = [](const Joint& j) { return j.type == JointType::kRevolute ? "_rad" : "_m"; };
+  for (const Joint& joint : model.joints) {
+    if (joint.actuated) csv << ",u_" << joint.name << unit(joint);
+  }
+  for (const Joint& joint : model.joints) {
+    if (joint.has_coordinate()) csv << ",q_" << joint.name << unit(joint);
+  }
+  csv << ",residual_energy_m2,error_m_or_rad,iterations,solve_time_ms,reached,limits_violated\n";
 }
 
-void WriteRow(const TrajectoryStep& s, std::ostream& csv) {
+void WriteRow(const Model& model, const State& state, const TrajectoryStep& s, std::ostream& csv) {
   csv << s.time;
   for (int i = 0; i < 3; ++i) csv << "," << s.target.position[i];
   for (int i = 0; i < 3; ++i) csv << "," << s.target.rpy[i];
   for (int i = 0; i < 3; ++i) csv << "," << s.reached.position[i];
   for (int i = 0; i < 3; ++i) csv << "," << s.reached.rpy[i];
   for (int i = 0; i < s.controls.size(); ++i) csv << "," << s.controls[i];
+  int violated = 0;
+  for (const JointCoordinateReport& r : JointCoordinates(model, state)) {
+    csv << "," << r.q;
+    violated += !r.within_limits;
+  }
   csv << "," << s.result.residual_energy << "," << s.result.error << "," << s.result.iterations << ","
-      << s.result.time_ms << "," << (s.result.reached ? 1 : 0) << "\n";
+      << s.result.time_ms << "," << (s.result.reached ? 1 : 0) << "," << violated << "\n";
 }
 
 }  // namespace
@@ -50,7 +62,7 @@ int RunTrajectory(const std::vector<std::string>& args) {
   csv << std::setprecision(17);
   WriteHeader(model, csv);
   const TrajectoryResult result =
-      FollowWaypoints(control, waypoints, [&](const TrajectoryStep& s) { WriteRow(s, csv); });
+      FollowWaypoints(control, waypoints, [&](const TrajectoryStep& s) { WriteRow(model, s.state, s, csv); });
   file.Commit();
 
   nlohmann::json out;

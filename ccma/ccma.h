@@ -19,6 +19,7 @@
 
 #include "ccma/base_tracking.h"
 #include "ccma/end_effector.h"
+#include "ccma/joint_coordinates.h"
 #include "ccma/limits.h"
 #include "ccma/mobility.h"
 #include "ccma/model.h"

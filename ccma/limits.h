@@ -40,7 +40,7 @@ constexpr int kMaxWaypoints = 1000000;
 constexpr double kMaxTime = 1e6;
 
 // Path steps of one control move or trajectory, and sub-steps of one assembly.
-constexpr long kMaxPathSteps = 1000000;
+constexpr long kMaxPathSteps = 100000;
 constexpr long kMaxAssemblySubsteps = 100000;
 
 // Replay: controller ticks (duration x controller rate) and output samples.

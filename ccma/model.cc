@@ -1,5 +1,7 @@
 #include "ccma/model.h"
 
+#include "cost_functions/actuated_prismatic_cost.h"
+#include "cost_functions/actuated_revolute_cost.h"
 #include "cost_functions/fixed_joint_cost.h"
 #include "cost_functions/omni_base_motor_cost.h"
 #include "cost_functions/omni_base_planar_cost.h"
@@ -35,8 +37,27 @@ int JointResidualCount(JointType type) {
   return 0;
 }
 
+int ActuatorResidualCount(const Joint& joint) {
+  if (!joint.actuated) return 0;
+  return joint.type == JointType::kRevolute ? ActuatedRevoluteCost::kNumResiduals
+                                             : ActuatedPrismaticCost::kNumResiduals;
+}
+
 int BaseResidualCount() {
   return OmniBasePlanarCost::kNumResiduals + OmniBaseMotorCost::kNumResiduals;
+}
+
+int Model::num_actuated_joints() const {
+  int count = 0;
+  for (const Joint& joint : joints) count += joint.actuated;
+  return count;
+}
+
+int Model::FindJoint(const std::string& joint_name) const {
+  for (int j = 0; j < static_cast<int>(joints.size()); ++j) {
+    if (joints[j].name == joint_name) return j;
+  }
+  return -1;
 }
 
 std::vector<int> Model::effective_control_indices() const {
@@ -48,17 +69,20 @@ std::vector<int> Model::effective_control_indices() const {
       indices.push_back(kBaseControlSize * k + 2);
     }
   }
+  for (const Joint& joint : joints) {
+    if (joint.actuated) indices.push_back(joint.control);
+  }
   return indices;
 }
 
 int Model::num_constraints() const {
   int rows = num_bases() * BaseResidualCount();
-  for (const Joint& joint : joints) rows += JointResidualCount(joint.type);
+  for (const Joint& joint : joints) rows += JointResidualCount(joint.type) + ActuatorResidualCount(joint);
   return rows;
 }
 
 Eigen::VectorXd Model::home_controls() const {
-  Eigen::VectorXd u(num_controls());
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(num_controls());
   for (int k = 0; k < num_bases(); ++k) {
     u.segment<kBaseControlSize>(kBaseControlSize * k) = mobile_bases[k].home_pose;
   }

@@ -22,8 +22,15 @@ namespace ccma {
 // Controls per mobile base: x [m], y [m], theta [rad].
 constexpr int kBaseControlSize = 3;
 
+// The ground as a joint end (`world` in model files): identity pose, never
+// moves, not part of the state.
+constexpr int kWorld = -1;
+
 enum class JointType { kRevolute, kSpherical, kUniversal, kPrismatic, kFixed };
 enum class Actuation { kComplete, kReduced };
+// omni: holonomic (moves in any direction); differential: two driven wheels
+// on one axle, moves along its heading and turns (docs/model_format.md).
+enum class BaseType { kOmni, kDifferential };
 
 // "revolute", "spherical", ... (the model-file spelling).
 const char* JointTypeName(JointType type);
@@ -33,6 +40,9 @@ const char* JointTypeName(JointType type);
 int JointResidualCount(JointType type);
 // Constraint rows of one mobile base (planar and motor).
 int BaseResidualCount();
+struct Joint;
+// Constraint rows of a joint's motor (0 unless actuated).
+int ActuatorResidualCount(const Joint& joint);
 
 // A rigid body; mobile bases are bodies too (is_mobile_base).
 struct Body {
@@ -43,23 +53,32 @@ struct Body {
   bool is_mobile_base() const { return base_index >= 0; }
 };
 
-// An omnidirectional mobile base: the actuator. Its controls are
-// u[3k..3k+2] = (x [m], y [m], theta [rad]) of its body frame on the ground.
+// A differential-drive base's two wheels.
+struct DifferentialWheels {
+  double track = 0.3;    // m, distance between the wheels
+  double radius = 0.05;  // m
+};
+
+// A mobile base: an actuator. Its controls are u[3k..3k+2] = (x [m], y [m],
+// theta [rad]) of its body frame on the ground.
 struct MobileBase {
   std::string name;
   int body = -1;  // index into Model::bodies
-  Actuation actuation = Actuation::kComplete;
+  BaseType type = BaseType::kOmni;
+  Actuation actuation = Actuation::kComplete;  // differential: always complete
   Eigen::Vector3d home_pose = Eigen::Vector3d::Zero();  // x, y, theta
-  // Its wheels (optional `wheels:` block; default: DefaultWheels()). Only
-  // the base-driving layer (base_tracking.h) uses them.
+  // Its wheels (optional `wheels:` block; omni default: DefaultWheels()).
+  // Only the base-driving layer (base_tracking.h) uses them.
   std::vector<Wheel> wheels = DefaultWheels();
+  DifferentialWheels differential;  // type kDifferential only
 };
 
 // A joint of the passive chain between bodies A and B (file order of
 // `between`). Geometry is given in the frame of the body named in the suffix.
 struct Joint {
+  std::string name;  // given, or "joint<i>" (i: index in the file's list)
   JointType type = JointType::kSpherical;
-  int body_a = -1, body_b = -1;
+  int body_a = kWorld, body_b = kWorld;  // body indices, or kWorld
   Eigen::Vector3d p_A = Eigen::Vector3d::Zero();  // joint point in A
   Eigen::Vector3d p_B = Eigen::Vector3d::Zero();  // joint point in B
   // revolute, prismatic: unit axis in A and B. universal: axes[0] in A (a_A)
@@ -70,7 +89,22 @@ struct Joint {
   // fixed, prismatic: two body-fixed reference directions (world x and y at
   // home) expressed in A and B; their difference locks relative rotation.
   Eigen::Vector3d d1_A, d1_B, d2_A, d2_B;
+  // revolute: a reference direction perpendicular to the axis (the same
+  // world direction at home) in A (e1_A, with e2_A = a_A x e1_A) and in B
+  // (w_B); the joint coordinate q = atan2(e2 . w, e1 . w) (joint_coordinates.h).
+  Eigen::Vector3d e1_A = Eigen::Vector3d::UnitX(), e2_A = Eigen::Vector3d::UnitY();
+  Eigen::Vector3d w_B = Eigen::Vector3d::UnitX();
+  // revolute, prismatic: the joint coordinate q is a control (its motor
+  // holds it at u[control]); home value 0.
+  bool actuated = false;
+  int control = -1;  // index into u when actuated
+  // revolute, prismatic: lower <= q <= upper (rad or m) when `limited`.
+  bool limited = false;
+  double lower = 0, upper = 0;
   int line = 0;  // source line in the model file (for messages)
+
+  // Revolute and prismatic joints have a coordinate q.
+  bool has_coordinate() const { return type == JointType::kRevolute || type == JointType::kPrismatic; }
 };
 
 // The controlled components of X_EE, in this order.
@@ -97,14 +131,19 @@ struct Model {
   int num_bases() const { return static_cast<int>(mobile_bases.size()); }
   // 6 numbers per body: orientation increment (3, rad) then translation (3, m).
   int state_size() const { return 6 * num_bodies(); }
-  // 3 per mobile base: x, y, theta.
-  int num_controls() const { return kBaseControlSize * num_bases(); }
+  // Actuated joints (one control each), in file order.
+  int num_actuated_joints() const;
+  // 3 per mobile base (x, y, theta), then one per actuated joint (q).
+  int num_controls() const { return kBaseControlSize * num_bases() + num_actuated_joints(); }
   // Indices into u of the controls the control solver may change
-  // (x, y of every base; theta of complete ones).
+  // (x, y of every base; theta of complete ones; every actuated joint).
   std::vector<int> effective_control_indices() const;
+  // The index of the joint with this name, or -1.
+  int FindJoint(const std::string& name) const;
   // Total number of constraint rows (joints + 9 per base).
   int num_constraints() const;
-  // The controls at home: the bases' poses in file order.
+  // The controls at home: the bases' poses in file order, then 0 per
+  // actuated joint.
   Eigen::VectorXd home_controls() const;
   // Index of the body with this name, or -1.
   int FindBody(const std::string& name) const;

@@ -279,9 +279,14 @@ class Parser {
     const YAML::Node bodies = r_.Sequence(r_.Require(root, "bodies", ""), "bodies",
                                           static_cast<std::size_t>(kMaxBodies), "bodies");
     ParseBodies(bodies);
-    ParseBases(r_.Require(root, "mobile_bases", ""), bodies.size());
+    // `mobile_bases` may be omitted or [] when joints are actuated (checked below).
+    if (Reader::Has(root, "mobile_bases")) ParseBases(root["mobile_bases"], bodies.size());
     ParseJoints(r_.Sequence(r_.Require(root, "joints", ""), "joints",
                             static_cast<std::size_t>(kMaxJoints), "joints"));
+    if (model_.num_bases() + model_.num_actuated_joints() == 0) {
+      r_.Fail(Reader::Has(root, "mobile_bases") ? root["mobile_bases"] : root, "mobile_bases",
+              "a model needs at least one actuator: a mobile base or a joint with actuated: true");
+    }
     ParseEndEffector(r_.Map(r_.Require(root, "end_effector", ""), "end_effector"));
     CheckConnected(bodies);
     return std::move(model_);
@@ -320,6 +325,13 @@ class Parser {
     return name;
   }
 
+  // The body named at `node`, or kWorld for `world`.
+  int BodyOrWorldAt(const YAML::Node& node, const std::string& path) const {
+    return r_.String(node, path) == "world" ? kWorld : BodyAt(node, path);
+  }
+
+  std::string NameOf(int body) const { return body == kWorld ? "world" : model_.bodies[body].name; }
+
   // The index of the body named at `node`, which must exist.
   int BodyAt(const YAML::Node& node, const std::string& path) const {
     const std::string name = r_.String(node, path);
@@ -347,9 +359,6 @@ class Parser {
   // Mobile bases: bodies too, appended after the chain's bodies.
   void ParseBases(const YAML::Node& bases_node, std::size_t num_bodies) {
     const YAML::Node bases = r_.Sequence(bases_node, "mobile_bases");
-    if (bases.size() == 0) {
-      r_.Fail(bases, "mobile_bases", "a model needs at least one mobile base");
-    }
     if (num_bodies + bases.size() > static_cast<std::size_t>(kMaxBodies)) {
       r_.Fail(bases, "mobile_bases",
               std::to_string(num_bodies) + " bodies and " + std::to_string(bases.size()) +
@@ -376,24 +385,50 @@ class Parser {
     base.body = model_.num_bodies();
     if (Reader::Has(node, "type")) {
       const std::string type = r_.String(node["type"], path + ".type");
-      if (type != "omni") {
+      if (type == "differential") {
+        base.type = BaseType::kDifferential;
+      } else if (type != "omni") {
         r_.Fail(node["type"], path + ".type",
-                "unknown base type " + Quote(type) + " (known: omni)");
+                "unknown base type " + Quote(type) + " (known: omni, differential)");
       }
     }
-    const YAML::Node actuation_node = r_.Require(node, "actuation", path);
-    const std::string actuation = r_.String(actuation_node, path + ".actuation");
+    // A differential base's x, y and theta are all controls: complete, and
+    // `actuation` may be omitted.
+    const bool differential = base.type == BaseType::kDifferential;
+    const YAML::Node actuation_node = differential && !Reader::Has(node, "actuation")
+                                          ? YAML::Node()
+                                          : r_.Require(node, "actuation", path);
+    const std::string actuation =
+        actuation_node.IsDefined() ? r_.String(actuation_node, path + ".actuation") : "complete";
     if (actuation == "complete") {
       base.actuation = Actuation::kComplete;
-    } else if (actuation == "reduced") {
+    } else if (actuation == "reduced" && !differential) {
       base.actuation = Actuation::kReduced;
     } else {
       r_.Fail(actuation_node, path + ".actuation",
-              "unknown actuation " + Quote(actuation) + " (known: complete, reduced)");
+              "unknown actuation " + Quote(actuation) +
+                  (differential ? " for a differential base (known: complete)" : " (known: complete, reduced)"));
     }
     base.home_pose = r_.Vector3(r_.Require(node, "pose", path), path + ".pose", {"m", "m", "rad"});
-    if (Reader::Has(node, "wheels")) base.wheels = ParseWheels(node["wheels"], path + ".wheels");
+    if (Reader::Has(node, "wheels")) {
+      if (differential) {
+        base.differential = ParseDifferentialWheels(node["wheels"], path + ".wheels");
+      } else {
+        base.wheels = ParseWheels(node["wheels"], path + ".wheels");
+      }
+    }
     return base;
+  }
+
+  DifferentialWheels ParseDifferentialWheels(const YAML::Node& node, const std::string& path) const {
+    const YAML::Node map = r_.Map(node, path);
+    r_.WarnUnknownKeys(map, {"track", "radius"}, path);
+    DifferentialWheels wheels;
+    wheels.track = r_.Number(r_.Require(map, "track", path), path + ".track", "m");
+    wheels.radius = r_.Number(r_.Require(map, "radius", path), path + ".radius", "m");
+    if (!(wheels.track > 0)) r_.Fail(map["track"], path + ".track", "must be positive (m)");
+    if (!(wheels.radius > 0)) r_.Fail(map["radius"], path + ".radius", "must be positive (m)");
+    return wheels;
   }
 
   std::vector<Wheel> ParseWheels(const YAML::Node& node, const std::string& path) const {
@@ -442,6 +477,13 @@ class Parser {
         named[j] = true;
       }
       model_.joints.push_back(ParseJoint(node, path));
+      model_.joints.back().name =
+          named[j] ? node["name"].Scalar() : "joint" + std::to_string(j);
+    }
+    // Controls: three per base, then one per actuated joint in file order.
+    int control = kBaseControlSize * model_.num_bases();
+    for (Joint& joint : model_.joints) {
+      if (joint.actuated) joint.control = control++;
     }
     // A joint without a name is called joint<i>; no other joint may take that.
     for (std::size_t j = 0; j < joints.size(); ++j) {
@@ -455,7 +497,7 @@ class Parser {
   }
 
   Joint ParseJoint(const YAML::Node& node, const std::string& path) {
-    r_.WarnUnknownKeys(node, {"type", "between", "point", "axis", "axes", "name"}, path);
+    r_.WarnUnknownKeys(node, {"type", "between", "point", "axis", "axes", "name", "actuated", "limits"}, path);
     Joint joint;
     joint.line = node.Mark().line + 1;
     const YAML::Node type_node = r_.Require(node, "type", path);
@@ -476,22 +518,60 @@ class Parser {
     if (!between.IsSequence() || between.size() != 2) {
       r_.Fail(between, path + ".between", "must be a list of 2 body names");
     }
-    joint.body_a = BodyAt(between[0], path + ".between[0]");
-    joint.body_b = BodyAt(between[1], path + ".between[1]");
+    joint.body_a = BodyOrWorldAt(between[0], path + ".between[0]");
+    joint.body_b = BodyOrWorldAt(between[1], path + ".between[1]");
     if (joint.body_a == joint.body_b) {
       r_.Fail(between, path + ".between",
-              "names the same body '" + model_.bodies[joint.body_a].name + "' twice");
+              "names the same body '" + NameOf(joint.body_a) + "' twice");
     }
     ParseJointGeometry(node, path, &joint);
-    components_.Unite(joint.body_a, joint.body_b);
+    ParseActuationAndLimits(node, path, &joint);
+    if (joint.body_a == kWorld || joint.body_b == kWorld) {
+      grounded_bodies_.push_back(joint.body_a == kWorld ? joint.body_b : joint.body_a);
+    } else {
+      components_.Unite(joint.body_a, joint.body_b);
+    }
     return joint;
+  }
+
+  // `actuated` and `limits` (revolute and prismatic joints only).
+  void ParseActuationAndLimits(const YAML::Node& node, const std::string& path, Joint* joint) const {
+    const bool can = joint->has_coordinate();
+    if (Reader::Has(node, "actuated")) {
+      const YAML::Node flag = node["actuated"];
+      bool value = false;
+      if (!flag.IsScalar() || !YAML::convert<bool>::decode(flag, value)) {
+        r_.Fail(flag, path + ".actuated", "must be true or false");
+      }
+      if (value && !can) {
+        r_.Fail(flag, path + ".actuated", "only revolute and prismatic joints can be actuated");
+      }
+      joint->actuated = value;
+    }
+    if (Reader::Has(node, "limits")) {
+      const YAML::Node limits = node["limits"];
+      if (!can) r_.Fail(limits, path + ".limits", "only revolute and prismatic joints have limits");
+      if (!limits.IsSequence() || limits.size() != 2) {
+        r_.Fail(limits, path + ".limits", "must be a list of 2 numbers [lo, hi]");
+      }
+      const char* unit = joint->type == JointType::kRevolute ? "rad" : "m";
+      joint->lower = r_.Number(limits[0], path + ".limits[0]", unit);
+      joint->upper = r_.Number(limits[1], path + ".limits[1]", unit);
+      if (!(joint->lower <= 0 && 0 <= joint->upper)) {
+        r_.Fail(limits, path + ".limits",
+                "must satisfy lo <= 0 <= hi (home, q = 0, is inside), got [" + FormatG(joint->lower) + ", " +
+                    FormatG(joint->upper) + "]");
+      }
+      joint->limited = true;
+    }
   }
 
   // The joint's point and axes, from world coordinates at home into each
   // body's frame.
   void ParseJointGeometry(const YAML::Node& node, const std::string& path, Joint* joint) const {
-    const Body& A = model_.bodies[joint->body_a];
-    const Body& B = model_.bodies[joint->body_b];
+    static const Body kGround;  // world: identity pose
+    const Body& A = joint->body_a == kWorld ? kGround : model_.bodies[joint->body_a];
+    const Body& B = joint->body_b == kWorld ? kGround : model_.bodies[joint->body_b];
     const Eigen::Vector3d p_W = r_.Vector3(r_.Require(node, "point", path), path + ".point", "m");
     joint->p_A = A.R_WB_home.transpose() * (p_W - A.p_WB_home);
     joint->p_B = B.R_WB_home.transpose() * (p_W - B.p_WB_home);
@@ -501,6 +581,13 @@ class Parser {
       const Eigen::Vector3d a_W = r_.Axis(r_.Require(node, "axis", path), path + ".axis");
       joint->a_A = A.R_WB_home.transpose() * a_W;
       joint->a_B = B.R_WB_home.transpose() * a_W;
+      // Reference directions for q: any unit vector perpendicular to the axis.
+      const Eigen::Vector3d helper =
+          std::abs(a_W.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+      const Eigen::Vector3d e1_W = (helper - helper.dot(a_W) * a_W).normalized();
+      joint->e1_A = A.R_WB_home.transpose() * e1_W;
+      joint->e2_A = A.R_WB_home.transpose() * a_W.cross(e1_W);
+      joint->w_B = B.R_WB_home.transpose() * e1_W;
     }
     if (type == JointType::kUniversal) {
       const YAML::Node axes = r_.Require(node, "axes", path);
@@ -531,7 +618,11 @@ class Parser {
   void ParseEndEffector(const YAML::Node& ee) {
     r_.WarnUnknownKeys(ee, {"body", "point", "controlled"}, "end_effector");
     EndEffector& out = model_.end_effector;
-    out.body = BodyAt(r_.Require(ee, "body", "end_effector"), "end_effector.body");
+    const YAML::Node body = r_.Require(ee, "body", "end_effector");
+    if (r_.String(body, "end_effector.body") == "world") {
+      r_.Fail(body, "end_effector.body", "the end-effector must be on a body, not on 'world'");
+    }
+    out.body = BodyAt(body, "end_effector.body");
     const Body& frame = model_.bodies[out.body];
     out.p_W_home =
         r_.Vector3(r_.Require(ee, "point", "end_effector"), "end_effector.point", "m");
@@ -559,17 +650,18 @@ class Parser {
     }
   }
 
-  // Every body must hang, through joints, from some mobile base.
+  // Every body must hang, through joints, from some mobile base or `world`.
   void CheckConnected(const YAML::Node& bodies) {
     std::set<int> grounded;
     for (const MobileBase& base : model_.mobile_bases) {
       grounded.insert(components_.Find(base.body));
     }
+    for (int body : grounded_bodies_) grounded.insert(components_.Find(body));
     for (std::size_t i = 0; i < bodies.size(); ++i) {
       if (grounded.count(components_.Find(static_cast<int>(i))) == 0) {
         r_.Fail(bodies[i], Indexed("bodies", i),
                 "body '" + model_.bodies[i].name +
-                    "' is not connected through joints to any mobile base");
+                    "' is not connected through joints to any mobile base or to world");
       }
     }
   }
@@ -578,6 +670,7 @@ class Parser {
   Model model_;
   std::unordered_map<std::string, NamedBody> body_names_;  // bodies and bases
   Components components_{0};
+  std::vector<int> grounded_bodies_;  // bodies jointed to `world`
 };
 
 // Rejects flow collections nested deeper than kMaxFlowNesting, counting every

@@ -44,16 +44,17 @@ Eigen::Matrix3d RotationFromRpy(const Eigen::Vector3d& rpy) {
 }
 
 Eigen::Vector3d RpyFromRotation(const Eigen::Matrix3d& R) {
-  // R(2,0) = -sin(pitch); R(2,1) = cos(p) sin(r); R(2,2) = cos(p) cos(r);
-  // R(1,0) = cos(p) sin(y); R(0,0) = cos(p) cos(y).
-  const double cos_pitch = std::hypot(R(0, 0), R(1, 0));
-  const double pitch = std::atan2(-R(2, 0), cos_pitch);
-  if (cos_pitch < 1e-10) {
-    // Gimbal lock: only yaw -/+ roll is defined; report roll = 0.
-    const double yaw = std::atan2(-R(0, 1), R(1, 1));
-    return {0.0, pitch, yaw};
-  }
-  return {std::atan2(R(2, 1), R(2, 2)), pitch, std::atan2(R(1, 0), R(0, 0))};
+  // R(2,0) = -sin(pitch); R(2,1) = cos(p) sin(r); R(2,2) = cos(p) cos(r).
+  const double pitch = std::atan2(-R(2, 0), std::hypot(R(0, 0), R(1, 0)));
+  // Roll from the last row; at gimbal lock (cos(p) = 0) only yaw -/+ roll is
+  // defined, and roll is reported as 0.
+  const double roll = std::hypot(R(2, 1), R(2, 2)) < 1e-15 ? 0.0 : std::atan2(R(2, 1), R(2, 2));
+  // Yaw from the second column with roll taken out (Rz(y) = R Rx(r)^T Ry(p)^T):
+  // well conditioned at every pitch, so R round-trips even near the lock,
+  // where entries like R(1,0) = cos(p) sin(y) lose all their digits.
+  const double s = std::sin(roll), c = std::cos(roll);
+  const double yaw = std::atan2(s * R(0, 2) - c * R(0, 1), c * R(1, 1) - s * R(1, 2));
+  return {roll, pitch, yaw};
 }
 
 double WrapAngle(double angle) {

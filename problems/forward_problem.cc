@@ -93,6 +93,7 @@ struct ForwardProblem::Workspace {
   ceres::Solver::Options solver_options;
   HessianSolver hessian_solver;           // Newton polish and Assemble's predictor
   EnergyDerivatives derivatives[2];       // current point and candidate
+  double world_pose[kPoseAmbientSize] = {0, 0, 0, 1, 0, 0, 0};  // the ground, constant
 };
 
 ForwardProblem::ForwardProblem(const Model& model, const ForwardOptions& options)
@@ -115,11 +116,20 @@ ForwardProblem::ForwardProblem(const Model& model, const ForwardOptions& options
   std::vector<double*> blocks;
   for (const ConstraintBlock& block : workspace_->constraints.blocks()) {
     blocks.clear();
-    for (int body : block.bodies) blocks.push_back(state_.pose(body));
+    for (int body : block.bodies) {
+      // The ground: one constant identity pose block, shared.
+      if (body == kWorld && !problem.HasParameterBlock(workspace_->world_pose)) {
+        problem.AddParameterBlock(workspace_->world_pose, kPoseAmbientSize);
+        problem.SetParameterBlockConstant(workspace_->world_pose);
+      }
+      blocks.push_back(body == kWorld ? workspace_->world_pose : state_.pose(body));
+    }
     if (block.control_size > 0) {
       double* control = controls_.data() + block.control_offset;
-      problem.AddParameterBlock(control, block.control_size);
-      problem.SetParameterBlockConstant(control);
+      if (!problem.HasParameterBlock(control)) {
+        problem.AddParameterBlock(control, block.control_size);
+        problem.SetParameterBlockConstant(control);
+      }
       blocks.push_back(control);
     }
     problem.AddResidualBlock(block.cost.get(), nullptr, blocks);
@@ -136,7 +146,8 @@ double ForwardProblem::Energy() const { return workspace_->constraints.Energy(st
 void ForwardProblem::CheckControls(const Eigen::VectorXd& u) const {
   if (u.size() != model_.num_controls()) {
     throw std::invalid_argument("controls: expected " + std::to_string(model_.num_controls()) +
-                                " values (3 per mobile base), got " + std::to_string(u.size()));
+                                " values (3 per mobile base, then 1 per actuated joint), got " +
+                                std::to_string(u.size()));
   }
   for (int i = 0; i < u.size(); ++i) {
     if (!(std::abs(u[i]) <= kMaxMagnitude)) {
@@ -232,7 +243,7 @@ ForwardResult ForwardProblem::Assemble(const Eigen::VectorXd& u) {
     for (int k = 0; k < model_.num_bases(); ++k) {
       du[kBaseControlSize * k + 2] = WrapAngle(du[kBaseControlSize * k + 2]);
     }
-    const Eigen::VectorXd ds_predicted = sensitivity.StateSensitivity() * du;
+    const Eigen::VectorXd ds_predicted = sensitivity.StateChange(du);
     const State before = state_;
     const ForwardResult step = Solve(u_i);
     if (!sensitivity.singular()) {
@@ -256,7 +267,6 @@ ForwardResult ForwardProblem::Assemble(const Eigen::VectorXd& u) {
     total.gradient_norm = step.gradient_norm;
     total.message = step.message;
   }
-  total.substeps = substeps;
   return total;
 }
 

@@ -46,6 +46,7 @@ TrajectoryResult FollowWaypoints(ControlProblem& problem, const std::vector<Wayp
           step.result = r;
           step.controls = problem.controls();
           step.reached = problem.forward().end_effector();
+          step.state = problem.forward().state();
           steps.push_back(step);
         });
     for (size_t i = 0; i < steps.size(); ++i) {

@@ -18,6 +18,7 @@ struct TrajectoryStep {
   ControlStepResult result;
   Eigen::VectorXd controls;  // after the step
   EndEffectorPose reached;   // after the step
+  State state;               // the configuration after the step
 };
 
 struct TrajectoryResult {

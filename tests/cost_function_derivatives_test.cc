@@ -10,6 +10,8 @@
 #include <gtest/gtest.h>
 
 #include "ccma/rotation.h"
+#include "cost_functions/actuated_prismatic_cost.h"
+#include "cost_functions/actuated_revolute_cost.h"
 #include "cost_functions/fixed_joint_cost.h"
 #include "cost_functions/omni_base_motor_cost.h"
 #include "cost_functions/omni_base_planar_cost.h"
@@ -54,8 +56,8 @@ ParameterBlock Pose(const Eigen::Quaterniond& q, const Eigen::Vector3d& p) {
 using CostPair = std::pair<std::unique_ptr<ceres::CostFunction>, std::unique_ptr<ceres::CostFunction>>;
 struct CostCase {
   std::string name;
-  int pose_blocks;  // 1 or 2 (then an optional 3-vector control block)
-  bool has_control;
+  int pose_blocks;   // 1 or 2 (then an optional control block)
+  int control_size;  // 0 (none), 1 (an actuated joint) or 3 (a base)
   std::function<CostPair(std::mt19937&, bool degenerate)> make_pair;
   std::unique_ptr<ceres::CostFunction> make(std::mt19937& rng, bool degenerate) const {
     return make_pair(rng, degenerate).first;
@@ -67,19 +69,19 @@ std::unique_ptr<ceres::CostFunction> Own(Analytic* p) { return std::unique_ptr<c
 
 std::vector<CostCase> AllCostCases() {
   std::vector<CostCase> cases = {
-      {"revolute", 2, false,
+      {"revolute", 2, 0,
        [](std::mt19937& rng, bool degenerate) {
          const Eigen::Vector3d r = degenerate ? Eigen::Vector3d::Zero() : RandomVector(rng);
          const Eigen::Vector3d r_B = RandomVector(rng), a = RandomUnit(rng), b = RandomUnit(rng);
          return CostPair(Own(new RevoluteJointCost(r, r_B, a, b)), Own(MakeRevoluteJointAutoDiff(r, r_B, a, b)));
        }},
-      {"spherical", 2, false,
+      {"spherical", 2, 0,
        [](std::mt19937& rng, bool degenerate) {
          const Eigen::Vector3d r = degenerate ? Eigen::Vector3d::Zero() : RandomVector(rng);
          const Eigen::Vector3d r_B = RandomVector(rng);
          return CostPair(Own(new SphericalJointCost(r, r_B)), Own(MakeSphericalJointAutoDiff(r, r_B)));
        }},
-      {"universal", 2, false,
+      {"universal", 2, 0,
        [](std::mt19937& rng, bool degenerate) {
          const Eigen::Vector3d a = RandomUnit(rng);
          const Eigen::Vector3d b = degenerate ? a : RandomUnit(rng);  // a x b = 0
@@ -87,7 +89,7 @@ std::vector<CostCase> AllCostCases() {
          return CostPair(Own(new UniversalJointCost(r_A, r_B, a, b)),
                          Own(MakeUniversalJointAutoDiff(r_A, r_B, a, b)));
        }},
-      {"prismatic", 2, false,
+      {"prismatic", 2, 0,
        [](std::mt19937& rng, bool degenerate) {
          const Eigen::Vector3d r_A = RandomVector(rng);
          // Degenerate: B's point on A's axis line, so the projection is ~0.
@@ -98,7 +100,7 @@ std::vector<CostCase> AllCostCases() {
          return CostPair(Own(new PrismaticJointCost(r_A, r_B, a, d1A, d1B, d2A, d2B)),
                          Own(MakePrismaticJointAutoDiff(r_A, r_B, a, d1A, d1B, d2A, d2B)));
        }},
-      {"fixed", 2, false,
+      {"fixed", 2, 0,
        [](std::mt19937& rng, bool) {
          const Eigen::Vector3d r_A = RandomVector(rng), r_B = RandomVector(rng);
          const Eigen::Vector3d d1A = RandomUnit(rng), d1B = RandomUnit(rng), d2A = RandomUnit(rng),
@@ -106,13 +108,28 @@ std::vector<CostCase> AllCostCases() {
          return CostPair(Own(new FixedJointCost(r_A, r_B, d1A, d1B, d2A, d2B)),
                          Own(MakeFixedJointAutoDiff(r_A, r_B, d1A, d1B, d2A, d2B)));
        }},
-      {"omni_base_planar", 1, false,
+      {"omni_base_planar", 1, 0,
        [](std::mt19937&, bool) {
          return CostPair(Own(new OmniBasePlanarCost()), Own(MakeOmniBasePlanarAutoDiff()));
        }},
-      {"omni_base_motor", 1, true,
+      {"omni_base_motor", 1, 3,
        [](std::mt19937&, bool) {
          return CostPair(Own(new OmniBaseMotorCost()), Own(MakeOmniBaseMotorAutoDiff()));
+       }},
+      {"actuated_revolute", 2, 1,
+       [](std::mt19937& rng, bool degenerate) {
+         const Eigen::Vector3d a = RandomUnit(rng);
+         const Eigen::Vector3d e1 = (RandomUnit(rng).cross(a)).normalized(), e2 = a.cross(e1);
+         // Degenerate: B's reference along the axis (q undefined there).
+         const Eigen::Vector3d w = degenerate ? a : RandomUnit(rng);
+         return CostPair(Own(new ActuatedRevoluteCost(e1, e2, w)), Own(MakeActuatedRevoluteAutoDiff(e1, e2, w)));
+       }},
+      {"actuated_prismatic", 2, 1,
+       [](std::mt19937& rng, bool degenerate) {
+         const Eigen::Vector3d r_A = RandomVector(rng), a = RandomUnit(rng);
+         const Eigen::Vector3d r_B = degenerate ? Eigen::Vector3d(r_A + 0.3 * a) : RandomVector(rng);
+         return CostPair(Own(new ActuatedPrismaticCost(r_A, r_B, a)),
+                         Own(MakeActuatedPrismaticAutoDiff(r_A, r_B, a)));
        }},
   };
   return cases;
@@ -123,7 +140,8 @@ std::vector<ParameterBlock> Blocks(const CostCase& c, const ParameterBlock& A,
                                    const ParameterBlock& B, const Eigen::Vector3d& u) {
   std::vector<ParameterBlock> blocks = {A};
   if (c.pose_blocks == 2) blocks.push_back(B);
-  if (c.has_control) blocks.push_back({{u.x(), u.y(), u.z()}, false});
+  if (c.control_size == 3) blocks.push_back({{u.x(), u.y(), u.z()}, false});
+  if (c.control_size == 1) blocks.push_back({{u.z()}, false});
   return blocks;
 }
 

@@ -109,7 +109,7 @@ TEST(HostileNumbers, HugeTargetsAreRefused) {
 TEST(HostileNumbers, TinyOrEndlessStepsAreRefused) {
   ExpectRefused(Ccma({"control", ModelFlag("4dof_reduced"), "--target=0.1,0,0.6,0,0,0", "--max_step_m=1e-300"}),
                 "max_step_m");
-  // Allowed step, but a path of more than a million steps: refused up front.
+  // Allowed step, but a path of more than 100000 steps: refused up front.
   const ToolRun r = Ccma({"control", ModelFlag("4dof_reduced"), "--target=9000,0,0.6,0,0,0", "--max_step_m=1e-6"});
   ExpectRefused(r, "steps");
   EXPECT_LT(r.seconds, 10);
@@ -175,7 +175,7 @@ TEST(OutputFiles, TrajectoryHeadersCarryUnits) {
                           (column.rfind("_s") == column.size() - 2 || column.rfind("_m") == column.size() - 2 ||
                            column.rfind("_rad") == column.size() - 4 || column.rfind("_m2") == column.size() - 3 ||
                            column.rfind("_ms") == column.size() - 3 || column == "iterations" ||
-                           column == "reached" || column == "error_m_or_rad");
+                           column == "reached" || column == "error_m_or_rad" || column == "limits_violated");
     EXPECT_TRUE(has_unit) << column;
   }
 }

@@ -1,6 +1,7 @@
 # Installs ccma into a scratch prefix, builds tests/consumer against it with
 # find_package(ccma CONFIG REQUIRED), and runs the result on a model.
 # Invoked by CTest: cmake -DBUILD_DIR=.. -DSOURCE_DIR=.. -DWORK_DIR=.. -P this
+cmake_minimum_required(VERSION 3.16)  # policies (IN_LIST)
 file(REMOVE_RECURSE "${WORK_DIR}")
 function(run)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)

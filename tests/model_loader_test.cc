@@ -153,7 +153,6 @@ INSTANTIATE_TEST_SUITE_P(
         Rejection{"missing end_effector", "end_effector:\n  body: arm\n  point: [1, 2, 0.6]\n"
                   "  controlled: [x, y, z, yaw]\n", "", "end_effector", 0},
         Rejection{"missing joints", "joints:", "joints_typo:", "joints", 0},
-        Rejection{"missing mobile_bases", "mobile_bases:", "mobile_basis:", "mobile_bases", 0},
         Rejection{"missing position", "    position: [1, 2, 0.1]\n", "", "bodies[0].position", 4},
         Rejection{"missing pose", "    pose: [1, 2, 0.5]\n", "", "mobile_bases[0].pose", 10},
         Rejection{"missing actuation", "    actuation: complete\n", "", "actuation", 10},
@@ -193,9 +192,8 @@ INSTANTIATE_TEST_SUITE_P(
                   "controlled: [x, y, z, spin]", "unknown component 'spin'", 26},
         Rejection{"component listed twice", "controlled: [x, y, z, yaw]",
                   "controlled: [x, y, x, yaw]", "listed twice", 26},
-        Rejection{"no mobile base", "mobile_bases:\n  - name: base0\n    type: omni\n"
-                  "    actuation: complete\n    pose: [1, 2, 0.5]\n", "mobile_bases: []\n",
-                  "at least one mobile base", 9},
+        Rejection{"unknown key mobile_basis leaves base0 undeclared", "mobile_bases:", "mobile_basis:",
+                  "unknown body 'base0'", 16},
         Rejection{"body not connected to a base", "  - type: universal\n    between: [post, arm]\n"
                   "    point: [1, 2, 0.5]\n    axes: [[1, 0, 0], [0, 1, 0]]\n", "",
                   "body 'arm' is not connected", 6}),
@@ -203,6 +201,27 @@ INSTANTIATE_TEST_SUITE_P(
       std::string name = std::regex_replace(info.param.what, std::regex("[^A-Za-z0-9]"), "_");
       return name;
     });
+
+// No mobile base and no actuated joint: no actuator (the joint that held
+// base0 now holds the post on the ground).
+TEST(ModelLoader, AModelNeedsAnActuator) {
+  std::string text = Replace(kValid,
+                             "mobile_bases:\n  - name: base0\n    type: omni\n"
+                             "    actuation: complete\n    pose: [1, 2, 0.5]\n",
+                             "mobile_bases: []\n");
+  text = Replace(text, "between: [base0, post]", "between: [world, post]");
+  EXPECT_EQ(ErrorOf(text).rfind("bad.yaml:9: mobile_bases: a model needs at least one actuator", 0), 0u)
+      << ErrorOf(text);
+  // The same with the revolute actuated: it loads, with one control.
+  const std::string actuated = Replace(text, "axis: [0, 0, 2]", "axis: [0, 0, 2]\n    actuated: true");
+  ASSERT_EQ(ErrorOf(actuated), "");
+  const Model m = LoadModelFromString(actuated, "ok.yaml");
+  EXPECT_EQ(m.num_bases(), 0);
+  EXPECT_EQ(m.num_controls(), 1);
+  EXPECT_EQ(m.joints[0].control, 0);
+  EXPECT_EQ(m.joints[0].body_a, kWorld);
+  EXPECT_EQ(m.joints[0].name, "joint0");
+}
 
 TEST(ModelLoader, UnreadableFile) {
   try {

@@ -1,5 +1,7 @@
 #include "ccma/internal/constraint_set.h"
 
+#include "cost_functions/actuated_prismatic_cost.h"
+#include "cost_functions/actuated_revolute_cost.h"
 #include "cost_functions/body_frame.h"
 #include "cost_functions/fixed_joint_cost.h"
 #include "cost_functions/omni_base_motor_cost.h"
@@ -48,12 +50,34 @@ std::unique_ptr<ceres::CostFunction> MakeJointTwin(const Joint& j) {
   return nullptr;
 }
 
+std::unique_ptr<ceres::CostFunction> MakeActuatorCost(const Joint& j) {
+  if (j.type == JointType::kRevolute) return std::make_unique<ActuatedRevoluteCost>(j.e1_A, j.e2_A, j.w_B);
+  return std::make_unique<ActuatedPrismaticCost>(j.p_A, j.p_B, j.a_A);
+}
+
+std::unique_ptr<ceres::CostFunction> MakeActuatorTwin(const Joint& j) {
+  if (j.type == JointType::kRevolute) {
+    return std::unique_ptr<ceres::CostFunction>(MakeActuatedRevoluteAutoDiff(j.e1_A, j.e2_A, j.w_B));
+  }
+  return std::unique_ptr<ceres::CostFunction>(MakeActuatedPrismaticAutoDiff(j.p_A, j.p_B, j.a_A));
+}
+
+// The ground's pose block: identity rotation, origin.
+const double kWorldPose[kPoseAmbientSize] = {0, 0, 0, 1, 0, 0, 0};
+
 }  // namespace
+
+const double* ConstraintSet::Pose(const State& s, int body) {
+  return body == kWorld ? kWorldPose : s.pose(body);
+}
 
 std::vector<std::unique_ptr<ceres::CostFunction>> ConstraintSet::MakeAutoDiffTwins(
     const Model& model) const {
   std::vector<std::unique_ptr<ceres::CostFunction>> twins;
-  for (const Joint& joint : model.joints) twins.push_back(MakeJointTwin(joint));
+  for (const Joint& joint : model.joints) {
+    twins.push_back(MakeJointTwin(joint));
+    if (joint.actuated) twins.push_back(MakeActuatorTwin(joint));
+  }
   for (int k = 0; k < model.num_bases(); ++k) {
     twins.emplace_back(MakeOmniBasePlanarAutoDiff());
     twins.emplace_back(MakeOmniBaseMotorAutoDiff());
@@ -79,9 +103,11 @@ ConstraintSet::ConstraintSet(const Model& model)
   };
   for (size_t j = 0; j < model.joints.size(); ++j) {
     const Joint& joint = model.joints[j];
-    add(MakeJointCost(joint), {joint.body_a, joint.body_b}, -1, 0,
-        "joints[" + std::to_string(j) + "] (" + JointTypeName(joint.type) + " " +
-            model.bodies[joint.body_a].name + "-" + model.bodies[joint.body_b].name + ")");
+    auto name = [&](int body) { return body == kWorld ? std::string("world") : model.bodies[body].name; };
+    const std::string label = "joints[" + std::to_string(j) + "] " + joint.name + " (" +
+                              JointTypeName(joint.type) + " " + name(joint.body_a) + "-" + name(joint.body_b) + ")";
+    add(MakeJointCost(joint), {joint.body_a, joint.body_b}, -1, 0, label);
+    if (joint.actuated) add(MakeActuatorCost(joint), {joint.body_a, joint.body_b}, joint.control, 1, label + " motor");
   }
   for (int k = 0; k < model.num_bases(); ++k) {
     const MobileBase& base = model.mobile_bases[k];
@@ -109,7 +135,7 @@ void ConstraintSet::Evaluate(const State& s, const Eigen::VectorXd& u, Eigen::Ve
   std::vector<const double*> params;
   for (const ConstraintBlock& block : blocks_) {
     params.clear();
-    for (int body : block.bodies) params.push_back(s.pose(body));
+    for (int body : block.bodies) params.push_back(Pose(s, body));
     if (block.control_size > 0) params.push_back(u.data() + block.control_offset);
     double* jacobians[3] = {jac_storage[0], jac_storage[1], jac_storage[2]};
     const bool want_jacobians = J_s != nullptr || J_u != nullptr;
@@ -118,6 +144,7 @@ void ConstraintSet::Evaluate(const State& s, const Eigen::VectorXd& u, Eigen::Ve
     if (!want_jacobians) continue;
     for (size_t p = 0; p < block.bodies.size(); ++p) {
       if (J_s == nullptr) break;
+      if (block.bodies[p] == kWorld) continue;  // the ground is not in the state
       const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, kPoseAmbientSize, Eigen::RowMajor>> J(
           jac_storage[p], block.rows, kPoseAmbientSize);
       J_s->block(block.row, kPoseTangentSize * block.bodies[p], block.rows, kPoseTangentSize) =
@@ -147,8 +174,10 @@ void ConstraintSet::EvaluateDerivatives(const State& s, const Eigen::VectorXd& u
     const int poses = static_cast<int>(block.bodies.size());
     // J^T J over the (at most two) bodies this block touches.
     for (int a = 0; a < poses; ++a) {
+      if (block.bodies[a] == kWorld) continue;
       const auto J_a = out->J_s.block(block.row, 6 * block.bodies[a], rows, 6);
       for (int b = 0; b < poses; ++b) {
+        if (block.bodies[b] == kWorld) continue;
         const auto J_b = out->J_s.block(block.row, 6 * block.bodies[b], rows, 6);
         out->H.block<6, 6>(6 * block.bodies[a], 6 * block.bodies[b]).noalias() += J_a.transpose() * J_b;
       }
@@ -159,13 +188,14 @@ void ConstraintSet::EvaluateDerivatives(const State& s, const Eigen::VectorXd& u
     }
     // sum_i C_i Hess(C_i).
     params.clear();
-    for (int body : block.bodies) params.push_back(s.pose(body));
+    for (int body : block.bodies) params.push_back(Pose(s, body));
     if (block.control_size > 0) params.push_back(u.data() + block.control_offset);
     local.setZero();
     block.second_order->AddWeightedHessian(params.data(), out->C.data() + block.row,
                                            local.topLeftCorner(6 * poses, 6 * poses));
     for (int a = 0; a < poses; ++a) {
       for (int b = 0; b < poses; ++b) {
+        if (block.bodies[a] == kWorld || block.bodies[b] == kWorld) continue;
         out->H.block<6, 6>(6 * block.bodies[a], 6 * block.bodies[b]) += local.block<6, 6>(6 * a, 6 * b);
       }
     }

@@ -1,8 +1,10 @@
 // All constraints C(s, u) of a model: one analytic cost function per joint
-// and two per mobile base (planar, motor), built once from the Model.
+// (and its motor if actuated) and two per mobile base (planar, motor), built
+// once from the Model.
 //
-// Row layout of C: the blocks in `blocks()` order (joints in file order, then
-// per base its planar and motor rows); block b starts at blocks()[b].row.
+// Row layout of C: the blocks in `blocks()` order (joints in file order, each
+// followed by its motor when actuated, then per base its planar and motor
+// rows); block b starts at blocks()[b].row.
 // The cost functions are owned here and shared with Ceres problems.
 #ifndef CCMA_INTERNAL_CONSTRAINT_SET_H_
 #define CCMA_INTERNAL_CONSTRAINT_SET_H_
@@ -24,7 +26,7 @@ class ResidualHessian;
 struct ConstraintBlock {
   std::unique_ptr<ceres::CostFunction> cost;
   const ResidualHessian* second_order = nullptr;  // the same object
-  std::vector<int> bodies;  // pose blocks it reads, in parameter order
+  std::vector<int> bodies;  // pose blocks it reads, in parameter order (kWorld: the ground)
   // The control block it reads, if any: u[control_offset .. + control_size)
   // (a mobile base's motor rows read its kBaseControlSize controls).
   int control_offset = -1;
@@ -70,6 +72,9 @@ class ConstraintSet {
   // (their Jacobians are with respect to the ambient pose parameters; see
   // cost_functions/*.h). For tests and the Jacobian benchmark.
   std::vector<std::unique_ptr<ceres::CostFunction>> MakeAutoDiffTwins(const Model& model) const;
+
+  // The pose block of `body` in s, or the ground's (identity) for kWorld.
+  static const double* Pose(const State& s, int body);
 
   // E(s, u) = 1/2 C^T C.
   double Energy(const State& s, const Eigen::VectorXd& u) const;

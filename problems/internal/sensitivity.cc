@@ -15,7 +15,7 @@ HessianSolver::HessianSolver(const ConstraintSet& constraints) {
   };
   for (int body = 0; body < n / 6; ++body) add_block(body, body);
   for (const ConstraintBlock& block : constraints.blocks()) {
-    if (block.bodies.size() == 2) {
+    if (block.bodies.size() == 2 && block.bodies[0] != kWorld && block.bodies[1] != kWorld) {
       add_block(block.bodies[0], block.bodies[1]);
       add_block(block.bodies[1], block.bodies[0]);
     }
@@ -46,6 +46,7 @@ Eigen::MatrixXd ConstraintJacobianTimes(const ConstraintSet& constraints, const 
   Eigen::MatrixXd out = Eigen::MatrixXd::Zero(J_s.rows(), M.cols());
   for (const ConstraintBlock& block : constraints.blocks()) {
     for (int body : block.bodies) {
+      if (body == kWorld) continue;
       out.middleRows(block.row, block.rows).noalias() +=
           J_s.block(block.row, 6 * body, block.rows, 6) * M.middleRows(6 * body, 6);
     }
@@ -69,6 +70,10 @@ Sensitivity::Sensitivity(const ConstraintSet& constraints, const State& s,
 }
 
 Eigen::MatrixXd Sensitivity::StateSensitivity() const { return -solver_->Solve(dG_du_); }
+
+Eigen::VectorXd Sensitivity::StateChange(const Eigen::VectorXd& du) const {
+  return -solver_->Solve(dG_du_ * du);
+}
 
 Eigen::VectorXd Sensitivity::ResidualEnergyGradient() const {
   Eigen::VectorXd g(static_cast<Eigen::Index>(controls_.size()));

@@ -68,6 +68,8 @@ class Sensitivity {
 
   // ds/du over the chosen controls (n x k), tangent units per control unit.
   Eigen::MatrixXd StateSensitivity() const;
+  // ds/du * du for one change du of the chosen controls (k): one solve.
+  Eigen::VectorXd StateChange(const Eigen::VectorXd& du) const;
   // dE_r/du = dE/du at s (k), m^2 per control unit.
   Eigen::VectorXd ResidualEnergyGradient() const;
   // Adjoint: for a scalar F(s, u) with partials dF_ds (n) and dF_du (k),

@@ -1,0 +1,38 @@
+// Joint coordinates q of revolute and prismatic joints (docs/model_format.md,
+// "Joint coordinates"), zero at home:
+//  * revolute between A and B with axis a: the angle [rad] by which B has
+//    turned relative to A about a since home, right-handed about a as written
+//    in the file, in (-pi, pi];
+//  * prismatic between A and B with axis a (fixed in A): the displacement
+//    [m] of B's copy of the joint point relative to A's copy along a.
+#ifndef CCMA_JOINT_COORDINATES_H_
+#define CCMA_JOINT_COORDINATES_H_
+
+#include <string>
+#include <vector>
+
+#include "ccma/model.h"
+#include "ccma/state.h"
+
+namespace ccma {
+
+// q of `joint` at state s; 0 for joints without a coordinate.
+double JointCoordinate(const Joint& joint, const State& s);
+
+struct JointCoordinateReport {
+  int joint = -1;    // index into Model::joints
+  double q = 0;      // rad or m
+  bool within_limits = true;  // lower - tolerance <= q <= upper + tolerance (or no limits)
+};
+
+// Every revolute and prismatic joint of the model, in file order. Limits are
+// met within `tolerance` (rad or m).
+std::vector<JointCoordinateReport> JointCoordinates(const Model& model, const State& s,
+                                                    double tolerance = 1e-9);
+
+// Names of the joints whose coordinate is outside its limits (within `tolerance`).
+std::vector<std::string> LimitsViolated(const Model& model, const State& s, double tolerance = 1e-9);
+
+}  // namespace ccma
+
+#endif  // CCMA_JOINT_COORDINATES_H_

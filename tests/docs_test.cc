@@ -1,0 +1,537 @@
+// The user documentation against the code it describes:
+//  * docs/cli.md documents every command and every flag that `ccma --help`
+//    and `ccma COMMAND --help` list, each in that command's section, and
+//    mentions no flag a command does not accept;
+//  * docs/cli.md names every JSON key the commands print (normal runs and
+//    the failure cases that add keys such as `warning`);
+//  * docs/model_format.md names every key the model loader knows.
+// The docs are read from CCMA_SOURCE_DIR/docs, or from the folder in the
+// environment variable CCMA_DOCS_DIR (to check that an edited copy fails).
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+namespace {
+
+struct ToolRun {
+  int status = -1;
+  std::string out, err;
+};
+
+std::string Slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::string TempPath(const std::string& name) {
+  return ::testing::TempDir() + "/docs_test_" + std::to_string(getpid()) + "_" + name;
+}
+
+// Runs the tool (fork/exec, no shell) with stdout and stderr in files.
+ToolRun Ccma(const std::vector<std::string>& args) {
+  static int counter = 0;
+  const std::string tag = std::to_string(counter++);
+  const std::string out_path = TempPath("out" + tag), err_path = TempPath("err" + tag);
+  std::vector<std::string> argv_strings = {CCMA_TOOL_PATH};
+  argv_strings.insert(argv_strings.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (std::string& a : argv_strings) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int out = open(out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int err = open(err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (out < 0 || err < 0) _exit(127);
+    dup2(out, STDOUT_FILENO);
+    dup2(err, STDERR_FILENO);
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  ToolRun run;
+  int status = 0;
+  if (pid > 0 && waitpid(pid, &status, 0) == pid && WIFEXITED(status)) run.status = WEXITSTATUS(status);
+  run.out = Slurp(out_path);
+  run.err = Slurp(err_path);
+  std::remove(out_path.c_str());
+  std::remove(err_path.c_str());
+  return run;
+}
+
+std::string ModelFlag(const std::string& name) {
+  return std::string("--model=") + CCMA_SOURCE_DIR + "/models/" + name + ".yaml";
+}
+
+std::string DocsDir() {
+  const char* override_dir = std::getenv("CCMA_DOCS_DIR");
+  return override_dir != nullptr && *override_dir != '\0' ? override_dir : std::string(CCMA_SOURCE_DIR) + "/docs";
+}
+
+std::string ReadDoc(const std::string& name) {
+  const std::string text = Slurp(DocsDir() + "/" + name);
+  EXPECT_FALSE(text.empty()) << DocsDir() + "/" + name << " is missing or empty";
+  return text;
+}
+
+std::vector<std::string> Lines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::stringstream ss(text);
+  for (std::string line; std::getline(ss, line);) lines.push_back(line);
+  return lines;
+}
+
+bool IsWordChar(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
+
+// ---- what the tool says about itself --------------------------------------
+
+// The commands `ccma --help` lists ("  ccma NAME ..." lines).
+std::vector<std::string> ToolCommands() {
+  const ToolRun r = Ccma({"--help"});
+  EXPECT_EQ(r.status, 0) << r.err;
+  std::vector<std::string> commands;
+  for (const std::string& line : Lines(r.out)) {
+    const std::string prefix = "  ccma ";
+    if (line.rfind(prefix, 0) != 0) continue;
+    std::string name;
+    for (size_t i = prefix.size(); i < line.size() && IsWordChar(line[i]); ++i) name += line[i];
+    if (!name.empty()) commands.push_back(name);
+  }
+  return commands;
+}
+
+// The flags `ccma COMMAND --help` lists ("  --name=..." lines after "flags:").
+std::vector<std::string> HelpFlags(const std::string& command) {
+  const ToolRun r = Ccma({command, "--help"});
+  EXPECT_EQ(r.status, 0) << r.err;
+  std::vector<std::string> flags;
+  bool in_flags = false;
+  for (const std::string& line : Lines(r.out)) {
+    if (line == "flags:") {
+      in_flags = true;
+      continue;
+    }
+    if (!in_flags) continue;
+    if (line.rfind("  --", 0) != 0) continue;
+    std::string name;
+    for (size_t i = 4; i < line.size() && IsWordChar(line[i]); ++i) name += line[i];
+    if (!name.empty()) flags.push_back(name);
+  }
+  return flags;
+}
+
+struct ToolFacts {
+  std::vector<std::string> commands;
+  std::map<std::string, std::set<std::string>> flags;  // per command
+};
+
+const ToolFacts& Facts() {
+  static const ToolFacts facts = [] {
+    ToolFacts f;
+    f.commands = ToolCommands();
+    for (const std::string& c : f.commands) {
+      const std::vector<std::string> flags = HelpFlags(c);
+      f.flags[c] = std::set<std::string>(flags.begin(), flags.end());
+    }
+    return f;
+  }();
+  return facts;
+}
+
+// Flags that every command accepts (handled before the command runs).
+bool IsGlobalFlag(const std::string& flag) { return flag == "help" || flag == "version"; }
+
+// ---- docs/cli.md structure ------------------------------------------------
+
+// Position just after "ccma NAME" in `text` at or after `from` (NAME followed
+// by a non-word character or the end), or npos.
+size_t FindCommandMention(const std::string& text, const std::string& name, size_t from = 0) {
+  const std::string needle = "ccma " + name;
+  for (size_t p = text.find(needle, from); p != std::string::npos; p = text.find(needle, p + 1)) {
+    const size_t end = p + needle.size();
+    const bool starts_word = p == 0 || !IsWordChar(text[p - 1]);
+    if (starts_word && (end == text.size() || !IsWordChar(text[end]))) return end;
+  }
+  return std::string::npos;
+}
+
+bool IsLevel2Heading(const std::string& line) { return line.rfind("## ", 0) == 0; }
+bool IsLevel1Heading(const std::string& line) { return line.rfind("# ", 0) == 0; }
+bool IsFence(const std::string& line) {
+  const size_t first = line.find_first_not_of(' ');
+  return first != std::string::npos && line.compare(first, 3, "```") == 0;
+}
+
+// The lines of the command's section: from the first level-2 heading (outside
+// code blocks) that names "ccma COMMAND" to the next level-1 or level-2 heading.
+std::vector<std::string> CommandSection(const std::string& doc, const std::string& command) {
+  std::vector<std::string> section;
+  bool in_code = false, inside = false;
+  for (const std::string& line : Lines(doc)) {
+    if (IsFence(line)) in_code = !in_code;
+    const bool heading = !in_code && (IsLevel2Heading(line) || IsLevel1Heading(line));
+    if (heading && inside) break;
+    if (heading && IsLevel2Heading(line) && FindCommandMention(line, command) != std::string::npos) inside = true;
+    if (inside) section.push_back(line);
+  }
+  return section;
+}
+
+// `--name` in `text`, as a whole flag name.
+bool MentionsFlag(const std::string& text, const std::string& flag) {
+  const std::string needle = "--" + flag;
+  for (size_t p = text.find(needle); p != std::string::npos; p = text.find(needle, p + 1)) {
+    const size_t end = p + needle.size();
+    const bool starts = p == 0 || !(IsWordChar(text[p - 1]) || text[p - 1] == '-');
+    if (starts && (end == text.size() || !IsWordChar(text[end]))) return true;
+  }
+  return false;
+}
+
+struct FlagMention {
+  std::string flag;
+  std::string command;  // the command it is given to; empty when not known
+  int line;             // 1-based, in the document
+  std::string text;     // the line
+};
+
+// The command named by the last "ccma NAME" (NAME a tool command) in `text`
+// before `limit`, else the first one after it; "" if none.
+std::string CommandIn(const std::string& text, size_t limit) {
+  size_t latest_end = 0, first_after = std::string::npos;
+  std::string latest, after;
+  for (const std::string& c : Facts().commands) {
+    for (size_t end = FindCommandMention(text, c); end != std::string::npos; end = FindCommandMention(text, c, end)) {
+      if (end <= limit && end >= latest_end) {
+        latest_end = end;
+        latest = c;
+      } else if (end > limit && end < first_after) {
+        first_after = end;
+        after = c;
+      }
+    }
+  }
+  return !latest.empty() ? latest : after;
+}
+
+// Every `--flag` in docs/cli.md with the command it belongs to: the command
+// of the "ccma NAME" invocation it is written in (the same inline code span,
+// which may run over several lines of a paragraph, or the same command line
+// in a code block, continuation lines included), else the command whose
+// section it is in ("" outside command sections).
+std::vector<FlagMention> FlagMentions(const std::string& doc) {
+  std::vector<FlagMention> mentions;
+  const std::vector<std::string> lines = Lines(doc);
+  std::string section_command;
+
+  // Flags in `text` (a code-block line, or a code span or prose run of a
+  // paragraph); `first_line` is the document line where `text` starts.
+  auto scan = [&](const std::string& text, bool code, const std::string& fallback, size_t first_line) {
+    for (size_t p = text.find("--"); p != std::string::npos; p = text.find("--", p + 2)) {
+      if (p > 0 && (IsWordChar(text[p - 1]) || text[p - 1] == '-')) continue;
+      std::string name;
+      for (size_t i = p + 2; i < text.size() && IsWordChar(text[i]); ++i) name += text[i];
+      // Lower-case names only: `--NAME=VALUE` is a placeholder.
+      if (name.empty() || !std::islower(static_cast<unsigned char>(name[0]))) continue;
+      std::string command = code ? CommandIn(text, p) : "";
+      if (command.empty()) command = fallback;
+      const size_t line = first_line + static_cast<size_t>(std::count(text.begin(), text.begin() + p, '\n'));
+      mentions.push_back({name, command, static_cast<int>(line + 1), lines[line]});
+    }
+  };
+
+  // A prose paragraph (consecutive non-blank lines): split at backticks.
+  std::vector<std::string> paragraph;
+  size_t paragraph_start = 0;
+  auto flush = [&]() {
+    std::string text;
+    for (size_t i = 0; i < paragraph.size(); ++i) text += (i ? "\n" : "") + paragraph[i];
+    size_t piece_start = 0;
+    bool code = false;
+    for (size_t i = 0; i <= text.size(); ++i) {
+      if (i == text.size() || text[i] == '`') {
+        const std::string piece = text.substr(piece_start, i - piece_start);
+        const size_t line = paragraph_start + static_cast<size_t>(std::count(text.begin(), text.begin() + piece_start, '\n'));
+        scan(piece, code, section_command, line);
+        code = !code;
+        piece_start = i + 1;
+      }
+    }
+    paragraph.clear();
+  };
+
+  bool in_code = false;
+  std::string continued_command;  // code: the command of a line ending in '\'
+  for (size_t n = 0; n < lines.size(); ++n) {
+    const std::string& line = lines[n];
+    if (IsFence(line)) {
+      flush();
+      in_code = !in_code;
+      continued_command.clear();
+      continue;
+    }
+    if (in_code) {
+      const std::string here = CommandIn(line, line.size());
+      scan(line, true, continued_command.empty() ? section_command : continued_command, n);
+      const bool continues = !line.empty() && line.back() == '\\';
+      continued_command = continues ? (here.empty() ? continued_command : here) : "";
+      continue;
+    }
+    if (IsLevel1Heading(line) || IsLevel2Heading(line)) {
+      flush();
+      section_command.clear();
+      for (const std::string& c : Facts().commands) {
+        if (IsLevel2Heading(line) && section_command.empty() && FindCommandMention(line, c) != std::string::npos) {
+          section_command = c;
+        }
+      }
+    }
+    if (line.find_first_not_of(" \t") == std::string::npos) {
+      flush();
+      continue;
+    }
+    if (paragraph.empty()) paragraph_start = n;
+    paragraph.push_back(line);
+  }
+  flush();
+  return mentions;
+}
+
+// ---- (a) and (b): flags ---------------------------------------------------
+
+TEST(CliDocs, ToolListsItsCommands) {
+  const std::set<std::string> commands(Facts().commands.begin(), Facts().commands.end());
+  for (const char* expected : {"check", "simulate", "control", "trajectory", "generate", "bench", "replay"}) {
+    EXPECT_EQ(commands.count(expected), 1u) << expected;
+  }
+  for (const std::string& c : Facts().commands) EXPECT_FALSE(Facts().flags.at(c).empty()) << c;
+}
+
+TEST(CliDocs, EveryCommandHasASection) {
+  const std::string doc = ReadDoc("cli.md");
+  for (const std::string& c : Facts().commands) {
+    EXPECT_FALSE(CommandSection(doc, c).empty()) << "docs/cli.md has no '## ... ccma " << c << "' section";
+  }
+}
+
+TEST(CliDocs, EveryHelpFlagIsDocumentedInItsCommandsSection) {
+  const std::string doc = ReadDoc("cli.md");
+  for (const std::string& c : Facts().commands) {
+    std::string section;
+    for (const std::string& line : CommandSection(doc, c)) section += line + "\n";
+    for (const std::string& flag : Facts().flags.at(c)) {
+      EXPECT_TRUE(MentionsFlag(section, flag))
+          << "`ccma " << c << " --help` lists --" << flag << ", but the section of ccma " << c
+          << " in docs/cli.md does not mention it";
+    }
+  }
+}
+
+TEST(CliDocs, EveryDocumentedFlagIsAcceptedByItsCommand) {
+  const std::string doc = ReadDoc("cli.md");
+  const std::vector<FlagMention> mentions = FlagMentions(doc);
+  EXPECT_GT(mentions.size(), 50u);
+  for (const FlagMention& m : mentions) {
+    if (IsGlobalFlag(m.flag)) continue;
+    if (m.command.empty()) {
+      // Outside any command's section and invocation: some command must take it.
+      bool accepted = false;
+      for (const auto& [command, flags] : Facts().flags) accepted = accepted || flags.count(m.flag) > 0;
+      EXPECT_TRUE(accepted) << "docs/cli.md:" << m.line << ": --" << m.flag << " is no flag of any command\n"
+                            << m.text;
+      continue;
+    }
+    EXPECT_EQ(Facts().flags.at(m.command).count(m.flag), 1u)
+        << "docs/cli.md:" << m.line << ": --" << m.flag << " is documented for ccma " << m.command
+        << ", which does not accept it (ccma " << m.command << " --help)\n"
+        << m.text;
+  }
+}
+
+// The attribution rule itself, on a small document.
+TEST(CliDocs, FlagMentionsAreAttributedToTheirCommand) {
+  const std::string doc =
+      "## `ccma control`\n"
+      "Use `--lambda` and `ccma simulate --from=X.json` or\n"
+      "```sh\n"
+      "ccma trajectory --model=m.yaml \\\n"
+      "    --waypoints=w.csv\n"
+      "--method=lm\n"
+      "```\n"
+      "## Recipes\n"
+      "plain --seed\n";
+  std::map<std::string, std::string> by_flag;
+  for (const FlagMention& m : FlagMentions(doc)) by_flag[m.flag] = m.command;
+  EXPECT_EQ(by_flag["lambda"], "control");
+  EXPECT_EQ(by_flag["from"], "simulate");
+  EXPECT_EQ(by_flag["model"], "trajectory");
+  EXPECT_EQ(by_flag["waypoints"], "trajectory");
+  EXPECT_EQ(by_flag["method"], "control");
+  EXPECT_EQ(by_flag["seed"], "");
+  EXPECT_TRUE(MentionsFlag("`--max_step_m`", "max_step_m"));
+  EXPECT_FALSE(MentionsFlag("`--max_step_m`", "max_step"));
+  EXPECT_FALSE(MentionsFlag("`--models_dir`", "model"));
+}
+
+TEST(CliDocs, GlobalInvocationsAreDocumented) {
+  const std::string doc = ReadDoc("cli.md");
+  for (const char* text : {"ccma --help", "ccma COMMAND --help", "ccma --version"}) {
+    EXPECT_NE(doc.find(text), std::string::npos) << text;
+  }
+}
+
+// ---- (c): JSON keys -------------------------------------------------------
+
+bool DocumentsKey(const std::string& doc, const std::string& key) {
+  return doc.find("\"" + key + "\"") != std::string::npos || doc.find("`" + key + "`") != std::string::npos;
+}
+
+// Top-level keys, and the keys of nested objects (one level down; for arrays
+// of objects, of their elements).
+std::set<std::string> Keys(const nlohmann::json& j, bool nested) {
+  std::set<std::string> keys;
+  if (j.is_array()) {
+    for (const auto& e : j) {
+      const std::set<std::string> k = Keys(e, nested);
+      keys.insert(k.begin(), k.end());
+    }
+    return keys;
+  }
+  if (!j.is_object()) return keys;
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    keys.insert(it.key());
+    if (nested && (it.value().is_object() || it.value().is_array())) {
+      const std::set<std::string> k = Keys(it.value(), false);
+      keys.insert(k.begin(), k.end());
+    }
+  }
+  return keys;
+}
+
+void ExpectKeysDocumented(const std::vector<std::string>& args, bool nested) {
+  const ToolRun r = Ccma(args);
+  std::string command_line = "ccma";
+  for (const std::string& a : args) command_line += " " + a;
+  ASSERT_EQ(r.status, 0) << command_line << "\n" << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out, nullptr, false);
+  ASSERT_FALSE(j.is_discarded()) << command_line << "\n" << r.out;
+  const std::string doc = ReadDoc("cli.md");
+  const std::set<std::string> keys = Keys(j, nested);
+  EXPECT_FALSE(keys.empty());
+  for (const std::string& key : keys) {
+    EXPECT_TRUE(DocumentsKey(doc, key)) << command_line << " prints the key \"" << key
+                                        << "\", which docs/cli.md does not name (as \"" << key << "\" or `"
+                                        << key << "`)";
+  }
+}
+
+const char* kReducedHome =
+    "0,0.583012702,1.570796327,-0.504903811,-0.291506351,-2.617993878,0.504903811,-0.291506351,-0.523598776";
+
+TEST(CliDocs, CheckKeysAreDocumented) {
+  ExpectKeysDocumented({"check", ModelFlag("4dof_reduced")}, true);
+}
+
+TEST(CliDocs, SimulateKeysAreDocumented) {
+  ExpectKeysDocumented({"simulate", ModelFlag("4dof_reduced")}, true);
+}
+
+TEST(CliDocs, ControlKeysAreDocumented) {
+  ExpectKeysDocumented({"control", ModelFlag("4dof_reduced"), "--target=0.02,0.01,0.62,0,0,0.05"}, true);
+}
+
+TEST(CliDocs, TrajectoryAndGenerateKeysAreDocumented) {
+  const std::string csv = TempPath("path.csv"), yaml = TempPath("generated.yaml");
+  ExpectKeysDocumented({"trajectory", ModelFlag("4dof_reduced"),
+                        std::string("--waypoints=") + CCMA_SOURCE_DIR + "/models/paths/4dof_sequential.csv",
+                        "--out=" + csv},
+                       true);
+  ExpectKeysDocumented({"generate", "--agents=4", "--out=" + yaml}, true);
+  std::remove(csv.c_str());
+  std::remove(yaml.c_str());
+}
+
+// Keys that appear only when something went wrong.
+TEST(CliDocs, FailureKeysAreDocumented) {
+  // Not rigid with the controls fixed: the walkthrough model with S-S legs.
+  std::string model = Slurp(std::string(CCMA_SOURCE_DIR) + "/examples/my_first_mechanism.yaml");
+  ASSERT_FALSE(model.empty());
+  for (size_t p = model.find("type: revolute,"); p != std::string::npos; p = model.find("type: revolute,", p)) {
+    model.replace(p, 15, "type: spherical,");
+  }
+  const std::string ss = TempPath("ss_legs.yaml");
+  std::ofstream(ss) << model;
+  ExpectKeysDocumented({"check", "--model=" + ss}, true);
+  std::remove(ss.c_str());
+  // Controls the mechanism cannot reach (base0 pulled 0.6 m outwards).
+  std::string far = kReducedHome;
+  far.replace(far.find("0.583012702"), 11, "1.2");
+  ExpectKeysDocumented({"simulate", ModelFlag("4dof_reduced"), "--controls=" + far}, true);
+  // An unreachable target (z = 0.9 m).
+  ExpectKeysDocumented({"control", ModelFlag("4dof_reduced"), "--target=0,0,0.9,0"}, true);
+  // A path with an unreachable waypoint.
+  const std::string path = TempPath("far.csv"), csv = TempPath("far_out.csv");
+  std::ofstream(path) << "time,x,y,z,roll,pitch,yaw\n0,0,0,0.6,0,0,0\n1,0,0,0.9,0,0,0\n";
+  ExpectKeysDocumented({"trajectory", ModelFlag("4dof_reduced"), "--waypoints=" + path, "--out=" + csv}, true);
+  std::remove(path.c_str());
+  std::remove(csv.c_str());
+}
+
+TEST(CliDocs, ReplayAndBenchKeysAreDocumented) {
+  const std::string dir = TempPath("replay");
+  // A short path whose chain tears (1 s latency: the bases lag behind the
+  // turn at 5 s): every key of a failed replay.
+  const std::string path = TempPath("lift.csv");
+  std::ofstream(path) << "time,x,y,z,roll,pitch,yaw\n0,0,0,0.6,0,0,0\n5,0,0.08,0.6,0,0,0\n10,0,-0.08,0.6,0,0,0\n";
+  ExpectKeysDocumented({"replay", ModelFlag("4dof_reduced"), "--waypoints=" + path, "--out=" + dir,
+                        "--latency_s=1"},
+                       true);
+  ExpectKeysDocumented({"bench", ModelFlag("4dof_reduced"), "--steps=1"}, true);
+  std::remove(path.c_str());
+  std::filesystem::remove_all(dir);
+}
+
+// ---- (d): model format keys -----------------------------------------------
+
+TEST(ModelFormatDocs, EveryLoaderKeyIsDocumented) {
+  // The known-key lists of ccma/model_loader.cc (WarnUnknownKeys calls).
+  const std::vector<std::string> keys = {
+      // top level
+      "name", "description", "bodies", "mobile_bases", "joints", "end_effector",
+      // bodies
+      "position", "rpy",
+      // mobile_bases
+      "type", "actuation", "pose", "wheels",
+      // wheels
+      "angle", "distance", "radius", "mounting", "roller",
+      // joints
+      "between", "point", "axis", "axes",
+      // end_effector
+      "body", "controlled"};
+  const std::string doc = ReadDoc("model_format.md");
+  for (const std::string& key : keys) {
+    EXPECT_NE(doc.find("`" + key + "`"), std::string::npos)
+        << "docs/model_format.md does not name the model key `" << key << "`";
+  }
+}
+
+TEST(DocsIndex, LinksTheCommandLineReference) {
+  EXPECT_NE(ReadDoc("README.md").find("(cli.md)"), std::string::npos);
+}
+
+}  // namespace
