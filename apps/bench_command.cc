@@ -346,6 +346,7 @@ void WriteScalingTable(const std::string& path, const nlohmann::json& scaling) {
 
 int RunBench(const std::vector<std::string>& args) {
   ParseCommandFlags(args, "bench");
+  if (FLAGS_seed < 0) throw UsageError("ccma bench: --seed must not be negative");
   const int modes = !FLAGS_model.empty() + FLAGS_all + FLAGS_scaling;
   if (modes != 1) throw UsageError("ccma bench: give exactly one of --model=FILE, --all, --scaling");
   const int steps = FLAGS_steps > 0 ? FLAGS_steps : (FLAGS_scaling ? 10 : 20);

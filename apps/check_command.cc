@@ -28,6 +28,7 @@ int RunCheck(const std::vector<std::string>& args) {
   out["constraints"] = mobility.constraint_rows;
   out["rigid_with_controls_fixed"] = mobility.rigid_with_controls_fixed;
   out["end_effector_dof"] = mobility.end_effector_dof;
+  out["end_effector_dof_nonholonomic"] = mobility.end_effector_dof_nonholonomic;
   out["assembled_at_home"] = assembled;
   out["constraint_rank"] = mobility.constraint_rank;
   out["dof_with_controls_fixed"] = mobility.dof_with_controls_fixed;
@@ -59,6 +60,11 @@ int RunCheck(const std::vector<std::string>& args) {
     warnings.push_back("the controls move only " + std::to_string(mobility.end_effector_dof) +
                        " end-effector DOF at home, fewer than the " + std::to_string(controlled_count) +
                        " controlled components");
+  }
+  if (mobility.end_effector_dof_nonholonomic < std::min(controlled_count, mobility.end_effector_dof)) {
+    warnings.push_back("the differential bases, which cannot move sideways, leave the end-effector only " +
+                       std::to_string(mobility.end_effector_dof_nonholonomic) + " instantaneous DOF at home, fewer than the " +
+                       std::to_string(controlled_count) + " controlled components: most paths are infeasible");
   }
   if (!warnings.empty()) {
     out["warnings"] = warnings;

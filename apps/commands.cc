@@ -69,7 +69,7 @@ const std::vector<Command>& Commands() {
        "each base tracks it with a PI controller from simulated motion capture, and the chain follows\n"
        "by forward simulation. Writes CSVs, an RMSE table and plots into DIR (SIMULATION, not hardware).\n"
        "Warns on stderr when the plan did not converge or the chain was torn.",
-       Concat({"model", "waypoints", "out", "controls", "noise", "seed", "mocap_noise_m", "mocap_noise_rad",
+       Concat({"model", "waypoints", "out", "noise", "seed", "mocap_noise_m", "mocap_noise_rad",
                "latency_s", "slip", "kp", "ki", "controller_hz", "max_wheel_speed"},
               kControlFlags),
        RunReplay},

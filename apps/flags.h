@@ -7,8 +7,8 @@
 
 #include <gflags/gflags.h>
 
-DECLARE_string(model);       // check simulate control trajectory bench replay view
-DECLARE_string(controls);    // simulate control trajectory replay
+DECLARE_string(model);       // check simulate control trajectory bench replay
+DECLARE_string(controls);    // simulate control trajectory
 DECLARE_string(waypoints);   // trajectory replay
 DECLARE_string(out);         // trajectory generate bench replay
 DECLARE_int32(seed);         // bench replay

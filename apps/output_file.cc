@@ -18,9 +18,11 @@ OutputFile::OutputFile(const std::string& path, const std::string& flag) : path_
   std::error_code ec;
   // Follow symbolic links to the file they name (which may not exist yet).
   target_ = path;
-  if (fs::is_symlink(fs::symlink_status(path, ec))) {
-    target_ = fs::weakly_canonical(path, ec).string();
-    if (ec) throw UsageError("--" + flag + ": cannot resolve the link '" + path + "': " + ec.message());
+  for (int hops = 0; fs::is_symlink(fs::symlink_status(target_, ec)); ++hops) {
+    if (hops == 40) throw UsageError("--" + flag + ": too many levels of symbolic links in '" + path + "'");
+    const fs::path link = fs::read_symlink(target_, ec);
+    if (ec) throw UsageError("--" + flag + ": cannot read the link '" + path + "': " + ec.message());
+    target_ = (link.is_absolute() ? link : fs::path(target_).parent_path() / link).string();
   }
   const fs::file_status status = fs::status(target_, ec);
   if (fs::is_directory(status)) throw UsageError("--" + flag + ": '" + path + "' is a directory");

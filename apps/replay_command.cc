@@ -29,7 +29,7 @@ DEFINE_double(mocap_noise_rad, -1,
 DEFINE_double(latency_s, -1,
               "motion-capture and radio latency, 0..10, overrides --noise (default noise: 0.01 and 0.02) [s]");
 DEFINE_double(slip, -1,
-              "mean wheel slip, fraction of wheel speed lost, 0..1, overrides --noise (default noise: 0.03) [1]");
+              "mean wheel slip, fraction of wheel speed lost, 0 <= slip < 1, overrides --noise (default noise: 0.03) [1]");
 DEFINE_double(kp, 4.0, "PI proportional gain, position and heading [1/s]");
 DEFINE_double(ki, 4.0, "PI integral gain, position and heading [1/s^2]");
 DEFINE_double(controller_hz, 100.0, "PI controller rate, 1..10000 [Hz]");

@@ -64,13 +64,14 @@ void CheckActuatedLimits(const Model& model, const Eigen::VectorXd& u) {
   }
 }
 
-void WarnOnFailure(const ForwardResult& result, nlohmann::json* out) {
+void WarnOnFailure(const ForwardResult& result, const nlohmann::json& limits_violated, nlohmann::json* out) {
   std::string warning;
+  if (!limits_violated.empty()) warning = "joints outside their limits: " + limits_violated.dump();
   if (!result.assembled) {
-    warning = "not assembled: residual energy " + FormatG(result.residual_energy) +
+    warning += std::string(warning.empty() ? "" : "; ") + "not assembled: residual energy " + FormatG(result.residual_energy) +
               " m^2 stays above the assembly tolerance; the controls cannot be reached from this start";
   } else if (!result.converged) {
-    warning = "the solver did not report convergence (" + result.message + ")";
+    warning += std::string(warning.empty() ? "" : "; ") + "the solver did not report convergence (" + result.message + ")";
   }
   if (result.branch_jump) {
     warning += std::string(warning.empty() ? "" : "; ") + "jumped to another assembly branch at sub-step " +
@@ -113,10 +114,7 @@ int RunSimulate(const std::vector<std::string>& args) {
   out["joints"] = JointsToJson(model, forward.state());
   out["limits_violated"] = LimitsViolatedToJson(model, forward.state());
   out["message"] = result.message;
-  WarnOnFailure(result, &out);
-  if (!out["limits_violated"].empty()) {
-    std::cerr << "ccma simulate: warning: joints outside their limits: " << out["limits_violated"].dump() << "\n";
-  }
+  WarnOnFailure(result, out["limits_violated"], &out);
   PrintJson(out);
   return 0;
 }

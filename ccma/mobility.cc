@@ -1,5 +1,7 @@
 #include "ccma/mobility.h"
 
+#include <cmath>
+
 #include <Eigen/SVD>
 
 #include "ccma/end_effector.h"
@@ -36,20 +38,52 @@ MobilityReport AnalyzeMobility(const Model& model, const State& s, const Eigen::
   report.smallest_singular_value =
       sigma.size() >= n ? sigma[n - 1] : 0.0;  // fewer rows than columns: singular
 
-  // Motions with the effective controls free: null space of [J_s, J_u_eff].
+  // Motions with the effective controls free: null space of [J_s, J_u_eff],
+  // and of the same with no lateral velocity of the differential bases.
   const std::vector<int> effective = model.effective_control_indices();
-  Eigen::MatrixXd J(J_s.rows(), n + static_cast<int>(effective.size()));
+  const int k = static_cast<int>(effective.size());
+  Eigen::MatrixXd J(J_s.rows(), n + k);
   J.leftCols(n) = J_s;
-  for (size_t c = 0; c < effective.size(); ++c) J.col(n + c) = J_u.col(effective[c]);
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeFullV);
-  const int rank = Rank(svd.singularValues(), rank_tolerance * scale);
-  report.dof_with_controls_free = static_cast<int>(J.cols()) - rank;
-  const Eigen::MatrixXd null_space = svd.matrixV().rightCols(report.dof_with_controls_free);
-
-  const Eigen::MatrixXd X = EndEffectorJacobian(model, s) * null_space.topRows(n);
-  if (X.cols() > 0) {
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd_x(X);
-    report.end_effector_dof = Rank(svd_x.singularValues(), rank_tolerance);
+  for (int c = 0; c < k; ++c) J.col(n + c) = J_u.col(effective[c]);
+  auto end_effector_dof = [&](const Eigen::MatrixXd& A, int* free_dof) {
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
+    const int rank = Rank(svd.singularValues(), rank_tolerance * scale);
+    *free_dof = static_cast<int>(A.cols()) - rank;
+    const Eigen::MatrixXd X = EndEffectorJacobian(model, s) * svd.matrixV().rightCols(*free_dof).topRows(n);
+    return X.cols() > 0 ? Rank(Eigen::JacobiSVD<Eigen::MatrixXd>(X).singularValues(), rank_tolerance) : 0;
+  };
+  report.end_effector_dof = end_effector_dof(J, &report.dof_with_controls_free);
+  std::vector<int> lateral_rows;
+  Eigen::MatrixXd L = Eigen::MatrixXd::Zero(model.num_bases(), n + k);
+  int rows = 0;
+  // A differential base whose heading turns without moving the end-effector
+  // (it turns on the spot under a revolute post) can face any direction
+  // first: it constrains nothing. Test: adding its heading column to
+  // [J_s; dX/ds] does not raise the rank.
+  const Eigen::MatrixXd X_s = EndEffectorJacobian(model, s);
+  Eigen::MatrixXd held(J_s.rows() + X_s.rows(), n + 1);
+  held.setZero();
+  held.topLeftCorner(J_s.rows(), n) = J_s;
+  held.bottomLeftCorner(X_s.rows(), n) = X_s;
+  const int held_rank = Rank(Eigen::JacobiSVD<Eigen::MatrixXd>(held.leftCols(n)).singularValues(), rank_tolerance * scale);
+  for (int b = 0; b < model.num_bases(); ++b) {
+    if (model.mobile_bases[b].type != BaseType::kDifferential) continue;
+    held.col(n).head(J_s.rows()) = J_u.col(kBaseControlSize * b + 2);
+    if (Rank(Eigen::JacobiSVD<Eigen::MatrixXd>(held).singularValues(), rank_tolerance * scale) == held_rank) continue;
+    const double theta = u[kBaseControlSize * b + 2];
+    for (int c = 0; c < k; ++c) {
+      if (effective[c] == kBaseControlSize * b) L(rows, n + c) = -std::sin(theta);
+      if (effective[c] == kBaseControlSize * b + 1) L(rows, n + c) = std::cos(theta);
+    }
+    ++rows;
+  }
+  if (rows == 0) {
+    report.end_effector_dof_nonholonomic = report.end_effector_dof;
+  } else {
+    Eigen::MatrixXd JL(J.rows() + rows, n + k);
+    JL << J, L.topRows(rows);
+    int free_dof = 0;
+    report.end_effector_dof_nonholonomic = end_effector_dof(JL, &free_dof);
   }
   return report;
 }

@@ -19,6 +19,13 @@ struct MobilityReport {
   int dof_with_controls_free = 0;
   // Rank of dX_EE over those motions: how many end-effector DOF the bases drive.
   int end_effector_dof = 0;
+  // The same when differential bases may only move along their heading
+  // (instantaneously: no lateral velocity), except those whose heading turns
+  // without moving the end-effector (they can face any direction first);
+  // equals end_effector_dof without differential bases. Fewer than the controlled components: the
+  // differential bases leave the end-effector no feasible motion in some
+  // directions (e.g. posts welded to the bases).
+  int end_effector_dof_nonholonomic = 0;
   double smallest_singular_value = 0;  // of dC/ds; ~0 means singular
   double energy = 0;                   // E(s, u)
 };

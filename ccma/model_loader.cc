@@ -395,11 +395,9 @@ class Parser {
     // A differential base's x, y and theta are all controls: complete, and
     // `actuation` may be omitted.
     const bool differential = base.type == BaseType::kDifferential;
-    const YAML::Node actuation_node = differential && !Reader::Has(node, "actuation")
-                                          ? YAML::Node()
-                                          : r_.Require(node, "actuation", path);
-    const std::string actuation =
-        actuation_node.IsDefined() ? r_.String(actuation_node, path + ".actuation") : "complete";
+    const bool given = !differential || Reader::Has(node, "actuation");
+    const YAML::Node actuation_node = given ? r_.Require(node, "actuation", path) : node;
+    const std::string actuation = given ? r_.String(actuation_node, path + ".actuation") : "complete";
     if (actuation == "complete") {
       base.actuation = Actuation::kComplete;
     } else if (actuation == "reduced" && !differential) {

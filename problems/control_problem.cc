@@ -20,6 +20,7 @@
 #include "problems/internal/end_effector_error.h"
 #include "problems/internal/finite_differences.h"
 #include "problems/internal/sensitivity.h"
+#include "problems/internal/step_constraints.h"
 #include "problems/path.h"
 
 namespace ccma {
@@ -73,8 +74,10 @@ bool ControlOptions::IsValid(std::string* why) const {
 }
 
 struct ControlProblem::Workspace {
-  Workspace(const Model& model, const ConstraintSet& constraints) : error(model), hessian_solver(constraints) {}
+  Workspace(const Model& model, const ConstraintSet& constraints, const std::vector<int>& effective)
+      : error(model), hessian_solver(constraints), step_constraints(model, effective) {}
   EndEffectorError error;
+  StepConstraints step_constraints;  // differential bases and joint limits
   HessianSolver hessian_solver;  // symbolic analysis of dG/ds, done once
   EnergyDerivatives derivatives;  // reused by every linearisation
 };
@@ -146,7 +149,7 @@ ControlProblem::ControlProblem(const Model& model, const ControlOptions& options
     : options_(options),
       forward_(model, ValidatedForwardOptions(options)),
       effective_(model.effective_control_indices()),
-      workspace_(std::make_unique<Workspace>(model, forward_.constraints())) {}
+      workspace_(std::make_unique<Workspace>(model, forward_.constraints(), effective_)) {}
 
 ControlProblem::~ControlProblem() = default;
 
@@ -289,22 +292,125 @@ ControlStepResult ControlProblem::SolveStep(const PoseTarget& target) {
   return options_.method == ControlMethod::kBfgs ? SolveStepBfgs(target) : SolveStepLm(target);
 }
 
+Eigen::VectorXd ControlProblem::LmStep(const Eigen::MatrixXd& J, const Eigen::VectorXd& r,
+                                       const Eigen::MatrixXd& ds_du, double mu, std::vector<int>* active) const {
+  const StepConstraints& constraints = workspace_->step_constraints;
+  if (constraints.empty()) return ConstrainedLmStep(J, r, mu, LinearConstraints{});
+  // Active set: hold every joint that the step would push past a bound at
+  // that bound, until no other joint would cross (at most one pass per joint).
+  active->clear();
+  const State& s = forward_.state();
+  const Eigen::VectorXd& u = forward_.controls();
+  Eigen::VectorXd step;
+  for (size_t pass = 0; pass <= forward_.model().joints.size(); ++pass) {
+    step = ConstrainedLmStep(J, r, mu, constraints.Linearize(u, s, ds_du, *active));
+    bool grew = false;
+    for (int j : constraints.WouldCross(s, ds_du, step, 1e-12)) {
+      if (std::find(active->begin(), active->end(), j) == active->end()) {
+        active->push_back(j);
+        grew = true;
+      }
+    }
+    if (!grew) break;
+  }
+  return step;
+}
+
+void ControlProblem::ProjectOntoStepConstraints(ControlStepResult* result) {
+  const StepConstraints& constraints = workspace_->step_constraints;
+  if (constraints.empty()) return;
+  for (int it = 0; it < 8; ++it) {
+    const double lateral = constraints.MaxLateral(forward_.controls());
+    const double violation = constraints.MaxLimitViolation(forward_.state());
+    if (lateral <= 1e-10 && violation <= 1e-10) break;
+    const Eigen::MatrixXd ds_du = StateSensitivity();
+    std::vector<int> beyond = constraints.JointsAtOrBeyond(forward_.state(), -1e-12);
+    for (int j : active_) {
+      if (std::find(beyond.begin(), beyond.end(), j) == beyond.end()) beyond.push_back(j);
+    }
+    const LinearConstraints rows = constraints.Linearize(forward_.controls(), forward_.state(), ds_du, beyond);
+    const Eigen::VectorXd d = ConstrainedLmStep(Eigen::MatrixXd::Zero(0, ds_du.cols()), Eigen::VectorXd(0), 1.0, rows);
+    State predicted = forward_.state();
+    predicted.Plus(ds_du * d);
+    SolveAt(EffectiveControls(forward_.controls()) + d, predicted);
+    ++result->iterations;
+  }
+}
+
+bool ControlProblem::TurnDifferentialBases(const PoseTarget& target, ControlStepResult* turn) {
+  // Heading change [rad] above which a base turns on the spot first.
+  constexpr double kMaxArcTurn = 0.05;
+  const Model& model = forward_.model();
+  std::vector<int> differential;
+  for (int k = 0; k < model.num_bases(); ++k) {
+    if (model.mobile_bases[k].type == BaseType::kDifferential) differential.push_back(k);
+  }
+  if (differential.empty()) return false;
+  const auto start = Clock::now();
+  // Where would the bases go if they could slide? (a Gauss-Newton step)
+  Eigen::VectorXd r;
+  Eigen::MatrixXd J, ds_du;
+  double rcond = 0;
+  bool singular = false;
+  Linearize(target, &r, &J, &ds_du, &rcond, &singular);
+  const Eigen::VectorXd d = ConstrainedLmStep(J, r, 1e-12 * std::max(J.squaredNorm(), 1e-30), LinearConstraints{});
+  Eigen::VectorXd u = forward_.controls();
+  std::vector<int> column(static_cast<size_t>(model.num_controls()), -1);
+  for (size_t c = 0; c < effective_.size(); ++c) column[static_cast<size_t>(effective_[c])] = static_cast<int>(c);
+  bool turned = false;
+  for (int k : differential) {
+    const int i = kBaseControlSize * k;
+    if (column[i] < 0 || column[i + 1] < 0) continue;
+    const double dx = d[column[i]], dy = d[column[i + 1]];
+    if (std::hypot(dx, dy) < 1e-9) continue;
+    // Face the motion, forwards or backwards, whichever is the smaller turn.
+    double change = WrapAngle(std::atan2(dy, dx) - u[i + 2]);
+    if (change > M_PI / 2) change -= M_PI;
+    if (change < -M_PI / 2) change += M_PI;
+    if (std::abs(change) <= kMaxArcTurn) continue;
+    u[i + 2] += change;
+    turned = true;
+  }
+  if (!turned) return false;
+  const PoseTarget before = CurrentPose();
+  const State state_before = forward_.state();
+  const Eigen::VectorXd u_before = forward_.controls();
+  workspace_->step_constraints.Begin(forward_.controls());  // a turn on the spot: no lateral motion
+  const ForwardResult assembled = forward_.Assemble(u);
+  ++forward_solves_;
+  *turn = ControlStepResult();
+  Finish(before, turn);  // the end-effector must not have moved
+  turn->assembled = assembled.assembled;
+  turn->reached = turn->reached && assembled.assembled && !assembled.branch_jump;
+  if (!turn->reached) {
+    // The headings are not free in this chain (turning moves the
+    // end-effector): no turn; the step must manage under its constraints.
+    forward_.Restore(state_before, u_before);
+    return false;
+  }
+  turn->iterations = 1;
+  turn->forward_solves = assembled.substeps;
+  turn->time_ms = Milliseconds(start);
+  return true;
+}
+
 bool ControlProblem::LmIteration(const PoseTarget& target, const Eigen::MatrixXd& J,
                                  const Eigen::MatrixXd& ds_du, double* O, double* mu, Eigen::VectorXd* r,
                                  ControlStepResult* result) {
-  // Damped least squares through the eigen-decomposition of J^T J (k x k,
-  // k <= a few dozen): step = -V (S + mu)^-1 V^T J^T r. Among equivalent
-  // steps (redundant controls) this is the one of least norm.
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(J.transpose() * J);
-  const Eigen::VectorXd sigma_sq = eig.eigenvalues().cwiseMax(0.0);
-  const Eigen::VectorXd Vt_g = eig.eigenvectors().transpose() * (J.transpose() * *r);
-  if (*mu < 0) *mu = 1e-12 * std::max(sigma_sq.maxCoeff(), 1e-30);
+  // Damped least squares (least norm among equivalent steps: the bases move
+  // as little as possible), under the step constraints when there are any.
+  if (*mu < 0) {
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(J.transpose() * J, Eigen::EigenvaluesOnly);
+    *mu = 1e-12 * std::max(eig.eigenvalues().cwiseMax(0.0).maxCoeff(), 1e-30);
+  }
   const State base = forward_.state();
   const Eigen::VectorXd u_base = forward_.controls();
   const Eigen::VectorXd ue = EffectiveControls(u_base);
   const ForwardOptions& fo = forward_.options();
+  const StepConstraints& step_constraints = workspace_->step_constraints;
   for (int trial = 0; trial < 16; ++trial) {
-    const Eigen::VectorXd step = -eig.eigenvectors() * (Vt_g.array() / (sigma_sq.array() + *mu)).matrix();
+    std::vector<int> active;
+    const Eigen::VectorXd step = LmStep(J, *r, ds_du, *mu, &active);
     if (step.lpNorm<Eigen::Infinity>() <= 1e-15 * (1.0 + ue.lpNorm<Eigen::Infinity>())) return false;
     // First-order predictor: start the forward solve at s + ds/du * step.
     const Eigen::VectorXd ds_predicted = ds_du * step;
@@ -317,10 +423,14 @@ bool ControlProblem::LmIteration(const PoseTarget& target, const Eigen::MatrixXd
       const Eigen::VectorXd r_new = Residuals(target);
       const double O_new = 0.5 * r_new.squaredNorm();
       result->branch_jumps_rejected += jumped;
-      if (!jumped && O_new < *O) {
+      // Limits hold to first order; allow the second-order slack, removed by
+      // the next iterations (Newton on the active bounds).
+      const bool within = step_constraints.empty() || step_constraints.MaxLimitViolation(forward_.state()) <= 1e-6;
+      if (!jumped && within && O_new < *O) {
         *O = O_new;
         *r = r_new;
         *mu = std::max(*mu * 0.1, 1e-30);
+        active_ = active;
         return true;
       }
     }
@@ -343,7 +453,16 @@ ControlStepResult ControlProblem::SolveStepLm(const PoseTarget& target) {
   result.min_singular_value_dX_du = SmallestSingularValue(J.topRows(ne));
   double O = 0.5 * r.squaredNorm();
   auto error_of = [&] { return ne > 0 ? r.head(ne).lpNorm<Eigen::Infinity>() : 0.0; };
-  auto done = [&] { return error_of() <= 0.1 * options_.target_tolerance && forward_.Energy() <= kEnergyFloor; };
+  const StepConstraints& step_constraints = workspace_->step_constraints;
+  step_constraints.empty() ? void() : workspace_->step_constraints.Begin(forward_.controls());
+  active_.clear();
+  auto constraints_hold = [&] {
+    return step_constraints.empty() || (step_constraints.MaxLateral(forward_.controls()) <= 1e-10 &&
+                                        step_constraints.MaxLimitViolation(forward_.state()) <= 1e-10);
+  };
+  auto done = [&] {
+    return error_of() <= 0.1 * options_.target_tolerance && forward_.Energy() <= kEnergyFloor && constraints_hold();
+  };
   auto report = [&](int iteration) {
     if (options_.on_iteration) options_.on_iteration(iteration, Milliseconds(start), O, error_of());
   };
@@ -361,6 +480,7 @@ ControlStepResult ControlProblem::SolveStepLm(const PoseTarget& target) {
     result.singular |= singular;
     result.min_singular_value_dX_du = SmallestSingularValue(J.topRows(ne));
   }
+  if (!constraints_hold()) ProjectOntoStepConstraints(&result);
   result.forward_solves = forward_solves_ - solves_before;
   Finish(target, &result);
   result.time_ms = Milliseconds(start);
@@ -417,7 +537,18 @@ void ControlProblem::Finish(const PoseTarget& target, ControlStepResult* result)
   result->error = e.size() > 0 ? e.lpNorm<Eigen::Infinity>() : 0.0;
   result->objective = 0.5 * e.squaredNorm() + options_.lambda * result->residual_energy;
   result->assembled = result->residual_energy < forward_.options().assembly_tolerance;
-  result->reached = result->assembled && result->error <= options_.target_tolerance;
+  const StepConstraints& constraints = workspace_->step_constraints;
+  if (!constraints.empty()) {
+    result->max_limit_violation = std::max(0.0, constraints.MaxLimitViolation(forward_.state()));
+    result->max_lateral_displacement = constraints.MaxLateral(forward_.controls());
+    std::vector<int> at_limit;
+    for (int j : active_) {
+      if (!constraints.JointsAtOrBeyond(forward_.state(), 1e-8).empty()) at_limit.push_back(j);
+    }
+    result->limited_by = constraints.Describe(forward_.state(), at_limit);
+  }
+  result->reached = result->assembled && result->error <= options_.target_tolerance &&
+                    result->max_limit_violation <= 1e-9 && result->max_lateral_displacement <= 1e-9;
 }
 
 ControlResult ControlProblem::MoveTo(
@@ -436,12 +567,17 @@ ControlResult ControlProblem::MoveTo(
     result.forward_solves += step.forward_solves;
     result.branch_jumps_rejected += step.branch_jumps_rejected;
     result.max_step_residual_energy = std::max(result.max_step_residual_energy, step.residual_energy);
+    result.max_limit_violation = std::max(result.max_limit_violation, step.max_limit_violation);
+    result.max_lateral_displacement = std::max(result.max_lateral_displacement, step.max_lateral_displacement);
+    result.limited_by = step.limited_by;
     result.min_rcond = std::min(result.min_rcond, step.rcond);
     if (on_step) on_step(step_target, step);
     last = step;
   };
   for (int i = 1; i <= path.steps(); ++i) {
     const PoseTarget step_target = path.At(i);
+    ControlStepResult turn;
+    if (TurnDifferentialBases(step_target, &turn)) account(CurrentPose(), turn);
     const ControlStepResult step = SolveStep(step_target);
     account(step_target, step);
     if (!step.reached) {
@@ -449,7 +585,9 @@ ControlResult ControlProblem::MoveTo(
                        " not reached (error " + FormatG(step.error) + ", residual energy " +
                        FormatG(step.residual_energy) + (step.singular ? ", dG/ds singular" : "") +
                        (step.branch_jumps_rejected > 0 ? ", trial steps landed on another assembly branch" : "") +
-                       "): the target may be outside the workspace or past a singularity";
+                       (step.limited_by.empty() ? "" : ", stopped by " + step.limited_by) +
+                       (step.limited_by.empty() ? "): the target may be outside the workspace or past a singularity"
+                                                : "): the target would need a joint beyond its limits");
       if (i < path.steps()) account(target, SolveStep(target));  // best controls for the real target
       break;
     }

@@ -82,6 +82,13 @@ struct ControlStepResult {
   // control unit: it falls to 0 at the edge of the workspace, where dG/ds
   // may stay well conditioned.
   double min_singular_value_dX_du = 0;
+  // Inequalities and non-holonomic bases (model_format.md): the largest joint
+  // limit violation [rad or m] and lateral displacement of a differential
+  // base over this step [m] at the returned controls (both ~0), and the
+  // joints held at a limit when the step ended ("" if none).
+  double max_limit_violation = 0;
+  double max_lateral_displacement = 0;
+  std::string limited_by;
   double time_ms = 0;
 };
 
@@ -99,6 +106,9 @@ struct ControlResult {
   double rcond = 0;                     // at the end
   double min_rcond = 0;                 // over the path
   double min_singular_value_dX_du = 0;  // at the end (see ControlStepResult)
+  double max_limit_violation = 0;       // worst over the path's steps
+  double max_lateral_displacement = 0;  // worst over the path's steps
+  std::string limited_by;               // joints at a limit when it stopped
   double solve_time_ms = 0;
   std::string warning;      // empty, or why the target was not reached
 };
@@ -162,6 +172,17 @@ class ControlProblem {
   // accepted (or the step vanished).
   bool LmIteration(const PoseTarget& target, const Eigen::MatrixXd& J, const Eigen::MatrixXd& ds_du,
                    double* O, double* mu, Eigen::VectorXd* r, ControlStepResult* result);
+  // The LM step for damping mu: unconstrained, or under the step constraints
+  // (differential bases, active joint limits; `active` is updated).
+  Eigen::VectorXd LmStep(const Eigen::MatrixXd& J, const Eigen::VectorXd& r, const Eigen::MatrixXd& ds_du, double mu,
+                         std::vector<int>* active) const;
+  // Newton steps on the step constraints alone until they hold to 1e-10.
+  void ProjectOntoStepConstraints(ControlStepResult* result);
+  // Differential bases that the step toward `target` would move more than
+  // kMaxArcTurn off their heading first turn on the spot (a path step of its
+  // own, the end-effector held), so that the step itself is a gentle arc.
+  // Returns true (and fills `turn`) when they turned.
+  bool TurnDifferentialBases(const PoseTarget& target, ControlStepResult* turn);
   ControlStepResult SolveStepLm(const PoseTarget& target);
   ControlStepResult SolveStepBfgs(const PoseTarget& target);
   void Finish(const PoseTarget& target, ControlStepResult* result);
@@ -171,6 +192,7 @@ class ControlProblem {
   ForwardProblem forward_;
   const std::vector<int> effective_;
   std::unique_ptr<Workspace> workspace_;
+  std::vector<int> active_;  // joints held at a limit in the current step
   int forward_solves_ = 0;
 };
 
