@@ -1,0 +1,158 @@
+// Control under inequalities and non-holonomic bases: joint limits are never
+// left (every step, to 1e-9) and a target beyond them is never reported as
+// reached; differential bases move along one circular arc per step (lateral
+// displacement below 1e-9 m), which an omni model does not; check tells when
+// differential bases leave the end-effector too few DOF.
+#include <unistd.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "ccma/joint_coordinates.h"
+#include "ccma/mobility.h"
+#include "ccma/model_loader.h"
+#include "ccma/rotation.h"
+#include "ccma/waypoints.h"
+#include "problems/control_problem.h"
+#include "problems/trajectory.h"
+
+namespace ccma {
+namespace {
+
+// One omni base carrying a post, and an arm on an actuated, limited hinge
+// about x: the end-effector point 0.2 m along y swings up as q grows, so
+// z = 0.3 + 0.2 sin(q) needs q = asin((z - 0.3) / 0.2).
+const char kHinge[] = R"(name: limited_hinge
+bodies:
+  - {name: post, position: [0, 0, 0.1]}
+  - {name: arm, position: [0, 0, 0.3]}
+mobile_bases:
+  - {name: base0, type: omni, actuation: complete, pose: [0, 0, 0]}
+joints:
+  - {type: fixed, between: [base0, post], point: [0, 0, 0.1]}
+  - {name: hinge, type: revolute, actuated: true, limits: [-0.2, 0.3], between: [post, arm], point: [0, 0, 0.3], axis: [1, 0, 0]}
+end_effector: {body: arm, point: [0, 0.2, 0.3], controlled: [x, y, z]}
+)";
+
+std::string Slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// The 4dof_reduced chain (posts on revolute joints) on differential bases.
+Model DifferentialModel() {
+  std::string text = Slurp(std::string(CCMA_MODELS_DIR) + "/4dof_reduced.yaml");
+  size_t at = 0;
+  int replaced = 0;
+  while ((at = text.find("type: omni, actuation: reduced", at)) != std::string::npos) {
+    text.replace(at, 30, "type: differential");
+    ++replaced;
+  }
+  EXPECT_EQ(replaced, 3);
+  return LoadModelFromString(text, "4dof_differential.yaml");
+}
+
+double Lateral(const Eigen::VectorXd& u0, const Eigen::VectorXd& u1, int base) {
+  const int i = kBaseControlSize * base;
+  const double mid = u0[i + 2] + 0.5 * WrapAngle(u1[i + 2] - u0[i + 2]);
+  return -std::sin(mid) * (u1[i] - u0[i]) + std::cos(mid) * (u1[i + 1] - u0[i + 1]);
+}
+
+// Worst lateral displacement of any base over every step of a path.
+double WorstLateral(const Model& model, const std::string& path, bool* converged) {
+  ControlProblem control(model);
+  Eigen::VectorXd previous = control.controls();
+  double worst = 0;
+  const TrajectoryResult result =
+      FollowWaypoints(control, LoadWaypoints(std::string(CCMA_MODELS_DIR) + "/paths/" + path),
+                      [&](const TrajectoryStep& step) {
+                        for (int k = 0; k < model.num_bases(); ++k) {
+                          worst = std::max(worst, std::abs(Lateral(previous, step.controls, k)));
+                        }
+                        previous = step.controls;
+                      });
+  *converged = result.converged;
+  return worst;
+}
+
+TEST(JointLimits, ATargetBeyondALimitIsNeverReportedReached) {
+  const Model model = LoadModelFromString(kHinge, "hinge.yaml");
+  ControlProblem control(model);
+  // z = 0.396 needs q = asin(0.48) = 0.50 > 0.3.
+  const ControlResult result = control.MoveTo({Eigen::Vector3d(0, 0.2 * std::cos(0.5), 0.3 + 0.2 * std::sin(0.5)),
+                                               Eigen::Vector3d::Zero()});
+  EXPECT_FALSE(result.converged);
+  EXPECT_NE(result.warning.find("joint 'hinge' at its upper limit 0.3 rad"), std::string::npos) << result.warning;
+  const double q = JointCoordinate(model.joints[1], control.forward().state());
+  EXPECT_LE(q, 0.3 + 1e-9);
+  EXPECT_NEAR(q, 0.3, 1e-9);  // it went as far as the limit allows
+  EXPECT_TRUE(LimitsViolated(model, control.forward().state()).empty());
+  // Within the limits the same mechanism reaches a target exactly: q = asin(0.25 / 2) = 0.1253.
+  ControlProblem again(model);
+  const double q_target = std::asin(0.125);
+  const ControlResult reached = again.MoveTo(
+      {Eigen::Vector3d(0.01, 0.2 * std::cos(q_target), 0.3 + 0.2 * std::sin(q_target)), Eigen::Vector3d::Zero()});
+  EXPECT_TRUE(reached.converged) << reached.warning;
+  EXPECT_NEAR(JointCoordinate(model.joints[1], again.forward().state()), q_target, 1e-9);
+  EXPECT_NEAR(again.controls()[3], q_target, 1e-9);  // the actuated joint's control is its q
+}
+
+TEST(JointLimits, EveryTrajectoryRowKeepsTheLimits) {
+  const Model model = LoadModelFromString(kHinge, "hinge.yaml");
+  const std::string waypoints = ::testing::TempDir() + "/hinge_path_" + std::to_string(::getpid()) + ".csv";
+  // Up past the upper limit, then down past the lower one.
+  std::ofstream(waypoints) << "time,x,y,z,roll,pitch,yaw\n0,0,0.2,0.3,0,0,0\n1,0,0.17,0.4,0,0,0\n2,0,0.19,0.22,0,0,0\n";
+  ControlProblem control(model);
+  int rows = 0;
+  double worst = 0;
+  FollowWaypoints(control, LoadWaypoints(waypoints), [&](const TrajectoryStep& step) {
+    const double q = JointCoordinate(model.joints[1], step.state);
+    worst = std::max({worst, q - 0.3, -0.2 - q});
+    ++rows;
+  });
+  EXPECT_GT(rows, 5);
+  EXPECT_LE(worst, 1e-9);
+}
+
+TEST(DifferentialBases, BothPathsAreFollowedAlongArcs) {
+  const Model model = DifferentialModel();
+  for (const char* path : {"4dof_sequential.csv", "4dof_combined.csv"}) {
+    bool converged = false;
+    const double worst = WorstLateral(model, path, &converged);
+    EXPECT_TRUE(converged) << path;
+    EXPECT_LT(worst, 1e-9) << path;
+  }
+}
+
+TEST(DifferentialBases, TheSameCheckFailsOnTheOmniModel) {
+  const Model omni = LoadModel(std::string(CCMA_MODELS_DIR) + "/4dof_reduced.yaml");
+  bool converged = false;
+  EXPECT_GT(WorstLateral(omni, "4dof_sequential.csv", &converged), 1e-4);
+  EXPECT_TRUE(converged);
+}
+
+TEST(DifferentialBases, CheckSaysWhenWeldedPostsLeaveTooFewDof) {
+  const Model free_headings = DifferentialModel();
+  const MobilityReport r = AnalyzeMobility(free_headings, State::Home(free_headings), free_headings.home_controls());
+  EXPECT_EQ(r.end_effector_dof, 4);
+  EXPECT_EQ(r.end_effector_dof_nonholonomic, 4);  // the bases turn under their posts first
+  std::string text = Slurp(std::string(CCMA_MODELS_DIR) + "/4dof_complete.yaml");
+  size_t at = 0;
+  while ((at = text.find("type: omni, actuation: complete", at)) != std::string::npos) {
+    text.replace(at, 31, "type: differential");
+  }
+  const Model welded = LoadModelFromString(text, "4dof_complete_differential.yaml");
+  const MobilityReport w = AnalyzeMobility(welded, State::Home(welded), welded.home_controls());
+  EXPECT_EQ(w.end_effector_dof, 4);
+  // Each base can only push its leg radially: the end-effector moves in z only.
+  EXPECT_EQ(w.end_effector_dof_nonholonomic, 1);
+}
+
+}  // namespace
+}  // namespace ccma
