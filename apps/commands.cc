@@ -53,10 +53,11 @@ const std::vector<Command>& Commands() {
        "Follows end-effector waypoints (docs/waypoints.md) in small control steps and writes one CSV row\n"
        "per step (header names carry units). Stops at the first waypoint it cannot reach and warns.",
        Concat({"model", "waypoints", "out", "controls"}, kControlFlags), RunTrajectory},
-      {"generate", "ccma generate --agents=N --out=FILE.yaml",
-       "Writes a Stewart-like model with N mobile bases (the family of 6dof_six_agents), validated\n"
-       "before it is written.",
-       {"agents", "out"}, RunGenerate},
+      {"generate", "ccma generate --agents=N [--kind=ccma|stewart_gough] --out=FILE.yaml",
+       "Writes a generated model, validated before it is written: a Stewart-like CCMA with N mobile\n"
+       "bases (the family of 6dof_six_agents), or with --kind=stewart_gough an N-leg UPS platform on\n"
+       "the ground with actuated prismatic legs and no mobile base.",
+       {"agents", "kind", "out"}, RunGenerate},
       {"bench", "ccma bench --model=FILE | --all [--models_dir=DIR] | --scaling  [--steps=N] [--seed=1] [--out=DIR]",
        "The paper's convergence study: seeded paper-size control steps (10 mm + 0.005 rad) solved by LM\n"
        "and BFGS with implicit-function and finite-difference gradients, the warm forward solve and the\n"

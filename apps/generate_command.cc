@@ -10,7 +10,10 @@
 #include "apps/json_output.h"
 #include "apps/output_file.h"
 
-DEFINE_int32(agents, 0, "number of mobile bases, 3..1000 [agents]");
+DEFINE_int32(agents, 0, "number of mobile bases (or legs with --kind=stewart_gough), 3..1000 [agents]");
+DEFINE_string(kind, "ccma",
+              "ccma: mobile bases with R-R-S legs (family of 6dof_six_agents); stewart_gough: a UPS "
+              "platform on the ground with actuated legs, no base (>= 6 legs) [ccma|stewart_gough]");
 
 namespace ccma::cli {
 
@@ -21,12 +24,20 @@ int RunGenerate(const std::vector<std::string>& args) {
   const std::string out_path = RequireFlag(FLAGS_out, "out", "generate");
   StewartOptions options;
   options.agents = FLAGS_agents;
-  const std::string text = GenerateStewartModel(options);
+  if (FLAGS_kind != "ccma" && FLAGS_kind != "stewart_gough") {
+    throw UsageError("ccma generate: --kind must be ccma or stewart_gough");
+  }
+  if (FLAGS_kind == "stewart_gough" && FLAGS_agents < 6) {
+    throw UsageError("ccma generate: --kind=stewart_gough needs --agents >= 6");
+  }
+  const std::string text =
+      FLAGS_kind == "ccma" ? GenerateStewartModel(options) : GenerateStewartGoughModel(options);
   const Model model = LoadModelFromString(text, out_path);  // validate before writing
   OutputFile out(out_path, "out");
   out.stream() << text;
   out.Commit();
   nlohmann::json summary = {{"model", model.name},       {"agents", model.num_bases()},
+                            {"actuated_joints", model.num_actuated_joints()},
                             {"bodies", model.num_bodies()}, {"state_size", model.state_size()},
                             {"controls", model.num_controls()}, {"out", out_path}};
   PrintJson(summary);

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 namespace ccma {
 namespace {
@@ -57,6 +58,40 @@ std::string GenerateStewartModel(const StewartOptions& o) {
         << ", Stewart-like layout (family of 6dof_six_agents).\"\n"
         << "bodies:\n  - {name: ee, position: " << Vec(Eigen::Vector3d(0, 0, o.platform_height)) << "}\n"
         << bodies.str() << "mobile_bases:\n" << bases.str() << "joints:\n" << joints.str()
+        << "end_effector:\n  body: ee\n  point: " << Vec(Eigen::Vector3d(0, 0, o.platform_height))
+        << "\n  controlled: [x, y, z, roll, pitch, yaw]\n";
+  return model.str();
+}
+
+std::string GenerateStewartGoughModel(const StewartOptions& o) {
+  if (o.agents < 6) throw std::invalid_argument("a Stewart-Gough platform needs at least 6 legs");
+  std::ostringstream bodies, joints;
+  for (int k = 0; k < o.agents; ++k) {
+    const double angle = 2.0 * M_PI * k / o.agents;
+    const double attach = angle + (k % 2 == 0 ? 1 : -1) * o.attachment_offset;
+    const Eigen::Vector3d ground(o.base_radius * std::cos(angle), o.base_radius * std::sin(angle), 0.0);
+    const Eigen::Vector3d top(o.platform_radius * std::cos(attach), o.platform_radius * std::sin(attach),
+                              o.platform_height);
+    const Eigen::Vector3d leg = top - ground;
+    // Universal axes: both perpendicular to the leg, so it cannot spin.
+    const Eigen::Vector3d a1 = Eigen::Vector3d(leg.y(), -leg.x(), 0).normalized();
+    const Eigen::Vector3d a2 = leg.cross(a1).normalized();
+    const std::string n = std::to_string(k);
+    bodies << "  - {name: lower" << n << ", position: " << Vec(ground + 0.25 * leg) << "}\n"
+           << "  - {name: upper" << n << ", position: " << Vec(ground + 0.75 * leg) << "}\n";
+    joints << "  - {type: universal, between: [world, lower" << n << "], point: " << Vec(ground)
+           << ", axes: [" << Vec(a1) << ", " << Vec(a2) << "]}\n"
+           << "  - {name: leg" << n << ", type: prismatic, actuated: true, limits: [-0.1, 0.1], between: [lower" << n
+           << ", upper" << n << "], point: " << Vec(ground + 0.5 * leg) << ", axis: " << Vec(leg) << "}\n"
+           << "  - {type: spherical, between: [upper" << n << ", ee], point: " << Vec(top) << "}\n";
+  }
+  std::ostringstream model;
+  model << "name: stewart_gough_" << o.agents << "_legs\n"
+        << "description: \"Generated: " << o.agents
+        << "-UPS Stewart-Gough platform: universal at the ground, actuated prismatic (leg<i>, "
+           "+-0.1 m), spherical at the platform; no mobile base.\"\n"
+        << "bodies:\n  - {name: ee, position: " << Vec(Eigen::Vector3d(0, 0, o.platform_height)) << "}\n"
+        << bodies.str() << "joints:\n" << joints.str()
         << "end_effector:\n  body: ee\n  point: " << Vec(Eigen::Vector3d(0, 0, o.platform_height))
         << "\n  controlled: [x, y, z, roll, pitch, yaw]\n";
   return model.str();

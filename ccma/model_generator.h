@@ -26,6 +26,13 @@ struct StewartOptions {
 // agents < 3.
 std::string GenerateStewartModel(const StewartOptions& options);
 
+// A Stewart-Gough platform with `agents` legs and no mobile base (>= 6): each
+// leg a universal joint at the ground (`world`), an actuated prismatic joint
+// `leg<i>` with limits [-0.1, 0.1] m, and a spherical joint on the platform
+// (UPS); ground and platform points as in GenerateStewartModel. Throws
+// std::invalid_argument for fewer than 6 legs.
+std::string GenerateStewartGoughModel(const StewartOptions& options);
+
 }  // namespace ccma
 
 #endif  // CCMA_MODEL_GENERATOR_H_

@@ -314,7 +314,7 @@ TEST(Cli, EachCommandHasItsOwnHelpWithUnits) {
       {"simulate", {"model", "controls", "from"}},
       {"control", {"model", "target", "controls", "method", "max_step_m", "max_step_rad", "lambda"}},
       {"trajectory", {"model", "waypoints", "out", "controls", "method", "max_step_m", "max_step_rad", "lambda"}},
-      {"generate", {"agents", "out"}},
+      {"generate", {"agents", "kind", "out"}},
       {"bench", {"model", "all", "models_dir", "scaling", "steps", "seed", "out"}},
       {"replay", {"model", "waypoints", "out", "noise", "seed", "mocap_noise_m", "mocap_noise_rad",
                   "latency_s", "slip", "kp", "ki", "controller_hz", "max_wheel_speed", "method", "max_step_m",

@@ -14,6 +14,7 @@
 
 #include "ccma/joint_coordinates.h"
 #include "ccma/mobility.h"
+#include "ccma/model_generator.h"
 #include "ccma/model_loader.h"
 #include "ccma/rotation.h"
 #include "ccma/waypoints.h"
@@ -152,6 +153,37 @@ TEST(DifferentialBases, CheckSaysWhenWeldedPostsLeaveTooFewDof) {
   EXPECT_EQ(w.end_effector_dof, 4);
   // Each base can only push its leg radially: the end-effector moves in z only.
   EXPECT_EQ(w.end_effector_dof_nonholonomic, 1);
+}
+
+}  // namespace
+}  // namespace ccma
+
+namespace ccma {
+namespace {
+
+// Generated Stewart-Gough platforms: rigid with their legs fixed, 6-DOF
+// platform, and every leg's coordinate equal to its control after a solve.
+TEST(GeneratedStewartGough, RigidAndLegCoordinatesFollowTheirControls) {
+  for (int legs : {6, 8, 12}) {
+    StewartOptions options;
+    options.agents = legs;
+    const Model model = LoadModelFromString(GenerateStewartGoughModel(options), "generated.yaml");
+    EXPECT_EQ(model.num_bases(), 0);
+    EXPECT_EQ(model.num_controls(), legs);
+    const MobilityReport r = AnalyzeMobility(model, State::Home(model), model.home_controls());
+    EXPECT_TRUE(r.rigid_with_controls_fixed) << legs;
+    EXPECT_EQ(r.end_effector_dof, 6) << legs;
+    if (legs != 6) continue;  // more legs than DOF: a generic leg vector does not assemble
+    ForwardProblem forward(model);
+    Eigen::VectorXd u(6);
+    u << 0.01, -0.02, 0.015, 0.0, -0.01, 0.02;
+    const ForwardResult result = forward.Assemble(u);
+    EXPECT_TRUE(result.assembled);
+    for (const JointCoordinateReport& q : JointCoordinates(model, forward.state())) {
+      const Joint& joint = model.joints[q.joint];
+      if (joint.actuated) EXPECT_NEAR(q.q, u[joint.control], 1e-9) << joint.name;
+    }
+  }
 }
 
 }  // namespace
