@@ -148,8 +148,8 @@ Eigen::VectorXd ControlsFlagOrHome(const Model& model) {
   const Eigen::VectorXd u = ParseNumberList(FLAGS_controls, "controls");
   if (u.size() != model.num_controls()) {
     throw UsageError("--controls: model '" + model.name + "' has " + std::to_string(model.num_bases()) +
-                     " mobile bases, so " + std::to_string(model.num_controls()) + " controls; got " +
-                     std::to_string(u.size()));
+                     " mobile bases and " + std::to_string(model.num_actuated_joints()) + " actuated joints, so " +
+                     std::to_string(model.num_controls()) + " controls; got " + std::to_string(u.size()));
   }
   for (int i = 0; i < u.size(); ++i) {
     if (std::abs(u[i]) > kMaxMagnitude) {

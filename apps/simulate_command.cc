@@ -56,8 +56,9 @@ void CheckActuatedLimits(const Model& model, const Eigen::VectorXd& u) {
   for (const Joint& joint : model.joints) {
     if (!joint.actuated || !joint.limited) continue;
     const double q = u[joint.control];
-    if (q < joint.lower || q > joint.upper) {
-      throw UsageError("--controls: entry " + std::to_string(joint.control) + " (" + FormatG(q) +
+    // The same tolerance as limits_violated: control's own output lands within it.
+    if (q < joint.lower - 1e-9 || q > joint.upper + 1e-9) {
+      throw UsageError("--controls: entry " + std::to_string(joint.control) + " (" + FormatG(q, 17) +
                        ") drives joint '" + joint.name + "' outside its limits [" + FormatG(joint.lower) + ", " +
                        FormatG(joint.upper) + "]");
     }

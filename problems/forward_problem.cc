@@ -272,7 +272,10 @@ ForwardResult ForwardProblem::Assemble(const Eigen::VectorXd& u) {
 
 void ForwardProblem::ResetToHome() {
   SetState(State::Home(model_));
-  controls_ = model_.home_controls();
+  // Copy into the existing storage: assigning a temporary would swap buffers
+  // and leave Ceres' control blocks pointing at freed memory.
+  const Eigen::VectorXd home = model_.home_controls();
+  controls_ = home;
 }
 
 void ForwardProblem::Restore(const State& s, const Eigen::VectorXd& u) {

@@ -518,9 +518,9 @@ TEST(ModelFormatDocs, EveryLoaderKeyIsDocumented) {
       // mobile_bases
       "type", "actuation", "pose", "wheels",
       // wheels
-      "angle", "distance", "radius", "mounting", "roller",
+      "angle", "distance", "radius", "mounting", "roller", "track",
       // joints
-      "between", "point", "axis", "axes",
+      "between", "point", "axis", "axes", "actuated", "limits", "world",
       // end_effector
       "body", "controlled"};
   const std::string doc = ReadDoc("model_format.md");
