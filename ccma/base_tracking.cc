@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 #include "ccma/limits.h"
 #include "ccma/rotation.h"
@@ -37,7 +38,13 @@ bool TrackingGains::IsValid(std::string* why) const {
          InRange(ki_heading, 0, kMaxGain, "TrackingGains::ki_heading (PI integral gain)", "1/s^2", why) &&
          InRange(max_wheel_speed, 0, kMaxGain, "TrackingGains::max_wheel_speed (wheel-speed saturation)",
                  "rad/s", why, true) &&
-         InRange(rate_hz, kMinControllerHz, kMaxControllerHz, "TrackingGains::rate_hz (controller rate)", "Hz", why);
+         InRange(rate_hz, kMinControllerHz, kMaxControllerHz, "TrackingGains::rate_hz (controller rate)", "Hz", why) &&
+         InRange(differential.k_along, 0, kMaxGain,
+                 "TrackingGains::differential.k_along (differential base: along-track gain)", "1/s", why, true) &&
+         InRange(differential.k_lateral, 0, kMaxGain,
+                 "TrackingGains::differential.k_lateral (differential base: sideways gain)", "1/m^2", why, true) &&
+         InRange(differential.k_heading, 0, kMaxGain,
+                 "TrackingGains::differential.k_heading (differential base: heading gain)", "1/s", why, true);
 }
 
 bool SimulationNoise::IsValid(std::string* why) const {
@@ -85,6 +92,57 @@ Eigen::VectorXd BaseTracker::Update(const Eigen::Vector3d& set, const Eigen::Vec
   return wheels;
 }
 
+DifferentialTracker::DifferentialTracker(DifferentialDriveKinematics kinematics, const TrackingGains& gains)
+    : kinematics_(kinematics), gains_(gains) {}
+
+Eigen::VectorXd DifferentialTracker::Update(const Eigen::Vector3d& set, const Eigen::Vector3d& set_velocity,
+                                            const Eigen::Vector3d& measured) {
+  const double v_r = std::cos(set.z()) * set_velocity.x() + std::sin(set.z()) * set_velocity.y();
+  return UpdateWithTwist(set, v_r, set_velocity.z(), measured);
+}
+
+Eigen::VectorXd DifferentialTracker::UpdateWithTwist(const Eigen::Vector3d& set, double v_r, double omega_r,
+                                                     const Eigen::Vector3d& measured) {
+  const DifferentialTrackingGains& k = gains_.differential;
+  if (!gains_.velocity_feedforward) v_r = omega_r = 0;
+  // The set pose seen from the measured one (Kanayama's error, base frame).
+  const double c = std::cos(measured.z()), s = std::sin(measured.z());
+  const double dx = set.x() - measured.x(), dy = set.y() - measured.y();
+  const double e_x = c * dx + s * dy, e_y = -s * dx + c * dy;
+  const double e_theta = WrapAngle(set.z() - measured.z());
+  const double k_theta = std::max(k.k_heading, 2 * std::sqrt(k.k_lateral) * std::abs(v_r));
+  double v = v_r * std::cos(e_theta) + k.k_along * e_x;
+  double omega = omega_r + k.k_lateral * v_r * e_y + k_theta * std::sin(e_theta);
+  Eigen::Vector2d wheels = kinematics_.WheelSpeeds(v, omega);
+  const double peak = wheels.cwiseAbs().maxCoeff();
+  saturated_ = peak > gains_.max_wheel_speed;
+  if (saturated_) {
+    wheels *= gains_.max_wheel_speed / peak;  // both wheels together: the curvature is kept
+  }
+  twist_ = kinematics_.Twist(wheels.x(), wheels.y());
+  return wheels;
+}
+
+int BaseDrive::num_wheels() const {
+  if (is_differential()) return 2;
+  return omni()->num_wheels();
+}
+
+Eigen::Vector3d BaseDrive::Twist(const Eigen::VectorXd& wheel_speeds) const {
+  if (const auto* d = differential()) {
+    const Eigen::Vector2d t = d->Twist(wheel_speeds[0], wheel_speeds[1]);
+    return Eigen::Vector3d(t.x(), 0, t.y());
+  }
+  return omni()->Twist(wheel_speeds);
+}
+
+BaseDrive MakeBaseDrive(const MobileBase& base) {
+  if (base.type == BaseType::kDifferential) {
+    return DifferentialDriveKinematics(base.differential.track, base.differential.radius);
+  }
+  return OmniWheelKinematics(base.wheels);
+}
+
 SimulationNoise SimulationNoise::None() {
   SimulationNoise n;
   n.position_sigma = n.heading_sigma = 0;
@@ -94,19 +152,31 @@ SimulationNoise SimulationNoise::None() {
   return n;
 }
 
-SimulatedBases::SimulatedBases(std::vector<OmniWheelKinematics> kinematics,
-                               std::vector<Eigen::Vector3d> poses, const SimulationNoise& noise)
-    : kinematics_(std::move(kinematics)),
+SimulatedBases::SimulatedBases(std::vector<BaseDrive> drives, std::vector<Eigen::Vector3d> poses,
+                               const SimulationNoise& noise)
+    : drives_(std::move(drives)),
       poses_(std::move(poses)),
       pending_(poses_.size()),
       measured_(poses_),
       noise_(noise),
       rng_(noise.seed) {
-  for (const auto& k : kinematics_) applied_.push_back(Eigen::VectorXd::Zero(k.num_wheels()));
+  if (drives_.size() != poses_.size()) {
+    throw std::invalid_argument("SimulatedBases: " + std::to_string(drives_.size()) + " drives but " +
+                                std::to_string(poses_.size()) + " poses");
+  }
+  for (const auto& d : drives_) applied_.push_back(Eigen::VectorXd::Zero(d.num_wheels()));
   history_.emplace_back(0.0, poses_);
 }
 
 void SimulatedBases::CommandWheels(int base, const Eigen::VectorXd& wheel_speeds) {
+  if (base < 0 || base >= static_cast<int>(drives_.size())) {
+    throw std::invalid_argument("SimulatedBases::CommandWheels: no base " + std::to_string(base));
+  }
+  if (wheel_speeds.size() != drives_[base].num_wheels()) {
+    throw std::invalid_argument("SimulatedBases::CommandWheels: base " + std::to_string(base) + " has " +
+                                std::to_string(drives_[base].num_wheels()) + " wheels, got " +
+                                std::to_string(wheel_speeds.size()) + " speeds");
+  }
   std::normal_distribution<double> n;
   Eigen::VectorXd actual = wheel_speeds;
   for (int i = 0; i < actual.size(); ++i) {
@@ -143,11 +213,13 @@ void SimulatedBases::Advance(double dt) {
         pending_[k].pop_front();
       }
       // Constant body twist over the step: exact motion on SE(2).
-      const Eigen::Vector3d xi = kinematics_[k].Twist(applied_[k]);
+      const Eigen::Vector3d xi = drives_[k].Twist(applied_[k]);
       const double theta = poses_[k].z(), dtheta = xi.z() * step;
       Eigen::Vector2d v = xi.head<2>() * step;
       if (std::abs(dtheta) > 1e-12) {
-        const double s = std::sin(dtheta) / dtheta, c = (1 - std::cos(dtheta)) / dtheta;
+        // (1 - cos) / dtheta without the cancellation of 1 - cos at small angles.
+        const double half = std::sin(dtheta / 2);
+        const double s = std::sin(dtheta) / dtheta, c = 2 * half * half / dtheta;
         v = Eigen::Vector2d(s * v.x() - c * v.y(), c * v.x() + s * v.y());
       }
       poses_[k].head<2>() += Eigen::Rotation2Dd(theta).toRotationMatrix() * v;

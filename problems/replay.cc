@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <stdexcept>
 
+#include "ccma/differential_drive.h"
 #include "ccma/limits.h"
 #include "ccma/rotation.h"
 #include "problems/trajectory.h"
@@ -35,6 +37,7 @@ struct Plan {
   std::vector<double> times;
   std::vector<Eigen::VectorXd> controls;
   std::vector<Eigen::Matrix<double, 6, 1>> end_effector;
+  std::vector<bool> differential;  // per base: moves along arcs between steps
 
   // Index i of the segment [times[i-1], times[i]] holding t (times.size() > 1).
   size_t Segment(double t) const {
@@ -50,6 +53,21 @@ struct Plan {
     const double a = (t - times[i - 1]) / (times[i] - times[i - 1]);
     return T((1 - a) * values[i - 1] + a * values[i]);
   }
+  // The set-point controls at t: linear between plan steps, except the
+  // poses of differential bases, which move along the step's arc
+  // (InterpolateArc) at constant speed and turn rate.
+  Eigen::VectorXd SetControls(double t) const {
+    Eigen::VectorXd u = Interpolate(controls, t);
+    if (times.size() == 1 || t <= times.front() || t >= times.back()) return u;
+    const size_t i = Segment(t);
+    const double a = (t - times[i - 1]) / (times[i] - times[i - 1]);
+    for (size_t k = 0; k < differential.size(); ++k) {
+      if (!differential[k]) continue;
+      const Eigen::Index c = static_cast<Eigen::Index>(kBaseControlSize * k);
+      u.segment<3>(c) = InterpolateArc(controls[i - 1].segment<3>(c), controls[i].segment<3>(c), a);
+    }
+    return u;
+  }
   // The set-points' velocity: the slope of the current segment.
   Eigen::VectorXd Velocity(double t) const {
     Eigen::VectorXd v = Eigen::VectorXd::Zero(controls.front().size());
@@ -57,6 +75,67 @@ struct Plan {
     const size_t i = Segment(t);
     return (controls[i] - controls[i - 1]) / (times[i] - times[i - 1]);
   }
+
+  // Differential bases: the arc of every step (arcs[k][i]: from step i - 1
+  // to step i) and the distance driven and heading turned [m, rad] from the
+  // start to each step (progress[k][i]). Call once the steps are all in.
+  void FindArcs() {
+    arcs.assign(differential.size(), {});
+    progress.assign(differential.size(), {});
+    for (size_t k = 0; k < differential.size(); ++k) {
+      if (!differential[k]) continue;
+      const Eigen::Index c = static_cast<Eigen::Index>(kBaseControlSize * k);
+      arcs[k].resize(times.size());
+      progress[k].assign(times.size(), Eigen::Vector2d::Zero());
+      for (size_t i = 1; i < times.size(); ++i) {
+        arcs[k][i] = ArcBetween(controls[i - 1].segment<3>(c), controls[i].segment<3>(c));
+        progress[k][i] = progress[k][i - 1] + Eigen::Vector2d(arcs[k][i].length, arcs[k][i].heading_change);
+      }
+    }
+  }
+  // Distance driven and heading turned by base k's set pose from the start to t.
+  Eigen::Vector2d Progress(size_t k, double t) const {
+    if (times.size() == 1 || t <= times.front()) return Eigen::Vector2d::Zero();
+    if (t >= times.back()) return progress[k].back();
+    const size_t i = Segment(t);
+    const double a = (t - times[i - 1]) / (times[i] - times[i - 1]);
+    return progress[k][i - 1] + a * Eigen::Vector2d(arcs[k][i].length, arcs[k][i].heading_change);
+  }
+  // The twist (v_r [m/s], omega_r [rad/s]) of base k's set pose averaged over
+  // the controller tick [t, t + dt]: exact on an arc, and a step's arc is
+  // fed forward for the share of the tick it lasts (no lag at step
+  // boundaries between ticks, such as the start and end of a fast turn on
+  // the spot).
+  Eigen::Vector2d Twist(size_t k, double t, double dt) const {
+    return (Progress(k, t + dt) - Progress(k, t)) / dt;
+  }
+  std::vector<std::vector<Arc>> arcs;
+  std::vector<std::vector<Eigen::Vector2d>> progress;
+};
+
+// One base's controller: the PI of an omni base or the unicycle tracker of a
+// differential one.
+class BaseController {
+ public:
+  BaseController(const BaseDrive& drive, const TrackingGains& gains) {
+    if (const DifferentialDriveKinematics* d = drive.differential()) {
+      differential_.emplace(*d, gains);
+    } else {
+      omni_.emplace(*drive.omni(), gains);
+    }
+  }
+  bool differential() const { return differential_.has_value(); }
+  // Omni: the set pose's world velocity is fed forward. Differential: the
+  // reference twist (v_r, omega_r) along its arc.
+  Eigen::VectorXd Update(const Eigen::Vector3d& set, const Eigen::Vector3d& set_velocity,
+                         const Eigen::Vector2d& set_twist, const Eigen::Vector3d& measured) {
+    return omni_ ? omni_->Update(set, set_velocity, measured)
+                 : differential_->UpdateWithTwist(set, set_twist.x(), set_twist.y(), measured);
+  }
+
+ private:
+  std::optional<BaseTracker> omni_;
+  std::optional<DifferentialTracker> differential_;
 };
 
 Plan MakePlan(const Model& model, const std::vector<Waypoint>& waypoints, const ReplayOptions& options,
@@ -66,6 +145,7 @@ Plan MakePlan(const Model& model, const std::vector<Waypoint>& waypoints, const 
   plan.times = {waypoints.front().time};
   plan.controls = {control.controls()};
   plan.end_effector = {Pose6(control.forward().end_effector())};
+  for (const MobileBase& base : model.mobile_bases) plan.differential.push_back(base.type == BaseType::kDifferential);
   const TrajectoryResult trajectory = FollowWaypoints(control, waypoints, [&](const TrajectoryStep& s) {
     if (!s.result.reached && std::isnan(result->failed_step_time)) result->failed_step_time = s.time;
     if (s.time <= plan.times.back()) return;  // the zero-length first leg
@@ -76,20 +156,21 @@ Plan MakePlan(const Model& model, const std::vector<Waypoint>& waypoints, const 
   result->converged = trajectory.converged;
   result->warning = trajectory.warning;
   if (!result->converged && std::isnan(result->failed_step_time)) result->failed_step_time = plan.times.back();
+  plan.FindArcs();
   return plan;
 }
 
 // Runs the bases and the chain along the plan; appends the samples.
 void Simulate(const Model& model, const Plan& plan, const ReplayOptions& options, ReplayResult* result) {
-  std::vector<OmniWheelKinematics> kinematics;
-  std::vector<BaseTracker> trackers;
+  std::vector<BaseDrive> drives;
+  std::vector<BaseController> controllers;
   std::vector<Eigen::Vector3d> start;
   for (int k = 0; k < model.num_bases(); ++k) {
-    kinematics.emplace_back(model.mobile_bases[k].wheels);
-    trackers.emplace_back(kinematics.back(), options.gains);
+    drives.push_back(MakeBaseDrive(model.mobile_bases[k]));
+    controllers.emplace_back(drives.back(), options.gains);
     start.push_back(plan.controls.front().segment<3>(3 * k));
   }
-  SimulatedBases bases(kinematics, start, options.noise);
+  SimulatedBases bases(drives, start, options.noise);
   ForwardProblem chain(model, options.control.forward);
   result->torn_residual_energy = options.torn_residual_energy;
 
@@ -105,8 +186,9 @@ void Simulate(const Model& model, const Plan& plan, const ReplayOptions& options
       ReplaySample sample;
       sample.time = t;
       sample.commanded = plan.Interpolate(plan.end_effector, t);
-      sample.set_controls = plan.Interpolate(plan.controls, t);
-      sample.true_controls.resize(model.num_controls());
+      sample.set_controls = plan.SetControls(t);
+      // Actuated joints' motors (after the bases' controls) hold their set-points.
+      sample.true_controls = sample.set_controls;
       for (int k = 0; k < model.num_bases(); ++k) sample.true_controls.segment<3>(3 * k) = bases.TruePose(k);
       sample.residual_energy = chain.Solve(sample.true_controls).residual_energy;
       sample.assembled = sample.residual_energy <= options.control.forward.assembly_tolerance;
@@ -115,11 +197,12 @@ void Simulate(const Model& model, const Plan& plan, const ReplayOptions& options
       result->samples.push_back(sample);
       next_output += 1.0 / options.output_hz;
     }
-    const Eigen::VectorXd set = plan.Interpolate(plan.controls, t);
+    const Eigen::VectorXd set = plan.SetControls(t);
     const Eigen::VectorXd set_velocity = plan.Velocity(t);
     for (int k = 0; k < model.num_bases(); ++k) {
-      const Eigen::VectorXd wheels = trackers[k].Update(set.segment<3>(3 * k), set_velocity.segment<3>(3 * k),
-                                                        bases.MeasuredPose(k));
+      const Eigen::Vector2d twist = controllers[k].differential() ? plan.Twist(k, t, dt) : Eigen::Vector2d::Zero();
+      const Eigen::VectorXd wheels = controllers[k].Update(set.segment<3>(3 * k), set_velocity.segment<3>(3 * k),
+                                                           twist, bases.MeasuredPose(k));
       bases.CommandWheels(k, wheels);
     }
     bases.Advance(dt);

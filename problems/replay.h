@@ -1,8 +1,12 @@
 // A closed-loop replay of the paper's experiments (Section IV), simulated:
 // the control solution of every path step is fed forward as base set-points
-// (linear in time between steps), each base tracks its set-point with the PI
-// controller from simulated motion capture, and the passive chain follows the
-// bases' true poses by forward simulation. "Commanded" is the end-effector of
+// (linear in time between steps; a differential-drive base's set pose moves
+// along the step's arc, ArcBetween, at constant speed and turn rate), each
+// base tracks its set-point from simulated motion capture with its own kind
+// of controller (omni: the PI BaseTracker; differential: the unicycle
+// DifferentialTracker, the arc's speed and turn rate fed forward), actuated
+// joints hold their set-points, and the passive chain follows the bases'
+// true poses by forward simulation. "Commanded" is the end-effector of
 // the control solution (the paper's "simulated"), "tracked" the one the
 // driven mechanism reaches (the paper's "tracked").
 //

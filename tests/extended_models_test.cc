@@ -478,7 +478,7 @@ TEST(Tool, ChecksEveryNewModelAndRefusesAnActuatorBeyondItsLimits) {
 // so every later Solve()/Assemble() reads stale (freed) controls. Enable when
 // fixed (e.g. copy into the existing storage:
 // `const Eigen::VectorXd home = model_.home_controls(); controls_ = home;`).
-TEST(ForwardProblemReset, DISABLED_ResetToHomeKeepsTheControlsSeenBySolve) {
+TEST(ForwardProblemReset, ResetToHomeKeepsTheControlsSeenBySolve) {
   const Model m = LoadNamed("stewart_gough_6ups");
   // (Undefined behaviour: what Ceres reads depends on the allocator; under
   // ASan this is a heap-use-after-free.)
