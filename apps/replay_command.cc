@@ -104,7 +104,11 @@ nlohmann::json RmseJson(const Model& model, const ReplayResult& r) {
   return rmse;
 }
 
-nlohmann::json NumberOrNull(double v) { return std::isnan(v) ? nlohmann::json(nullptr) : nlohmann::json(v); }
+// A time that exists only when something happened: the key is left out
+// otherwise (no null is ever printed as a result).
+void PutTimeIfAny(nlohmann::json* out, const char* key, double seconds) {
+  if (std::isfinite(seconds)) (*out)[key] = seconds;
+}
 
 nlohmann::json ReplayJson(const Model& model, const ReplayOptions& options, const ReplayResult& r,
                           const std::string& dir, const std::vector<std::string>& plots) {
@@ -114,10 +118,10 @@ nlohmann::json ReplayJson(const Model& model, const ReplayOptions& options, cons
   out["converged"] = r.converged;
   out["torn"] = r.torn;
   out["torn_samples"] = r.torn_samples;
-  out["first_torn_time_s"] = NumberOrNull(r.first_torn_time);
+  PutTimeIfAny(&out, "first_torn_time_s", r.first_torn_time);
   out["max_residual_energy"] = r.max_residual_energy;
   out["torn_residual_energy"] = r.torn_residual_energy;
-  out["failed_step_time_s"] = NumberOrNull(r.failed_step_time);
+  PutTimeIfAny(&out, "failed_step_time_s", r.failed_step_time);
   out["trustworthy"] = r.trustworthy();
   out["duration_s"] = r.duration_s;
   out["samples"] = r.samples.size();
