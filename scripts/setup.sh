@@ -30,11 +30,21 @@ BUILD_TYPE="${CCMA_BUILD_TYPE:-Release}"
 echo "setup: configuring build/ ($BUILD_TYPE); the first build takes about 3 minutes on 2 cores"
 cmake -S . -B build -DCMAKE_BUILD_TYPE="$BUILD_TYPE" > build.log 2>&1 || { cat build.log; exit 1; }
 # Progress: one line per 10% of the build (the whole log is in build.log).
-if ! cmake --build build -j"$(nproc)" 2>&1 | tee -a build.log | awk '
-  match($0, /^\[ *[0-9]+%\]/) {
-    p = substr($0, RSTART + 1, RLENGTH - 3) + 0
-    if (p >= next_p) { printf "setup: building %3d%%\n", p; fflush(); next_p = p - p % 10 + 10 }
-  }'; then
+# A shell loop, not awk: mawk reads its input in blocks and would print late.
+progress() {
+  local next=0 line p
+  while IFS= read -r line; do
+    printf '%s\n' "$line" >> build.log
+    if [[ "$line" =~ ^\[\ *([0-9]+)%\] ]]; then
+      p=${BASH_REMATCH[1]}
+      if (( p >= next )); then
+        printf 'setup: building %3d%%\n' "$p"
+        next=$(( p - p % 10 + 10 ))
+      fi
+    fi
+  done
+}
+if ! cmake --build build -j"$(nproc)" 2>&1 | progress; then
   tail -50 build.log
   exit 1
 fi

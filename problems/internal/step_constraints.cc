@@ -154,19 +154,23 @@ std::string StepConstraints::Describe(const State& s, const std::vector<int>& ac
 
 Eigen::VectorXd ConstrainedLmStep(const Eigen::MatrixXd& J, const Eigen::VectorXd& r, double mu,
                                   const LinearConstraints& constraints) {
-  const int k = static_cast<int>(J.cols());
-  Eigen::VectorXd d0 = Eigen::VectorXd::Zero(k);
-  Eigen::MatrixXd N = Eigen::MatrixXd::Identity(k, k);
-  if (constraints.rows() > 0) {
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(constraints.A, Eigen::ComputeFullV | Eigen::ComputeFullU);
-    const Eigen::VectorXd sigma = svd.singularValues();
-    const double cutoff = 1e-10 * std::max(1.0, sigma.size() > 0 ? sigma[0] : 0.0);
-    int rank = 0;
-    while (rank < sigma.size() && sigma[rank] > cutoff) ++rank;
-    const Eigen::MatrixXd V = svd.matrixV(), U = svd.matrixU();
-    d0 = V.leftCols(rank) * (sigma.head(rank).cwiseInverse().asDiagonal() * (U.leftCols(rank).transpose() * constraints.b));
-    N = V.rightCols(k - rank);
+  if (constraints.rows() == 0) {
+    // Unconstrained: -V (S + mu)^-1 V^T J^T r through the eigen-decomposition of J^T J.
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(J.transpose() * J);
+    const Eigen::VectorXd sigma_sq = eig.eigenvalues().cwiseMax(0.0);
+    return -eig.eigenvectors() *
+           ((eig.eigenvectors().transpose() * (J.transpose() * r)).array() / (sigma_sq.array() + mu)).matrix();
   }
+  const int k = static_cast<int>(J.cols());
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(constraints.A, Eigen::ComputeFullV | Eigen::ComputeFullU);
+  const Eigen::VectorXd sigma = svd.singularValues();
+  const double cutoff = 1e-10 * std::max(1.0, sigma.size() > 0 ? sigma[0] : 0.0);
+  int rank = 0;
+  while (rank < sigma.size() && sigma[rank] > cutoff) ++rank;
+  const Eigen::MatrixXd V = svd.matrixV(), U = svd.matrixU();
+  const Eigen::VectorXd d0 =
+      V.leftCols(rank) * (sigma.head(rank).cwiseInverse().asDiagonal() * (U.leftCols(rank).transpose() * constraints.b));
+  const Eigen::MatrixXd N = V.rightCols(k - rank);
   if (N.cols() == 0) return d0;
   // min over z of |J N z + (J d0 + r)|^2 + mu |d0 + N z|^2, least norm in z.
   const Eigen::MatrixXd JN = J * N;
