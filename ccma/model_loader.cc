@@ -21,6 +21,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "ccma/limits.h"
+#include "ccma/internal/format.h"
 #include "ccma/rotation.h"
 
 namespace ccma {
@@ -34,41 +35,6 @@ constexpr double kMinAxisNorm = 1e-12;
 // yaml-cpp sees them. yaml-cpp 0.7 itself stops any nesting (flow or block)
 // with YAML::DeepRecursion after a few hundred levels, but says only "bad file".
 constexpr int kMaxFlowNesting = 256;
-// Characters of untrusted text quoted back in a message.
-constexpr std::size_t kQuotedChars = 40;
-
-// `x` as printf's %g would write it (1e-09, 0.5, 10000).
-std::string FormatG(double x) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", x);
-  return buffer;
-}
-
-// Untrusted text made safe to print on one line: bytes outside printable
-// ASCII (and the backslash) escaped as \xNN, cut after kQuotedChars.
-std::string Printable(const std::string& text) {
-  std::string out;
-  for (std::size_t i = 0; i < text.size() && i < kQuotedChars; ++i) {
-    const unsigned char c = static_cast<unsigned char>(text[i]);
-    if (c >= 0x20 && c < 0x7f && c != '\\') {
-      out += static_cast<char>(c);
-    } else {
-      char escaped[8];
-      std::snprintf(escaped, sizeof escaped, "\\x%02x", c);
-      out += escaped;
-    }
-  }
-  if (text.size() > kQuotedChars) out += "...";
-  return out;
-}
-
-// 'text' for a message, with the length when it was cut.
-std::string Quote(const std::string& text) {
-  std::string out = "'" + Printable(text) + "'";
-  if (text.size() > kQuotedChars) out += " (" + std::to_string(text.size()) + " bytes)";
-  return out;
-}
-
 // Names: 1 to kMaxNameLength characters from [A-Za-z0-9_-].
 bool IsName(const std::string& text) {
   if (text.empty() || text.size() > kMaxNameLength) return false;

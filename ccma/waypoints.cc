@@ -1,5 +1,7 @@
 #include "ccma/waypoints.h"
 
+#include "ccma/internal/format.h"
+
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -11,35 +13,10 @@
 namespace ccma {
 namespace {
 
+std::string FormatBoundG(double x) { return FormatG(x, 15); }  // 10000, 1000000
+
 constexpr const char* kHeader = "time,x,y,z,roll,pitch,yaw";
 constexpr int kColumns = 7;
-// Characters of an untrusted field quoted back in a message.
-constexpr std::size_t kQuotedChars = 40;
-
-// A range bound as written in the docs: 10000, 1000000.
-std::string FormatBound(double x) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.15g", x);
-  return buffer;
-}
-
-// 'text' for a message: non-printable bytes escaped, long text cut.
-std::string Quote(const std::string& text) {
-  std::string out = "'";
-  for (std::size_t i = 0; i < text.size() && i < kQuotedChars; ++i) {
-    const unsigned char c = static_cast<unsigned char>(text[i]);
-    if (c >= 0x20 && c < 0x7f && c != '\\') {
-      out += static_cast<char>(c);
-    } else {
-      char escaped[8];
-      std::snprintf(escaped, sizeof escaped, "\\x%02x", c);
-      out += escaped;
-    }
-  }
-  if (text.size() > kQuotedChars) return out + "...' (" + std::to_string(text.size()) + " bytes)";
-  return out + "'";
-}
-
 // Parses one row of the file, in memory, line by line.
 class WaypointParser {
  public:
@@ -124,7 +101,7 @@ class WaypointParser {
       Fail(Quote(item) + " is not a finite number (" + name + ")");
     }
     if (!(std::abs(v) <= max)) {
-      Fail(Quote(item) + " must lie in [" + FormatBound(-max) + ", " + FormatBound(max) + "] (" +
+      Fail(Quote(item) + " must lie in [" + FormatBoundG(-max) + ", " + FormatBoundG(max) + "] (" +
            name + ", " + unit + ")");
     }
     return v;

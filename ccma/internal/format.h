@@ -7,6 +7,34 @@
 
 namespace ccma {
 
+// Characters of untrusted text quoted back in a message.
+constexpr std::size_t kQuotedChars = 40;
+
+// Untrusted text made safe to print on one line: bytes outside printable
+// ASCII (and the backslash) escaped as \xNN, cut after kQuotedChars.
+inline std::string Printable(const std::string& text) {
+  std::string out;
+  for (std::size_t i = 0; i < text.size() && i < kQuotedChars; ++i) {
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    if (c >= 0x20 && c < 0x7f && c != '\\') {
+      out += static_cast<char>(c);
+    } else {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\x%02x", c);
+      out += escaped;
+    }
+  }
+  if (text.size() > kQuotedChars) out += "...";
+  return out;
+}
+
+// 'text' for a message (Printable), with the length when it was cut.
+inline std::string Quote(const std::string& text) {
+  std::string out = "'" + Printable(text) + "'";
+  if (text.size() > kQuotedChars) out += " (" + std::to_string(text.size()) + " bytes)";
+  return out;
+}
+
 // `value` with printf's %.<digits>g.
 inline std::string FormatG(double value, int digits = 6) {
   char buffer[64];
