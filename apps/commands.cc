@@ -74,6 +74,15 @@ const std::vector<Command>& Commands() {
                "latency_s", "slip", "kp", "ki", "controller_hz", "max_wheel_speed"},
               kControlFlags),
        RunReplay},
+      {"view", "ccma view --model=FILE [--trajectory=FILE.csv | --replay=DIR] --out=FILE.html",
+       "Writes one self-contained HTML page (three.js inlined; it fetches nothing) that shows the\n"
+       "mechanism in 3D: links as capsules between joint points, bases as discs with a heading arrow,\n"
+       "joint markers by type, the end-effector's frame, the ground grid, orbit controls. With a\n"
+       "trajectory CSV (`ccma trajectory`) or a replay directory (`ccma replay`) it is animated (play,\n"
+       "pause, time slider) with the end-effector's commanded and tracked paths and the bases' paths.\n"
+       "Each frame is re-assembled from its controls; frames that are flagged, not assembled or reached\n"
+       "by a branch jump are marked red (and counted on stderr and in the JSON).",
+       {"model", "trajectory", "replay", "out"}, RunView},
   };
   return commands;
 }

@@ -10,7 +10,7 @@
 DECLARE_string(model);       // check simulate control trajectory bench replay
 DECLARE_string(controls);    // simulate control trajectory
 DECLARE_string(waypoints);   // trajectory replay
-DECLARE_string(out);         // trajectory generate bench replay
+DECLARE_string(out);         // trajectory generate bench replay view
 DECLARE_int32(seed);         // bench replay
 DECLARE_string(method);      // control trajectory replay
 DECLARE_double(max_step_m);  // control trajectory replay

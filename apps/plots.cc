@@ -352,6 +352,10 @@ void WriteReplayCsv(const std::string& dir, const Model& model, const ReplayResu
     bases << ",set" << k << "_x_m,set" << k << "_y_m,set" << k << "_theta_rad,base" << k << "_x_m,base" << k
           << "_y_m,base" << k << "_theta_rad";
   }
+  // Actuated joints hold their set-points (problems/replay.h): one column each.
+  for (const Joint& joint : model.joints) {
+    if (joint.actuated) bases << ",u_" << joint.name << (joint.type == JointType::kRevolute ? "_rad" : "_m");
+  }
   bases << ",torn\n" << std::setprecision(12);
   for (const ReplaySample& s : r.samples) {
     ee << s.time;
@@ -365,6 +369,9 @@ void WriteReplayCsv(const std::string& dir, const Model& model, const ReplayResu
     for (int k = 0; k < model.num_bases(); ++k) {
       for (int c = 0; c < 3; ++c) bases << "," << s.set_controls[3 * k + c];
       for (int c = 0; c < 3; ++c) bases << "," << s.true_controls[3 * k + c];
+    }
+    for (const Joint& joint : model.joints) {
+      if (joint.actuated) bases << "," << s.true_controls[joint.control];
     }
     bases << "," << (s.torn ? 1 : 0) << "\n";
   }
@@ -549,7 +556,7 @@ std::string BasesFigure(const std::string& format, const Model& model, const Rep
     s << r.samples.front().true_controls[3 * k] << "," << r.samples.front().true_controls[3 * k + 1] << "\n";
   }
   s << "EOD\nplot ";
-  const int torn_column = 2 + 6 * n;
+  const int torn_column = 2 + 6 * n + model.num_actuated_joints();  // bases, joints, torn
   for (int k = 0; r.torn && k < n; ++k) {  // under the paths
     s << "'bases.csv' using ($" << torn_column << ">0 ? $" << 5 + 6 * k << " : NaN):" << 6 + 6 * k
       << " with points pt 7 ps 0.4 lc rgb '" << kFailColour << "' "

@@ -234,6 +234,7 @@ ForwardResult ForwardProblem::Assemble(const Eigen::VectorXd& u) {
   for (int c = 0; c < model_.num_controls(); ++c) all_controls[c] = c;
 
   ForwardResult total;
+  total.substeps = substeps;
   for (int i = 1; i <= substeps; ++i) {
     const Eigen::VectorXd u_i = i == substeps ? u : Eigen::VectorXd(from + change * (double(i) / substeps));
     // First-order prediction of this sub-step, to tell continuation from a jump.

@@ -10,7 +10,11 @@ cd "$(dirname "$0")/.."
 PACKAGES=(g++ make cmake pkg-config
           libceres-dev libeigen3-dev libgoogle-glog-dev libgflags-dev
           libyaml-cpp-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev
-          gnuplot-nox)  # gnuplot: plots of `ccma bench --out` and `ccma replay` (optional at run time)
+          gnuplot-nox   # gnuplot: plots of `ccma bench --out` and `ccma replay` (optional at run time)
+          pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module and its tests
+          python3-matplotlib)  # the Python trajectory example's plot
+# The viewer's JavaScript is bundled with npm (three.js from the npm registry).
+command -v npm > /dev/null || PACKAGES+=(npm)
 # shellcheck disable=SC2206
 PACKAGES+=(${CCMA_EXTRA_PACKAGES:-})
 
@@ -49,3 +53,35 @@ if ! cmake --build build -j"$(nproc)" 2>&1 | progress; then
   exit 1
 fi
 echo "setup: built build/apps/ccma ($BUILD_TYPE; log in build.log)"
+
+# `python3 -c "import ccma"`: a ccma-build.pth file in the site-packages of
+# each python3 of the version the module was built for (Debian's, and the one
+# first on PATH if different) adds build/python to its path. Remove that file
+# to undo. ccma/__init__.py finds Debian's python3-numpy for other interpreters.
+register_python() {
+  local module built py version site seen=""
+  module=$(ls build/python/ccma/_ccma.cpython-*.so 2>/dev/null | head -1)
+  if [ -z "$module" ]; then
+    echo "setup: the Python module was not built (see build.log)"
+    return
+  fi
+  built=$(basename "$module" | sed -E 's/^_ccma\.cpython-([0-9])([0-9]+)-.*/\1.\2/')
+  for py in /usr/bin/python3 "$(command -v python3 || true)"; do
+    [ -x "$py" ] || continue
+    py=$(readlink -f "$py")
+    case " $seen " in *" $py "*) continue ;; esac
+    seen="$seen $py"
+    version=$("$py" -c 'import sys; print("%d.%d" % sys.version_info[:2])')
+    if [ "$version" != "$built" ]; then
+      echo "setup: $py is Python $version, the module is for $built: use PYTHONPATH=build/python with Python $built"
+      continue
+    fi
+    site=$("$py" -c 'import sysconfig; print(sysconfig.get_path("purelib"))')
+    if mkdir -p "$site" 2> /dev/null && printf '%s\n' "$PWD/build/python" > "$site/ccma-build.pth" 2> /dev/null; then
+      echo "setup: import ccma works in $py ($site/ccma-build.pth)"
+    else
+      echo "setup: cannot write $site: use PYTHONPATH=$PWD/build/python"
+    fi
+  done
+}
+register_python

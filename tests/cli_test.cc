@@ -318,7 +318,8 @@ TEST(Cli, EachCommandHasItsOwnHelpWithUnits) {
       {"bench", {"model", "all", "models_dir", "scaling", "steps", "seed", "out"}},
       {"replay", {"model", "waypoints", "out", "noise", "seed", "mocap_noise_m", "mocap_noise_rad",
                   "latency_s", "slip", "kp", "ki", "controller_hz", "max_wheel_speed", "method", "max_step_m",
-                  "max_step_rad", "lambda"}}};
+                  "max_step_rad", "lambda"}},
+      {"view", {"model", "trajectory", "replay", "out"}}};
   for (const auto& [command, expected] : flags) {
     const ToolRun r = Ccma(command + " --help");
     ASSERT_EQ(r.status, 0) << command;

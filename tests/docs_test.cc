@@ -316,7 +316,7 @@ std::vector<FlagMention> FlagMentions(const std::string& doc) {
 
 TEST(CliDocs, ToolListsItsCommands) {
   const std::set<std::string> commands(Facts().commands.begin(), Facts().commands.end());
-  for (const char* expected : {"check", "simulate", "control", "trajectory", "generate", "bench", "replay"}) {
+  for (const char* expected : {"check", "simulate", "control", "trajectory", "generate", "bench", "replay", "view"}) {
     EXPECT_EQ(commands.count(expected), 1u) << expected;
   }
   for (const std::string& c : Facts().commands) EXPECT_FALSE(Facts().flags.at(c).empty()) << c;
@@ -502,7 +502,11 @@ TEST(CliDocs, ReplayAndBenchKeysAreDocumented) {
                         "--latency_s=1"},
                        true);
   ExpectKeysDocumented({"bench", ModelFlag("4dof_reduced"), "--steps=1"}, true);
+  // The torn replay, viewed: flagged frames.
+  const std::string html = TempPath("replay.html");
+  ExpectKeysDocumented({"view", ModelFlag("4dof_reduced"), "--replay=" + dir, "--out=" + html}, true);
   std::remove(path.c_str());
+  std::remove(html.c_str());
   std::filesystem::remove_all(dir);
 }
 

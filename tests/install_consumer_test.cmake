@@ -30,3 +30,15 @@ if(NOT last_output MATCHES "summary: assembled=1 converged=1")
   message(FATAL_ERROR "consumer ran but did not assemble:\n${last_output}")
 endif()
 message(STATUS "consumer output:\n${last_output}")
+
+# The Python package: `import ccma` from the installed prefix alone.
+if(PYTHON)
+  set(site "${WORK_DIR}/prefix/${PYTHON_SITE}")
+  if(NOT EXISTS "${site}/ccma/__init__.py")
+    message(FATAL_ERROR "the Python package is not installed in ${site}")
+  endif()
+  run(${CMAKE_COMMAND} -E env PYTHONPATH=${site} ${PYTHON} -c
+      "import ccma, sys; assert ccma.__file__.startswith(sys.argv[1]), ccma.__file__; m = ccma.load_model(sys.argv[2]); r = ccma.ForwardProblem(m).assemble(m.home_controls); print('python: assembled', r.assembled, ccma.__file__); assert r.assembled"
+      "${site}" "${WORK_DIR}/prefix/share/ccma/models/4dof_reduced.yaml")
+  message(STATUS "${last_output}")
+endif()

@@ -1,0 +1,70 @@
+// `ccma view --model=FILE [--trajectory=FILE.csv | --replay=DIR] --out=FILE.html`:
+// one self-contained HTML page showing the mechanism in 3D (viewer/), animated
+// along a trajectory CSV or a replay directory. Prints
+// {"out", "bytes", "frames", ...} on stdout.
+#include <iostream>
+
+#include <gflags/gflags.h>
+
+#include "apps/cli.h"
+#include "apps/commands.h"
+#include "apps/flags.h"
+#include "apps/json_output.h"
+#include "apps/output_file.h"
+#include "viewer/html.h"
+#include "viewer/scene.h"
+#include "viewer/view_frames.h"
+
+DEFINE_string(trajectory, "", "a CSV written by `ccma trajectory` to animate [file]");
+DEFINE_string(replay, "", "a directory written by `ccma replay` to animate [directory]");
+
+namespace ccma::cli {
+
+int RunView(const std::vector<std::string>& args) {
+  ParseCommandFlags(args, "view");
+  const std::string model_path = RequireFlag(FLAGS_model, "model", "view");
+  const std::string out_path = RequireFlag(FLAGS_out, "out", "view");
+  if (!FLAGS_trajectory.empty() && !FLAGS_replay.empty()) {
+    throw UsageError("ccma view: give --trajectory or --replay, not both");
+  }
+  const Model model = LoadModelOrThrow(model_path);
+  std::vector<viewer::ViewFrame> frames;
+  std::string source = "model";
+  try {
+    if (!FLAGS_trajectory.empty()) {
+      frames = viewer::FramesFromTrajectory(model, FLAGS_trajectory);
+      source = "trajectory";
+    } else if (!FLAGS_replay.empty()) {
+      frames = viewer::FramesFromReplay(model, FLAGS_replay);
+      source = "replay";
+    }
+  } catch (const viewer::ViewInputError& e) {
+    throw UsageError(std::string("ccma view: ") + e.what());
+  }
+  if (!viewer::HasBundle()) {
+    throw std::runtime_error("ccma view: this ccma was built without the viewer's JavaScript (npm was not "
+                             "found when it was built; install npm and rebuild)");
+  }
+  viewer::SceneSummary summary;
+  const std::string scene = viewer::BuildScene(model, frames, source, &summary);
+  const std::string html = viewer::ViewerHtml(scene, model.name);
+  OutputFile out(out_path, "out");
+  out.stream() << html;
+  out.Commit();
+  if (summary.not_assembled > 0 || summary.branch_jumps > 0) {
+    std::cerr << "ccma view: warning: " << summary.not_assembled << " frame(s) not assembled and "
+              << summary.branch_jumps << " branch jump(s) while re-assembling the " << source
+              << " (marked red in the page)\n";
+  }
+  nlohmann::json result = {{"out", out_path},
+                           {"bytes", html.size()},
+                           {"frames", summary.frames},
+                           {"source", source},
+                           {"flagged_frames", summary.flagged_frames},
+                           {"not_assembled_frames", summary.not_assembled},
+                           {"branch_jumps", summary.branch_jumps}};
+  PrintJson(result);
+  return 0;
+}
+
+}  // namespace ccma::cli

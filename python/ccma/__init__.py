@@ -1,0 +1,29 @@
+"""ccma: simulation and kinematic control of closed-loop mechanisms driven by
+mobile robots (Constrained Collaborative Mobile Agents, after Kumar and Coros).
+
+    import ccma
+    model = ccma.load_model("models/4dof_reduced.yaml")
+    result = ccma.ForwardProblem(model).assemble(model.home_controls)
+    print(result.assembled, result.end_effector.position)
+    control = ccma.ControlProblem(model)
+    print(control.move_to([0, 0.05, 0.6, 0, 0, 0]).converged)
+
+Units: metres, radians, seconds, E in m^2. Arrays are NumPy float64.
+Reference: docs/python.md; type hints: ccma/_ccma.pyi.
+"""
+import sys as _sys
+
+try:
+    import numpy as _numpy  # noqa: F401  (the extension returns NumPy arrays)
+except ImportError:  # pragma: no cover - depends on the interpreter
+    # An interpreter other than Debian's (e.g. pyenv) of the same version as
+    # the one the extension was built for: use Debian's python3-numpy, placed
+    # after the interpreter's own packages so that those still win.
+    _debian = "/usr/lib/python3/dist-packages"
+    if _debian not in _sys.path:
+        _sys.path.append(_debian)
+    import numpy as _numpy  # noqa: F401
+
+from ._ccma import *  # noqa: F401,F403
+from ._ccma import __version__  # noqa: F401
+from .viewer import view  # noqa: F401

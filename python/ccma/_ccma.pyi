@@ -1,0 +1,856 @@
+"""ccma: simulation and kinematic control of closed-loop mechanisms driven by mobile robots
+(Constrained Collaborative Mobile Agents). Units: metres, radians, seconds; E in m^2.
+
+Type stub of the extension module `ccma._ccma` (python/src/*.cc), re-exported by the
+package `ccma`. Checked against the built module by python/tests/test_stub.py.
+Reference: docs/python.md.
+"""
+from typing import Literal, Optional, Sequence, Tuple, TypedDict, overload
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+__version__: str
+"""The ccma version, e.g. '0.1.0' (the CMake project version)."""
+
+# ------------------------------------------------------------------ errors ----
+
+class ModelError(ValueError):
+    """A malformed or unreadable model file; the message is 'file:line: key: what'."""
+
+class WaypointError(ValueError):
+    """A malformed or unreadable waypoint CSV; the message names the file and line."""
+
+class ViewInputError(ValueError):
+    """A bad trajectory CSV or replay directory for the viewer; the message names file, line and column."""
+
+# ------------------------------------------------------------------ models ----
+
+class Body:
+    """A rigid body (mobile bases are bodies too). Read-only; not constructible from Python."""
+
+    @property
+    def name(self) -> str:
+        """The body's name in the model file."""
+    @property
+    def R_WB_home(self) -> NDArray[np.float64]:
+        """Home orientation, 3x3 rotation (world from body)."""
+    @property
+    def p_WB_home(self) -> NDArray[np.float64]:
+        """Home position of the body frame, shape (3,) [m]."""
+    @property
+    def base_index(self) -> int:
+        """Index into Model.mobile_bases, or -1."""
+    @property
+    def is_mobile_base(self) -> bool:
+        """Whether the body is a mobile base (base_index >= 0)."""
+    def __repr__(self) -> str:
+        """<ccma.Body 'name'>."""
+
+class MobileBase:
+    """A mobile base: 3 controls x [m], y [m], theta [rad]. Read-only; not constructible from Python."""
+
+    @property
+    def name(self) -> str:
+        """The base's name in the model file."""
+    @property
+    def body(self) -> int:
+        """Index into Model.bodies."""
+    @property
+    def type(self) -> Literal["omni", "differential"]:
+        """'omni' or 'differential'."""
+    @property
+    def actuation(self) -> Literal["complete", "reduced"]:
+        """'complete' or 'reduced' (reduced: its heading is no control)."""
+    @property
+    def home_pose(self) -> NDArray[np.float64]:
+        """x [m], y [m], theta [rad] at home, shape (3,)."""
+    def __repr__(self) -> str:
+        """<ccma.MobileBase 'name' type>."""
+
+class Joint:
+    """A joint of the passive chain between bodies A and B (-1 = world). Read-only; not constructible."""
+
+    @property
+    def name(self) -> str:
+        """The joint's name (given, or 'joint<i>' by its index in the file)."""
+    @property
+    def type(self) -> Literal["revolute", "spherical", "universal", "prismatic", "fixed"]:
+        """'revolute', 'spherical', 'universal', 'prismatic' or 'fixed'."""
+    @property
+    def body_a(self) -> int:
+        """Index of body A into Model.bodies, or -1 for the world."""
+    @property
+    def body_b(self) -> int:
+        """Index of body B into Model.bodies, or -1 for the world."""
+    @property
+    def p_A(self) -> NDArray[np.float64]:
+        """Joint point in A's frame, shape (3,) [m]."""
+    @property
+    def p_B(self) -> NDArray[np.float64]:
+        """Joint point in B's frame, shape (3,) [m]."""
+    @property
+    def a_A(self) -> NDArray[np.float64]:
+        """Axis in A's frame (revolute, prismatic, universal's first), shape (3,)."""
+    @property
+    def a_B(self) -> NDArray[np.float64]:
+        """The same axis in B's frame (revolute, prismatic), shape (3,)."""
+    @property
+    def b_B(self) -> NDArray[np.float64]:
+        """Universal: the second axis, in B's frame, shape (3,)."""
+    @property
+    def actuated(self) -> bool:
+        """Its coordinate is a control."""
+    @property
+    def control(self) -> int:
+        """Index into the controls when actuated, else -1."""
+    @property
+    def limited(self) -> bool:
+        """Whether lower <= q <= upper applies."""
+    @property
+    def lower(self) -> float:
+        """Lower limit [rad or m] when limited."""
+    @property
+    def upper(self) -> float:
+        """Upper limit [rad or m] when limited."""
+    @property
+    def line(self) -> int:
+        """Line in the model file."""
+    @property
+    def has_coordinate(self) -> bool:
+        """Revolute and prismatic joints have a coordinate q."""
+    def __repr__(self) -> str:
+        """<ccma.Joint 'name' type>."""
+
+class EndEffectorSpec:
+    """Where the end-effector is and what is controlled. Read-only; not constructible from Python."""
+
+    @property
+    def body(self) -> int:
+        """Index into Model.bodies."""
+    @property
+    def p_B(self) -> NDArray[np.float64]:
+        """The point in the body's frame, shape (3,) [m]."""
+    @property
+    def p_W_home(self) -> NDArray[np.float64]:
+        """The point in world at home, shape (3,) [m]."""
+    @property
+    def controlled(self) -> list[str]:
+        """Controlled components, e.g. ['x', 'y', 'z', 'yaw'] (of x y z roll pitch yaw)."""
+
+class Model:
+    """A loaded mechanism (ccma.load_model): constant, shared by every problem built on it.
+
+    Controls: 3 per mobile base (x [m], y [m], theta [rad]), then one per actuated joint [rad or m].
+    """
+
+    @property
+    def name(self) -> str:
+        """The model's name."""
+    @property
+    def description(self) -> str:
+        """The model's description ('' if none)."""
+    @property
+    def source(self) -> str:
+        """The file it was loaded from (the source_name for load_model_from_string)."""
+    @property
+    def bodies(self) -> list[Body]:
+        """Every body in file order: `bodies` first, then the mobile bases."""
+    @property
+    def mobile_bases(self) -> list[MobileBase]:
+        """The mobile bases in file order."""
+    @property
+    def joints(self) -> list[Joint]:
+        """The joints in file order."""
+    @property
+    def end_effector(self) -> EndEffectorSpec:
+        """Where the end-effector is and which components are controlled."""
+    @property
+    def num_bodies(self) -> int:
+        """Number of bodies (rows of a state array)."""
+    @property
+    def num_bases(self) -> int:
+        """Number of mobile bases."""
+    @property
+    def num_controls(self) -> int:
+        """3 per mobile base plus one per actuated joint."""
+    @property
+    def num_constraints(self) -> int:
+        """Rows of C (joints + 9 per base)."""
+    @property
+    def state_size(self) -> int:
+        """6 per body (tangent size): rotation increment [rad] then translation [m] per body."""
+    @property
+    def home_controls(self) -> NDArray[np.float64]:
+        """Controls at home, shape (num_controls,) (a new writable array on every access)."""
+    @property
+    def effective_control_indices(self) -> list[int]:
+        """Indices of the controls the control solver may change."""
+    @property
+    def controlled(self) -> list[str]:
+        """Controlled end-effector components, e.g. ['x', 'y', 'z', 'yaw'] (= end_effector.controlled)."""
+    def find_body(self, name: str) -> int:
+        """Index of the body named `name`, or -1."""
+    def find_joint(self, name: str) -> int:
+        """Index of the joint named `name`, or -1."""
+    def __repr__(self) -> str:
+        """<ccma.Model 'name': N bodies, N bases, N joints>."""
+
+def load_model(path: str) -> Model:
+    """Reads and validates a model file (YAML or JSON); raises ModelError 'file:line: key: what'; unknown keys warn (UserWarning)."""
+
+def load_model_from_string(text: str, source_name: str = "<string>") -> Model:
+    """load_model for model text in memory; source_name stands in for the file name in messages."""
+
+# ----------------------------------------------------------------- forward ----
+
+class EndEffectorPose:
+    """The end-effector pose X_EE. Read-only; not constructible from Python."""
+
+    @property
+    def position(self) -> NDArray[np.float64]:
+        """p_WE: the controlled point in world, shape (3,) [m]."""
+    @property
+    def rotation(self) -> NDArray[np.float64]:
+        """R_EE = R_WB(now) R_WB(home)^T, world axes (3x3)."""
+    @property
+    def rpy(self) -> NDArray[np.float64]:
+        """The rotation as [roll, pitch, yaw], shape (3,) [rad]."""
+    def __repr__(self) -> str:
+        """<ccma.EndEffectorPose position=[x, y, z]>."""
+
+class BodyPose:
+    """One body's absolute pose. Read-only; not constructible from Python."""
+
+    @property
+    def name(self) -> str:
+        """The body's name."""
+    @property
+    def position(self) -> NDArray[np.float64]:
+        """p_WB, shape (3,) [m]."""
+    @property
+    def rotation(self) -> NDArray[np.float64]:
+        """R_WB (3x3)."""
+    @property
+    def quaternion(self) -> NDArray[np.float64]:
+        """R_WB as [w, x, y, z] (note: the state array stores [qx, qy, qz, qw])."""
+    @property
+    def rpy(self) -> NDArray[np.float64]:
+        """R_WB as [roll, pitch, yaw], shape (3,) [rad]."""
+
+class JointCoordinate:
+    """q of a revolute [rad] or prismatic [m] joint. Read-only; not constructible from Python."""
+
+    @property
+    def joint(self) -> int:
+        """Index into Model.joints."""
+    @property
+    def q(self) -> float:
+        """The coordinate [rad or m], 0 at home."""
+    @property
+    def within_limits(self) -> bool:
+        """lower <= q <= upper within 1e-9 (True without limits)."""
+
+class ForwardOptions:
+    """Options of the forward solve (problems/forward_problem.h); every field is a keyword of the constructor."""
+
+    def __init__(
+        self,
+        *,
+        assembly_tolerance: float = 1e-16,
+        max_iterations: int = 100,
+        max_control_step: float = 0.02,
+        max_newton_polish_steps: int = 8,
+        branch_jump_relative: float = 0.5,
+        branch_jump_absolute: float = 0.01,
+    ) -> None:
+        """Defaults, overridden by the given fields (an unknown keyword raises AttributeError)."""
+    @property
+    def assembly_tolerance(self) -> float:
+        """E [m^2] below which the mechanism counts as assembled (default 1e-16)."""
+    @assembly_tolerance.setter
+    def assembly_tolerance(self, value: float) -> None: ...
+    @property
+    def max_iterations(self) -> int:
+        """Solver iterations per solve (per sub-step in assemble()), default 100."""
+    @max_iterations.setter
+    def max_iterations(self, value: int) -> None: ...
+    @property
+    def max_control_step(self) -> float:
+        """assemble(): largest control change per sub-step [m, rad] (max-norm), default 0.02."""
+    @max_control_step.setter
+    def max_control_step(self, value: float) -> None: ...
+    @property
+    def max_newton_polish_steps(self) -> int:
+        """Exact-Newton steps on E after the solver when E stays above the tolerance, default 8."""
+    @max_newton_polish_steps.setter
+    def max_newton_polish_steps(self, value: int) -> None: ...
+    @property
+    def branch_jump_relative(self) -> float:
+        """Branch jump when |s - (s + ds/du du)| > relative * |ds/du du| + absolute; default 0.5."""
+    @branch_jump_relative.setter
+    def branch_jump_relative(self, value: float) -> None: ...
+    @property
+    def branch_jump_absolute(self) -> float:
+        """The absolute part of that threshold [m, rad], default 0.01."""
+    @branch_jump_absolute.setter
+    def branch_jump_absolute(self, value: float) -> None: ...
+    def is_valid(self) -> Tuple[bool, str]:
+        """(ok, why): whether every field is in range; why names the field and its range ('' if ok)."""
+
+class ForwardResult:
+    """The outcome of ForwardProblem.solve/assemble (and ControlProblem.set_controls). Read-only."""
+
+    @property
+    def converged(self) -> bool:
+        """dE/ds ~ 0 (the solver converged)."""
+    @property
+    def assembled(self) -> bool:
+        """E below the assembly tolerance."""
+    @property
+    def residual_energy(self) -> float:
+        """E(s_hat, u) [m^2]."""
+    @property
+    def iterations(self) -> int:
+        """Solver iterations, summed over sub-steps."""
+    @property
+    def substeps(self) -> int:
+        """Solves made (assemble() may split the step)."""
+    @property
+    def newton_steps(self) -> int:
+        """Exact-Newton polish steps after the solver (E > 0)."""
+    @property
+    def gradient_norm(self) -> float:
+        """max |dE/ds| at the end."""
+    @property
+    def solve_time_ms(self) -> float:
+        """Wall time of the solve(s) [ms]."""
+    @property
+    def branch_jump(self) -> bool:
+        """assemble(): some sub-step left the branch its predictor followed."""
+    @property
+    def branch_jump_size(self) -> float:
+        """The largest deviation from the prediction [m or rad]."""
+    @property
+    def branch_jump_substep(self) -> int:
+        """The sub-step of that deviation (-1 if none)."""
+    @property
+    def message(self) -> str:
+        """The solver's termination message (last solve)."""
+    @property
+    def end_effector(self) -> EndEffectorPose:
+        """The end-effector pose after the solve."""
+    @property
+    def controls(self) -> NDArray[np.float64]:
+        """The controls solved at, shape (num_controls,)."""
+    def __repr__(self) -> str:
+        """<ccma.ForwardResult assembled=... residual_energy=... iterations=...>."""
+
+class ForwardProblem:
+    """Simulation: s_hat(u) = argmin_s E(s, u), warm-started from the last state.
+
+    Keeps the model alive. Not for use by two threads at once.
+    """
+
+    def __init__(self, model: Model, options: ForwardOptions = ...) -> None:
+        """A problem at the home state and home controls; raises ValueError on invalid options."""
+    def solve(self, u: ArrayLike) -> ForwardResult:
+        """One warm-started solve at controls u, shape (num_controls,) [m, rad]; ValueError on a wrong size or non-finite entry."""
+    def assemble(self, u: ArrayLike) -> ForwardResult:
+        """Moves the controls to u in sub-steps of at most max_control_step [m, rad], following the branch; reports a branch jump."""
+    def reset_to_home(self) -> None:
+        """Home state and home controls (no solve)."""
+    @property
+    def state(self) -> NDArray[np.float64]:
+        """(num_bodies x 7) array, rows [qx, qy, qz, qw, px, py, pz] ([m] for p) (a copy)."""
+    def set_state(self, state: ArrayLike) -> None:
+        """Replaces the state ((num_bodies x 7), as .state; quaternions normalised) without solving."""
+    @property
+    def controls(self) -> NDArray[np.float64]:
+        """Current controls, shape (num_controls,) (read-only; a live view: copy it to keep it)."""
+    @property
+    def end_effector(self) -> EndEffectorPose:
+        """The end-effector pose at the current state."""
+    def energy(self) -> float:
+        """E at the current state and controls [m^2]."""
+    @overload
+    def body_pose(self, body: int) -> BodyPose:
+        """The absolute pose of body number `body` (IndexError if out of range)."""
+    @overload
+    def body_pose(self, name: str) -> BodyPose:
+        """The absolute pose of the body named `name` (KeyError if there is none)."""
+    def body_poses(self) -> list[BodyPose]:
+        """Every body's absolute pose, in model order."""
+    def joint_coordinates(self) -> list[JointCoordinate]:
+        """q of every revolute [rad] and prismatic [m] joint, in file order."""
+    def limits_violated(self) -> list[str]:
+        """Names of the joints outside their limits."""
+    def end_effector_state_jacobian(self) -> NDArray[np.float64]:
+        """dX_EE/ds (6 x state_size): rows position [m] then rotation increment [rad]."""
+
+# ----------------------------------------------------------------- control ----
+
+class ControlOptions:
+    """Options of the control solve (problems/control_problem.h); every field is a keyword of the constructor."""
+
+    def __init__(
+        self,
+        *,
+        method: Literal["lm", "bfgs"] = "lm",
+        gradient: Literal["implicit", "finite_difference"] = "implicit",
+        lambda_: float = 0.5,
+        max_step_m: float = 0.01,
+        max_step_rad: float = 0.005,
+        max_iterations: int = 100,
+        target_tolerance: float = 1e-10,
+        finite_difference_step: float = 1e-6,
+        forward: ForwardOptions = ...,
+    ) -> None:
+        """Defaults, overridden by the given fields, e.g. ControlOptions(method='bfgs') (unknown keyword: TypeError)."""
+    @property
+    def method(self) -> Literal["lm", "bfgs"]:
+        """'lm' (Levenberg-Marquardt, default) or 'bfgs' (the paper's); ValueError for anything else."""
+    @method.setter
+    def method(self, value: Literal["lm", "bfgs"]) -> None: ...
+    @property
+    def gradient(self) -> Literal["implicit", "finite_difference"]:
+        """'implicit' (sensitivities, default) or 'finite_difference'; ValueError for anything else."""
+    @gradient.setter
+    def gradient(self, value: Literal["implicit", "finite_difference"]) -> None: ...
+    @property
+    def lambda_(self) -> float:
+        """Weight of E in the objective, 0 < lambda < 1 (default 0.5)."""
+    @lambda_.setter
+    def lambda_(self, value: float) -> None: ...
+    @property
+    def max_step_m(self) -> float:
+        """Path step: end-effector translation per step [m] (default 0.01)."""
+    @max_step_m.setter
+    def max_step_m(self, value: float) -> None: ...
+    @property
+    def max_step_rad(self) -> float:
+        """Path step: end-effector rotation per step [rad] (default 0.005)."""
+    @max_step_rad.setter
+    def max_step_rad(self, value: float) -> None: ...
+    @property
+    def max_iterations(self) -> int:
+        """Outer iterations per step (default 100)."""
+    @max_iterations.setter
+    def max_iterations(self, value: int) -> None: ...
+    @property
+    def target_tolerance(self) -> float:
+        """A step is reached when every controlled component is within this [m or rad] (default 1e-10)."""
+    @target_tolerance.setter
+    def target_tolerance(self, value: float) -> None: ...
+    @property
+    def finite_difference_step(self) -> float:
+        """Step of gradient='finite_difference' [m or rad] (default 1e-6)."""
+    @finite_difference_step.setter
+    def finite_difference_step(self, value: float) -> None: ...
+    @property
+    def forward(self) -> ForwardOptions:
+        """ForwardOptions of the inner solves (a reference: options.forward.max_iterations = 50 works)."""
+    @forward.setter
+    def forward(self, value: ForwardOptions) -> None: ...
+    def is_valid(self) -> Tuple[bool, str]:
+        """(ok, why): whether every field (including forward) is in range; why names the field ('' if ok)."""
+
+class ControlStepResult:
+    """One solve toward one target (ControlProblem.step). Read-only."""
+
+    @property
+    def reached(self) -> bool:
+        """The target is within tolerance and the mechanism assembled."""
+    @property
+    def assembled(self) -> bool:
+        """E below the assembly tolerance at the returned controls."""
+    @property
+    def singular(self) -> bool:
+        """dG/ds was singular at some accepted point."""
+    @property
+    def iterations(self) -> int:
+        """Outer iterations."""
+    @property
+    def forward_solves(self) -> int:
+        """Forward solves made."""
+    @property
+    def objective(self) -> float:
+        """O = 1/2 |e|^2 + lambda E at the returned controls."""
+    @property
+    def error(self) -> float:
+        """max |e| over the controlled components [m, rad]."""
+    @property
+    def residual_energy(self) -> float:
+        """E at the returned controls [m^2]."""
+    @property
+    def rcond(self) -> float:
+        """Pivot ratio of dG/ds at the last linearisation."""
+    @property
+    def min_singular_value_dX_du(self) -> float:
+        """Smallest singular value of dX_controlled/du_effective [m or rad per control unit]; 0 at the workspace edge."""
+    @property
+    def max_limit_violation(self) -> float:
+        """Largest joint limit violation [rad or m]."""
+    @property
+    def max_lateral_displacement(self) -> float:
+        """Largest lateral displacement of a differential base over the step [m]."""
+    @property
+    def limited_by(self) -> str:
+        """The joints held at a limit when the step ended ('' if none)."""
+    @property
+    def time_ms(self) -> float:
+        """Wall time of the step [ms]."""
+
+class ControlResult:
+    """The outcome of ControlProblem.move_to. Read-only."""
+
+    @property
+    def converged(self) -> bool:
+        """The target was reached."""
+    @property
+    def assembled(self) -> bool:
+        """E below the assembly tolerance at the end."""
+    @property
+    def steps(self) -> int:
+        """Path steps taken."""
+    @property
+    def iterations(self) -> int:
+        """Outer iterations, all steps."""
+    @property
+    def forward_solves(self) -> int:
+        """Forward solves, all steps."""
+    @property
+    def objective(self) -> float:
+        """O at the end."""
+    @property
+    def error(self) -> float:
+        """max |e| over the controlled components at the end [m, rad]."""
+    @property
+    def residual_energy(self) -> float:
+        """E at the end [m^2]."""
+    @property
+    def max_step_residual_energy(self) -> float:
+        """The worst E over the path's steps [m^2]."""
+    @property
+    def rcond(self) -> float:
+        """Pivot ratio of dG/ds at the end."""
+    @property
+    def min_rcond(self) -> float:
+        """The smallest pivot ratio of dG/ds over the path."""
+    @property
+    def min_singular_value_dX_du(self) -> float:
+        """Smallest singular value of dX_controlled/du_effective at the end [m or rad per control unit]."""
+    @property
+    def max_limit_violation(self) -> float:
+        """The worst joint limit violation over the path's steps [rad or m]."""
+    @property
+    def max_lateral_displacement(self) -> float:
+        """The worst lateral displacement of a differential base over the path's steps [m]."""
+    @property
+    def limited_by(self) -> str:
+        """The joints at a limit when it stopped ('' if none)."""
+    @property
+    def solve_time_ms(self) -> float:
+        """Wall time [ms]."""
+    @property
+    def warning(self) -> str:
+        """Why the target was not reached ('' if it was)."""
+    @property
+    def target(self) -> NDArray[np.float64]:
+        """The target [x, y, z, roll, pitch, yaw], shape (6,) [m, rad]."""
+    @property
+    def controls(self) -> NDArray[np.float64]:
+        """All controls at the end, shape (num_controls,)."""
+    @property
+    def end_effector(self) -> EndEffectorPose:
+        """The pose assembled at `controls`."""
+    def __repr__(self) -> str:
+        """<ccma.ControlResult converged=... steps=... error=...>."""
+
+class TrajectoryResult:
+    """A followed path (ControlProblem.follow): arrays with one row per path step. Read-only."""
+
+    @property
+    def converged(self) -> bool:
+        """Every waypoint was reached."""
+    @property
+    def steps(self) -> int:
+        """Path steps taken (rows of the arrays)."""
+    @property
+    def iterations(self) -> int:
+        """Outer iterations, all steps."""
+    @property
+    def max_residual_energy(self) -> float:
+        """The worst E over the steps [m^2]."""
+    @property
+    def max_error(self) -> float:
+        """The largest final error over the waypoints [m, rad]."""
+    @property
+    def solve_time_ms(self) -> float:
+        """Wall time [ms]."""
+    @property
+    def warning(self) -> str:
+        """The first waypoint not reached ('' if every one was)."""
+    @property
+    def time(self) -> NDArray[np.float64]:
+        """(steps,) [s], interpolated between the waypoints' times."""
+    @property
+    def targets(self) -> NDArray[np.float64]:
+        """(steps x 6) targets: x y z [m], roll pitch yaw [rad]."""
+    @property
+    def reached(self) -> NDArray[np.float64]:
+        """(steps x 6) end-effector after each step: x y z [m], roll pitch yaw [rad]."""
+    @property
+    def controls(self) -> NDArray[np.float64]:
+        """(steps x num_controls) controls after each step."""
+    @property
+    def residual_energy(self) -> NDArray[np.float64]:
+        """(steps,) E after each step [m^2]."""
+    @property
+    def error(self) -> NDArray[np.float64]:
+        """(steps,) max |e| after each step [m, rad]."""
+    @property
+    def step_reached(self) -> NDArray[np.bool_]:
+        """(steps,) whether each step reached its target."""
+
+class ControlProblem:
+    """Kinematic control: controls u whose assembly puts the end-effector at a target.
+
+    min 1/2 |e|^2 + lambda E, gradients from implicit sensitivities. Keeps the model alive.
+    Not for use by two threads at once.
+    """
+
+    def __init__(self, model: Model, options: ControlOptions = ...) -> None:
+        """A problem starting at home; raises ValueError on invalid options."""
+    def set_controls(self, u: ArrayLike) -> ForwardResult:
+        """Assembles the mechanism at u, shape (num_controls,) [m, rad] (following the branch) and starts from there."""
+    def step(self, target: ArrayLike) -> ControlStepResult:
+        """One solve toward target [x, y, z, roll, pitch, yaw] ([m], [rad]) without path splitting (small moves)."""
+    def move_to(self, target: ArrayLike) -> ControlResult:
+        """Walks the end-effector to target [x, y, z, roll, pitch, yaw] ([m], [rad]) in steps of max_step_m / max_step_rad."""
+    @overload
+    def follow(self, waypoints: Sequence[Waypoint]) -> TrajectoryResult:
+        """Follows ccma.Waypoint's (e.g. load_waypoints(path)) from the current controls; stops at the first unreachable one."""
+    @overload
+    def follow(self, waypoints: ArrayLike) -> TrajectoryResult:
+        """The same for an (N x 7) array of rows [time [s], x, y, z [m], roll, pitch, yaw [rad]]."""
+    def objective(self, target: ArrayLike) -> Tuple[float, NDArray[np.float64]]:
+        """(O, dO/du_eff) at the current controls for target (6,); the gradient over the effective controls."""
+    def state_sensitivity(self) -> NDArray[np.float64]:
+        """ds/du: (state_size x effective controls) at the current solution (m or rad per control unit)."""
+    def end_effector_jacobian(self) -> NDArray[np.float64]:
+        """dX_EE/du: (6 x effective controls), rows x y z [m] then rotation increment [rad]."""
+    @property
+    def controls(self) -> NDArray[np.float64]:
+        """Current controls, shape (num_controls,) (read-only; a live view: copy it to keep it)."""
+    @property
+    def effective_controls(self) -> list[int]:
+        """Indices into controls that the solver changes (columns of the sensitivities)."""
+    @property
+    def forward(self) -> ForwardProblem:
+        """The inner ForwardProblem (state, body poses); valid while this problem lives."""
+    @property
+    def current_pose(self) -> NDArray[np.float64]:
+        """[x, y, z, roll, pitch, yaw] of the end-effector now, shape (6,) [m, rad]."""
+
+# --------------------------------------------------------------- waypoints ----
+
+class Waypoint:
+    """An end-effector waypoint: time [s], position [m], rpy [rad]."""
+
+    def __init__(self, time: float, position: ArrayLike, rpy: ArrayLike = ...) -> None:
+        """A waypoint at `time` [s], position (3,) [m] and rpy (3,) [rad] (default zeros)."""
+    @property
+    def time(self) -> float:
+        """Time [s]."""
+    @time.setter
+    def time(self, value: float) -> None: ...
+    @property
+    def position(self) -> NDArray[np.float64]:
+        """Position x, y, z, shape (3,) [m] (read-only array; assign a whole new one)."""
+    @position.setter
+    def position(self, value: ArrayLike) -> None: ...
+    @property
+    def rpy(self) -> NDArray[np.float64]:
+        """Orientation roll, pitch, yaw, shape (3,) [rad] (read-only array; assign a whole new one)."""
+    @rpy.setter
+    def rpy(self, value: ArrayLike) -> None: ...
+
+def load_waypoints(path: str) -> list[Waypoint]:
+    """Reads a waypoint CSV (time,x,y,z,roll,pitch,yaw; s, m, rad; docs/waypoints.md); raises WaypointError."""
+
+# ---------------------------------------------------------------- analysis ----
+
+class MobilityReport:
+    """Numerical mobility at a configuration (ccma/mobility.h, `ccma check`). Read-only."""
+
+    @property
+    def constraint_rows(self) -> int:
+        """Rows of C."""
+    @property
+    def constraint_rank(self) -> int:
+        """Rank of dC/ds (controls fixed)."""
+    @property
+    def dof_with_controls_fixed(self) -> int:
+        """state_size - constraint_rank: free motions with the controls fixed."""
+    @property
+    def rigid_with_controls_fixed(self) -> bool:
+        """No free motion with the controls fixed."""
+    @property
+    def dof_with_controls_free(self) -> int:
+        """Free motions (ds, du_effective) when the effective controls move too."""
+    @property
+    def end_effector_dof(self) -> int:
+        """Rank of dX_EE over those motions: how many end-effector DOF the controls drive."""
+    @property
+    def end_effector_dof_nonholonomic(self) -> int:
+        """The same when differential bases may only move along their heading."""
+    @property
+    def smallest_singular_value(self) -> float:
+        """Of dC/ds; ~0 means singular."""
+    @property
+    def energy(self) -> float:
+        """E(s, u) [m^2]."""
+
+def analyze_mobility(
+    model: Model,
+    state: Optional[ArrayLike] = None,
+    controls: Optional[ArrayLike] = None,
+    rank_tolerance: float = 1e-8,
+) -> MobilityReport:
+    """Ranks of dC/ds and of the end-effector motions at a state ((num_bodies x 7), default home) and controls (default home)."""
+
+# ------------------------------------------------------------------ replay ----
+
+class ReplayOptions:
+    """Options of ccma.replay (problems/replay.h); every field is a keyword of the constructor."""
+
+    def __init__(
+        self,
+        *,
+        noise: Literal["default", "none"] = "default",
+        seed: int = 1,
+        output_hz: float = 20.0,
+        settle_s: float = 1.0,
+        torn_residual_energy: float = 1e-5,
+        control: ControlOptions = ...,
+    ) -> None:
+        """Defaults, overridden by the given fields, e.g. ReplayOptions(noise='none', seed=3) (unknown keyword: TypeError)."""
+    @property
+    def noise(self) -> Literal["default", "none", "custom"]:
+        """The simulated imperfections: 'default' (docs/cli.md, replay) or 'none' ('custom' is never set from Python)."""
+    @noise.setter
+    def noise(self, value: Literal["default", "none"]) -> None: ...
+    @property
+    def seed(self) -> int:
+        """Seed of every random draw (noise, slip); the same seed gives the same run."""
+    @seed.setter
+    def seed(self, value: int) -> None: ...
+    def is_valid(self) -> Tuple[bool, str]:
+        """(ok, why): whether every field is in range (why names the field and its unit)."""
+    @property
+    def output_hz(self) -> float:
+        """Output samples per second [Hz], in [0.1, 1000]."""
+    @output_hz.setter
+    def output_hz(self, value: float) -> None: ...
+    @property
+    def settle_s(self) -> float:
+        """Time kept running after the last waypoint [s]."""
+    @settle_s.setter
+    def settle_s(self, value: float) -> None: ...
+    @property
+    def torn_residual_energy(self) -> float:
+        """A sample whose chain E exceeds this [m^2] is torn (default 1e-5)."""
+    @torn_residual_energy.setter
+    def torn_residual_energy(self, value: float) -> None: ...
+    @property
+    def control(self) -> ControlOptions:
+        """ControlOptions of the plan (a reference: options.control.method = 'bfgs' works)."""
+    @control.setter
+    def control(self, value: ControlOptions) -> None: ...
+
+class ReplayResult:
+    """A replay: arrays with one row per output sample. Read-only."""
+
+    def __repr__(self) -> str:
+        """<ccma.ReplayResult converged=... torn=... samples=...>."""
+    @property
+    def converged(self) -> bool:
+        """Every waypoint was reached by the control solution."""
+    @property
+    def warning(self) -> str:
+        """Why not (the plan's message); '' if converged."""
+    @property
+    def failed_step_time(self) -> float:
+        """Time of the first plan step that missed its target [s]; NaN if every waypoint was reached."""
+    @property
+    def torn(self) -> bool:
+        """Some sample's chain could not follow the bases."""
+    @property
+    def first_torn_time(self) -> float:
+        """Time of the first torn sample [s]; NaN if never torn."""
+    @property
+    def max_residual_energy(self) -> float:
+        """The largest chain E over the samples [m^2]."""
+    @property
+    def rmse(self) -> NDArray[np.float64]:
+        """Tracked vs commanded per component, shape (6,): x y z [m], roll pitch yaw [rad]."""
+    @property
+    def duration_s(self) -> float:
+        """Simulated duration [s]."""
+    @property
+    def trustworthy(self) -> bool:
+        """Converged and never torn (with samples): only then does the RMSE measure tracking."""
+    @property
+    def time(self) -> NDArray[np.float64]:
+        """(samples,) [s]."""
+    @property
+    def commanded(self) -> NDArray[np.float64]:
+        """(samples x 6) the control solution's end-effector: x y z [m], roll pitch yaw [rad]."""
+    @property
+    def tracked(self) -> NDArray[np.float64]:
+        """(samples x 6) the driven chain's end-effector: x y z [m], roll pitch yaw [rad]."""
+    @property
+    def set_controls(self) -> NDArray[np.float64]:
+        """(samples x num_controls) the set-points."""
+    @property
+    def true_controls(self) -> NDArray[np.float64]:
+        """(samples x num_controls) where the bases really are."""
+    @property
+    def residual_energy(self) -> NDArray[np.float64]:
+        """(samples,) chain E at the true base poses [m^2]."""
+    @property
+    def torn_samples(self) -> int:
+        """How many samples were torn."""
+    @property
+    def sample_torn(self) -> NDArray[np.bool_]:
+        """(samples,) whether each sample is torn."""
+    @property
+    def sample_assembled(self) -> NDArray[np.bool_]:
+        """(samples,) whether the chain closed exactly (E <= 1e-16 m^2) at each sample."""
+
+@overload
+def replay(model: Model, waypoints: Sequence[Waypoint], options: ReplayOptions = ...) -> ReplayResult:
+    """The paper's closed loop, simulated: bases track the control solution with noise and latency, the chain follows."""
+@overload
+def replay(model: Model, waypoints: ArrayLike, options: ReplayOptions = ...) -> ReplayResult:
+    """The same for an (N x 7) array of rows [time, x, y, z, roll, pitch, yaw] ([s], [m], [rad])."""
+
+# ------------------------------------------------------------------ viewer ----
+
+class _ViewInfo(TypedDict):
+    """The summary view_html returns beside the page (the JSON of `ccma view`, less out and bytes)."""
+
+    frames: int
+    flagged_frames: int
+    not_assembled_frames: int
+    branch_jumps: int
+    source: Literal["model", "trajectory", "replay"]
+
+def viewer_available() -> bool:
+    """Whether this build carries the viewer's JavaScript (else view_html raises RuntimeError)."""
+
+def view_html(
+    model: Model, trajectory: Optional[str] = None, replay: Optional[str] = None
+) -> Tuple[str, _ViewInfo]:
+    """(html, info): the self-contained page of `ccma view`, animated along a trajectory CSV or a replay directory."""

@@ -1,0 +1,174 @@
+// The forward problem: ccma.ForwardProblem(model).solve(u) / .assemble(u).
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+#include "ccma/end_effector.h"
+#include "ccma/internal/format.h"
+#include "ccma/joint_coordinates.h"
+#include "problems/forward_problem.h"
+#include "python/src/bindings.h"
+#include "python/src/conversions.h"
+#include "python/src/pose_types.h"
+
+namespace py = pybind11;
+
+namespace ccma::python {
+namespace {
+
+using StateArray = Eigen::Matrix<double, Eigen::Dynamic, 7, Eigen::RowMajor>;
+
+void BindPoses(py::module_& m) {
+  py::class_<EndEffectorPose>(m, "EndEffectorPose", "The end-effector pose X_EE.")
+      .def_readonly("position", &EndEffectorPose::position, "p_WE: the controlled point in world [m]")
+      .def_readonly("rotation", &EndEffectorPose::rotation,
+                    "R_EE = R_WB(now) R_WB(home)^T, world axes (3x3)")
+      .def_readonly("rpy", &EndEffectorPose::rpy, "rotation as [roll, pitch, yaw] [rad]")
+      .def("__repr__", [](const EndEffectorPose& p) {
+        return "<ccma.EndEffectorPose position=[" + FormatG(p.position.x()) + ", " + FormatG(p.position.y()) +
+               ", " + FormatG(p.position.z()) + "] rpy=[" + FormatG(p.rpy.x()) + ", " + FormatG(p.rpy.y()) + ", " +
+               FormatG(p.rpy.z()) + "]>";
+      });
+  py::class_<BodyPose>(m, "BodyPose", "One body's absolute pose.")
+      .def_readonly("name", &BodyPose::name)
+      .def_readonly("position", &BodyPose::position, "p_WB [m]")
+      .def_readonly("rotation", &BodyPose::rotation, "R_WB (3x3)")
+      .def_readonly("quaternion", &BodyPose::quaternion, "R_WB as [w, x, y, z]")
+      .def_readonly("rpy", &BodyPose::rpy, "R_WB as [roll, pitch, yaw] [rad]");
+  py::class_<JointCoordinateReport>(m, "JointCoordinate", "q of a revolute [rad] or prismatic [m] joint.")
+      .def_readonly("joint", &JointCoordinateReport::joint, "index into Model.joints")
+      .def_readonly("q", &JointCoordinateReport::q, "rad or m, 0 at home")
+      .def_readonly("within_limits", &JointCoordinateReport::within_limits);
+}
+
+void BindOptions(py::module_& m) {
+  py::class_<ForwardOptions>(m, "ForwardOptions",
+                             "Options of the forward solve (problems/forward_problem.h); every "
+                             "field is a keyword of the constructor.")
+      .def(py::init([](py::kwargs kwargs) {
+             ForwardOptions o;
+             return WithKeywords(o, kwargs);
+           }))
+      .def_readwrite("assembly_tolerance", &ForwardOptions::assembly_tolerance,
+                     "E [m^2] below which the mechanism counts as assembled")
+      .def_readwrite("max_iterations", &ForwardOptions::max_iterations, "per solve (per sub-step)")
+      .def_readwrite("max_control_step", &ForwardOptions::max_control_step,
+                     "assemble(): largest control change per sub-step [m, rad]")
+      .def_readwrite("max_newton_polish_steps", &ForwardOptions::max_newton_polish_steps)
+      .def_readwrite("branch_jump_relative", &ForwardOptions::branch_jump_relative)
+      .def_readwrite("branch_jump_absolute", &ForwardOptions::branch_jump_absolute, "[m, rad]")
+      .def("is_valid", [](const ForwardOptions& o) {
+        std::string why;
+        const bool ok = o.IsValid(&why);
+        return py::make_tuple(ok, why);
+      }, "(ok, why): whether every field is in range");
+}
+
+void BindResult(py::module_& m) {
+  py::class_<ForwardSolution>(m, "ForwardResult", "The outcome of ForwardProblem.solve/assemble.")
+      .def_readonly("converged", &ForwardSolution::converged, "dE/ds ~ 0")
+      .def_readonly("assembled", &ForwardSolution::assembled, "E below the assembly tolerance")
+      .def_readonly("residual_energy", &ForwardSolution::residual_energy, "E [m^2]")
+      .def_readonly("iterations", &ForwardSolution::iterations)
+      .def_readonly("substeps", &ForwardSolution::substeps)
+      .def_readonly("newton_steps", &ForwardSolution::newton_steps)
+      .def_readonly("gradient_norm", &ForwardSolution::gradient_norm, "max |dE/ds|")
+      .def_readonly("solve_time_ms", &ForwardSolution::solve_time_ms, "[ms]")
+      .def_readonly("branch_jump", &ForwardSolution::branch_jump, "assemble(): left the branch")
+      .def_readonly("branch_jump_size", &ForwardSolution::branch_jump_size, "[m or rad]")
+      .def_readonly("branch_jump_substep", &ForwardSolution::branch_jump_substep)
+      .def_readonly("message", &ForwardSolution::message)
+      .def_readonly("end_effector", &ForwardSolution::end_effector, "pose after the solve")
+      .def_readonly("controls", &ForwardSolution::controls, "the controls solved at")
+      .def("__repr__", [](const ForwardSolution& r) {
+        return std::string("<ccma.ForwardResult assembled=") + (r.assembled ? "True" : "False") +
+               " residual_energy=" + FormatG(r.residual_energy) + " iterations=" + std::to_string(r.iterations) +
+               ">";
+      });
+}
+
+ForwardSolution Solved(const ForwardProblem& problem, const ForwardResult& r) {
+  ForwardSolution s;
+  static_cast<ForwardResult&>(s) = r;
+  s.end_effector = problem.end_effector();
+  s.controls = problem.controls();
+  return s;
+}
+
+void BindProblem(py::module_& m) {
+  py::class_<ForwardProblem>(
+      m, "ForwardProblem",
+      "Simulation: s_hat(u) = argmin_s E(s, u), warm-started from the last state. Keeps the "
+      "model alive. Not for use by two threads at once.")
+      .def(py::init<const Model&, const ForwardOptions&>(), py::arg("model"),
+           py::arg("options") = ForwardOptions(), py::keep_alive<1, 2>())
+      .def(
+          "solve",
+          [](ForwardProblem& p, const Eigen::VectorXd& u) { return Solved(p, p.Solve(u)); },
+          py::arg("u"), py::call_guard<py::gil_scoped_release>(),
+          "One warm-started solve at controls u (3 per base: x [m], y [m], theta [rad]; then the "
+          "actuated joints [rad or m]). Raises ValueError on a wrong size or a non-finite entry.")
+      .def(
+          "assemble",
+          [](ForwardProblem& p, const Eigen::VectorXd& u) { return Solved(p, p.Assemble(u)); },
+          py::arg("u"), py::call_guard<py::gil_scoped_release>(),
+          "Moves the controls to u in small sub-steps, following the assembly branch (what "
+          "`ccma simulate` does); reports a branch jump.")
+      .def("reset_to_home", &ForwardProblem::ResetToHome, "home state and home controls (no solve)")
+      .def_property_readonly("state", [](const ForwardProblem& p) { return StateToArray(p.state()); },
+                             "(num_bodies x 7) array, rows [qx, qy, qz, qw, px, py, pz] (a copy)")
+      .def(
+          "set_state",
+          [](ForwardProblem& p, const Eigen::Ref<const StateArray>& a) {
+            p.SetState(StateFromArray(p.model(), a));
+          },
+          py::arg("state"), "Replaces the state ((num_bodies x 7), as .state) without solving.")
+      .def_property_readonly(
+          "controls", [](const ForwardProblem& p) -> Eigen::VectorXd { return p.controls(); },
+          "current controls (a copy)")
+      .def_property_readonly("end_effector", &ForwardProblem::end_effector)
+      .def("energy", &ForwardProblem::Energy, "E at the current state and controls [m^2]")
+      .def(
+          "body_pose",
+          [](const ForwardProblem& p, int body) {
+            if (body < 0 || body >= p.model().num_bodies()) throw py::index_error("body index out of range");
+            return PoseOfBody(p.model(), p.state(), body);
+          },
+          py::arg("body"))
+      .def(
+          "body_pose",
+          [](const ForwardProblem& p, const std::string& name) {
+            const int body = p.model().FindBody(name);
+            if (body < 0) throw py::key_error("no body named '" + name + "'");
+            return PoseOfBody(p.model(), p.state(), body);
+          },
+          py::arg("name"))
+      .def(
+          "body_poses",
+          [](const ForwardProblem& p) {
+            std::vector<BodyPose> poses;
+            for (int b = 0; b < p.model().num_bodies(); ++b) poses.push_back(PoseOfBody(p.model(), p.state(), b));
+            return poses;
+          },
+          "every body's absolute pose, in model order")
+      .def(
+          "joint_coordinates", [](const ForwardProblem& p) { return JointCoordinates(p.model(), p.state()); },
+          "q of every revolute and prismatic joint, in file order")
+      .def(
+          "limits_violated", [](const ForwardProblem& p) { return LimitsViolated(p.model(), p.state()); },
+          "names of the joints outside their limits")
+      .def(
+          "end_effector_state_jacobian",
+          [](const ForwardProblem& p) { return EndEffectorJacobian(p.model(), p.state()); },
+          "dX_EE/ds (6 x state_size): rows position [m] then rotation increment [rad]");
+}
+
+}  // namespace
+
+void BindForward(py::module_& m) {
+  BindPoses(m);
+  BindOptions(m);
+  BindResult(m);
+  BindProblem(m);
+}
+
+}  // namespace ccma::python

@@ -1,0 +1,51 @@
+// Conversions shared by the binding files: options from keyword arguments,
+// waypoints from an (N x 7) array.
+#ifndef CCMA_PYTHON_SRC_CONVERSIONS_H_
+#define CCMA_PYTHON_SRC_CONVERSIONS_H_
+
+#include <string>
+#include <vector>
+
+#include <pybind11/eigen.h>
+#include <pybind11/pybind11.h>
+
+#include "ccma/waypoints.h"
+
+namespace ccma::python {
+
+using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+// `defaults` with every keyword set as an attribute of the bound options
+// class (so each goes through its property's checks); an unknown keyword is
+// a TypeError, as for any Python function.
+template <typename Options>
+Options WithKeywords(const Options& defaults, const pybind11::kwargs& kwargs) {
+  pybind11::object self = pybind11::cast(defaults);
+  for (auto item : kwargs) {
+    const std::string key = pybind11::str(item.first);
+    if (key.empty() || key[0] == '_' || !pybind11::hasattr(self, key.c_str())) {
+      throw pybind11::type_error("unexpected keyword argument '" + key + "'");
+    }
+    pybind11::setattr(self, item.first, item.second);
+  }
+  return self.cast<Options>();
+}
+
+// Rows [time, x, y, z, roll, pitch, yaw] ([s], [m], [rad]) -> waypoints.
+inline std::vector<Waypoint> WaypointsFromArray(const Eigen::Ref<const RowMatrix>& a) {
+  if (a.cols() != 7) {
+    throw pybind11::value_error("waypoints: expected N x 7 rows [time, x, y, z, roll, pitch, yaw], got " +
+                                std::to_string(a.cols()) + " columns");
+  }
+  std::vector<Waypoint> w(a.rows());
+  for (Eigen::Index i = 0; i < a.rows(); ++i) {
+    w[i].time = a(i, 0);
+    w[i].position = a.row(i).segment<3>(1).transpose();
+    w[i].rpy = a.row(i).segment<3>(4).transpose();
+  }
+  return w;
+}
+
+}  // namespace ccma::python
+
+#endif  // CCMA_PYTHON_SRC_CONVERSIONS_H_

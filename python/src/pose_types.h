@@ -1,0 +1,43 @@
+// Small result types the Python API adds to the C++ ones: a solve's result
+// carries the end-effector pose and the controls it was solved at, so a
+// Python user gets one object per call (cli.md, "Python").
+#ifndef CCMA_PYTHON_SRC_POSE_TYPES_H_
+#define CCMA_PYTHON_SRC_POSE_TYPES_H_
+
+#include <string>
+
+#include <Eigen/Core>
+
+#include "ccma/end_effector.h"
+#include "ccma/model.h"
+#include "ccma/state.h"
+#include "problems/forward_problem.h"
+
+namespace ccma::python {
+
+// ForwardResult plus where it left the mechanism.
+struct ForwardSolution : ForwardResult {
+  EndEffectorPose end_effector;
+  Eigen::VectorXd controls;
+};
+
+// One body's absolute pose.
+struct BodyPose {
+  std::string name;
+  Eigen::Vector3d position;   // p_WB [m]
+  Eigen::Matrix3d rotation;   // R_WB
+  Eigen::Vector4d quaternion; // [w, x, y, z] of R_WB
+  Eigen::Vector3d rpy;        // R_WB as roll, pitch, yaw [rad]
+};
+
+BodyPose PoseOfBody(const Model& model, const State& s, int body);
+
+// The state as a (num_bodies x 7) array [qx, qy, qz, qw, px, py, pz] per row
+// (the C++ storage order, state.h), and back (quaternions normalised;
+// throws std::invalid_argument on a wrong shape or a non-finite entry).
+Eigen::Matrix<double, Eigen::Dynamic, 7, Eigen::RowMajor> StateToArray(const State& s);
+State StateFromArray(const Model& model, const Eigen::Ref<const Eigen::Matrix<double, Eigen::Dynamic, 7, Eigen::RowMajor>>& a);
+
+}  // namespace ccma::python
+
+#endif  // CCMA_PYTHON_SRC_POSE_TYPES_H_

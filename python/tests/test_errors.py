@@ -1,0 +1,104 @@
+"""Errors reach Python as exceptions with the C++ messages (file:line: key)."""
+import math
+
+import numpy as np
+import pytest
+
+import ccma
+from conftest import ROOT
+
+MODEL = str(ROOT / "models" / "4dof_reduced.yaml")
+
+
+def test_model_error_names_file_line_and_key(tmp_path):
+    bad = tmp_path / "bad.yaml"
+    text = (ROOT / "models" / "4dof_reduced.yaml").read_text().replace("axis: [0, 0, 1]", "axis: [0, 0, 0]", 1)
+    bad.write_text(text)
+    line = next(i + 1 for i, l in enumerate(text.splitlines()) if "axis: [0, 0, 0]" in l)
+    with pytest.raises(ccma.ModelError) as e:
+        ccma.load_model(str(bad))
+    assert str(e.value).startswith("%s:%d:" % (bad, line))
+    assert "axis" in str(e.value)
+    assert isinstance(e.value, ValueError)
+
+
+def test_missing_file_and_string_source():
+    with pytest.raises(ccma.ModelError, match="no_such_file.yaml"):
+        ccma.load_model("no_such_file.yaml")
+    with pytest.raises(ccma.ModelError, match="^mine:"):
+        ccma.load_model_from_string("name: [", "mine")
+
+
+def test_unknown_key_warns(tmp_path):
+    path = tmp_path / "extra.yaml"
+    path.write_text((ROOT / "models" / "4dof_reduced.yaml").read_text() + "\ncolour: blue\n")
+    with pytest.warns(UserWarning, match="colour"):
+        ccma.load_model(str(path))
+
+
+def test_bad_controls_raise_value_error():
+    model = ccma.load_model(MODEL)
+    forward = ccma.ForwardProblem(model)
+    with pytest.raises(ValueError):
+        forward.solve(np.zeros(model.num_controls + 1))
+    u = model.home_controls.copy()
+    u[0] = math.nan
+    with pytest.raises(ValueError):
+        forward.assemble(u)
+    u[0] = 1e300
+    with pytest.raises(ValueError):
+        forward.assemble(u)
+    with pytest.raises(ValueError):
+        ccma.ControlProblem(model).move_to([0, 0, math.inf, 0, 0, 0])
+    with pytest.raises(ValueError):
+        forward.set_state(np.zeros((model.num_bodies, 7)))  # zero quaternions
+
+
+def test_bad_options_raise_value_error():
+    model = ccma.load_model(MODEL)
+    with pytest.raises(ValueError, match="lambda"):
+        ccma.ControlProblem(model, ccma.ControlOptions(lambda_=2.0))
+    with pytest.raises(ValueError):
+        ccma.ControlOptions(method="newton")
+    with pytest.raises(TypeError, match="no_such_option"):
+        ccma.ControlOptions(no_such_option=1)
+    with pytest.raises(TypeError, match="assembly_tolerances"):
+        ccma.ForwardOptions(assembly_tolerances=1e-12)
+    ok, why = ccma.ForwardOptions(assembly_tolerance=-1.0).is_valid()
+    assert not ok and "assembly_tolerance" in why
+
+
+def test_waypoint_error(tmp_path):
+    path = tmp_path / "w.csv"
+    path.write_text("time,x,y,z,roll,pitch,yaw\n0,0,0,zero,0,0,0\n")
+    with pytest.raises(ccma.WaypointError, match="w.csv:2"):
+        ccma.load_waypoints(str(path))
+
+
+def test_warnings_as_errors_raise_the_warning(tmp_path):
+    path = tmp_path / "extra.yaml"
+    path.write_text((ROOT / "models" / "4dof_reduced.yaml").read_text() + "\ncolour: blue\n")
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(UserWarning, match="colour"):
+            ccma.load_model(path)  # a pathlib.Path works too
+        with pytest.raises(UserWarning, match="colour"):
+            ccma.load_model_from_string(path.read_text(), "text")
+
+
+def test_controls_are_copies():
+    model = ccma.load_model(MODEL)
+    forward = ccma.ForwardProblem(model)
+    before = forward.controls
+    forward.assemble(before + 0.001)
+    np.testing.assert_array_equal(before, model.home_controls)
+
+
+def test_model_outlives_its_problem():
+    """The problem keeps the model alive (the C++ problem holds a reference)."""
+    forward = ccma.ForwardProblem(ccma.load_model(MODEL))
+    import gc
+    gc.collect()
+    model = ccma.load_model(MODEL)
+    assert forward.assemble(model.home_controls).assembled

@@ -1,0 +1,50 @@
+"""ccma.replay gives the numbers `ccma replay` writes (same seed)."""
+import csv
+
+import numpy as np
+
+import ccma
+from conftest import ROOT, run_tool
+
+
+def test_replay_matches_cli(tmp_path):
+    model_path = str(ROOT / "models" / "4dof_reduced.yaml")
+    waypoints = str(ROOT / "models" / "paths" / "4dof_sequential.csv")
+    cli = run_tool("replay", "--model=" + model_path, "--waypoints=" + waypoints, "--out=" + str(tmp_path))
+    r = ccma.replay(ccma.load_model(model_path), ccma.load_waypoints(waypoints))
+    assert r.trustworthy == cli["trustworthy"]
+    assert len(r.time) == cli["samples"]
+    assert abs(r.rmse[0] * 1000 - cli["rmse"]["x_mm"]) < 1e-12
+    assert abs(r.rmse[2] * 1000 - cli["rmse"]["z_mm"]) < 1e-12
+    assert abs(r.rmse[5] - cli["rmse"]["yaw_rad"]) < 1e-12
+    with open(tmp_path / "end_effector.csv") as f:
+        rows = [row for row in csv.reader(line for line in f if not line.startswith("#"))]
+    header, data = rows[0], np.array(rows[1:], dtype=float)
+    np.testing.assert_allclose(r.tracked[:, 0], data[:, header.index("x_m")], rtol=0, atol=1e-11)
+    np.testing.assert_allclose(r.commanded[:, 2], data[:, header.index("cmd_z_m")], rtol=0, atol=1e-11)
+    assert r.true_controls.shape == (len(r.time), model_controls(model_path))
+    assert r.sample_torn.dtype == bool and not r.sample_torn.any()
+    assert r.torn_samples == cli["torn_samples"] == 0
+
+
+def test_replay_takes_an_array_and_options():
+    model = ccma.load_model(str(ROOT / "models" / "4dof_reduced.yaml"))
+    waypoints = np.array([[0, 0, 0, 0.6, 0, 0, 0], [2, 0, 0.02, 0.6, 0, 0, 0]])
+    options = ccma.ReplayOptions(noise="none", output_hz=10, seed=7)
+    assert (options.noise, options.seed, options.output_hz) == ("none", 7, 10)
+    r = ccma.replay(model, waypoints, options)
+    assert r.trustworthy and len(r.time) == 31  # 0 .. 3 s (1 s settling) at 10 Hz
+    assert np.abs(r.tracked - r.commanded).max() < 1e-3
+
+
+def model_controls(path):
+    return ccma.load_model(path).num_controls
+
+
+def test_replay_rejects_bad_input():
+    model = ccma.load_model(str(ROOT / "models" / "4dof_reduced.yaml"))
+    import pytest
+    with pytest.raises(ValueError):
+        ccma.replay(model, [])
+    with pytest.raises(ValueError):
+        ccma.ReplayOptions(noise="loud")

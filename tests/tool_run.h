@@ -1,0 +1,64 @@
+// Running the `ccma` tool from a test: an argument vector (no shell), stdout
+// and stderr captured through files, killed after a timeout. CCMA_TOOL_PATH
+// is defined by tests/CMakeLists.txt.
+#ifndef CCMA_TESTS_TOOL_RUN_H_
+#define CCMA_TESTS_TOOL_RUN_H_
+
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+namespace ccma::testing {
+
+struct ToolRun {
+  int status = -1;  // exit status, or -1 if killed
+  std::string out, err;
+  double seconds = 0;
+};
+
+inline std::string Slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+inline ToolRun RunTool(const std::vector<std::string>& args, int timeout_s = 120) {
+  const std::string dir = ::testing::TempDir();
+  const std::string tag = std::to_string(getpid());
+  const std::string out = dir + "/tool_out_" + tag, err = dir + "/tool_err_" + tag;
+  const auto start = std::chrono::steady_clock::now();
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int o = open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    const int e = open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    dup2(o, 1);
+    dup2(e, 2);
+    alarm(static_cast<unsigned>(timeout_s));  // SIGALRM ends a hang
+    std::vector<char*> argv = {const_cast<char*>(CCMA_TOOL_PATH)};
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execv(CCMA_TOOL_PATH, argv.data());
+    _exit(127);
+  }
+  int raw = 0;
+  waitpid(pid, &raw, 0);
+  ToolRun r;
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  r.out = Slurp(out);
+  r.err = Slurp(err);
+  return r;
+}
+
+}  // namespace ccma::testing
+
+#endif  // CCMA_TESTS_TOOL_RUN_H_

@@ -1,0 +1,193 @@
+// The viewer's C++ side: frames read from trajectory and replay files, the
+// scene (shapes, poses, paths), the page, and `ccma view` on bad input. The
+// page itself is tested in a real browser by viewer/js/test/browser_test.mjs
+// (CTest: viewer_browser_*).
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "ccma/model_loader.h"
+#include "ccma/state.h"
+#include "tests/tool_run.h"
+#include "viewer/html.h"
+#include "viewer/scene.h"
+#include "viewer/view_frames.h"
+
+namespace ccma::viewer {
+namespace {
+
+namespace fs = std::filesystem;
+using ccma::testing::RunTool;
+using ccma::testing::ToolRun;
+
+std::string ModelPath(const std::string& name) { return std::string(CCMA_MODELS_DIR) + "/" + name + ".yaml"; }
+
+std::string Scratch(const std::string& name) {
+  const std::string dir = ::testing::TempDir() + "/viewer_" + std::to_string(getpid());
+  fs::create_directories(dir);
+  return dir + "/" + name;
+}
+
+// A trajectory CSV written by the tool itself.
+std::string Trajectory(const std::string& model) {
+  const std::string csv = Scratch(model + "_path.csv");
+  const std::string waypoints = Scratch("lift.csv");
+  std::ofstream(waypoints) << "time,x,y,z,roll,pitch,yaw\n0,0,0,0.6,0,0,0\n2,0,0.03,0.62,0,0,0\n";
+  const ToolRun r = RunTool({"trajectory", "--model=" + ModelPath(model), "--waypoints=" + waypoints, "--out=" + csv});
+  EXPECT_EQ(r.status, 0) << r.err;
+  return csv;
+}
+
+TEST(ViewFrames, TrajectoryRowsBecomeFramesWithTheirControls) {
+  const Model model = LoadModel(ModelPath("4dof_reduced"));
+  const std::vector<ViewFrame> frames = FramesFromTrajectory(model, Trajectory("4dof_reduced"));
+  // 3 cm and 2 cm in steps of at most 1 cm: 4 steps, plus the row at t = 0.
+  ASSERT_EQ(frames.size(), 5u);
+  EXPECT_EQ(frames.front().time, 0);
+  EXPECT_EQ(frames.back().time, 2);
+  EXPECT_TRUE(frames.front().controls.isApprox(model.home_controls(), 1e-12));
+  ASSERT_TRUE(frames.back().commanded.has_value());
+  EXPECT_NEAR(frames.back().commanded->y(), 0.03, 1e-12);
+  EXPECT_NEAR(frames.back().tracked->z(), 0.62, 1e-9);
+  for (const ViewFrame& f : frames) EXPECT_FALSE(f.flagged);
+}
+
+TEST(ViewFrames, ThinKeepsFirstAndLastEvenly) {
+  std::vector<ViewFrame> frames(101);
+  for (int i = 0; i <= 100; ++i) frames[i].time = i;
+  const std::vector<ViewFrame> kept = Thin(frames, 11);
+  ASSERT_EQ(kept.size(), 11u);
+  for (int i = 0; i <= 10; ++i) EXPECT_EQ(kept[i].time, 10 * i);
+  EXPECT_EQ(Thin(frames, 200).size(), 101u);
+}
+
+TEST(ViewFrames, BadFilesNameFileLineAndColumn) {
+  const Model model = LoadModel(ModelPath("4dof_reduced"));
+  const std::string good = Trajectory("4dof_reduced");
+  std::ifstream in(good);
+  std::string header, row;
+  std::getline(in, header);
+  std::getline(in, row);
+  const std::string bad = Scratch("bad.csv");
+  std::ofstream(bad) << header << "\n" << row << "\n" << "zero" << row.substr(row.find(',')) << "\n";
+  try {
+    FramesFromTrajectory(model, bad);
+    FAIL() << "accepted a cell that is not a number";
+  } catch (const ViewInputError& e) {
+    EXPECT_NE(std::string(e.what()).find(bad + ":3: column 'time_s': not a number"), std::string::npos) << e.what();
+  }
+  std::ofstream(bad) << "time_s,x_m\n0,1\n";
+  EXPECT_THROW(FramesFromTrajectory(model, bad), ViewInputError);  // no control columns
+  std::ofstream(bad) << header << "\n" << row << ",1\n";
+  EXPECT_THROW(FramesFromTrajectory(model, bad), ViewInputError);  // one cell too many
+  EXPECT_THROW(FramesFromTrajectory(model, ::testing::TempDir()), ViewInputError);  // a directory
+  EXPECT_THROW(FramesFromReplay(model, Scratch("no_such_dir")), ViewInputError);
+}
+
+TEST(Scene, HomeFrameShapesAndEscaping) {
+  Model model = LoadModel(ModelPath("4dof_reduced"));
+  model.description = "</script><script>alert(1)</script> & more";
+  SceneSummary summary;
+  const std::string text = BuildScene(model, {}, "model", &summary);
+  EXPECT_EQ(text.find('<'), std::string::npos);
+  EXPECT_EQ(text.find('&'), std::string::npos);
+  const nlohmann::json scene = nlohmann::json::parse(text);
+  EXPECT_EQ(scene["description"], model.description);  // the escapes read back
+  EXPECT_EQ(summary.frames, 1);
+  ASSERT_EQ(scene["bodies"].size(), 10u);
+  ASSERT_EQ(scene["joints"].size(), 9u);
+  // The end-effector platform: three joint points and the end-effector point in a ring.
+  EXPECT_EQ(scene["bodies"][0]["points"].size(), 4u);
+  EXPECT_EQ(scene["bodies"][0]["links"].size(), 4u);
+  // A link body: its two joint points, one capsule.
+  EXPECT_EQ(scene["bodies"][2]["links"].size(), 1u);
+  // Bases: discs, a capsule from the centre to the post's joint.
+  EXPECT_EQ(scene["bodies"][7]["kind"], "omni");
+  EXPECT_GT(scene["bodies"][7]["radius"].get<double>(), 0.05);
+  // Home poses: p_WB and the quaternion (x, y, z, w) of every body.
+  const State home = State::Home(model);
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    const auto& pose = scene["frames"]["poses"][0][b];
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(pose[i].get<double>(), home.p_WB(b)[i], 1e-7);
+    EXPECT_NEAR(std::abs(pose[6].get<double>()), std::abs(home.q_WB(b).w()), 1e-7);
+  }
+  EXPECT_FALSE(scene.contains("paths"));
+}
+
+TEST(Scene, TrajectoryFramesAreReassembledAlongThePath) {
+  const Model model = LoadModel(ModelPath("4dof_reduced"));
+  const std::vector<ViewFrame> frames = FramesFromTrajectory(model, Trajectory("4dof_reduced"));
+  SceneSummary summary;
+  const nlohmann::json scene = nlohmann::json::parse(BuildScene(model, frames, "trajectory", &summary));
+  EXPECT_EQ(summary.frames, 5);
+  EXPECT_EQ(summary.flagged_frames, 0);
+  EXPECT_EQ(summary.not_assembled, 0);
+  const auto& poses = scene["frames"]["poses"];
+  ASSERT_EQ(poses.size(), 5u);
+  // The end-effector body (ee, index 0) reaches the target: y 0.03, z 0.62.
+  EXPECT_NEAR(poses[4][0][1].get<double>(), 0.03, 1e-6);
+  EXPECT_NEAR(poses[4][0][2].get<double>(), 0.62, 1e-6);
+  EXPECT_EQ(scene["paths"]["bases"].size(), 3u);
+  EXPECT_EQ(scene["paths"]["commanded"].size(), 5u);
+}
+
+TEST(Scene, UnreachableFramesAreFlagged) {
+  const Model model = LoadModel(ModelPath("4dof_reduced"));
+  ViewFrame far;
+  far.time = 1;
+  far.controls = model.home_controls();
+  far.controls[1] = 1.5;  // base0 pulled 0.9 m outwards: the leg cannot reach
+  SceneSummary summary;
+  BuildScene(model, {far}, "trajectory", &summary);
+  EXPECT_EQ(summary.not_assembled, 1);
+  EXPECT_EQ(summary.flagged_frames, 1);
+}
+
+TEST(Html, PageIsSelfContained) {
+  ASSERT_TRUE(HasBundle()) << "built without the viewer's JavaScript (npm missing at build time)";
+  const std::string html = ViewerHtml("{\"format\":\"ccma-scene-1\"}", "m<x>");
+  EXPECT_EQ(html.rfind("<!DOCTYPE html>", 0), 0u);
+  EXPECT_NE(html.find("default-src 'none'"), std::string::npos);
+  EXPECT_NE(html.find("<title>ccma view: m&lt;x&gt;</title>"), std::string::npos);
+  // Exactly the two script elements of the shell close.
+  size_t closes = 0;
+  for (size_t p = html.find("</script"); p != std::string::npos; p = html.find("</script", p + 1)) ++closes;
+  EXPECT_EQ(closes, 2u);
+  // three.js is inside, with its licence comment.
+  EXPECT_NE(html.find("three"), std::string::npos);
+}
+
+TEST(ViewCli, WritesThePageAndSummarises) {
+  const std::string out = Scratch("page.html");
+  const ToolRun r = RunTool({"view", "--model=" + ModelPath("6dof_six_agents"), "--out=" + out});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["frames"], 1);
+  EXPECT_EQ(j["out"], out);
+  EXPECT_EQ(j["bytes"].get<size_t>(), fs::file_size(out));
+  EXPECT_EQ(j["source"], "model");
+}
+
+TEST(ViewCli, BadInputExitsTwoWithNothingOnStdout) {
+  const std::string out = Scratch("bad.html");
+  const std::string bad = Scratch("garbage.csv");
+  std::ofstream(bad) << "time_s,u0_x_m\n1,2,3\n";
+  for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
+           {"view", "--model=" + ModelPath("4dof_reduced"), "--trajectory=" + bad, "--out=" + out},
+           {"view", "--model=" + ModelPath("4dof_reduced"), "--trajectory=" + bad, "--replay=/tmp", "--out=" + out},
+           {"view", "--model=" + ModelPath("4dof_reduced"), "--replay=/nonexistent", "--out=" + out},
+           {"view", "--model=" + ModelPath("4dof_reduced"), "--trajectory=/dev/zero", "--out=" + out},
+           {"view", "--model=" + ModelPath("4dof_reduced")},
+       }) {
+    const ToolRun r = RunTool(args);
+    EXPECT_EQ(r.status, 2) << args[2] << "\n" << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+    EXPECT_FALSE(r.err.empty());
+  }
+  EXPECT_FALSE(fs::exists(out));
+}
+
+}  // namespace
+}  // namespace ccma::viewer

@@ -1,0 +1,16 @@
+// The viewer's JavaScript (viewer/js/, three.js included), embedded in the
+// library at build time by cmake/embed_text.cmake; empty when npm was not
+// available to build it.
+#ifndef CCMA_VIEWER_BUNDLE_H_
+#define CCMA_VIEWER_BUNDLE_H_
+
+#include <cstddef>
+
+namespace ccma::viewer::internal {
+
+extern const char* const kBundle;
+extern const std::size_t kBundleSize;
+
+}  // namespace ccma::viewer::internal
+
+#endif  // CCMA_VIEWER_BUNDLE_H_

@@ -1,0 +1,31 @@
+// The viewer's scene (viewer/scene_format.md): a model's shapes derived from
+// its joints, and per frame every body's pose, as one JSON document.
+#ifndef CCMA_VIEWER_SCENE_H_
+#define CCMA_VIEWER_SCENE_H_
+
+#include <string>
+#include <vector>
+
+#include "ccma/model.h"
+#include "viewer/view_frames.h"
+
+namespace ccma::viewer {
+
+struct SceneSummary {
+  int frames = 0;
+  int flagged_frames = 0;      // marked by the source or not assembled here
+  int not_assembled = 0;       // frames whose controls did not assemble here
+  int branch_jumps = 0;        // frames reached by a jump to another branch
+};
+
+// The scene for `frames` (empty: the model at home, one frame). Each frame
+// is assembled from the previous one (ForwardProblem::Assemble, following
+// the branch); frames that do not assemble or jump are flagged. `source` is
+// "model", "trajectory" or "replay". Returns the JSON text (numbers rounded
+// to 1e-7: display precision, a tenth of a micrometre).
+std::string BuildScene(const Model& model, const std::vector<ViewFrame>& frames, const std::string& source,
+                       SceneSummary* summary);
+
+}  // namespace ccma::viewer
+
+#endif  // CCMA_VIEWER_SCENE_H_
