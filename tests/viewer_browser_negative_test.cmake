@@ -1,0 +1,36 @@
+# The browser test can fail: pages that are broken on purpose must be refused.
+#  1. a page whose scene is not valid (the viewer reports it; console error);
+#  2. a valid page that also asks for a remote image (a network request;
+#     the page's CSP blocks it, the test still sees the attempt);
+#  3. a valid page whose mechanism is never drawn (bodies hidden by a script).
+#   cmake -DNODE=.. -DTEST_JS=.. -DBUNDLE=.. -DTOOL=.. -DMODEL=.. -DWORK=.. -P this
+cmake_minimum_required(VERSION 3.16)
+file(MAKE_DIRECTORY "${WORK}")
+execute_process(COMMAND "${TOOL}" view "--model=${MODEL}" "--out=${WORK}/good.html" RESULT_VARIABLE rc OUTPUT_QUIET)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "ccma view failed")
+endif()
+file(READ "${WORK}/good.html" good)
+file(READ "${BUNDLE}" bundle)
+set(shell_start "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>bad</title></head><body>\n")
+file(WRITE "${WORK}/bad_scene.html"
+     "${shell_start}<script type=\"application/json\" id=\"ccma-scene\">{\"format\":\"nope\"}</script>\n<script>${bundle}</script></body></html>\n")
+string(REPLACE "<body>" "<body><img src=\"http://192.0.2.1/x.png\">" remote "${good}")
+file(WRITE "${WORK}/remote.html" "${remote}")
+string(REPLACE "</body>" "<script>window.ccmaView.showMechanism(false); window.ccmaView.showMechanism = () => {};</script></body>" hidden "${good}")
+# (The CSP allows inline scripts, so this one runs after the viewer's.)
+file(WRITE "${WORK}/hidden.html" "${hidden}")
+foreach(case "bad_scene|console errors" "remote|network requests" "hidden|body points drawn")
+  string(REPLACE "|" ";" parts "${case}")
+  list(GET parts 0 page)
+  list(GET parts 1 expected)
+  execute_process(COMMAND "${NODE}" "${TEST_JS}" --html "${WORK}/${page}.html"
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  message("${page}: ${out}${err}")
+  if(out MATCHES "^SKIP")
+    message(FATAL_ERROR "SKIPPED: chromium is not installed")
+  endif()
+  if(rc EQUAL 0 OR NOT out MATCHES "${expected}")
+    message(FATAL_ERROR "the browser test accepted the broken page ${page}.html (expected a failure naming '${expected}')")
+  endif()
+endforeach()

@@ -1,0 +1,135 @@
+// Opens a page written by `ccma view` in headless Chromium (Debian's, driven
+// by playwright-core) and checks it the way a user would see it:
+//   a. no console error and no page error;
+//   b. no network request but the page's own file;
+//   c. the viewer is ready with a WebGL canvas;
+//   d. the mechanism is drawn: at the screen positions of the body points the
+//      picture differs from the same view with the bodies hidden (so neither
+//      the grid nor the paths count), and >= 0.2% of all pixels do;
+//   e. (--expect-animation) moving the time slider through the UI moves the
+//      end-effector and the picture; play advances the frames.
+// Prints one JSON line; exit 0 when every check passes, 1 otherwise, 77 when
+// Chromium is not installed (CTest reports that as skipped, with the reason).
+//   node test/browser_test.mjs --html PAGE.html [--expect-animation]
+//        [--screenshot OUT.png] [--screenshot-frame N]
+import { existsSync, writeFileSync } from 'node:fs';
+import { resolve } from 'node:path';
+import { pathToFileURL } from 'node:url';
+import { chromium } from 'playwright-core';
+import { decodePng } from './png.mjs';
+
+const CHROMIUM = '/usr/bin/chromium';
+const args = process.argv.slice(2);
+const option = (name) => { const i = args.indexOf(name); return i >= 0 ? args[i + 1] : undefined; };
+const html = option('--html');
+if (!html) { console.error('usage: browser_test.mjs --html PAGE.html [--expect-animation] [--screenshot OUT.png]'); process.exit(2); }
+if (!existsSync(CHROMIUM)) { console.log('SKIP: chromium not installed (apt-get install chromium)'); process.exit(77); }
+
+const url = pathToFileURL(resolve(html)).href;
+const failures = [];
+const result = { page: html };
+const browser = await chromium.launch({
+  executablePath: CHROMIUM,
+  args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking',
+         '--disable-component-update', '--disable-sync', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
+});
+try {
+  const page = await browser.newPage({ viewport: { width: 1200, height: 800 } });
+  const errors = [], requests = [];
+  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
+  page.on('pageerror', (e) => errors.push(String(e)));
+  page.on('request', (r) => { if (r.url() !== url && !/^(data|blob):/.test(r.url())) requests.push(r.url()); });
+  await page.goto(url, { waitUntil: 'load' });
+  await page.waitForFunction(() => (window.ccmaView && window.ccmaView.ready) || window.ccmaViewError, null,
+                             { timeout: 20000 })
+    .catch(() => failures.push('the viewer did not become ready within 20 s'));
+  const pageError = await page.evaluate(() => window.ccmaViewError);
+  if (pageError) failures.push('the viewer reported: ' + pageError);
+  const view = await page.evaluate(() => ({
+    ready: Boolean(window.ccmaView && window.ccmaView.ready),
+    frames: window.ccmaView ? window.ccmaView.frames : 0,
+    webgl: Boolean(document.querySelector('canvas') &&
+                   document.querySelector('canvas').getContext('webgl2', { preserveDrawingBuffer: true })),
+  }));
+  Object.assign(result, { frames: view.frames, webgl: view.webgl });
+  if (!view.webgl) failures.push('no WebGL canvas');
+
+  // d. Pixels at the body points differ from the same view without the bodies.
+  const shot = async () => decodePng(await page.screenshot({ type: 'png' }));
+  const differ = (a, b, x, y) => {
+    const p = a.at(x, y), q = b.at(x, y);
+    return Math.abs(p[0] - q[0]) + Math.abs(p[1] - q[1]) + Math.abs(p[2] - q[2]) > 30;
+  };
+  const drawnNear = (a, b, [x, y]) => {
+    for (let dx = -2; dx <= 2; ++dx) for (let dy = -2; dy <= 2; ++dy) {
+      const px = Math.round(x) + dx, py = Math.round(y) + dy;
+      if (px >= 0 && py >= 0 && px < a.width && py < a.height && differ(a, b, px, py)) return true;
+    }
+    return false;
+  };
+  if (view.ready) {
+    const first = await shot();
+    await page.evaluate(() => window.ccmaView.showMechanism(false));
+    const empty = await shot();
+    await page.evaluate(() => window.ccmaView.showMechanism(true));
+    const points = await page.evaluate(() => window.ccmaView.bodyPointsScreen());
+    const onScreen = points.filter(([x, y]) => x >= 0 && y >= 0 && x < first.width && y < first.height);
+    const drawn = onScreen.filter((p) => drawnNear(first, empty, p)).length;
+    let changed = 0;
+    for (let y = 0; y < first.height; y += 2) for (let x = 0; x < first.width; x += 2) changed += differ(first, empty, x, y) ? 1 : 0;
+    const fraction = changed / ((first.width / 2) * (first.height / 2));
+    Object.assign(result, { body_points: points.length, body_points_drawn: drawn, mechanism_pixels: Number(fraction.toFixed(4)) });
+    if (onScreen.length < points.length * 0.9) failures.push(`only ${onScreen.length} of ${points.length} body points on screen`);
+    if (drawn < onScreen.length * 0.9) failures.push(`only ${drawn} of ${onScreen.length} body points drawn`);
+    if (fraction < 0.002) failures.push(`the mechanism covers only ${(100 * fraction).toFixed(2)}% of the picture`);
+
+    // e. The slider (through the UI) and play move the end-effector.
+    if (args.includes('--expect-animation')) {
+      if (view.frames < 2) failures.push(`expected an animation, got ${view.frames} frame(s)`);
+      const before = await page.evaluate(() => window.ccmaView.endEffectorWorld());
+      // The frame whose end-effector is farthest from frame 0's (a path may
+      // come back to its start), chosen from the page's own scene data.
+      const target = await page.evaluate(() => {
+        const tracked = JSON.parse(document.getElementById('ccma-scene').textContent).paths?.tracked || [];
+        let best = tracked.length - 1, distance = -1;
+        tracked.forEach((p, i) => {
+          const d = Math.hypot(p[0] - tracked[0][0], p[1] - tracked[0][1], p[2] - tracked[0][2]);
+          if (d > distance) { distance = d; best = i; }
+        });
+        return Math.max(best, 0);
+      });
+      await page.locator('#ccma-slider').fill(String(target));  // as a user drags it: input events
+      const after = await page.evaluate(() => ({ ee: window.ccmaView.endEffectorWorld(), frame: window.ccmaView.frame }));
+      const moved = Math.hypot(after.ee[0] - before[0], after.ee[1] - before[1], after.ee[2] - before[2]);
+      const second = await shot();
+      let pixels = 0;
+      for (let i = 0; i < first.data.length; i += 4) pixels += first.data[i] !== second.data[i] ? 1 : 0;
+      Object.assign(result, { slider_frame: after.frame, end_effector_moved_m: Number(moved.toFixed(6)), pixels_changed: pixels });
+      if (after.frame !== target) failures.push(`the slider went to frame ${after.frame}, not ${target}`);
+      if (!(moved > 1e-4)) failures.push(`the end-effector moved ${moved} m when the slider moved`);
+      if (pixels < 100) failures.push('the picture did not change when the slider moved');
+      await page.evaluate(() => window.ccmaView.setFrame(0));
+      await page.click('#ccma-play');
+      await page.waitForTimeout(700);
+      const playing = await page.evaluate(() => window.ccmaView.frame);
+      await page.click('#ccma-play');
+      result.frame_after_play = playing;
+      if (playing === 0) failures.push('play did not advance the frames');
+    }
+    const target = option('--screenshot');
+    if (target) {
+      await page.evaluate((f) => window.ccmaView.setFrame(f), Number(option('--screenshot-frame') || 0));
+      writeFileSync(target, await page.screenshot({ type: 'png' }));
+      result.screenshot = target;
+    }
+  }
+  if (errors.length) failures.push('console errors: ' + errors.join(' | '));
+  if (requests.length) failures.push('network requests: ' + requests.join(' '));
+  Object.assign(result, { console_errors: errors.length, requests: requests.length });
+} finally {
+  await browser.close();
+}
+result.ok = failures.length === 0;
+result.failures = failures;
+console.log(JSON.stringify(result));
+process.exit(failures.length ? 1 : 0);
