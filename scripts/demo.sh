@@ -3,7 +3,8 @@
 # what ran and where every output is:
 #   check and simulate (assembly) of every model in models/, control of each to
 #   a target 3 cm and 0.05 rad away, the paper's two 4-DOF paths with
-#   trajectory, and a simulated replay of the first with plots.
+#   trajectory, a simulated replay of the first with plots, and 3D pages of
+#   every model and of the replay (ccma view: open them in a browser).
 #   scripts/demo.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -22,6 +23,7 @@ for model in models/*.yaml; do
   $ccma check --model="$model" > "$out/${name}_check.json"
   $ccma simulate --model="$model" > "$out/${name}_simulate.json"
   $ccma control --model="$model" --target=0.03,-0.02,0.62,0,0,0.05 > "$out/${name}_control.json"
+  $ccma view --model="$model" --out="$out/${name}.html" > /dev/null
   summary+=("$(printf '%-16s rigid %-5s  assembled at home %-5s  control converged %-5s in %s ms' "$name" \
     "$(key "$out/${name}_check.json" rigid_with_controls_fixed)" "$(key "$out/${name}_simulate.json" assembled)" \
     "$(key "$out/${name}_control.json" converged)" "$(key "$out/${name}_control.json" solve_time_ms | cut -c1-6)")")
@@ -38,6 +40,9 @@ done
 echo "demo: replay of 4dof_reduced on 4dof_sequential (simulated bases, about 10 s)"
 $ccma replay --model=models/4dof_reduced.yaml --waypoints=models/paths/4dof_sequential.csv \
   --out=$out/replay > "$out/replay.json" 2> "$out/replay.log"
+$ccma view --model=models/4dof_reduced.yaml --replay=$out/replay --out=$out/replay.html > /dev/null
+$ccma view --model=models/4dof_reduced.yaml --trajectory=$out/4dof_reduced_4dof_combined.csv \
+  --out=$out/4dof_reduced_4dof_combined.html > /dev/null
 
 echo
 echo "demo: done. What ran (every JSON result is in $out/):"
@@ -47,4 +52,6 @@ echo "Outputs:"
 echo "  $out/*_check.json, *_simulate.json, *_control.json   per model"
 echo "  $out/4dof_*_4dof_*.csv                                 trajectory rows (one per control step)"
 echo "  $out/replay/end_effector.png, bases_xy.png (+ .svg)    replay plots; CSVs beside them"
+echo "  $out/<model>.html, replay.html, 4dof_reduced_4dof_combined.html   3D views (open in a browser)"
+echo "  Python: python3 -c 'import ccma; help(ccma)'  (docs/python.md; examples/python/)"
 echo "Next: build/apps/ccma --help, docs/README.md"

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "problems/forward_problem.h"
+#include "problems/replay.h"
 
 namespace ccma::viewer {
 namespace {
@@ -126,6 +127,10 @@ json Poses(const State& s) {
 
 }  // namespace
 
+double FlagEnergyFor(const std::string& source) {
+  return source == "replay" ? ReplayOptions().torn_residual_energy : ForwardOptions().assembly_tolerance;
+}
+
 std::string BuildScene(const Model& model, const std::vector<ViewFrame>& frames, const std::string& source,
                        SceneSummary* summary) {
   const double scale = Scale(model);
@@ -138,6 +143,7 @@ std::string BuildScene(const Model& model, const std::vector<ViewFrame>& frames,
   json bases = json::array();
   for (int k = 0; k < model.num_bases(); ++k) bases.push_back(json::array());
   SceneSummary s;
+  const double flag_energy = FlagEnergyFor(source);
   ForwardProblem forward(model);
   if (frames.empty()) {
     time.push_back(0);
@@ -147,8 +153,9 @@ std::string BuildScene(const Model& model, const std::vector<ViewFrame>& frames,
   bool any_commanded = false;
   for (const ViewFrame& f : frames) {
     const ForwardResult r = forward.Assemble(f.controls);
-    const bool flagged = f.flagged || !r.assembled || r.branch_jump;
-    s.not_assembled += r.assembled ? 0 : 1;
+    const bool assembled = r.residual_energy <= flag_energy;
+    const bool flagged = f.flagged || !assembled || r.branch_jump;
+    s.not_assembled += assembled ? 0 : 1;
     s.branch_jumps += r.branch_jump ? 1 : 0;
     s.flagged_frames += flagged ? 1 : 0;
     time.push_back(Round(f.time));

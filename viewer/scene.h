@@ -14,15 +14,22 @@ namespace ccma::viewer {
 struct SceneSummary {
   int frames = 0;
   int flagged_frames = 0;      // marked by the source or not assembled here
-  int not_assembled = 0;       // frames whose controls did not assemble here
+  int not_assembled = 0;       // frames whose E stayed above FlagEnergyFor(source)
   int branch_jumps = 0;        // frames reached by a jump to another branch
 };
 
+// The residual energy E [m^2] above which a re-assembled frame counts as
+// not assembled: the forward problem's assembly tolerance for a trajectory
+// (its steps close exactly), the torn level for a replay (bases tracked with
+// noise never sit exactly where the chain closes; ReplayOptions).
+double FlagEnergyFor(const std::string& source);
+
 // The scene for `frames` (empty: the model at home, one frame). Each frame
 // is assembled from the previous one (ForwardProblem::Assemble, following
-// the branch); frames that do not assemble or jump are flagged. `source` is
-// "model", "trajectory" or "replay". Returns the JSON text (numbers rounded
-// to 1e-7: display precision, a tenth of a micrometre).
+// the branch); frames whose E stays above FlagEnergyFor(source), or reached
+// by a branch jump, are flagged. `source` is "model", "trajectory" or
+// "replay". Returns the JSON text (numbers rounded to 1e-7: display
+// precision, a tenth of a micrometre).
 std::string BuildScene(const Model& model, const std::vector<ViewFrame>& frames, const std::string& source,
                        SceneSummary* summary);
 
