@@ -1,5 +1,6 @@
 // Warm-started forward solve after one paper-size control step, per
-// reference model and linear solver (Google Benchmark).
+// reference model and solver: ccma's native sparse LM (the default) and
+// Ceres with each linear solver (Google Benchmark), in one run.
 //
 // Each iteration moves the controls between two reachable configurations:
 // home, and the closed-form controls (tests/leg_closed_form.h) of an
@@ -9,6 +10,8 @@
 //   build/benchmarks/forward_benchmark --benchmark_repetitions=10 \
 //       --benchmark_report_aggregates_only=true
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include <benchmark/benchmark.h>
@@ -35,9 +38,11 @@ Eigen::VectorXd StepControls(const ccma::Model& m) {
   return u;
 }
 
-void BM_ForwardWarmStep(benchmark::State& state, const std::string& name, LinearSolverChoice solver) {
+void BM_ForwardWarmStep(benchmark::State& state, const std::string& name, ccma::ForwardSolver minimiser,
+                        LinearSolverChoice solver) {
   const ccma::Model model = ccma::LoadModel(std::string(CCMA_MODELS_DIR) + "/" + name + ".yaml");
   ForwardOptions options;
+  options.solver = minimiser;
   options.linear_solver = solver;
   ForwardProblem forward(model, options);
   const Eigen::VectorXd u[2] = {model.home_controls(), StepControls(model)};
@@ -52,17 +57,19 @@ void BM_ForwardWarmStep(benchmark::State& state, const std::string& name, Linear
     assembled += r.assembled;
     ++solves;
   }
-  state.counters["ceres_iterations"] = double(iterations) / solves;
+  state.counters["iterations"] = double(iterations) / solves;
   state.counters["assembled_fraction"] = double(assembled) / solves;
   state.counters["max_control_change_mm"] = 1000 * base_move;
   state.counters["state_size"] = model.state_size();
 }
 
 // The fixed cost of one Solve() call: controls unchanged, nothing to do but
-// Ceres' preprocessing and one evaluation. Subtract it to see the iterations.
-void BM_ForwardAtRest(benchmark::State& state, const std::string& name) {
+// the solver's preprocessing and one evaluation. Subtract it to see the iterations.
+void BM_ForwardAtRest(benchmark::State& state, const std::string& name, ccma::ForwardSolver minimiser) {
   const ccma::Model model = ccma::LoadModel(std::string(CCMA_MODELS_DIR) + "/" + name + ".yaml");
-  ForwardProblem forward(model);
+  ForwardOptions options;
+  options.solver = minimiser;
+  ForwardProblem forward(model, options);
   const Eigen::VectorXd u = model.home_controls();
   for (auto _ : state) benchmark::DoNotOptimize(forward.Solve(u));
 }
@@ -71,20 +78,26 @@ const std::vector<std::string> kModels = {"4dof_reduced", "4dof_complete", "6dof
                                           "6dof_asymmetric", "6dof_six_agents"};
 
 int Register() {
-  const std::vector<std::pair<std::string, LinearSolverChoice>> solvers = {
-      {"auto", LinearSolverChoice::kAuto},
-      {"dense_qr", LinearSolverChoice::kDenseQr},
-      {"dense_normal_cholesky", LinearSolverChoice::kDenseNormalCholesky},
-      {"suitesparse_normal_cholesky", LinearSolverChoice::kSparseNormalCholesky},
-      {"eigen_sparse_normal_cholesky", LinearSolverChoice::kEigenSparseNormalCholesky}};
+  using ccma::ForwardSolver;
+  const std::vector<std::tuple<std::string, ForwardSolver, LinearSolverChoice>> solvers = {
+      {"native", ForwardSolver::kNative, LinearSolverChoice::kAuto},
+      {"ceres_auto", ForwardSolver::kCeres, LinearSolverChoice::kAuto},
+      {"ceres_dense_qr", ForwardSolver::kCeres, LinearSolverChoice::kDenseQr},
+      {"ceres_dense_normal_cholesky", ForwardSolver::kCeres, LinearSolverChoice::kDenseNormalCholesky},
+      {"ceres_suitesparse_normal_cholesky", ForwardSolver::kCeres, LinearSolverChoice::kSparseNormalCholesky},
+      {"ceres_eigen_sparse_normal_cholesky", ForwardSolver::kCeres, LinearSolverChoice::kEigenSparseNormalCholesky}};
   for (const std::string& model : kModels) {
-    benchmark::RegisterBenchmark(("ForwardAtRest/" + model).c_str(), BM_ForwardAtRest, model)
-        ->Unit(benchmark::kMicrosecond);
+    for (const auto& [name, minimiser] : {std::pair{"native", ForwardSolver::kNative},
+                                          std::pair{"ceres", ForwardSolver::kCeres}}) {
+      benchmark::RegisterBenchmark(("ForwardAtRest/" + model + "/" + name).c_str(), BM_ForwardAtRest, model,
+                                   minimiser)
+          ->Unit(benchmark::kMicrosecond);
+    }
   }
-  for (const auto& [solver_name, solver] : solvers) {
+  for (const auto& [solver_name, minimiser, solver] : solvers) {
     for (const std::string& model : kModels) {
       benchmark::RegisterBenchmark(("ForwardWarmStep/" + model + "/" + solver_name).c_str(),
-                                   BM_ForwardWarmStep, model, solver)
+                                   BM_ForwardWarmStep, model, minimiser, solver)
           ->Unit(benchmark::kMicrosecond);
     }
   }

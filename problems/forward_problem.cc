@@ -13,6 +13,7 @@
 #include "ccma/limits.h"
 #include "ccma/rotation.h"
 #include "problems/internal/sensitivity.h"
+#include "problems/internal/sparse_lm.h"
 
 namespace ccma {
 namespace {
@@ -86,8 +87,9 @@ bool ForwardOptions::IsValid(std::string* why) const {
 
 // Everything a ForwardProblem owns besides its state and controls.
 struct ForwardProblem::Workspace {
-  explicit Workspace(const Model& model) : constraints(model), hessian_solver(constraints) {}
+  explicit Workspace(const Model& model) : constraints(model), lm(constraints), hessian_solver(constraints) {}
   ConstraintSet constraints;
+  SparseLevenbergMarquardt lm;            // ForwardSolver::kNative
   PoseManifold manifold;
   std::unique_ptr<ceres::Problem> problem;
   ceres::Solver::Options solver_options;
@@ -162,16 +164,26 @@ ForwardResult ForwardProblem::Solve(const Eigen::VectorXd& u) {
   CheckControls(u);
   controls_ = u;  // the control blocks alias controls_' storage
   const auto start = Clock::now();
-  ceres::Solver::Summary summary;
-  ceres::Solve(workspace_->solver_options, workspace_->problem.get(), &summary);
-
   ForwardResult result;
+  bool usable = true;
+  if (options_.solver == ForwardSolver::kNative) {
+    const SparseLmSummary summary = workspace_->lm.Solve(&state_, controls_, options_.max_iterations);
+    result.residual_energy = summary.energy;
+    result.converged = summary.converged;
+    result.iterations = summary.iterations;
+    result.gradient_norm = summary.gradient_norm;
+    result.message = summary.converged ? "converged" : "not converged: iteration limit or no decrease";
+  } else {
+    ceres::Solver::Summary summary;
+    ceres::Solve(workspace_->solver_options, workspace_->problem.get(), &summary);
+    result.residual_energy = summary.final_cost;
+    result.converged = summary.termination_type == ceres::CONVERGENCE;
+    result.iterations = summary.num_successful_steps + summary.num_unsuccessful_steps;
+    result.message = summary.message;
+    usable = summary.IsSolutionUsable();
+  }
   result.solve_time_ms = MillisecondsSince(start);
-  result.residual_energy = summary.final_cost;
-  result.converged = summary.termination_type == ceres::CONVERGENCE;
-  result.assembled = summary.IsSolutionUsable() && result.residual_energy < options_.assembly_tolerance;
-  result.iterations = summary.num_successful_steps + summary.num_unsuccessful_steps;
-  result.message = summary.message;
+  result.assembled = usable && result.residual_energy < options_.assembly_tolerance;
   if (!result.assembled && options_.max_newton_polish_steps > 0) {
     NewtonPolish(&result);
     result.solve_time_ms = MillisecondsSince(start);

@@ -39,7 +39,19 @@ enum class LinearSolverChoice {
   kEigenSparseNormalCholesky,  // Eigen::SimplicialLDLT
 };
 
+// The minimiser of E over the state. Both use the same analytic cost
+// functions and pose increments and stop on the same tolerances.
+enum class ForwardSolver {
+  // ccma's own sparse Levenberg-Marquardt loop (problems/internal/sparse_lm.h):
+  // pattern and symbolic factorisation once per model, no per-call
+  // preprocessing or allocation. The default: several times faster per call.
+  kNative,
+  // ceres::Solve on a ceres::Problem built once per model (the reference).
+  kCeres,
+};
+
 struct ForwardOptions {
+  ForwardSolver solver = ForwardSolver::kNative;
   // E [m^2] below which the mechanism counts as assembled. 1e-16 means every
   // constraint row is below ~1.4e-8 (m, or rad-like for directions). When the
   // controls can be reached, solves end near E ~ 1e-28, far below.
@@ -48,9 +60,9 @@ struct ForwardOptions {
   // Assemble() splits a control change into sub-steps no larger than this
   // (max-norm over u; m and rad) to stay on the branch connected to the start.
   double max_control_step = 0.02;
-  // kAuto: Eigen sparse normal Cholesky (see LinearSolverChoice).
+  // kCeres only; kAuto: Eigen sparse normal Cholesky (see LinearSolverChoice).
   LinearSolverChoice linear_solver = LinearSolverChoice::kAuto;
-  // Print Ceres' per-iteration progress to stdout (for studying convergence).
+  // kCeres only: print Ceres' per-iteration progress to stdout.
   bool log_progress = false;
   // When E stays > assembly_tolerance, Levenberg-Marquardt (Gauss-Newton)
   // converges only linearly and stops early; up to this many Newton steps on
@@ -70,12 +82,12 @@ struct ForwardOptions {
 };
 
 struct ForwardResult {
-  bool converged = false;   // Ceres reported convergence (dE/ds ~ 0)
+  bool converged = false;   // the solver's convergence test held (dE/ds ~ 0)
   bool assembled = false;   // residual_energy < assembly_tolerance
   double residual_energy = 0;  // E(s_hat, u) [m^2]
-  int iterations = 0;       // Ceres iterations, summed over sub-steps
+  int iterations = 0;       // LM iterations (trial steps), summed over sub-steps
   int substeps = 1;         // solves made (Assemble() may split the step)
-  int newton_steps = 0;     // exact-Newton polish steps after Ceres (E > 0)
+  int newton_steps = 0;     // exact-Newton polish steps after LM (E > 0)
   double gradient_norm = 0; // max |dE/ds| at the end
   double solve_time_ms = 0; // wall time of the solve(s)
   // Assemble() only: some sub-step left the branch its predictor followed
@@ -84,7 +96,7 @@ struct ForwardResult {
   bool branch_jump = false;
   double branch_jump_size = 0;
   int branch_jump_substep = -1;
-  std::string message;      // Ceres' termination message (last solve)
+  std::string message;      // the solver's termination message (last solve)
 };
 
 class ForwardProblem {

@@ -1,0 +1,37 @@
+"""ccma.view writes the page `ccma view` writes (same bytes), returns the HTML
+outside Jupyter, and refuses bad input with ccma.ViewInputError."""
+import pytest
+
+import ccma
+from conftest import ROOT, run_tool
+
+MODEL = ROOT / "models" / "4dof_reduced.yaml"
+
+
+def test_view_matches_the_cli(tmp_path):
+    waypoints = ROOT / "models" / "paths" / "4dof_sequential.csv"
+    csv = tmp_path / "path.csv"
+    run_tool("trajectory", "--model=%s" % MODEL, "--waypoints=%s" % waypoints, "--out=%s" % csv)
+    cli = run_tool("view", "--model=%s" % MODEL, "--trajectory=%s" % csv, "--out=%s" % (tmp_path / "cli.html"))
+    out = ccma.view(MODEL, trajectory=csv, out=tmp_path / "py.html")
+    assert out == str(tmp_path / "py.html")
+    assert (tmp_path / "py.html").read_bytes() == (tmp_path / "cli.html").read_bytes()
+    page, info = ccma.view_html(ccma.load_model(MODEL), str(csv))
+    assert info["frames"] == cli["frames"] and info["source"] == "trajectory"
+    assert len(page.encode()) == cli["bytes"]
+
+
+def test_view_returns_the_page_outside_jupyter():
+    page = ccma.view(ccma.load_model(MODEL))
+    assert page.startswith("<!DOCTYPE html>")
+    assert "default-src 'none'" in page
+    assert '"format":"ccma-scene-1"' in page
+
+
+def test_view_refuses_bad_files(tmp_path):
+    bad = tmp_path / "bad.csv"
+    bad.write_text("time_s,x_m\n0,1\n")
+    with pytest.raises(ccma.ViewInputError, match="bad.csv"):
+        ccma.view(MODEL, trajectory=bad)
+    with pytest.raises(ValueError):
+        ccma.view_html(ccma.load_model(MODEL), str(bad), str(tmp_path))
