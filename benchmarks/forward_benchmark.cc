@@ -9,6 +9,8 @@
 // solution, as in a control loop.
 //   build/benchmarks/forward_benchmark --benchmark_repetitions=10 \
 //       --benchmark_report_aggregates_only=true
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -63,6 +65,49 @@ void BM_ForwardWarmStep(benchmark::State& state, const std::string& name, ccma::
   state.counters["state_size"] = model.state_size();
 }
 
+// A 200-step track, as a simulation loop runs one: the end-effector goes
+// once round a circle of radius 5 cm in the horizontal plane (controls in
+// closed form, tests/leg_closed_form.h), steps of ~1.6 mm; each solve
+// warm-starts from the last (and, for the native solver, from its secant
+// prediction). Time per step.
+void BM_ForwardTrack(benchmark::State& state, const std::string& name, ccma::ForwardSolver minimiser,
+                     bool secant) {
+  const ccma::Model model = ccma::LoadModel(std::string(CCMA_MODELS_DIR) + "/" + name + ".yaml");
+  std::vector<Eigen::VectorXd> track;
+  constexpr int kSteps = 200;
+  for (int k = 0; k <= kSteps; ++k) {
+    const double angle = 2 * M_PI * k / kSteps;
+    const Eigen::Vector3d p =
+        model.end_effector.p_W_home + 0.05 * Eigen::Vector3d(std::cos(angle) - 1, std::sin(angle), 0);
+    Eigen::VectorXd u = model.home_controls();
+    for (const auto& leg : ccma::testing::FindLegs(model)) {
+      u.segment<3>(3 * leg.base) = ccma::testing::BasePoseForLeg(model, leg, p, Eigen::Matrix3d::Identity(), 0.0);
+    }
+    track.push_back(u);
+  }
+  ForwardOptions options;
+  options.solver = minimiser;
+  options.secant_predictor = secant;
+  ForwardProblem forward(model, options);
+  long iterations = 0, solves = 0, assembled = 0;
+  double worst_energy = 0;
+  for (auto _ : state) {
+    for (int k = 1; k <= kSteps; ++k) {
+      const ccma::ForwardResult r = forward.Solve(track[k]);
+      iterations += r.iterations;
+      assembled += r.assembled;
+      worst_energy = std::max(worst_energy, r.residual_energy);
+      ++solves;
+    }
+  }
+  state.SetItemsProcessed(solves);
+  state.counters["us_per_step"] =
+      benchmark::Counter(static_cast<double>(solves), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["iterations"] = double(iterations) / solves;
+  state.counters["assembled_fraction"] = double(assembled) / solves;
+  state.counters["worst_E"] = worst_energy;
+}
+
 // The fixed cost of one Solve() call: controls unchanged, nothing to do but
 // the solver's preprocessing and one evaluation. Subtract it to see the iterations.
 void BM_ForwardAtRest(benchmark::State& state, const std::string& name, ccma::ForwardSolver minimiser) {
@@ -93,6 +138,14 @@ int Register() {
                                    minimiser)
           ->Unit(benchmark::kMicrosecond);
     }
+  }
+  for (const std::string& model : {std::string("4dof_reduced"), std::string("6dof_six_agents")}) {
+    benchmark::RegisterBenchmark(("ForwardTrack/" + model + "/native").c_str(), BM_ForwardTrack, model,
+                                 ForwardSolver::kNative, true)->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(("ForwardTrack/" + model + "/native_no_predictor").c_str(), BM_ForwardTrack,
+                                 model, ForwardSolver::kNative, false)->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(("ForwardTrack/" + model + "/ceres").c_str(), BM_ForwardTrack, model,
+                                 ForwardSolver::kCeres, false)->Unit(benchmark::kMillisecond);
   }
   for (const auto& [solver_name, minimiser, solver] : solvers) {
     for (const std::string& model : kModels) {

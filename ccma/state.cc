@@ -41,12 +41,17 @@ void State::Plus(const Eigen::VectorXd& ds) {
 }
 
 Eigen::VectorXd State::Minus(const State& other) const {
-  const PoseManifold manifold;
-  Eigen::VectorXd ds(tangent_size());
-  for (int i = 0; i < num_bodies(); ++i) {
-    manifold.Minus(pose(i), other.pose(i), ds.data() + kPoseTangentSize * i);
-  }
+  Eigen::VectorXd ds;
+  Minus(other, &ds);
   return ds;
+}
+
+void State::Minus(const State& other, Eigen::VectorXd* ds) const {
+  const PoseManifold manifold;
+  if (ds->size() != tangent_size()) ds->resize(tangent_size());
+  for (int i = 0; i < num_bodies(); ++i) {
+    manifold.Minus(pose(i), other.pose(i), ds->data() + kPoseTangentSize * i);
+  }
 }
 
 }  // namespace ccma

@@ -44,6 +44,9 @@ class State {
   void Plus(const Eigen::VectorXd& ds);
   // The tangent vector ds with other (+) ds == this (per body).
   Eigen::VectorXd Minus(const State& other) const;
+  // The same into `ds` (resized only when its size differs: no allocation
+  // in a loop that reuses it).
+  void Minus(const State& other, Eigen::VectorXd* ds) const;
 
  private:
   std::vector<double> data_;

@@ -95,6 +95,12 @@ struct ForwardProblem::Workspace {
   ceres::Solver::Options solver_options;
   HessianSolver hessian_solver;           // Newton polish and Assemble's predictor
   EnergyDerivatives derivatives[2];       // current point and candidate
+  // The secant predictor's memory: the state and controls before the last
+  // solve (valid once one solve has run), and scratch.
+  bool has_last_step = false;
+  State state_before_last;
+  Eigen::VectorXd controls_before_last, du, du_last, ds;
+  State predicted;
   double world_pose[kPoseAmbientSize] = {0, 0, 0, 1, 0, 0, 0};  // the ground, constant
 };
 
@@ -160,10 +166,38 @@ void ForwardProblem::CheckControls(const Eigen::VectorXd& u) const {
   }
 }
 
+void ForwardProblem::PredictFromLastStep(const Eigen::VectorXd& u) {
+  Workspace& w = *workspace_;
+  if (options_.secant_predictor && w.has_last_step) {
+    w.du = u - controls_;
+    w.du_last = controls_ - w.controls_before_last;
+    const double last = w.du_last.squaredNorm();
+    const double alpha = last > 0 ? w.du.dot(w.du_last) / last : 0;
+    // Only along a path: the new change nearly parallel to the last one.
+    if (alpha > 0 && alpha <= 2 && (w.du - alpha * w.du_last).norm() <= 0.05 * w.du.norm()) {
+      state_.Minus(w.state_before_last, &w.ds);
+      w.ds *= alpha;
+      w.predicted = state_;
+      w.predicted.Plus(w.ds);
+      if (w.constraints.Energy(w.predicted, u) < w.constraints.Energy(state_, u)) {
+        w.state_before_last = state_;
+        state_ = w.predicted;  // a copy into the same storage (Ceres holds its addresses)
+        w.controls_before_last = controls_;
+        w.has_last_step = true;
+        return;
+      }
+    }
+  }
+  w.state_before_last = state_;
+  w.controls_before_last = controls_;
+  w.has_last_step = true;
+}
+
 ForwardResult ForwardProblem::Solve(const Eigen::VectorXd& u) {
   CheckControls(u);
-  controls_ = u;  // the control blocks alias controls_' storage
   const auto start = Clock::now();
+  PredictFromLastStep(u);
+  controls_ = u;  // the control blocks alias controls_' storage
   ForwardResult result;
   bool usable = true;
   if (options_.solver == ForwardSolver::kNative) {
@@ -302,6 +336,8 @@ void ForwardProblem::SetState(const State& s) {
     throw std::invalid_argument("SetState: expected " + std::to_string(model_.num_bodies()) +
                                 " bodies, got " + std::to_string(s.num_bodies()));
   }
+  // A state from elsewhere: the last step no longer predicts the next.
+  workspace_->has_last_step = false;
   // Copy in place: Ceres holds pointers into state_'s storage.
   if (&s == &state_) return;
   for (int i = 0; i < model_.num_bodies(); ++i) {

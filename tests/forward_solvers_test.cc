@@ -2,8 +2,14 @@
 // default) against Ceres (kCeres, the reference) on every bundled model:
 // along paper-size control paths (10 mm + 0.005 rad end-effector steps,
 // seeded targets), warm-started as a control loop calls them, both end at
-// the same state to 1e-12 with E below 1e-24; unreachable controls end at
-// the same stationary point (dE/ds = 0).
+// the same state with E below 1e-24; unreachable controls end at the same
+// stationary point (dE/ds = 0).
+//
+// How close "the same" is: both stop when max |dE/ds| <= 1e-14, which
+// leaves E ~ 1e-28..1e-26 (|C| ~ 1e-13) after many warm-started steps; with
+// dC/ds's smallest singular value ~ 1e-2 (6dof_asymmetric) the two states may
+// then differ by up to ~1e-11 (measured: 4e-12..1e-11 on that model, below
+// 1e-12 on the others). The bound below is 1e-10, the end-effector 1e-11.
 #include <filesystem>
 #include <random>
 
@@ -25,7 +31,17 @@ std::vector<std::string> BundledModels() {
   return names;
 }
 
+// Those with a mobile base (one can be pulled out of reach).
+std::vector<std::string> ModelsWithBases() {
+  std::vector<std::string> names;
+  for (const std::string& name : BundledModels()) {
+    if (LoadModel(std::string(CCMA_MODELS_DIR) + "/" + name + ".yaml").num_bases() > 0) names.push_back(name);
+  }
+  return names;
+}
+
 class ForwardSolvers : public ::testing::TestWithParam<std::string> {};
+class UnreachableControls : public ::testing::TestWithParam<std::string> {};
 
 // The controls of every path step toward seeded targets near home.
 std::vector<Eigen::VectorXd> ControlPath(const Model& model, unsigned seed) {
@@ -54,7 +70,11 @@ TEST_P(ForwardSolvers, NativeAndCeresAgreeAlongAPath) {
     const ForwardResult a = native.Solve(path[i]);
     const ForwardResult b = ceres.Solve(path[i]);
     EXPECT_EQ(a.assembled, b.assembled) << "step " << i;
-    EXPECT_LT(native.state().Minus(ceres.state()).lpNorm<Eigen::Infinity>(), 1e-12) << "step " << i;
+    EXPECT_LT((native.end_effector().position - ceres.end_effector().position).lpNorm<Eigen::Infinity>(), 1e-11)
+        << "step " << i;
+    EXPECT_LT(native.state().Minus(ceres.state()).lpNorm<Eigen::Infinity>(), 1e-10)
+        << "step " << i << ": E native " << a.residual_energy << " (" << a.iterations << " it), ceres "
+        << b.residual_energy << " (" << b.iterations << " it)";
     if (a.assembled) {
       ++assembled;
       EXPECT_LT(a.residual_energy, 1e-24) << "step " << i;
@@ -64,9 +84,8 @@ TEST_P(ForwardSolvers, NativeAndCeresAgreeAlongAPath) {
   EXPECT_GT(assembled, static_cast<int>(path.size()) / 2);
 }
 
-TEST_P(ForwardSolvers, UnreachableControlsEndAtTheSameStationaryPoint) {
+TEST_P(UnreachableControls, NativeAndCeresEndAtTheSameStationaryPoint) {
   const Model model = LoadModel(std::string(CCMA_MODELS_DIR) + "/" + GetParam() + ".yaml");
-  if (model.num_bases() == 0) GTEST_SKIP() << "no mobile base to pull away";
   ForwardOptions ceres_options;
   ceres_options.solver = ForwardSolver::kCeres;
   ForwardProblem native(model), ceres(model, ceres_options);
@@ -83,6 +102,13 @@ TEST_P(ForwardSolvers, UnreachableControlsEndAtTheSameStationaryPoint) {
 
 INSTANTIATE_TEST_SUITE_P(Bundled, ForwardSolvers, ::testing::ValuesIn(BundledModels()),
                          [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
+INSTANTIATE_TEST_SUITE_P(Bundled, UnreachableControls, ::testing::ValuesIn(ModelsWithBases()),
+                         [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
+
+TEST(ForwardSolversTest, EveryBundledModelIsCovered) {
+  EXPECT_GE(BundledModels().size(), 9u);
+  EXPECT_GE(ModelsWithBases().size(), 7u);
+}
 
 }  // namespace
 }  // namespace ccma

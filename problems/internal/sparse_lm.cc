@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace ccma {
 namespace {
@@ -13,6 +14,9 @@ constexpr double kMaxDamping = 1e16;
 // Marquardt's scaling D = diag(J^T J), clamped as Ceres clamps it.
 constexpr double kMinDiagonal = 1e-6;
 constexpr double kMaxDiagonal = 1e32;
+// Stop when max |dE/ds| is below this: ~ roundoff of J^T C for reachable
+// controls (E ~ 1e-30), so that the state is exact to ~1e-14 m or rad.
+constexpr double kGradientTolerance = 1e-14;
 
 // The value index of entry (row, col) of a compressed column-major matrix.
 int EntryIndex(const Eigen::SparseMatrix<double>& m, int row, int col) {
@@ -55,6 +59,9 @@ SparseLevenbergMarquardt::SparseLevenbergMarquardt(const ConstraintSet& constrai
   // Where each block's J_p^T J_q lands, and its Jacobian storage.
   int offset = 0;
   for (const ConstraintBlock& block : constraints_.blocks()) {
+    if (block.bodies.size() > 2 || block.rows > kMaxBlockRows) {
+      throw std::logic_error("SparseLevenbergMarquardt: a constraint of more than two bodies or 9 rows");
+    }
     jacobian_offset_.push_back(offset);
     const int params = static_cast<int>(block.bodies.size()) + (block.control_size > 0 ? 1 : 0);
     offset += params * kMaxBlockRows * kPoseAmbientSize;
@@ -72,7 +79,29 @@ SparseLevenbergMarquardt::SparseLevenbergMarquardt(const ConstraintSet& constrai
     pair_entries_.push_back(std::move(entries));
   }
   jacobians_.assign(offset, 0.0);
-  ldlt_.analyzePattern(damped_);  // the fill-reducing ordering, once
+
+  // The fill-reducing order P (AMD) of the pattern, applied once to the
+  // pattern itself: damped_ holds P A P^T's upper triangle. Which entry of
+  // jtj_ lands where is found by permuting a matrix of entry numbers.
+  Eigen::AMDOrdering<int> amd;
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> inverse;
+  amd(jtj_, inverse);
+  permutation_ = inverse.inverse();
+  Eigen::SparseMatrix<double> numbers = jtj_;
+  for (int k = 0; k < numbers.nonZeros(); ++k) numbers.valuePtr()[k] = k + 1;
+  damped_.resize(n_, n_);
+  damped_.selfadjointView<Eigen::Upper>() = numbers.selfadjointView<Eigen::Lower>().twistedBy(permutation_);
+  damped_.makeCompressed();
+  permuted_entry_.assign(jtj_.nonZeros(), -1);
+  for (int k = 0; k < damped_.nonZeros(); ++k) {
+    permuted_entry_[static_cast<int>(damped_.valuePtr()[k]) - 1] = k;  // only lower entries of jtj_ map
+  }
+  permuted_diagonal_.resize(n_);
+  for (int i = 0; i < n_; ++i) permuted_diagonal_[i] = permuted_entry_[diagonal_[i]];
+  ldlt_.analyzePattern(damped_);  // symbolic factorisation, once
+  saved_jtj_.resize(jtj_.nonZeros());
+  permuted_g_.resize(n_);
+  permuted_ds_.resize(n_);
   C_.resize(constraints_.num_rows());
   g_.resize(n_);
   ds_.resize(n_);
@@ -98,18 +127,27 @@ double SparseLevenbergMarquardt::Linearize(const State& s, const Eigen::VectorXd
     double* c = C_.data() + block.row;
     block.cost->Evaluate(params, c, jacobians);
     const Eigen::Map<const Eigen::VectorXd> residual(c, block.rows);
-    // J_p^T C into g, and J_p^T J_q into the pattern (tangent: the left 6 columns).
+    // J_p^T C into g, and J_p^T J_q into the pattern (tangent: the left 6
+    // columns). Copied into fixed 9-row matrices, zero below the block's
+    // rows: fixed-size products are unrolled and vectorised (a dynamic row
+    // count made them ten times slower).
+    using Tangent = Eigen::Matrix<double, kMaxBlockRows, kPoseTangentSize>;
+    Tangent J[2];
+    Eigen::Matrix<double, kMaxBlockRows, 1> r = Eigen::Matrix<double, kMaxBlockRows, 1>::Zero();
+    r.head(block.rows) = residual;
+    for (int p = 0; p < num_bodies; ++p) {
+      J[p].setZero();
+      J[p].topRows(block.rows) = Jacobian(jacobians[p], block.rows, kPoseAmbientSize).leftCols<kPoseTangentSize>();
+    }
     const int* entry = pair_entries_[k].data();
+    double* values = jtj_.valuePtr();
     for (int p = 0; p < num_bodies; ++p) {
       if (block.bodies[p] == kWorld) continue;
-      const auto J_p = Jacobian(jacobians[p], block.rows, kPoseAmbientSize).leftCols<kPoseTangentSize>();
-      g_.segment<kPoseTangentSize>(kPoseTangentSize * block.bodies[p]).noalias() += J_p.transpose() * residual;
+      g_.segment<kPoseTangentSize>(kPoseTangentSize * block.bodies[p]).noalias() += J[p].transpose().lazyProduct(r);
       for (int q = 0; q < num_bodies; ++q) {
         if (block.bodies[q] == kWorld) continue;
-        const auto J_q = Jacobian(jacobians[q], block.rows, kPoseAmbientSize).leftCols<kPoseTangentSize>();
-        const Eigen::Matrix<double, kPoseTangentSize, kPoseTangentSize, Eigen::RowMajor> M =
-            J_p.transpose() * J_q;
-        double* values = jtj_.valuePtr();
+        Eigen::Matrix<double, kPoseTangentSize, kPoseTangentSize, Eigen::RowMajor> M;
+        M.noalias() = J[p].transpose().lazyProduct(J[q]);
         for (int e = 0; e < kPoseTangentSize * kPoseTangentSize; ++e) values[entry[e]] += M.data()[e];
         entry += kPoseTangentSize * kPoseTangentSize;
       }
@@ -118,18 +156,15 @@ double SparseLevenbergMarquardt::Linearize(const State& s, const Eigen::VectorXd
   return 0.5 * C_.squaredNorm();
 }
 
-double SparseLevenbergMarquardt::EnergyAt(const State& s, const Eigen::VectorXd& u) {
-  double energy = 0;
-  double c[kMaxBlockRows];
-  for (const ConstraintBlock& block : constraints_.blocks()) {
-    const double* params[3];
-    const int num_bodies = static_cast<int>(block.bodies.size());
-    for (int p = 0; p < num_bodies; ++p) params[p] = ConstraintSet::Pose(s, block.bodies[p]);
-    if (block.control_size > 0) params[num_bodies] = u.data() + block.control_offset;
-    block.cost->Evaluate(params, c, nullptr);
-    for (int i = 0; i < block.rows; ++i) energy += 0.5 * c[i] * c[i];
+void SparseLevenbergMarquardt::Damp(double mu) {
+  double* out = damped_.valuePtr();
+  std::fill(out, out + damped_.nonZeros(), 0.0);
+  const double* in = jtj_.valuePtr();
+  for (size_t k = 0; k < permuted_entry_.size(); ++k) {
+    if (permuted_entry_[k] >= 0) out[permuted_entry_[k]] += in[k];
   }
-  return energy;
+  // Marquardt: + mu diag(J^T J), the diagonal clamped.
+  for (int i = 0; i < n_; ++i) out[permuted_diagonal_[i]] += mu * std::clamp(in[diagonal_[i]], kMinDiagonal, kMaxDiagonal);
 }
 
 SparseLmSummary SparseLevenbergMarquardt::Solve(State* s, const Eigen::VectorXd& u, int max_iterations) {
@@ -138,32 +173,36 @@ SparseLmSummary SparseLevenbergMarquardt::Solve(State* s, const Eigen::VectorXd&
   double mu = kInitialDamping;
   while (summary.iterations < max_iterations) {
     summary.gradient_norm = g_.lpNorm<Eigen::Infinity>();
-    if (summary.gradient_norm <= 1e-14 || energy == 0) {
+    if (summary.gradient_norm <= kGradientTolerance || energy == 0) {
       summary.converged = true;
       break;
     }
-    // (J^T J + mu D) ds = -J^T C, D = diag(J^T J) clamped.
-    std::copy(jtj_.valuePtr(), jtj_.valuePtr() + jtj_.nonZeros(), damped_.valuePtr());
-    for (int i = 0; i < n_; ++i) {
-      const double d = std::clamp(jtj_.valuePtr()[diagonal_[i]], kMinDiagonal, kMaxDiagonal);
-      damped_.valuePtr()[diagonal_[i]] += mu * d;
-    }
+    // (J^T J + mu D) ds = -J^T C, D = diag(J^T J) clamped; solved as
+    // (P M P^T) (P ds) = -P g.
     ++summary.iterations;
+    Damp(mu);
     ldlt_.factorize(damped_);
     if (ldlt_.info() != Eigen::Success) {
       mu = std::min(mu * 10, kMaxDamping);
       continue;
     }
-    ds_.noalias() = ldlt_.solve(g_);
+    permuted_g_.noalias() = permutation_ * g_;
+    permuted_ds_ = ldlt_.solve(permuted_g_);
+    ds_.noalias() = permutation_.transpose() * permuted_ds_;
     ds_ = -ds_;
     trial_ = *s;  // same size: no allocation
     trial_.Plus(ds_);
-    const double trial_energy = EnergyAt(trial_, u);
+    // Linearise at the trial point: its E decides, and its derivatives are
+    // the next iteration's when accepted; otherwise the saved ones return.
+    std::copy(jtj_.valuePtr(), jtj_.valuePtr() + jtj_.nonZeros(), saved_jtj_.begin());
+    saved_C_ = C_;
+    saved_g_ = g_;
+    const double trial_energy = Linearize(trial_, u);
     if (trial_energy < energy) {
       *s = trial_;  // a copy into the same storage: the state's addresses stay (Ceres holds them)
       const double decrease = energy - trial_energy;
       const bool small_step = ds_.lpNorm<Eigen::Infinity>() <= 1e-15;
-      energy = Linearize(*s, u);
+      energy = trial_energy;
       mu = std::max(mu / 10, kMinDamping);
       if (decrease <= 1e-15 * (energy + decrease) || small_step) {
         summary.converged = true;
@@ -171,6 +210,9 @@ SparseLmSummary SparseLevenbergMarquardt::Solve(State* s, const Eigen::VectorXd&
         break;
       }
     } else {
+      std::copy(saved_jtj_.begin(), saved_jtj_.end(), jtj_.valuePtr());
+      C_ = saved_C_;
+      g_ = saved_g_;
       if (ds_.lpNorm<Eigen::Infinity>() <= 1e-15 || mu >= kMaxDamping) {
         summary.converged = ds_.lpNorm<Eigen::Infinity>() <= 1e-15;
         break;

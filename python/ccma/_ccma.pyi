@@ -257,6 +257,8 @@ class ForwardOptions:
     def __init__(
         self,
         *,
+        solver: Literal["native", "ceres"] = "native",
+        secant_predictor: bool = True,
         assembly_tolerance: float = 1e-16,
         max_iterations: int = 100,
         max_control_step: float = 0.02,
@@ -264,7 +266,17 @@ class ForwardOptions:
         branch_jump_relative: float = 0.5,
         branch_jump_absolute: float = 0.01,
     ) -> None:
-        """Defaults, overridden by the given fields (an unknown keyword raises AttributeError)."""
+        """Defaults, overridden by the given fields (an unknown keyword raises TypeError)."""
+    @property
+    def solver(self) -> Literal["native", "ceres"]:
+        """'native' (ccma's sparse Levenberg-Marquardt, default) or 'ceres' (ceres::Solve, the reference)."""
+    @solver.setter
+    def solver(self, value: Literal["native", "ceres"]) -> None: ...
+    @property
+    def secant_predictor(self) -> bool:
+        """Start each solve from the secant prediction along a path (default True)."""
+    @secant_predictor.setter
+    def secant_predictor(self, value: bool) -> None: ...
     @property
     def assembly_tolerance(self) -> float:
         """E [m^2] below which the mechanism counts as assembled (default 1e-16)."""

@@ -48,6 +48,16 @@ void BindOptions(py::module_& m) {
              ForwardOptions o;
              return WithKeywords(o, kwargs);
            }))
+      .def_property(
+          "solver",
+          [](const ForwardOptions& o) { return o.solver == ForwardSolver::kNative ? "native" : "ceres"; },
+          [](ForwardOptions& o, const std::string& v) {
+            if (v != "native" && v != "ceres") throw py::value_error("solver: 'native' or 'ceres'");
+            o.solver = v == "native" ? ForwardSolver::kNative : ForwardSolver::kCeres;
+          },
+          "'native' (ccma's sparse Levenberg-Marquardt, default) or 'ceres' (ceres::Solve, the reference)")
+      .def_readwrite("secant_predictor", &ForwardOptions::secant_predictor,
+                     "start each solve from the secant prediction along a path (default True)")
       .def_readwrite("assembly_tolerance", &ForwardOptions::assembly_tolerance,
                      "E [m^2] below which the mechanism counts as assembled")
       .def_readwrite("max_iterations", &ForwardOptions::max_iterations, "per solve (per sub-step)")

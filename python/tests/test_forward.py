@@ -97,3 +97,15 @@ def test_assemble_reports_its_substeps():
         u[3 * k] += 0.03
     assert forward.assemble(u).substeps == 2
     assert forward.solve(u).substeps == 1
+
+
+def test_native_and_ceres_solvers_agree(model_path):
+    """The native sparse LM (default) and Ceres reach the same assembly."""
+    model = ccma.load_model(model_path)
+    u = shifted_controls(model)
+    native = ccma.ForwardProblem(model)
+    ceres = ccma.ForwardProblem(model, ccma.ForwardOptions(solver="ceres"))
+    a, b = native.assemble(u), ceres.assemble(u)
+    assert a.assembled == b.assembled
+    np.testing.assert_allclose(a.end_effector.position, b.end_effector.position, rtol=0, atol=1e-11)
+    assert ccma.ForwardOptions().solver == "native"
