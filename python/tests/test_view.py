@@ -35,3 +35,30 @@ def test_view_refuses_bad_files(tmp_path):
         ccma.view(MODEL, trajectory=bad)
     with pytest.raises(ValueError):
         ccma.view_html(ccma.load_model(MODEL), str(bad), str(tmp_path))
+
+
+def test_view_displays_inline_in_jupyter(monkeypatch):
+    """Inside a Jupyter kernel (a fake IPython here: Jupyter is not a
+    dependency), ccma.view displays the page in an iframe instead of
+    returning it."""
+    import html
+    import sys
+    import types
+
+    shown = []
+    ipython = types.ModuleType("IPython")
+    display = types.ModuleType("IPython.display")
+
+    class Kernel:
+        kernel = object()
+
+    ipython.get_ipython = lambda: Kernel()
+    display.HTML = lambda text: ("HTML", text)
+    display.display = shown.append
+    monkeypatch.setitem(sys.modules, "IPython", ipython)
+    monkeypatch.setitem(sys.modules, "IPython.display", display)
+    assert ccma.view(MODEL, height=400) is None
+    assert len(shown) == 1 and shown[0][0] == "HTML"
+    frame = shown[0][1]
+    assert frame.startswith('<iframe srcdoc="') and "height:400px" in frame
+    assert html.unescape(frame[len('<iframe srcdoc="'):frame.index('" style=')]).startswith("<!DOCTYPE html>")
