@@ -1,23 +1,29 @@
-// One palette for the page and its legend (CSS hex strings and numbers).
+// One palette for the 3D scene and its legend. Each thing a researcher must
+// tell apart gets its own hue: links grey, joints dark slate, actuated joints
+// amber, omni bases blue, differential bases teal; the paths green (commanded),
+// violet (tracked) and dark blue (bases); flagged frames red; the end-effector
+// frame the usual x red, y green, z blue.
 export const COLORS = {
   background: 0xf4f5f7,
-  grid: 0xc8ccd2,
-  gridCenter: 0x9aa0a8,
-  link: 0x5b6b82,
-  omni: 0x2f7ed8,
-  differential: 0x8e44ad,
-  heading: 0xf39c12,
-  joint: 0x34495e,
-  actuated: 0xc0392b,
+  grid: 0xdadde2,
+  gridMajor: 0xb4bac3,
+  link: 0x7d8da3,
+  joint: 0x22324a,
+  actuated: 0xf0a202,
+  omni: 0x4a90d9,
+  differential: 0x16a394,
+  wheel: 0x2b2f36,
+  heading: 0x1e293b,
   commanded: 0x16a34a,
-  tracked: 0xe67e22,
-  basePath: 0x1a3a6b,
-  flagged: 0xd6006e,
-  axisX: 0xe74c3c,
-  axisY: 0x27ae60,
-  axisZ: 0x2f7ed8,
+  tracked: 0x7c3aed,
+  basePath: 0x1e40af,
+  flagged: 0xdc2626,
+  axisX: 0xe53935,
+  axisY: 0x43a047,
+  axisZ: 0x1e88e5,
 };
 
+// CSS "#rrggbb" of a palette colour.
 export function css(color) {
   return '#' + color.toString(16).padStart(6, '0');
 }

@@ -1,5 +1,6 @@
-// The page's controls and labels, plain DOM over the canvas: title, legend,
-// play/pause, the time slider and label, a badge for flagged frames.
+// The page's controls and labels, plain DOM over the canvas (styles set from
+// here: the page has no stylesheet): title, legend, play/pause, the time
+// slider and label, a badge for flagged frames; and the error panel.
 import { COLORS, css } from './colors.js';
 
 function el(tag, style, text) {
@@ -10,53 +11,74 @@ function el(tag, style, text) {
 }
 
 const PANEL = {
-  position: 'absolute', background: 'rgba(255,255,255,0.88)', borderRadius: '6px', padding: '8px 12px',
-  font: '13px system-ui, sans-serif', color: '#223', boxShadow: '0 1px 4px rgba(0,0,0,0.15)',
+  position: 'absolute', background: 'rgba(255,255,255,0.9)', borderRadius: '6px', padding: '8px 12px',
+  font: '13px system-ui, -apple-system, "Segoe UI", sans-serif', color: '#1f2533',
+  boxShadow: '0 1px 4px rgba(0,0,0,0.15)',
 };
 
-export function buildOverlay(scene, frames, hasPaths) {
-  const title = el('div', { ...PANEL, top: '10px', left: '10px', maxWidth: '46%' });
-  title.append(el('div', { fontWeight: '600', fontSize: '15px' }, `ccma view: ${scene.model}`));
-  if (scene.description) title.append(el('div', { marginTop: '3px', color: '#556' }, scene.description));
-  title.append(el('div', { marginTop: '3px', color: '#778' },
-                  `${scene.bodies.length} bodies, ${(scene.joints || []).length} joints; drag to orbit, ` +
-                  'scroll to zoom, right-drag to pan'));
-  document.body.append(title);
+// Legend swatches: a block for solid parts, a line (solid or dashed) for paths, a dot.
+function swatch(kind, colors) {
+  const box = el('span', { display: 'inline-flex', gap: '2px', width: '26px', justifyContent: 'center',
+                           alignItems: 'center' });
+  for (const color of colors) {
+    if (kind === 'block') {
+      box.append(el('span', { width: `${Math.floor(20 / colors.length)}px`, height: '10px', borderRadius: '2px',
+                              background: css(color) }));
+    } else if (kind === 'dot') {
+      box.append(el('span', { width: '9px', height: '9px', borderRadius: '50%', background: css(color) }));
+    } else {
+      box.append(el('span', { width: '24px', borderTop: `3px ${kind} ${css(color)}` }));
+    }
+  }
+  return box;
+}
 
-  const legend = el('div', { ...PANEL, top: '10px', right: '10px' });
-  const item = (color, label, dashed) => {
-    const row = el('div', { display: 'flex', alignItems: 'center', gap: '6px', margin: '2px 0' });
-    row.append(el('span', { display: 'inline-block', width: '22px', height: '0',
-                            borderTop: `3px ${dashed ? 'dashed' : 'solid'} ${css(color)}` }), el('span', {}, label));
-    legend.append(row);
+function legend(scene, gridStep) {
+  const panel = el('div', { ...PANEL, top: '10px', right: '10px' });
+  const item = (kind, colors, label) => {
+    const row = el('div', { display: 'flex', alignItems: 'center', gap: '8px', margin: '3px 0' });
+    row.append(swatch(kind, colors), el('span', {}, label));
+    panel.append(row);
   };
   const kinds = new Set(scene.bodies.map((b) => b.kind));
-  if (kinds.has('omni')) item(COLORS.omni, 'omni base (arrow: heading)');
-  if (kinds.has('differential')) item(COLORS.differential, 'differential base (arrow: heading)');
-  item(COLORS.link, 'link');
-  item(COLORS.joint, 'joint');
-  if ((scene.joints || []).some((j) => j.actuated)) item(COLORS.actuated, 'actuated joint');
-  item(COLORS.axisX, 'end-effector x (y green, z blue)');
-  if (hasPaths) {
-    item(COLORS.commanded, 'end-effector commanded', true);
-    item(COLORS.tracked, 'end-effector tracked');
-    item(COLORS.basePath, 'base paths (ground)');
-    if ((scene.frames.flags || []).includes(1)) item(COLORS.flagged, 'flagged frame (not reached, torn, not assembled)');
-  }
-  document.body.append(legend);
+  const joints = scene.joints || [];
+  if (kinds.has('omni')) item('block', [COLORS.omni], 'omni base (arrow: heading)');
+  if (kinds.has('differential')) item('block', [COLORS.differential], 'differential base (arrow: heading)');
+  item('block', [COLORS.link], 'link');
+  if (joints.some((j) => !j.actuated)) item('block', [COLORS.joint], 'joint (passive)');
+  if (joints.some((j) => j.actuated)) item('block', [COLORS.actuated], 'actuated joint');
+  item('block', [COLORS.axisX, COLORS.axisY, COLORS.axisZ], 'end-effector frame x, y, z');
+  const paths = scene.paths || {};
+  if ((paths.commanded || []).length > 1) item('dashed', [COLORS.commanded], 'end-effector commanded');
+  if ((paths.tracked || []).length > 1) item('solid', [COLORS.tracked], 'end-effector tracked');
+  if ((paths.bases || []).some((b) => b.length > 1)) item('solid', [COLORS.basePath], 'base paths (ground)');
+  if ((scene.frames.flags || []).includes(1)) item('dot', [COLORS.flagged], 'suspect frame (not assembled / torn)');
+  panel.append(el('div', { marginTop: '5px', color: '#6b7280' }, `grid: ${gridStep} m squares (bold every ${5 * gridStep} m); world z up`));
+  return panel;
+}
+
+export function buildOverlay(scene, frames, gridStep) {
+  const title = el('div', { ...PANEL, top: '10px', left: '10px', maxWidth: '46%' });
+  title.append(el('div', { fontWeight: '600', fontSize: '15px' }, `ccma view: ${scene.model ?? ''}`));
+  if (scene.description) title.append(el('div', { marginTop: '3px', color: '#4b5563' }, scene.description));
+  title.append(el('div', { marginTop: '3px', color: '#6b7280' },
+                  `${scene.bodies.length} bodies, ${(scene.joints || []).length} joints` +
+                  (scene.source ? `, from ${scene.source}` : '') +
+                  '. Drag to orbit, scroll to zoom, right-drag to pan.'));
+  document.body.append(title, legend(scene, gridStep));
 
   const bar = el('div', { ...PANEL, bottom: '10px', left: '10px', right: '10px', display: 'flex',
-                          alignItems: 'center', gap: '10px' });
-  const play = el('button', { font: 'inherit', padding: '3px 12px', minWidth: '70px' }, 'play');
+                          alignItems: 'center', gap: '12px' });
+  const play = el('button', { font: 'inherit', padding: '3px 12px', minWidth: '72px' }, 'play');
   play.id = 'ccma-play';
   const slider = el('input', { flex: '1' });
   Object.assign(slider, { type: 'range', id: 'ccma-slider', min: 0, max: Math.max(frames - 1, 0), step: 1, value: 0 });
-  const label = el('span', { minWidth: '220px', fontVariantNumeric: 'tabular-nums' });
+  const label = el('span', { minWidth: '230px', fontVariantNumeric: 'tabular-nums' });
   label.id = 'ccma-time';
-  const badge = el('span', { color: '#fff', background: css(COLORS.flagged), borderRadius: '4px',
-                             padding: '2px 8px', visibility: 'hidden' }, 'suspect frame');
+  const badge = el('span', { color: '#fff', background: css(COLORS.flagged), borderRadius: '4px', padding: '2px 8px',
+                             fontWeight: '600', visibility: 'hidden' }, 'suspect frame');
   badge.id = 'ccma-flag';
-  if (frames <= 1) {
+  if (frames <= 1) {  // a model at home: nothing to play
     play.disabled = true;
     slider.disabled = true;
     play.textContent = 'static';
@@ -67,6 +89,7 @@ export function buildOverlay(scene, frames, hasPaths) {
 }
 
 export function showError(message) {
-  document.body.append(el('pre', { ...PANEL, top: '20px', left: '20px', color: '#a00', whiteSpace: 'pre-wrap' },
+  document.body.append(el('pre', { ...PANEL, top: '20px', left: '20px', right: '20px', color: '#a00',
+                                   whiteSpace: 'pre-wrap' },
                           `ccma view: cannot show this page\n${message}`));
 }

@@ -1,46 +1,48 @@
-// The recorded paths: the end-effector's commanded and tracked paths in 3D,
-// each base's path on the ground, flagged frames as red dots.
-import {
-  BufferGeometry, Float32BufferAttribute, Line, LineBasicMaterial, LineDashedMaterial, Points, PointsMaterial,
-} from 'three';
+// The recorded paths: the end-effector's commanded (dashed) and tracked paths
+// in 3D, each base's path on the ground, flagged frames as red balls on the
+// tracked path. Lines are three's "fat" Line2 (a width in CSS pixels): WebGL
+// draws ordinary lines one pixel wide, too thin to read on a large screen.
+import { InstancedMesh, Matrix4, SphereGeometry } from 'three';
+import { Line2 } from 'three/examples/jsm/lines/Line2.js';
+import { LineGeometry } from 'three/examples/jsm/lines/LineGeometry.js';
+import { LineMaterial } from 'three/examples/jsm/lines/LineMaterial.js';
 import { COLORS } from './colors.js';
+import { material } from './shapes.js';
 
 // Paths are drawn over everything (no depth test): a path inside the
 // platform or under a base's disc would otherwise be hidden.
-function line(points, material) {
-  material.depthTest = false;
-  const geometry = new BufferGeometry();
-  geometry.setAttribute('position', new Float32BufferAttribute(points.flat(), 3));
-  const l = new Line(geometry, material);
-  l.computeLineDistances();  // for dashes
+function line(points, color, width, dashed, u) {
+  const geometry = new LineGeometry();
+  geometry.setPositions(points.flat());
+  const mat = new LineMaterial({ color, linewidth: width, dashed, dashSize: 0.025 * u, gapSize: 0.015 * u,
+                                 depthTest: false });
+  const l = new Line2(geometry, mat);
+  l.computeLineDistances();  // for the dashes
   l.renderOrder = 10;
   return l;
 }
 
 export function buildPaths(scene, root) {
   const paths = scene.paths;
-  if (!paths) return { commanded: false };
-  const s = Math.max(scene.scale || 0.5, 1e-3);
-  if (Array.isArray(paths.commanded) && paths.commanded.length > 1) {
-    root.add(line(paths.commanded, new LineDashedMaterial({ color: COLORS.commanded, dashSize: 0.02 * s,
-                                                            gapSize: 0.012 * s })));
+  if (!paths) return;
+  const u = Math.max(scene.scale || 0.5, 1e-3);
+  for (const base of paths.bases || []) {
+    if (base.length > 1) root.add(line(base.map(([x, y]) => [x, y, 0.001]), COLORS.basePath, 2, false, u));
   }
   if (Array.isArray(paths.tracked) && paths.tracked.length > 1) {
-    root.add(line(paths.tracked, new LineBasicMaterial({ color: COLORS.tracked })));
-    const flags = scene.frames.flags || [];
-    const flagged = paths.tracked.filter((_, i) => flags[i] === 1);
-    if (flagged.length) {
-      const geometry = new BufferGeometry();
-      geometry.setAttribute('position', new Float32BufferAttribute(flagged.flat(), 3));
-      const dots = new Points(geometry, new PointsMaterial({ color: COLORS.flagged, size: 0.03 * s, depthTest: false }));
-      dots.renderOrder = 11;
-      root.add(dots);
-    }
+    root.add(line(paths.tracked, COLORS.tracked, 3, false, u));
   }
-  for (const base of paths.bases || []) {
-    if (base.length > 1) {
-      root.add(line(base.map(([x, y]) => [x, y, 0.002]), new LineBasicMaterial({ color: COLORS.basePath })));
-    }
+  if (Array.isArray(paths.commanded) && paths.commanded.length > 1) {
+    root.add(line(paths.commanded, COLORS.commanded, 2.5, true, u));
   }
-  return { commanded: Array.isArray(paths.commanded) };
+  // One instanced mesh for all flagged frames: a long replay may flag many.
+  const flags = scene.frames.flags || [];
+  const flagged = (paths.tracked || []).filter((_, i) => flags[i] === 1);
+  if (flagged.length) {
+    const dots = new InstancedMesh(new SphereGeometry(0.014 * u, 12, 8),
+                                   material(COLORS.flagged, { depthTest: false }), flagged.length);
+    flagged.forEach((p, i) => dots.setMatrixAt(i, new Matrix4().makeTranslation(p[0], p[1], p[2])));
+    dots.renderOrder = 11;
+    root.add(dots);
+  }
 }

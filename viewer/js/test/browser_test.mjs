@@ -2,12 +2,16 @@
 // by playwright-core) and checks it the way a user would see it:
 //   a. no console error and no page error;
 //   b. no network request but the page's own file;
-//   c. the viewer is ready with a WebGL canvas;
+//   c. the viewer is ready with a WebGL canvas and its controls (play button,
+//      slider over every frame, time label);
 //   d. the mechanism is drawn: at the screen positions of the body points the
-//      picture differs from the same view with the bodies hidden (so neither
-//      the grid nor the paths count), and >= 0.2% of all pixels do;
+//      picture differs from the same view with the mechanism hidden (so
+//      neither the grid nor the paths count), and >= 0.2% of all pixels do;
+//      >= 1% of the pixels differ from the background colour;
 //   e. (--expect-animation) moving the time slider through the UI moves the
-//      end-effector and the picture; play advances the frames.
+//      end-effector and the picture; play advances the frames, pause stops them;
+//   f. (--screenshot OUT.png) saves the 1200x800 picture at frame 0 (or at
+//      --screenshot-frame N), also of a failed page.
 // Prints one JSON line; exit 0 when every check passes, 1 otherwise, 77 when
 // Chromium is not installed (CTest reports that as skipped, with the reason).
 //   node test/browser_test.mjs --html PAGE.html [--expect-animation]
@@ -40,19 +44,34 @@ try {
   page.on('pageerror', (e) => errors.push(String(e)));
   page.on('request', (r) => { if (r.url() !== url && !/^(data|blob):/.test(r.url())) requests.push(r.url()); });
   await page.goto(url, { waitUntil: 'load' });
-  await page.waitForFunction(() => (window.ccmaView && window.ccmaView.ready) || window.ccmaViewError, null,
-                             { timeout: 20000 })
-    .catch(() => failures.push('the viewer did not become ready within 20 s'));
+  // Ready, or the viewer reported a problem, or a script failed outright.
+  await Promise.race([
+    page.waitForFunction(() => (window.ccmaView && window.ccmaView.ready) || window.ccmaViewError, null,
+                         { timeout: 20000 }),
+    page.waitForEvent('pageerror', { timeout: 20000 }),
+  ]).catch(() => failures.push('the viewer did not become ready within 20 s'));
   const pageError = await page.evaluate(() => window.ccmaViewError);
   if (pageError) failures.push('the viewer reported: ' + pageError);
-  const view = await page.evaluate(() => ({
-    ready: Boolean(window.ccmaView && window.ccmaView.ready),
-    frames: window.ccmaView ? window.ccmaView.frames : 0,
-    webgl: Boolean(document.querySelector('canvas') &&
-                   document.querySelector('canvas').getContext('webgl2', { preserveDrawingBuffer: true })),
-  }));
-  Object.assign(result, { frames: view.frames, webgl: view.webgl });
-  if (!view.webgl) failures.push('no WebGL canvas');
+  const view = await page.evaluate(() => {
+    const canvas = document.querySelector('canvas');
+    const slider = document.getElementById('ccma-slider');
+    return {
+      ready: Boolean(window.ccmaView && window.ccmaView.ready),
+      frames: window.ccmaView ? window.ccmaView.frames : 0,
+      // The renderer's own context (getContext returns it again for its type).
+      webgl: Boolean(canvas && (canvas.getContext('webgl2') || canvas.getContext('webgl'))),
+      play: Boolean(document.getElementById('ccma-play')),
+      sliderMax: slider ? Number(slider.max) : -1,
+      time: document.getElementById('ccma-time')?.textContent || '',
+    };
+  });
+  Object.assign(result, { frames: view.frames, webgl: view.webgl, time_label: view.time });
+  if (view.ready && !view.webgl) failures.push('no WebGL canvas');
+  if (view.ready) {
+    if (!view.play) failures.push('no play button #ccma-play');
+    if (view.sliderMax !== view.frames - 1) failures.push(`the slider's max is ${view.sliderMax}, not ${view.frames - 1}`);
+    if (!/^t = -?\d+\.\d+ s \(frame \d+\/\d+\)$/.test(view.time)) failures.push(`time label "${view.time}"`);
+  }
 
   // d. Pixels at the body points differ from the same view without the bodies.
   const shot = async () => decodePng(await page.screenshot({ type: 'png' }));
@@ -61,7 +80,7 @@ try {
     return Math.abs(p[0] - q[0]) + Math.abs(p[1] - q[1]) + Math.abs(p[2] - q[2]) > 30;
   };
   const drawnNear = (a, b, [x, y]) => {
-    for (let dx = -2; dx <= 2; ++dx) for (let dy = -2; dy <= 2; ++dy) {
+    for (let dx = -3; dx <= 3; ++dx) for (let dy = -3; dy <= 3; ++dy) {
       const px = Math.round(x) + dx, py = Math.round(y) + dy;
       if (px >= 0 && py >= 0 && px < a.width && py < a.height && differ(a, b, px, py)) return true;
     }
@@ -78,7 +97,18 @@ try {
     let changed = 0;
     for (let y = 0; y < first.height; y += 2) for (let x = 0; x < first.width; x += 2) changed += differ(first, empty, x, y) ? 1 : 0;
     const fraction = changed / ((first.width / 2) * (first.height / 2));
-    Object.assign(result, { body_points: points.length, body_points_drawn: drawn, mechanism_pixels: Number(fraction.toFixed(4)) });
+    // Anything drawn at all (mechanism, grid, paths, overlay) against the clear colour.
+    const background = await page.evaluate(() => window.ccmaView.background);
+    let drawnPixels = 0;
+    for (let i = 0; i < first.data.length; i += 4) {
+      const d = Math.abs(first.data[i] - background[0]) + Math.abs(first.data[i + 1] - background[1]) +
+                Math.abs(first.data[i + 2] - background[2]);
+      drawnPixels += d > 30 ? 1 : 0;
+    }
+    const nonBackground = drawnPixels / (first.width * first.height);
+    Object.assign(result, { body_points: points.length, body_points_drawn: drawn, mechanism_pixels: Number(fraction.toFixed(4)),
+                            non_background_pixels: Number(nonBackground.toFixed(4)) });
+    if (nonBackground < 0.01) failures.push(`only ${(100 * nonBackground).toFixed(2)}% of the picture differs from the background`);
     if (onScreen.length < points.length * 0.9) failures.push(`only ${onScreen.length} of ${points.length} body points on screen`);
     if (drawn < onScreen.length * 0.9) failures.push(`only ${drawn} of ${onScreen.length} body points drawn`);
     if (fraction < 0.002) failures.push(`the mechanism covers only ${(100 * fraction).toFixed(2)}% of the picture`);
@@ -108,20 +138,34 @@ try {
       if (after.frame !== target) failures.push(`the slider went to frame ${after.frame}, not ${target}`);
       if (!(moved > 1e-4)) failures.push(`the end-effector moved ${moved} m when the slider moved`);
       if (pixels < 100) failures.push('the picture did not change when the slider moved');
+      // Play (as a click) advances in the recording's time: wait up to the
+      // time of frame 1 plus a second, at least 0.5 s; pause (a click) stops.
+      const wait = await page.evaluate(() => {
+        const t = JSON.parse(document.getElementById('ccma-scene').textContent).frames.time;
+        return Math.min(10000, Math.max(500, 1000 * (t[1] - t[0]) + 1000));
+      });
       await page.evaluate(() => window.ccmaView.setFrame(0));
       await page.click('#ccma-play');
-      await page.waitForTimeout(700);
+      await page.waitForTimeout(500);
+      await page.waitForFunction(() => window.ccmaView.frame !== 0, null, { timeout: wait }).catch(() => {});
       const playing = await page.evaluate(() => window.ccmaView.frame);
+      const pauseLabel = await page.textContent('#ccma-play');
       await page.click('#ccma-play');
+      const paused = await page.evaluate(() => window.ccmaView.frame);
+      await page.waitForTimeout(300);
+      const still = await page.evaluate(() => window.ccmaView.frame);
       result.frame_after_play = playing;
       if (playing === 0) failures.push('play did not advance the frames');
+      if (pauseLabel !== 'pause') failures.push(`while playing, the button reads "${pauseLabel}", not "pause"`);
+      if (still !== paused) failures.push(`pause did not stop the frames (${paused} -> ${still})`);
     }
-    const target = option('--screenshot');
-    if (target) {
-      await page.evaluate((f) => window.ccmaView.setFrame(f), Number(option('--screenshot-frame') || 0));
-      writeFileSync(target, await page.screenshot({ type: 'png' }));
-      result.screenshot = target;
-    }
+  }
+  // f. The picture at the chosen frame (also of a page that failed: it shows why).
+  const target = option('--screenshot');
+  if (target) {
+    if (view.ready) await page.evaluate((f) => window.ccmaView.setFrame(f), Number(option('--screenshot-frame') || 0));
+    writeFileSync(target, await page.screenshot({ type: 'png' }));
+    result.screenshot = target;
   }
   if (errors.length) failures.push('console errors: ' + errors.join(' | '));
   if (requests.length) failures.push('network requests: ' + requests.join(' '));
