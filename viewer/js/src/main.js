@@ -4,8 +4,8 @@
 // Nothing is fetched: the page's CSP forbids it, and nothing here asks.
 import { Color, Object3D, Scene, Vector3, WebGLRenderer } from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
-import { COLORS } from './colors.js';
-import { buildMechanism } from './mechanism.js';
+import { COLORS, css } from './colors.js';
+import { buildMechanism, sceneSize } from './mechanism.js';
 import { buildOverlay, showError } from './overlay.js';
 import { buildPaths } from './paths.js';
 import { checkScene } from './scene_check.js';
@@ -41,7 +41,7 @@ function start() {
   const scene = readScene();
   const frames = scene.frames;
   const n = frames.time.length;
-  Object.assign(document.body.style, { margin: '0', overflow: 'hidden', background: '#' + COLORS.background.toString(16) });
+  Object.assign(document.body.style, { margin: '0', overflow: 'hidden', background: css(COLORS.background) });
 
   // preserveDrawingBuffer: the picture stays readable after it is shown
   // (screenshots, canvas.toDataURL, the browser test's pixel checks).
@@ -57,8 +57,9 @@ function start() {
   const world = new Scene();
   world.background = new Color(COLORS.background);
   addLights(world);
-  const mechanism = buildMechanism(scene, world);
-  buildPaths(scene, world);
+  const size = sceneSize(scene);
+  const mechanism = buildMechanism(scene, world, size);
+  buildPaths(scene, world, size);
   mechanism.pose(frames, 0);
   const box = sceneBox(scene, mechanism);
   const radius = box.getSize(new Vector3()).length() / 2;

@@ -103,9 +103,23 @@ function endEffectorFrame(point, u) {
   return frame;
 }
 
-// Builds the mechanism into `root`; returns what the animation and the tests need.
-export function buildMechanism(scene, root) {
-  const u = Math.max(scene.scale || 0.5, 1e-3);  // the scene's size [m]
+// The scene's characteristic size [m]: its `scale` (written by ccma view),
+// else the reach of its bodies from their centre at frame 0.
+export function sceneSize(scene) {
+  if (scene.scale > 0) return scene.scale;
+  const poses = scene.frames.poses[0];
+  const c = [0, 1, 2].map((k) => poses.reduce((sum, p) => sum + p[k], 0) / poses.length);
+  let r = 0;
+  scene.bodies.forEach((b, i) => {
+    const reach = Math.max(0, ...b.points.map((q) => Math.hypot(...q)));
+    r = Math.max(r, Math.hypot(poses[i][0] - c[0], poses[i][1] - c[1], poses[i][2] - c[2]) + reach);
+  });
+  return Math.max(r, 0.05);
+}
+
+// Builds the mechanism into `root` with markers sized from `u` (sceneSize);
+// returns what the animation and the tests need.
+export function buildMechanism(scene, root, u) {
   const bodies = scene.bodies.map((b) => bodyGroup(b, u));
   const ground = new Group();  // joints on the world (body -1): static
   bodies.forEach((g) => root.add(g));
@@ -114,9 +128,11 @@ export function buildMechanism(scene, root) {
     const parent = joint.body >= 0 && joint.body < bodies.length ? bodies[joint.body] : ground;
     parent.add(jointMarker(joint, u));
   }
+  // Without an end-effector in the scene, no frame is drawn and the tests
+  // follow body 0's origin instead.
   const ee = scene.end_effector || { body: 0, point: [0, 0, 0] };
-  const eeBody = bodies[ee.body] || bodies[0];
-  eeBody.add(endEffectorFrame(ee.point, u));
+  const eeBody = bodies[ee.body];
+  if (scene.end_effector) eeBody.add(endEffectorFrame(ee.point, u));
   return {
     // Every body at frame f: p_WB and the quaternion of R_WB.
     pose(frames, f) {

@@ -10,6 +10,8 @@ function el(tag, style, text) {
   return e;
 }
 
+const round = (x) => Number(x.toPrecision(6));  // 0.30000000000000004 -> 0.3
+
 const PANEL = {
   position: 'absolute', background: 'rgba(255,255,255,0.9)', borderRadius: '6px', padding: '8px 12px',
   font: '13px system-ui, -apple-system, "Segoe UI", sans-serif', color: '#1f2533',
@@ -47,13 +49,13 @@ function legend(scene, gridStep) {
   item('block', [COLORS.link], 'link');
   if (joints.some((j) => !j.actuated)) item('block', [COLORS.joint], 'joint (passive)');
   if (joints.some((j) => j.actuated)) item('block', [COLORS.actuated], 'actuated joint');
-  item('block', [COLORS.axisX, COLORS.axisY, COLORS.axisZ], 'end-effector frame x, y, z');
+  if (scene.end_effector) item('block', [COLORS.axisX, COLORS.axisY, COLORS.axisZ], 'end-effector frame x, y, z');
   const paths = scene.paths || {};
   if ((paths.commanded || []).length > 1) item('dashed', [COLORS.commanded], 'end-effector commanded');
   if ((paths.tracked || []).length > 1) item('solid', [COLORS.tracked], 'end-effector tracked');
   if ((paths.bases || []).some((b) => b.length > 1)) item('solid', [COLORS.basePath], 'base paths (ground)');
   if ((scene.frames.flags || []).includes(1)) item('dot', [COLORS.flagged], 'suspect frame (not assembled / torn)');
-  panel.append(el('div', { marginTop: '5px', color: '#6b7280' }, `grid: ${gridStep} m squares (bold every ${5 * gridStep} m); world z up`));
+  panel.append(el('div', { marginTop: '5px', color: '#6b7280' }, `grid: ${round(gridStep)} m squares (bold every ${round(5 * gridStep)} m); world z up`));
   return panel;
 }
 

@@ -22,10 +22,10 @@ function line(points, color, width, dashed, u) {
   return l;
 }
 
-export function buildPaths(scene, root) {
+// Adds the paths to `root`; dashes and dots sized from `u` (sceneSize).
+export function buildPaths(scene, root, u) {
   const paths = scene.paths;
   if (!paths) return;
-  const u = Math.max(scene.scale || 0.5, 1e-3);
   for (const base of paths.bases || []) {
     if (base.length > 1) root.add(line(base.map(([x, y]) => [x, y, 0.001]), COLORS.basePath, 2, false, u));
   }

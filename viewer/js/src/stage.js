@@ -55,14 +55,16 @@ export function sceneBox(scene, mechanism) {
 }
 
 // A camera looking at the box from an elevated three-quarter view (from -y,
-// +x, ~30 degrees up), at a distance where the box's bounding sphere fills
-// about 70% of the narrower of the two fields of view.
+// +x, ~30 degrees up), a little farther than where the box's bounding
+// sphere just fits the narrower of the two fields of view. The sphere is
+// loose around a flat mechanism, which so fills about 60% of the picture and
+// leaves room for the overlay's panels.
 export function frameCamera(box, aspect) {
   const center = box.getCenter(new Vector3());
   const radius = Math.max(box.getSize(new Vector3()).length() / 2, 0.05);
   const fov = 35;
   const halfV = (fov * Math.PI) / 360, halfH = Math.atan(Math.tan(halfV) * aspect);
-  const distance = (1.1 * radius) / Math.sin(Math.min(halfV, halfH));
+  const distance = (1.08 * radius) / Math.sin(Math.min(halfV, halfH));
   const camera = new PerspectiveCamera(fov, aspect, distance / 200, distance * 50);
   camera.position.copy(center).add(new Vector3(0.5, -0.8, 0.55).normalize().multiplyScalar(distance));
   camera.lookAt(center);
