@@ -1,13 +1,18 @@
-"""Trajectory with a plot: follow the paper's sequential path on 4dof_reduced,
-write one CSV row per control step and plot targets and reached positions
-over time with Matplotlib.
+"""Trajectory with a plot: follow a waypoint file (by default the paper's
+sequential path, its Fig. 7: y, z, x, then yaw, out and back), write one CSV
+row per control step and plot targets, reached poses and the bases' paths
+with Matplotlib.
 
     PYTHONPATH=build/python python3 examples/python/trajectory_plot.py \\
-        models/4dof_reduced.yaml models/paths/4dof_sequential.csv OUT_DIR
+        [MODEL.yaml WAYPOINTS.csv [OUT_DIR]]
 
-Writes OUT_DIR/trajectory.csv and OUT_DIR/trajectory.png; prints
-"example: ok" when every waypoint was reached.
+Defaults: models/4dof_reduced.yaml, models/paths/4dof_sequential.csv,
+trajectory_out/. Writes OUT_DIR/trajectory.csv and OUT_DIR/trajectory.png.
+Units: s, m, rad. Prints "example: ok" at the end when every waypoint was
+reached and the files were written; exit 1 otherwise, 2 for bad input files.
+Without Matplotlib the plot is skipped with a message on stderr.
 """
+import importlib.util
 import os
 import sys
 
@@ -16,47 +21,104 @@ import numpy as np
 import ccma
 
 
+def plot(model, path, waypoints_name, png_path):
+    """Writes the figure to png_path (Matplotlib without a display)."""
+    import matplotlib
+    matplotlib.use("Agg")  # write files only, no window
+    import matplotlib.pyplot as plt
+
+    # Left: the end-effector over time (target dashed, reached solid).
+    # Right: seen from above, the bases' paths on the ground and the end-effector's.
+    fig = plt.figure(figsize=(13, 8), layout="constrained")
+    grid = fig.add_gridspec(3, 2, width_ratios=[1.5, 1])
+    ax_xy = fig.add_subplot(grid[0, 0])
+    ax_z = fig.add_subplot(grid[1, 0], sharex=ax_xy)
+    ax_yaw = fig.add_subplot(grid[2, 0], sharex=ax_xy)
+    ax_top = fig.add_subplot(grid[:, 1])
+    for i, name, color in ((0, "x", "tab:blue"), (1, "y", "tab:orange")):
+        ax_xy.plot(path.time, path.targets[:, i], "--", color=color, lw=2.5, alpha=0.5, label="target " + name)
+        ax_xy.plot(path.time, path.reached[:, i], "-", color=color, lw=1, label="reached " + name)
+    ax_z.plot(path.time, path.targets[:, 2], "--", color="tab:green", lw=2.5, alpha=0.5, label="target z")
+    ax_z.plot(path.time, path.reached[:, 2], "-", color="tab:green", lw=1, label="reached z")
+    ax_yaw.plot(path.time, path.targets[:, 5], "--", color="tab:purple", lw=2.5, alpha=0.5, label="target yaw")
+    ax_yaw.plot(path.time, path.reached[:, 5], "-", color="tab:purple", lw=1, label="reached yaw")
+    for ax, label in ((ax_xy, "end-effector x, y [m]"), (ax_z, "end-effector z [m]"),
+                      (ax_yaw, "end-effector yaw [rad]")):
+        ax.set_ylabel(label)
+        ax.grid(True, alpha=0.4)
+        ax.legend(loc="best", fontsize=8)
+    ax_yaw.set_xlabel("time [s]")
+    ax_xy.set_title("end-effector: target (dashed) and reached (solid)")
+
+    for k, base in enumerate(model.mobile_bases):
+        x, y = path.controls[:, 3 * k], path.controls[:, 3 * k + 1]
+        line, = ax_top.plot(x, y, lw=2, label=base.name)
+        ax_top.plot(x[0], y[0], "o", color=line.get_color(), mfc="none", ms=8)
+    ax_top.plot(path.targets[:, 0], path.targets[:, 1], "k--", lw=2.5, alpha=0.4, label="end-effector target")
+    ax_top.plot(path.reached[:, 0], path.reached[:, 1], "k-", lw=1, label="end-effector reached")
+    ax_top.set_aspect("equal", adjustable="datalim")
+    ax_top.set_xlabel("x [m]")
+    ax_top.set_ylabel("y [m]")
+    ax_top.set_title("seen from above (circle: start)")
+    ax_top.grid(True, alpha=0.4)
+    ax_top.legend(loc="best", fontsize=8)
+    fig.suptitle("%s following %s: %d control steps, max error %.2g m"
+                 % (model.name, waypoints_name, path.steps, path.max_error))
+    fig.savefig(png_path, dpi=100)
+    plt.close(fig)
+
+
 def main(model_path, waypoints_path, out_dir):
-    model = ccma.load_model(model_path)
-    waypoints = ccma.load_waypoints(waypoints_path)  # raises ccma.WaypointError("file:line: ...")
+    try:
+        model = ccma.load_model(model_path)
+        # Waypoints: rows time [s], x y z [m], roll pitch yaw [rad] (docs/waypoints.md).
+        waypoints = ccma.load_waypoints(waypoints_path)
+    except (ccma.ModelError, ccma.WaypointError) as e:
+        print(e, file=sys.stderr)
+        return 2
     control = ccma.ControlProblem(model)
-    path = control.follow(waypoints)  # arrays, one row per control step
+    # follow() walks from waypoint to waypoint in small control steps (10 mm,
+    # 0.005 rad) and returns NumPy arrays with one row per step.
+    path = control.follow(waypoints)
     print("converged %s: %d steps, max error %.3g m, max E %.3g m^2, %.1f ms"
           % (path.converged, path.steps, path.max_error, path.max_residual_energy, path.solve_time_ms))
 
+    # The CSV: time, the end-effector's target and reached x y z [m] and yaw
+    # [rad], then each base's x y [m] (controls 3k and 3k+1, k in file order).
     os.makedirs(out_dir, exist_ok=True)
     csv_path = os.path.join(out_dir, "trajectory.csv")
-    table = np.column_stack([path.time, path.targets[:, :3], path.reached[:, :3], path.controls])
-    header = ["time_s", "target_x_m", "target_y_m", "target_z_m", "x_m", "y_m", "z_m"]
-    header += ["u%d_%s" % (k, c) for k in range(model.num_bases) for c in ("x_m", "y_m", "theta_rad")]
-    header += ["u_%s" % j.name for j in model.joints if j.actuated]
+    bases_xy = path.controls[:, [3 * k + i for k in range(model.num_bases) for i in (0, 1)]]
+    table = np.column_stack([path.time, path.targets[:, [0, 1, 2, 5]], path.reached[:, [0, 1, 2, 5]], bases_xy])
+    header = ["time_s", "target_x_m", "target_y_m", "target_z_m", "target_yaw_rad", "x_m", "y_m", "z_m", "yaw_rad"]
+    header += ["%s_%s" % (b.name, c) for b in model.mobile_bases for c in ("x_m", "y_m")]
     np.savetxt(csv_path, table, delimiter=",", header=",".join(header), comments="", fmt="%.12g")
-    print("wrote", csv_path)
+    print("wrote", csv_path, "(%d rows)" % len(table))
 
-    import matplotlib
-    matplotlib.use("Agg")  # files only, no display
-    import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(3, 1, sharex=True, figsize=(10, 7))
-    for i, name in enumerate("xyz"):
-        axes[i].plot(path.time, path.targets[:, i], "--", lw=2, label="target " + name)
-        axes[i].plot(path.time, path.reached[:, i], lw=1, label="reached " + name)
-        axes[i].set_ylabel(name + " [m]")
-        axes[i].grid(True)
-        axes[i].legend(loc="upper right")
-    axes[2].set_xlabel("time [s]")
-    fig.suptitle("ccma: end-effector along the 4-DOF sequential path")
+    # The plot needs Matplotlib (Debian: python3-matplotlib); without it, only the CSV.
     png_path = os.path.join(out_dir, "trajectory.png")
-    fig.savefig(png_path, dpi=100)
-    print("wrote", png_path)
+    if importlib.util.find_spec("matplotlib") is None:
+        png_path = None
+        print("example: matplotlib is not installed: plot skipped (apt-get install python3-matplotlib)",
+              file=sys.stderr)
+    else:
+        plot(model, path, os.path.basename(waypoints_path), png_path)
+        print("wrote", png_path)
+
+    # The example's own checks: every waypoint reached, both files written.
     if not path.converged:
-        print("example:", path.warning, file=sys.stderr)
+        print("example: not every waypoint reached:", path.warning, file=sys.stderr)
+        return 1
+    if len(table) != path.steps or (png_path and os.path.getsize(png_path) == 0):
+        print("example: outputs incomplete", file=sys.stderr)
         return 1
     print("example: ok")
     return 0
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 4:
-        print("usage: trajectory_plot.py MODEL.yaml WAYPOINTS.csv OUT_DIR", file=sys.stderr)
+    args = sys.argv[1:]
+    if len(args) not in (0, 2, 3):
+        print("usage: trajectory_plot.py [MODEL.yaml WAYPOINTS.csv [OUT_DIR]]", file=sys.stderr)
         sys.exit(2)
-    sys.exit(main(*sys.argv[1:]))
+    defaults = ["models/4dof_reduced.yaml", "models/paths/4dof_sequential.csv", "trajectory_out"]
+    sys.exit(main(*(args + defaults[len(args):])))
