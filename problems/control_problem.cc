@@ -38,6 +38,24 @@ constexpr double kEnergyFloor = 1e-24;
 
 bool InRange(double value, double lo, double hi) { return value >= lo && value <= hi; }
 
+// Largest eigenvalue of J^T J: from the eigen-decomposition when there is
+// one, else by power iteration (seeded start, 30 products: a damping scale,
+// a few digits suffice).
+double LargestEigenvalue(const Eigen::MatrixXd& JtJ, const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>* eig) {
+  if (JtJ.rows() == 0) return 0.0;
+  if (eig != nullptr) return eig->eigenvalues().cwiseMax(0.0).maxCoeff();
+  Eigen::VectorXd v = Eigen::VectorXd::Ones(JtJ.rows()) / std::sqrt(double(JtJ.rows()));
+  double largest = 0;
+  for (int it = 0; it < 30; ++it) {
+    const Eigen::VectorXd w = JtJ * v;
+    largest = v.dot(w);
+    const double norm = w.norm();
+    if (!(norm > 0)) break;
+    v = w / norm;
+  }
+  return std::max(largest, 0.0);
+}
+
 // Smallest singular value of the end-effector rows of an LM Jacobian.
 double SmallestSingularValue(const Eigen::MatrixXd& J_end_effector) {
   if (J_end_effector.rows() == 0 || J_end_effector.cols() == 0) return 0.0;
@@ -75,11 +93,15 @@ bool ControlOptions::IsValid(std::string* why) const {
 
 struct ControlProblem::Workspace {
   Workspace(const Model& model, const ConstraintSet& constraints, const std::vector<int>& effective)
-      : error(model), hessian_solver(constraints), step_constraints(model, effective) {}
+      : error(model), step_constraints(model, effective), hessian_solver(constraints),
+        effective_column(static_cast<size_t>(model.num_controls()), -1) {
+    for (size_t c = 0; c < effective.size(); ++c) effective_column[static_cast<size_t>(effective[c])] = static_cast<int>(c);
+  }
   EndEffectorError error;
   StepConstraints step_constraints;  // differential bases and joint limits
   HessianSolver hessian_solver;  // symbolic analysis of dG/ds, done once
   EnergyDerivatives derivatives;  // reused by every linearisation
+  std::vector<int> effective_column;  // control index -> column among the effective ones, or -1
 };
 
 // ceres::GradientProblemSolver's view of O(u_eff) for the BFGS outer loop.
@@ -196,32 +218,104 @@ Eigen::VectorXd ControlProblem::Residuals(const PoseTarget& target) const {
   return r;
 }
 
-void ControlProblem::Linearize(const PoseTarget& target, Eigen::VectorXd* r, Eigen::MatrixXd* J,
-                               Eigen::MatrixXd* ds_du, double* rcond, bool* singular) {
-  *r = Residuals(target);
+struct ControlProblem::Linearization {
+  Eigen::VectorXd r;      // [e; sqrt(lambda) C] (ne + m)
+  Eigen::MatrixXd ds_du;  // n x k
+  Eigen::MatrixXd J_e;    // de/du_eff (ne x k): the end-effector rows of dr/du
+  Eigen::MatrixXd JtJ;    // (dr/du)^T dr/du (k x k)
+  Eigen::VectorXd Jtr;    // (dr/du)^T r (k)
+  // Once per linearisation, for every trial (up to kMaxEigenSolveSize controls).
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> JtJ_eigen;
+  bool has_eigen = false;
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>* eigen() const { return has_eigen ? &JtJ_eigen : nullptr; }
+  double rcond = 0;
+  bool singular = false;
+};
+
+void ControlProblem::Linearize(const PoseTarget& target, Linearization* lin) {
+  lin->r = Residuals(target);
   const State& s = forward_.state();
   const Eigen::VectorXd& u = forward_.controls();
   const Sensitivity sensitivity(forward_.constraints(), s, u, effective_, &workspace_->hessian_solver,
                                 &workspace_->derivatives);
-  *rcond = sensitivity.rcond();
-  *singular = sensitivity.singular();
+  lin->rcond = sensitivity.rcond();
+  lin->singular = sensitivity.singular();
+  const int ne = workspace_->error.size();
   if (options_.gradient == GradientMethod::kFiniteDifference) {
-    LinearizeByFiniteDifferences(target, J, ds_du);
-    *singular = false;
+    Eigen::MatrixXd J;
+    LinearizeByFiniteDifferences(target, &J, &lin->ds_du);
+    lin->singular = false;
+    lin->J_e = J.topRows(ne);
+    lin->JtJ.noalias() = J.transpose() * J;
+    lin->Jtr.noalias() = J.transpose() * lin->r;
+    lin->has_eigen = J.cols() <= kMaxEigenSolveSize;
+    if (lin->has_eigen) lin->JtJ_eigen.compute(lin->JtJ);
     return;
   }
+  // The LM model of O(u) = 1/2 |e|^2 + lambda E_r(u), E_r(u) = E(s_hat(u), u):
+  //   Gauss-Newton on e:  J_e = de/ds S,  S = ds/du = -H^-1 B,  B = dG/du;
+  //   exact on E_r: its Hessian is the Schur complement of the full
+  //   d2E/d(s, u)2 onto the controls, J_u^T J_u + B^T S (B^T S = -B^T H^-1 B),
+  //   and its gradient is S^T G + dE/du (= dE/du at a solution, G = 0).
+  // (Gauss-Newton on the constraint rows, (J_s S + J_u)^T (J_s S + J_u),
+  // would differ by S^T (J_s^T J_s - H) S = O(|C|): it needs S as a dense
+  // n x k matrix, this does not.) Without step constraints S is never
+  // formed: B^T S, de/ds S and S^T G come from sparse forward substitution
+  // (Sensitivity::ImplicitProducts) and the LM trials predict with one solve.
   const EnergyDerivatives& d = sensitivity.derivatives();
-  const double sqrt_lambda = std::sqrt(options_.lambda);
-  const int ne = workspace_->error.size();
+  const double lambda = options_.lambda;
   const int k = static_cast<int>(effective_.size());
   Eigen::VectorXd e;
   Eigen::MatrixXd de_ds;
   workspace_->error.Evaluate(s, target, &e, &de_ds);
-  *ds_du = sensitivity.StateSensitivity();
-  J->resize(ne + d.C.size(), k);
-  J->topRows(ne).noalias() = de_ds * *ds_du;
-  J->bottomRows(d.C.size()) = sqrt_lambda * ConstraintJacobianTimes(forward_.constraints(), d.J_s, *ds_du);
-  for (int c = 0; c < k; ++c) J->bottomRows(d.C.size()).col(c) += sqrt_lambda * d.J_u.col(effective_[c]);
+  // The step constraints read ds/du itself (joint coordinates' rates).
+  const bool dense = !workspace_->step_constraints.empty();
+  Sensitivity::Products products;
+  lin->ds_du.resize(0, 0);
+  if (dense || !sensitivity.ImplicitProducts(de_ds, d.G, &products)) {
+    lin->ds_du = sensitivity.StateSensitivity();
+    const Eigen::MatrixXd& S = lin->ds_du;
+    products.FS.noalias() = de_ds * S;
+    products.Stv.noalias() = S.transpose() * d.G;
+    products.BtS.setZero(k, k);
+    for (int c = 0; c < k; ++c) {
+      for (SparseColMajor::InnerIterator it(d.dG_du, effective_[c]); it; ++it) {
+        products.BtS.row(c) += it.value() * S.row(it.row());
+      }
+    }
+  }
+  lin->J_e = products.FS;
+  // J_u^T J_u + B^T S over the effective controls (B^T S = -B^T H^-1 B is symmetric).
+  Eigen::MatrixXd C_part = 0.5 * (products.BtS + products.BtS.transpose());
+  const std::vector<int>& column = workspace_->effective_column;
+  for (int row = 0; row < d.J_u.outerSize(); ++row) {
+    for (SparseRowMajor::InnerIterator a(d.J_u, row); a; ++a) {
+      if (column[a.col()] < 0) continue;
+      for (SparseRowMajor::InnerIterator b(d.J_u, row); b; ++b) {
+        if (column[b.col()] >= 0) C_part(column[a.col()], column[b.col()]) += a.value() * b.value();
+      }
+    }
+  }
+  lin->JtJ.noalias() = lin->J_e.transpose() * lin->J_e;
+  lin->JtJ += lambda * C_part;
+  lin->Jtr.noalias() = lin->J_e.transpose() * e;
+  Eigen::VectorXd constraint_part = products.Stv;
+  for (int c = 0; c < k; ++c) constraint_part[c] += d.dE_du[effective_[c]];
+  lin->Jtr += lambda * constraint_part;
+  lin->has_eigen = k <= kMaxEigenSolveSize;
+  if (lin->has_eigen) lin->JtJ_eigen.compute(lin->JtJ);
+}
+
+Eigen::VectorXd ControlProblem::PredictedStateChange(const Linearization& lin, const Eigen::VectorXd& du) const {
+  if (lin.ds_du.size() > 0) return lin.ds_du * du;
+  // -H^-1 B du with the factorisation of the last Linearize (still in the
+  // workspace: the trial solves use the forward problem's own).
+  const SparseColMajor& B = workspace_->derivatives.dG_du;
+  Eigen::VectorXd B_du = Eigen::VectorXd::Zero(B.rows());
+  for (size_t c = 0; c < effective_.size(); ++c) {
+    if (du[c] != 0) B_du += du[c] * B.col(effective_[c]);
+  }
+  return -workspace_->hessian_solver.Solve(B_du);
 }
 
 void ControlProblem::LinearizeByFiniteDifferences(const PoseTarget& target, Eigen::MatrixXd* J,
@@ -292,10 +386,9 @@ ControlStepResult ControlProblem::SolveStep(const PoseTarget& target) {
   return options_.method == ControlMethod::kBfgs ? SolveStepBfgs(target) : SolveStepLm(target);
 }
 
-Eigen::VectorXd ControlProblem::LmStep(const Eigen::MatrixXd& J, const Eigen::VectorXd& r,
-                                       const Eigen::MatrixXd& ds_du, double mu, std::vector<int>* active) const {
+Eigen::VectorXd ControlProblem::LmStep(const Linearization& lin, double mu, std::vector<int>* active) const {
   const StepConstraints& constraints = workspace_->step_constraints;
-  if (constraints.empty()) return ConstrainedLmStep(J, r, mu, LinearConstraints{});
+  if (constraints.empty()) return ConstrainedLmStep(lin.JtJ, lin.Jtr, mu, LinearConstraints{}, lin.eigen());
   // Active set: hold every joint that the step would push past a bound at
   // that bound, until no other joint would cross (at most one pass per joint).
   active->clear();
@@ -303,9 +396,9 @@ Eigen::VectorXd ControlProblem::LmStep(const Eigen::MatrixXd& J, const Eigen::Ve
   const Eigen::VectorXd& u = forward_.controls();
   Eigen::VectorXd step;
   for (size_t pass = 0; pass <= forward_.model().joints.size(); ++pass) {
-    step = ConstrainedLmStep(J, r, mu, constraints.Linearize(u, s, ds_du, *active));
+    step = ConstrainedLmStep(lin.JtJ, lin.Jtr, mu, constraints.Linearize(u, s, lin.ds_du, *active), lin.eigen());
     bool grew = false;
-    for (int j : constraints.WouldCross(s, ds_du, step, 1e-12)) {
+    for (int j : constraints.WouldCross(s, lin.ds_du, step, 1e-12)) {
       if (std::find(active->begin(), active->end(), j) == active->end()) {
         active->push_back(j);
         grew = true;
@@ -329,7 +422,8 @@ void ControlProblem::ProjectOntoStepConstraints(ControlStepResult* result) {
       if (std::find(beyond.begin(), beyond.end(), j) == beyond.end()) beyond.push_back(j);
     }
     const LinearConstraints rows = constraints.Linearize(forward_.controls(), forward_.state(), ds_du, beyond);
-    const Eigen::VectorXd d = ConstrainedLmStep(Eigen::MatrixXd::Zero(0, ds_du.cols()), Eigen::VectorXd(0), 1.0, rows);
+    const Eigen::MatrixXd none = Eigen::MatrixXd::Zero(ds_du.cols(), ds_du.cols());
+    const Eigen::VectorXd d = ConstrainedLmStep(none, Eigen::VectorXd::Zero(ds_du.cols()), 1.0, rows);
     State predicted = forward_.state();
     predicted.Plus(ds_du * d);
     SolveAt(EffectiveControls(forward_.controls()) + d, predicted);
@@ -348,12 +442,10 @@ bool ControlProblem::TurnDifferentialBases(const PoseTarget& target, ControlStep
   if (differential.empty()) return false;
   const auto start = Clock::now();
   // Where would the bases go if they could slide? (a Gauss-Newton step)
-  Eigen::VectorXd r;
-  Eigen::MatrixXd J, ds_du;
-  double rcond = 0;
-  bool singular = false;
-  Linearize(target, &r, &J, &ds_du, &rcond, &singular);
-  const Eigen::VectorXd d = ConstrainedLmStep(J, r, 1e-12 * std::max(J.squaredNorm(), 1e-30), LinearConstraints{});
+  Linearization lin;
+  Linearize(target, &lin);
+  const Eigen::VectorXd d =
+      ConstrainedLmStep(lin.JtJ, lin.Jtr, 1e-12 * std::max(lin.JtJ.trace(), 1e-30), LinearConstraints{}, lin.eigen());
   Eigen::VectorXd u = forward_.controls();
   std::vector<int> column(static_cast<size_t>(model.num_controls()), -1);
   for (size_t c = 0; c < effective_.size(); ++c) column[static_cast<size_t>(effective_[c])] = static_cast<int>(c);
@@ -394,15 +486,11 @@ bool ControlProblem::TurnDifferentialBases(const PoseTarget& target, ControlStep
   return true;
 }
 
-bool ControlProblem::LmIteration(const PoseTarget& target, const Eigen::MatrixXd& J,
-                                 const Eigen::MatrixXd& ds_du, double* O, double* mu, Eigen::VectorXd* r,
-                                 ControlStepResult* result) {
+bool ControlProblem::LmIteration(const PoseTarget& target, const Linearization& lin, double* O, double* mu,
+                                 Eigen::VectorXd* r, ControlStepResult* result) {
   // Damped least squares (least norm among equivalent steps: the bases move
   // as little as possible), under the step constraints when there are any.
-  if (*mu < 0) {
-    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(J.transpose() * J, Eigen::EigenvaluesOnly);
-    *mu = 1e-12 * std::max(eig.eigenvalues().cwiseMax(0.0).maxCoeff(), 1e-30);
-  }
+  if (*mu < 0) *mu = 1e-12 * std::max(LargestEigenvalue(lin.JtJ, lin.eigen()), 1e-30);
   const State base = forward_.state();
   const Eigen::VectorXd u_base = forward_.controls();
   const Eigen::VectorXd ue = EffectiveControls(u_base);
@@ -410,10 +498,10 @@ bool ControlProblem::LmIteration(const PoseTarget& target, const Eigen::MatrixXd
   const StepConstraints& step_constraints = workspace_->step_constraints;
   for (int trial = 0; trial < 16; ++trial) {
     std::vector<int> active;
-    const Eigen::VectorXd step = LmStep(J, *r, ds_du, *mu, &active);
+    const Eigen::VectorXd step = LmStep(lin, *mu, &active);
     if (step.lpNorm<Eigen::Infinity>() <= 1e-15 * (1.0 + ue.lpNorm<Eigen::Infinity>())) return false;
     // First-order predictor: start the forward solve at s + ds/du * step.
-    const Eigen::VectorXd ds_predicted = ds_du * step;
+    const Eigen::VectorXd ds_predicted = PredictedStateChange(lin, step);
     State predicted = base;
     predicted.Plus(ds_predicted);
     if (SolveAt(ue + step, predicted)) {
@@ -445,12 +533,12 @@ ControlStepResult ControlProblem::SolveStepLm(const PoseTarget& target) {
   const int solves_before = forward_solves_;
   ControlStepResult result;
   const int ne = workspace_->error.size();
-  Eigen::VectorXd r;
-  Eigen::MatrixXd J, ds_du;
-  bool singular = false;
-  Linearize(target, &r, &J, &ds_du, &result.rcond, &singular);
-  result.singular |= singular;
-  result.min_singular_value_dX_du = SmallestSingularValue(J.topRows(ne));
+  Linearization lin;
+  Linearize(target, &lin);
+  Eigen::VectorXd r = lin.r;
+  result.rcond = lin.rcond;
+  result.singular |= lin.singular;
+  result.min_singular_value_dX_du = SmallestSingularValue(lin.J_e);
   double O = 0.5 * r.squaredNorm();
   auto error_of = [&] { return ne > 0 ? r.head(ne).lpNorm<Eigen::Infinity>() : 0.0; };
   const StepConstraints& step_constraints = workspace_->step_constraints;
@@ -469,16 +557,18 @@ ControlStepResult ControlProblem::SolveStepLm(const PoseTarget& target) {
   report(0);
   double mu = -1;
   for (int it = 0; it < options_.max_iterations && !done(); ++it) {
-    const bool accepted = LmIteration(target, J, ds_du, &O, &mu, &r, &result);
+    const bool accepted = LmIteration(target, lin, &O, &mu, &r, &result);
     ++result.iterations;
     if (!accepted) break;
     report(result.iterations);
     // Converged on the new residual? Then no new linearisation is needed
     // (rcond stays that of the last one, a step of ~1e-8 away).
     if (done()) break;
-    Linearize(target, &r, &J, &ds_du, &result.rcond, &singular);
-    result.singular |= singular;
-    result.min_singular_value_dX_du = SmallestSingularValue(J.topRows(ne));
+    Linearize(target, &lin);
+    r = lin.r;
+    result.rcond = lin.rcond;
+    result.singular |= lin.singular;
+    result.min_singular_value_dX_du = SmallestSingularValue(lin.J_e);
   }
   if (!constraints_hold()) ProjectOntoStepConstraints(&result);
   result.forward_solves = forward_solves_ - solves_before;
@@ -520,10 +610,11 @@ ControlStepResult ControlProblem::SolveStepBfgs(const PoseTarget& target) {
   result.iterations = static_cast<int>(summary.iterations.size()) - 1;
   result.forward_solves = forward_solves_ - solves_before;
   {
-    Eigen::VectorXd r;
-    Eigen::MatrixXd J, ds_du;
-    Linearize(target, &r, &J, &ds_du, &result.rcond, &result.singular);
-    result.min_singular_value_dX_du = SmallestSingularValue(J.topRows(workspace_->error.size()));
+    Linearization lin;
+    Linearize(target, &lin);
+    result.rcond = lin.rcond;
+    result.singular = lin.singular;
+    result.min_singular_value_dX_du = SmallestSingularValue(lin.J_e);
   }
   Finish(target, &result);
   result.time_ms = Milliseconds(start);

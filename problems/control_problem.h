@@ -164,18 +164,21 @@ class ControlProblem {
   bool SolveAt(const Eigen::VectorXd& ue, const State& start);
   // r = [e; sqrt(lambda) C] at the current solution.
   Eigen::VectorXd Residuals(const PoseTarget& target) const;
-  // r, and dr/du_eff and ds/du (implicit or finite differences).
-  void Linearize(const PoseTarget& target, Eigen::VectorXd* r, Eigen::MatrixXd* J, Eigen::MatrixXd* ds_du,
-                 double* rcond, bool* singular);
+  // The Gauss-Newton model of r(u) at the current solution: r, ds/du and
+  // J^T J, J^T r of dr/du_eff (implicit or finite differences).
+  struct Linearization;
+  void Linearize(const PoseTarget& target, Linearization* lin);
   void LinearizeByFiniteDifferences(const PoseTarget& target, Eigen::MatrixXd* J, Eigen::MatrixXd* ds_du);
+  // ds/du * du at the last linearisation (one sparse solve when ds/du was
+  // not formed).
+  Eigen::VectorXd PredictedStateChange(const Linearization& lin, const Eigen::VectorXd& du) const;
   // One LM iteration from the current solution; false when no trial step was
   // accepted (or the step vanished).
-  bool LmIteration(const PoseTarget& target, const Eigen::MatrixXd& J, const Eigen::MatrixXd& ds_du,
-                   double* O, double* mu, Eigen::VectorXd* r, ControlStepResult* result);
+  bool LmIteration(const PoseTarget& target, const Linearization& lin, double* O, double* mu, Eigen::VectorXd* r,
+                   ControlStepResult* result);
   // The LM step for damping mu: unconstrained, or under the step constraints
   // (differential bases, active joint limits; `active` is updated).
-  Eigen::VectorXd LmStep(const Eigen::MatrixXd& J, const Eigen::VectorXd& r, const Eigen::MatrixXd& ds_du, double mu,
-                         std::vector<int>* active) const;
+  Eigen::VectorXd LmStep(const Linearization& lin, double mu, std::vector<int>* active) const;
   // Newton steps on the step constraints alone until they hold to 1e-10.
   void ProjectOntoStepConstraints(ControlStepResult* result);
   // Differential bases that the step toward `target` would move more than

@@ -65,5 +65,10 @@ sensitivities still build some dense n x n and m x n intermediates (the Hessian 
 sparse factorisation, J^T C); they are cheap up to the paper's sizes and the first thing to
 make sparse for hundreds of agents.
 TEXT
+  # The Simbody head-to-head (scripts/simbody_bench.sh), when it has been run.
+  if [[ -f "$out/simbody.md" ]]; then
+    printf '\n## Against Simbody\n\nFrom `scripts/simbody_bench.sh` (a separate run; see benchmarks/simbody/).\n\n'
+    cat "$out/simbody.md"
+  fi
 } > benchmarks/RESULTS.md
 echo "wrote benchmarks/RESULTS.md"

@@ -1,5 +1,8 @@
 #include "ccma/internal/constraint_set.h"
 
+#include <algorithm>
+#include <stdexcept>
+
 #include "cost_functions/actuated_prismatic_cost.h"
 #include "cost_functions/actuated_revolute_cost.h"
 #include "cost_functions/body_frame.h"
@@ -115,6 +118,14 @@ ConstraintSet::ConstraintSet(const Model& model)
     add(std::make_unique<OmniBaseMotorCost>(), {base.body}, kBaseControlSize * k, kBaseControlSize,
         base.name + " (motor)");
   }
+  for (const ConstraintBlock& block : blocks_) {
+    // EvaluateDerivatives' fixed-size scratch relies on these bounds.
+    if (block.rows > 9 || block.bodies.size() > 2 || block.control_size > kBaseControlSize) {
+      throw std::logic_error("ConstraintSet: block " + block.label + " exceeds 9 rows, 2 bodies or " +
+                             std::to_string(kBaseControlSize) + " controls");
+    }
+  }
+  BuildPatterns();
 }
 
 void ConstraintSet::Evaluate(const State& s, const Eigen::VectorXd& u, Eigen::VectorXd* C,
@@ -158,48 +169,162 @@ void ConstraintSet::Evaluate(const State& s, const Eigen::VectorXd& u, Eigen::Ve
   }
 }
 
-void ConstraintSet::EvaluateDerivatives(const State& s, const Eigen::VectorXd& u,
-                                        EnergyDerivatives* out) const {
-  Evaluate(s, u, &out->C, &out->J_s, &out->J_u);
-  const int n = state_size_;
-  out->energy = 0.5 * out->C.squaredNorm();
-  out->G.noalias() = out->J_s.transpose() * out->C;
-  out->dE_du.noalias() = out->J_u.transpose() * out->C;
-  out->H.setZero(n, n);
-  out->dG_du.setZero(n, num_controls_);
-  Eigen::MatrixXd local(12, 12);
-  std::vector<const double*> params;
+namespace {
+
+// Index of entry (row, col) in a compressed matrix's value array (the entry
+// must be in the pattern). Constructor-time only: a binary search.
+template <typename Sparse>
+int ValueIndex(const Sparse& M, int row, int col) {
+  const bool row_major = Sparse::IsRowMajor;
+  const int outer = row_major ? row : col;
+  const int inner = row_major ? col : row;
+  const auto* begin = M.innerIndexPtr() + M.outerIndexPtr()[outer];
+  const auto* end = M.innerIndexPtr() + M.outerIndexPtr()[outer + 1];
+  const auto* it = std::lower_bound(begin, end, inner);
+  if (it == end || *it != inner) throw std::logic_error("ConstraintSet: entry outside the derivative pattern");
+  return static_cast<int>(it - M.innerIndexPtr());
+}
+
+template <typename Sparse>
+Sparse PatternOf(int rows, int cols, std::vector<Eigen::Triplet<double>>* entries) {
+  Sparse M(rows, cols);
+  M.setFromTriplets(entries->begin(), entries->end(), [](double a, double) { return a; });
+  M.makeCompressed();
+  M.coeffs().setZero();
+  return M;
+}
+
+}  // namespace
+
+void ConstraintSet::BuildPatterns() {
+  constexpr int kT = kPoseTangentSize;
+  std::vector<Eigen::Triplet<double>> J_s, J_u, H, dG_du;
+  auto add_block = [](std::vector<Eigen::Triplet<double>>* to, int row, int col, int rows, int cols) {
+    for (int i = 0; i < rows; ++i) {
+      for (int j = 0; j < cols; ++j) to->emplace_back(row + i, col + j, 1.0);
+    }
+  };
+  for (int body = 0; body < state_size_ / kT; ++body) add_block(&H, kT * body, kT * body, kT, kT);
   for (const ConstraintBlock& block : blocks_) {
-    const int rows = block.rows;
-    const int poses = static_cast<int>(block.bodies.size());
-    // J^T J over the (at most two) bodies this block touches.
-    for (int a = 0; a < poses; ++a) {
-      if (block.bodies[a] == kWorld) continue;
-      const auto J_a = out->J_s.block(block.row, 6 * block.bodies[a], rows, 6);
-      for (int b = 0; b < poses; ++b) {
-        if (block.bodies[b] == kWorld) continue;
-        const auto J_b = out->J_s.block(block.row, 6 * block.bodies[b], rows, 6);
-        out->H.block<6, 6>(6 * block.bodies[a], 6 * block.bodies[b]).noalias() += J_a.transpose() * J_b;
+    for (int a : block.bodies) {
+      if (a == kWorld) continue;
+      add_block(&J_s, block.row, kT * a, block.rows, kT);
+      for (int b : block.bodies) {
+        if (b != kWorld) add_block(&H, kT * a, kT * b, kT, kT);
       }
-      if (block.control_size > 0) {
-        out->dG_du.block(6 * block.bodies[a], block.control_offset, 6, block.control_size).noalias() +=
-            J_a.transpose() * out->J_u.block(block.row, block.control_offset, rows, block.control_size);
+      if (block.control_size > 0) add_block(&dG_du, kT * a, block.control_offset, kT, block.control_size);
+    }
+    if (block.control_size > 0) add_block(&J_u, block.row, block.control_offset, block.rows, block.control_size);
+  }
+  J_s_pattern_ = PatternOf<SparseRowMajor>(num_rows_, state_size_, &J_s);
+  J_u_pattern_ = PatternOf<SparseRowMajor>(num_rows_, num_controls_, &J_u);
+  H_pattern_ = PatternOf<SparseColMajor>(state_size_, state_size_, &H);
+  dG_du_pattern_ = PatternOf<SparseColMajor>(state_size_, num_controls_, &dG_du);
+
+  offsets_.assign(blocks_.size(), BlockOffsets());
+  for (size_t k = 0; k < blocks_.size(); ++k) {
+    const ConstraintBlock& block = blocks_[k];
+    BlockOffsets& o = offsets_[k];
+    const int first_row = J_s_pattern_.outerIndexPtr()[block.row];
+    o.J_s_row_stride = J_s_pattern_.outerIndexPtr()[block.row + 1] - first_row;
+    for (size_t p = 0; p < block.bodies.size(); ++p) {
+      const int a = block.bodies[p];
+      if (a == kWorld) continue;
+      o.J_s[p] = ValueIndex(J_s_pattern_, block.row, kT * a);
+      for (size_t q = 0; q < block.bodies.size(); ++q) {
+        const int b = block.bodies[q];
+        if (b == kWorld) continue;
+        o.H[p][q] = ValueIndex(H_pattern_, kT * a, kT * b);
+        o.H_column_stride[q] = H_pattern_.outerIndexPtr()[kT * b + 1] - H_pattern_.outerIndexPtr()[kT * b];
+      }
+      for (int c = 0; c < block.control_size; ++c) {
+        o.dG_du[p].push_back(ValueIndex(dG_du_pattern_, kT * a, block.control_offset + c));
       }
     }
-    // sum_i C_i Hess(C_i).
-    params.clear();
-    for (int body : block.bodies) params.push_back(Pose(s, body));
-    if (block.control_size > 0) params.push_back(u.data() + block.control_offset);
+    if (block.control_size > 0) o.J_u = ValueIndex(J_u_pattern_, block.row, block.control_offset);
+  }
+}
+
+void ConstraintSet::EvaluateDerivatives(const State& s, const Eigen::VectorXd& u,
+                                        EnergyDerivatives* out) const {
+  constexpr int kT = kPoseTangentSize;
+  constexpr int kMaxRows = 9;  // the largest block (cost_functions/)
+  constexpr int kMaxControls = kBaseControlSize;
+  using RowMajorJacobian = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor, kMaxRows,
+                                         kPoseAmbientSize>;
+  // Reused workspaces keep their patterns: only the values are overwritten.
+  if (out->H.nonZeros() != H_pattern_.nonZeros() || out->H.rows() != state_size_) {
+    out->J_s = J_s_pattern_;
+    out->J_u = J_u_pattern_;
+    out->H = H_pattern_;
+    out->dG_du = dG_du_pattern_;
+  }
+  out->C.resize(num_rows_);
+  out->G.setZero(state_size_);
+  out->dE_du.setZero(num_controls_);
+  out->H.coeffs().setZero();
+  out->dG_du.coeffs().setZero();
+  double* J_s = out->J_s.valuePtr();
+  double* J_u = out->J_u.valuePtr();
+  double* H = out->H.valuePtr();
+  double* dG_du = out->dG_du.valuePtr();
+
+  double jac_storage[3][kMaxRows * kPoseAmbientSize];
+  Eigen::Matrix<double, 2 * kT, 2 * kT> local;
+  const double* params[3];
+  for (size_t k = 0; k < blocks_.size(); ++k) {
+    const ConstraintBlock& block = blocks_[k];
+    const BlockOffsets& o = offsets_[k];
+    const int rows = block.rows;
+    const int poses = static_cast<int>(block.bodies.size());
+    for (int p = 0; p < poses; ++p) params[p] = Pose(s, block.bodies[p]);
+    if (block.control_size > 0) params[poses] = u.data() + block.control_offset;
+    double* jacobians[3] = {jac_storage[0], jac_storage[1], jac_storage[2]};
+    double* C = out->C.data() + block.row;
+    block.cost->Evaluate(params, C, jacobians);
+    const Eigen::Map<const Eigen::VectorXd> C_block(C, rows);
+
+    // Tangent Jacobians of this block (the first 6 ambient columns, state.h).
+    Eigen::Matrix<double, Eigen::Dynamic, kT, 0, kMaxRows, kT> J_body[2];
+    for (int p = 0; p < poses; ++p) {
+      if (block.bodies[p] == kWorld) continue;
+      J_body[p] = Eigen::Map<const RowMajorJacobian>(jac_storage[p], rows, kPoseAmbientSize).leftCols<kT>();
+      for (int r = 0; r < rows; ++r) {
+        Eigen::Map<Eigen::Matrix<double, 1, kT>>(J_s + o.J_s[p] + r * o.J_s_row_stride) = J_body[p].row(r);
+      }
+      out->G.segment<kT>(kT * block.bodies[p]).noalias() += J_body[p].transpose() * C_block;
+    }
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxRows, kMaxControls> J_control;
+    if (block.control_size > 0) {
+      J_control = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+          jac_storage[poses], rows, block.control_size);
+      Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(J_u + o.J_u, rows,
+                                                                                          block.control_size) =
+          J_control;
+      out->dE_du.segment(block.control_offset, block.control_size).noalias() += J_control.transpose() * C_block;
+    }
+
+    // Local d2E over the block's bodies: J^T J plus sum_i C_i Hess(C_i).
     local.setZero();
-    block.second_order->AddWeightedHessian(params.data(), out->C.data() + block.row,
-                                           local.topLeftCorner(6 * poses, 6 * poses));
-    for (int a = 0; a < poses; ++a) {
-      for (int b = 0; b < poses; ++b) {
-        if (block.bodies[a] == kWorld || block.bodies[b] == kWorld) continue;
-        out->H.block<6, 6>(6 * block.bodies[a], 6 * block.bodies[b]) += local.block<6, 6>(6 * a, 6 * b);
+    block.second_order->AddWeightedHessian(params, C, local.topLeftCorner(kT * poses, kT * poses));
+    for (int p = 0; p < poses; ++p) {
+      if (block.bodies[p] == kWorld) continue;
+      for (int q = 0; q < poses; ++q) {
+        if (block.bodies[q] == kWorld) continue;
+        const Eigen::Matrix<double, kT, kT> H_pq =
+            J_body[p].transpose() * J_body[q] + local.block<kT, kT>(kT * p, kT * q);
+        // Column-major 6 x 6 block: column c of body q starts H_column_stride apart.
+        for (int c = 0; c < kT; ++c) {
+          Eigen::Map<Eigen::Matrix<double, kT, 1>>(H + o.H[p][q] + c * o.H_column_stride[q]) += H_pq.col(c);
+        }
+      }
+      for (int c = 0; c < block.control_size; ++c) {
+        Eigen::Map<Eigen::Matrix<double, kT, 1>>(dG_du + o.dG_du[p][c]).noalias() +=
+            J_body[p].transpose() * J_control.col(c);
       }
     }
   }
+  out->energy = 0.5 * out->C.squaredNorm();
 }
 
 double ConstraintSet::Energy(const State& s, const Eigen::VectorXd& u) const {

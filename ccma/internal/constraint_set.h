@@ -15,6 +15,7 @@
 
 #include <ceres/cost_function.h>
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 
 #include "ccma/model.h"
 #include "ccma/state.h"
@@ -36,15 +37,23 @@ struct ConstraintBlock {
   std::string label;        // e.g. "joints[3] (revolute base0-post0)"
 };
 
+using SparseRowMajor = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+using SparseColMajor = Eigen::SparseMatrix<double, Eigen::ColMajor>;
+
 // E = 1/2 C^T C and its derivatives at (s, u), over the state tangent (n =
 // 6 per body, state.h) and all controls (model.h).
+// The matrices are sparse in patterns fixed per model (a constraint block
+// touches at most two bodies and one control block), so that their size and
+// the cost of filling them grow linearly with the mechanism: nothing here is
+// dense n x n or m x n. A workspace reused across calls keeps its patterns
+// and only has its values overwritten (no allocation).
 struct EnergyDerivatives {
   Eigen::VectorXd C;      // constraints (m)
-  Eigen::MatrixXd J_s;    // dC/ds (m x n)
-  Eigen::MatrixXd J_u;    // dC/du (m x num_controls)
+  SparseRowMajor J_s;     // dC/ds (m x n)
+  SparseRowMajor J_u;     // dC/du (m x num_controls)
   Eigen::VectorXd G;      // dE/ds = J_s^T C (n)
-  Eigen::MatrixXd H;      // d2E/ds2 = J_s^T J_s + sum_i C_i Hess(C_i) (n x n), exact
-  Eigen::MatrixXd dG_du;  // d2E/ds du = J_s^T J_u (n x num_controls), exact
+  SparseColMajor H;       // d2E/ds2 = J_s^T J_s + sum_i C_i Hess(C_i) (n x n, both triangles), exact
+  SparseColMajor dG_du;   // d2E/ds du = J_s^T J_u (n x num_controls), exact
   Eigen::VectorXd dE_du;  // dE/du = J_u^T C (num_controls)
   double energy = 0;
 };
@@ -64,9 +73,15 @@ class ConstraintSet {
   void Evaluate(const State& s, const Eigen::VectorXd& u, Eigen::VectorXd* C,
                 Eigen::MatrixXd* J_s = nullptr, Eigen::MatrixXd* J_u = nullptr) const;
 
-  // All of EnergyDerivatives at (s, u). H is accumulated block by block (a
-  // constraint touches at most two bodies), with the second-order terms.
+  // All of EnergyDerivatives at (s, u), written straight into the fixed
+  // sparse patterns below: H block by block (a constraint touches at most
+  // two bodies), with the second-order terms.
   void EvaluateDerivatives(const State& s, const Eigen::VectorXd& u, EnergyDerivatives* out) const;
+
+  // The fixed sparsity pattern of d2E/ds2 (n x n, both triangles, 6 x 6
+  // blocks of bodies that share a constraint; values are placeholders), for
+  // a symbolic factorisation done once.
+  const SparseColMajor& hessian_pattern() const { return H_pattern_; }
 
   // The autodiff twin of every block's cost function, in blocks() order
   // (their Jacobians are with respect to the ambient pose parameters; see
@@ -80,7 +95,22 @@ class ConstraintSet {
   double Energy(const State& s, const Eigen::VectorXd& u) const;
 
  private:
+  // Where block b's derivatives land in the value arrays of the patterns
+  // (indices into valuePtr()), computed once in the constructor.
+  struct BlockOffsets {
+    int J_s[2] = {-1, -1};        // row 0, first column of body p; rows step by J_s_row_stride
+    int J_s_row_stride = 0;
+    int J_u = -1;                 // row 0, first control; rows step by control_size
+    int H[2][2] = {{-1, -1}, {-1, -1}};  // (6 a, 6 b) for bodies p, q; columns step by H_column_stride[q]
+    int H_column_stride[2] = {0, 0};
+    std::vector<int> dG_du[2];    // (6 a, control c) for body p, c < control_size
+  };
+  void BuildPatterns();
+
   std::vector<ConstraintBlock> blocks_;
+  std::vector<BlockOffsets> offsets_;
+  SparseRowMajor J_s_pattern_, J_u_pattern_;
+  SparseColMajor H_pattern_, dG_du_pattern_;
   int num_rows_ = 0;
   int state_size_ = 0;
   int num_controls_ = 0;

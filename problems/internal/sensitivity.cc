@@ -1,57 +1,77 @@
 #include "problems/internal/sensitivity.h"
 
+#include <algorithm>
+
 namespace ccma {
 
 // Below this pivot ratio dG/ds counts as singular.
 constexpr double kSingularRcond = 1e-12;
 
 HessianSolver::HessianSolver(const ConstraintSet& constraints) {
+  ldlt_.analyzePattern(constraints.hessian_pattern());
   const int n = constraints.state_size();
-  std::vector<Eigen::Triplet<double>> pattern;
-  auto add_block = [&](int a, int b) {
-    for (int i = 0; i < 6; ++i) {
-      for (int j = 0; j < 6; ++j) pattern.emplace_back(6 * a + i, 6 * b + j, 1.0);
-    }
-  };
-  for (int body = 0; body < n / 6; ++body) add_block(body, body);
-  for (const ConstraintBlock& block : constraints.blocks()) {
-    if (block.bodies.size() == 2 && block.bodies[0] != kWorld && block.bodies[1] != kWorld) {
-      add_block(block.bodies[0], block.bodies[1]);
-      add_block(block.bodies[1], block.bodies[0]);
-    }
-  }
-  H_.resize(n, n);
-  H_.setFromTriplets(pattern.begin(), pattern.end(), [](double a, double) { return a; });
-  H_.makeCompressed();
-  ldlt_.analyzePattern(H_);
+  parent_.assign(static_cast<size_t>(n), -1);
+  mark_.assign(static_cast<size_t>(n), 0);
+  work_ = Eigen::VectorXd::Zero(n);
 }
 
-bool HessianSolver::Factorize(const Eigen::MatrixXd& H) {
-  for (int col = 0; col < H_.outerSize(); ++col) {
-    for (Eigen::SparseMatrix<double>::InnerIterator it(H_, col); it; ++it) {
-      it.valueRef() = H(it.row(), it.col());
-    }
-  }
-  ldlt_.factorize(H_);
+bool HessianSolver::Factorize(const SparseColMajor& H) {
+  ldlt_.factorize(H);
   pivot_ratio_ = 0;
-  if (ldlt_.info() != Eigen::Success) return false;
-  const Eigen::VectorXd pivots = ldlt_.vectorD();
+  factorized_ = ldlt_.info() == Eigen::Success;
+  if (!factorized_) return false;
+  const auto& pivots = ldlt_.vectorD();
   const double largest = pivots.cwiseAbs().maxCoeff();
   pivot_ratio_ = largest > 0 ? pivots.minCoeff() / largest : 0.0;  // negative: indefinite
+  // The elimination tree: a column's first below-diagonal row (Eigen's
+  // simplicial LDLT stores each column's rows in increasing order, without
+  // the unit diagonal). Fixed by the pattern, but only readable once L exists.
+  const SparseColMajor& L = ldlt_.matrixL().nestedExpression();
+  for (int j = 0; j < L.outerSize(); ++j) {
+    const int begin = L.outerIndexPtr()[j], end = L.outerIndexPtr()[j + 1];
+    parent_[j] = begin < end ? L.innerIndexPtr()[begin] : -1;
+  }
   return true;
 }
 
-Eigen::MatrixXd ConstraintJacobianTimes(const ConstraintSet& constraints, const Eigen::MatrixXd& J_s,
-                                        const Eigen::MatrixXd& M) {
-  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(J_s.rows(), M.cols());
-  for (const ConstraintBlock& block : constraints.blocks()) {
-    for (int body : block.bodies) {
-      if (body == kWorld) continue;
-      out.middleRows(block.row, block.rows).noalias() +=
-          J_s.block(block.row, 6 * body, block.rows, 6) * M.middleRows(6 * body, 6);
+void HessianSolver::ForwardSubstitute(const SparseColMajor& M, const std::vector<int>& columns,
+                                      SparseFactorColumns* out) const {
+  const SparseColMajor& L = ldlt_.matrixL().nestedExpression();
+  const auto& P = ldlt_.permutationP().indices();
+  out->rows.resize(static_cast<size_t>(L.rows()));
+  for (auto& row : out->rows) row.clear();
+  for (size_t c = 0; c < columns.size(); ++c) {
+    // The reach: every ancestor in the elimination tree of the column's
+    // nonzeros; ascending index order is a topological order (parent > child).
+    reach_.clear();
+    for (SparseColMajor::InnerIterator it(M, columns[c]); it; ++it) {
+      const int i = P[it.row()];
+      work_[i] = it.value();
+      for (int j = i; j >= 0 && !mark_[j]; j = parent_[j]) {
+        mark_[j] = 1;
+        reach_.push_back(j);
+      }
+    }
+    std::sort(reach_.begin(), reach_.end());
+    for (int j : reach_) {
+      const double x_j = work_[j];
+      if (x_j == 0) continue;
+      for (int p = L.outerIndexPtr()[j]; p < L.outerIndexPtr()[j + 1]; ++p) {
+        work_[L.innerIndexPtr()[p]] -= L.valuePtr()[p] * x_j;
+      }
+    }
+    for (int j : reach_) {
+      if (work_[j] != 0) out->rows[j].emplace_back(static_cast<int>(c), work_[j]);
+      work_[j] = 0;
+      mark_[j] = 0;
     }
   }
-  return out;
+}
+
+Eigen::VectorXd HessianSolver::ForwardSubstitute(const Eigen::VectorXd& v) const {
+  Eigen::VectorXd x = ldlt_.permutationP() * v;
+  ldlt_.matrixL().solveInPlace(x);
+  return x;
 }
 
 Sensitivity::Sensitivity(const ConstraintSet& constraints, const State& s,
@@ -63,16 +83,81 @@ Sensitivity::Sensitivity(const ConstraintSet& constraints, const State& s,
     solver_ = own_solver_.get();
   }
   constraints.EvaluateDerivatives(s, u, d_);
-  dG_du_.resize(d_->H.rows(), static_cast<Eigen::Index>(controls_.size()));
-  for (size_t c = 0; c < controls_.size(); ++c) dG_du_.col(c) = d_->dG_du.col(controls_[c]);
   if (solver_->Factorize(d_->H)) rcond_ = solver_->pivot_ratio();
   singular_ = !(rcond_ > kSingularRcond);
 }
 
-Eigen::MatrixXd Sensitivity::StateSensitivity() const { return -solver_->Solve(dG_du_); }
+Eigen::VectorXd Sensitivity::dG_du_times(const Eigen::VectorXd& du) const {
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(d_->dG_du.rows());
+  for (size_t c = 0; c < controls_.size(); ++c) {
+    if (du[c] != 0) out += du[c] * d_->dG_du.col(controls_[c]);
+  }
+  return out;
+}
+
+bool Sensitivity::ImplicitProducts(const Eigen::MatrixXd& F, const Eigen::VectorXd& v, Products* out) const {
+  if (!solver_->factorized()) return false;
+  const int k = static_cast<int>(controls_.size());
+  HessianSolver::SparseFactorColumns X, Y;
+  solver_->ForwardSubstitute(d_->dG_du, controls_, &X);
+  // F^T as a sparse matrix: de/ds has only the end-effector body's columns.
+  const SparseColMajor Ft = F.transpose().sparseView();
+  std::vector<int> f_columns(static_cast<size_t>(F.rows()));
+  for (int r = 0; r < F.rows(); ++r) f_columns[static_cast<size_t>(r)] = r;
+  solver_->ForwardSubstitute(Ft, f_columns, &Y);
+  const Eigen::VectorXd z = solver_->ForwardSubstitute(v);
+  const Eigen::VectorXd D = solver_->pivots();
+  out->BtS.setZero(k, k);
+  out->FS.setZero(F.rows(), k);
+  out->Stv.setZero(k);
+  // Row by row of L^-1 P B: each row pairs its own nonzeros only. Rows that
+  // nearly every control reaches (the bodies near the elimination tree's
+  // root, e.g. the end-effector every leg closes on) are gathered into a
+  // dense block and multiplied as one rank update.
+  const int dense_threshold = std::max(16, k / 4);
+  std::vector<int> dense_rows;
+  for (size_t i = 0; i < X.rows.size(); ++i) {
+    const auto& x = X.rows[i];
+    if (x.empty()) continue;
+    if (static_cast<int>(x.size()) > dense_threshold) {
+      dense_rows.push_back(static_cast<int>(i));
+      continue;
+    }
+    const double inverse_pivot = 1.0 / D[static_cast<Eigen::Index>(i)];
+    for (const auto& [a, x_a] : x) {
+      const double scaled = inverse_pivot * x_a;
+      for (const auto& [b, x_b] : x) out->BtS(b, a) -= scaled * x_b;
+      for (const auto& [f, y_f] : Y.rows[i]) out->FS(f, a) -= y_f * scaled;
+      out->Stv[a] -= scaled * z[static_cast<Eigen::Index>(i)];
+    }
+  }
+  if (!dense_rows.empty()) {
+    const int r = static_cast<int>(dense_rows.size());
+    Eigen::MatrixXd Xd = Eigen::MatrixXd::Zero(r, k), Yd = Eigen::MatrixXd::Zero(r, F.rows());
+    Eigen::VectorXd inverse_pivots(r), zd(r);
+    for (int q = 0; q < r; ++q) {
+      const int i = dense_rows[static_cast<size_t>(q)];
+      for (const auto& [a, x_a] : X.rows[static_cast<size_t>(i)]) Xd(q, a) = x_a;
+      for (const auto& [f, y_f] : Y.rows[static_cast<size_t>(i)]) Yd(q, f) = y_f;
+      inverse_pivots[q] = 1.0 / D[i];
+      zd[q] = z[i];
+    }
+    const Eigen::MatrixXd DXd = inverse_pivots.asDiagonal() * Xd;
+    out->BtS.noalias() -= Xd.transpose() * DXd;
+    out->FS.noalias() -= Yd.transpose() * DXd;
+    out->Stv.noalias() -= DXd.transpose() * zd;
+  }
+  return true;
+}
+
+Eigen::MatrixXd Sensitivity::StateSensitivity() const {
+  Eigen::MatrixXd dG_du(d_->dG_du.rows(), static_cast<Eigen::Index>(controls_.size()));
+  for (size_t c = 0; c < controls_.size(); ++c) dG_du.col(c) = d_->dG_du.col(controls_[c]);
+  return -solver_->Solve(dG_du);
+}
 
 Eigen::VectorXd Sensitivity::StateChange(const Eigen::VectorXd& du) const {
-  return -solver_->Solve(dG_du_ * du);
+  return -solver_->Solve(dG_du_times(du));
 }
 
 Eigen::VectorXd Sensitivity::ResidualEnergyGradient() const {
@@ -84,7 +169,9 @@ Eigen::VectorXd Sensitivity::ResidualEnergyGradient() const {
 Eigen::VectorXd Sensitivity::TotalDerivative(const Eigen::VectorXd& dF_ds,
                                              const Eigen::VectorXd& dF_du) const {
   const Eigen::VectorXd adjoint = solver_->Solve(dF_ds);  // dG/ds is symmetric
-  return dF_du - dG_du_.transpose() * adjoint;
+  Eigen::VectorXd total = dF_du;
+  for (size_t c = 0; c < controls_.size(); ++c) total[c] -= d_->dG_du.col(controls_[c]).dot(adjoint);
+  return total;
 }
 
 }  // namespace ccma

@@ -27,23 +27,41 @@ namespace ccma {
 class HessianSolver {
  public:
   explicit HessianSolver(const ConstraintSet& constraints);
-  // Numeric factorisation of the dense symmetric H (n x n); entries outside
-  // the block pattern are structurally zero and ignored.
-  bool Factorize(const Eigen::MatrixXd& H);
+  // Numeric factorisation of H, which must have the constraint set's
+  // hessian_pattern() (EnergyDerivatives::H does).
+  bool Factorize(const SparseColMajor& H);
+  // (dG/ds)^-1 rhs, for one or many right-hand sides.
+  Eigen::VectorXd Solve(const Eigen::VectorXd& rhs) const { return ldlt_.solve(rhs); }
   Eigen::MatrixXd Solve(const Eigen::MatrixXd& rhs) const { return ldlt_.solve(rhs); }
   // min pivot / max pivot of the last factorisation (see Sensitivity::rcond).
   double pivot_ratio() const { return pivot_ratio_; }
+  // Whether the last factorisation succeeded (Solve and the rest are valid).
+  bool factorized() const { return factorized_; }
+
+  // With dG/ds = P^T L D L^T P (L unit lower triangular, P the fill-reducing
+  // permutation): the columns `columns` of a sparse n x c matrix M mapped to
+  // L^-1 P M, by sparse forward substitution along the elimination tree, so
+  // the work is that of the nonzeros reached (a control's column is
+  // supported on its base's body: its path to the root is a few bodies),
+  // not n per column. Entry lists per row of the result, for the products
+  // below: rows[i] = {(column, value)}.
+  struct SparseFactorColumns {
+    std::vector<std::vector<std::pair<int, double>>> rows;  // n (permuted rows)
+  };
+  void ForwardSubstitute(const SparseColMajor& M, const std::vector<int>& columns, SparseFactorColumns* out) const;
+  // L^-1 P v for a dense v (n).
+  Eigen::VectorXd ForwardSubstitute(const Eigen::VectorXd& v) const;
+  // D (n), the pivots in permuted order.
+  Eigen::VectorXd pivots() const { return ldlt_.vectorD(); }
 
  private:
-  Eigen::SparseMatrix<double> H_;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt_;
+  Eigen::SimplicialLDLT<SparseColMajor> ldlt_;
+  std::vector<int> parent_;  // elimination tree of L (-1: a root), from its pattern
+  mutable std::vector<int> reach_, mark_;
+  mutable Eigen::VectorXd work_;
   double pivot_ratio_ = 0;
+  bool factorized_ = false;
 };
-
-// J_s * M for a (num_rows x k) result, reading only the nonzero blocks of
-// J_s (each constraint touches at most two bodies).
-Eigen::MatrixXd ConstraintJacobianTimes(const ConstraintSet& constraints, const Eigen::MatrixXd& J_s,
-                                        const Eigen::MatrixXd& M);
 
 class Sensitivity {
  public:
@@ -66,7 +84,8 @@ class Sensitivity {
   double rcond() const { return rcond_; }
   bool singular() const { return singular_; }
 
-  // ds/du over the chosen controls (n x k), tangent units per control unit.
+  // ds/du over the chosen controls (n x k, dense: each control moves the
+  // whole loop), tangent units per control unit. k sparse solves.
   Eigen::MatrixXd StateSensitivity() const;
   // ds/du * du for one change du of the chosen controls (k): one solve.
   Eigen::VectorXd StateChange(const Eigen::VectorXd& du) const;
@@ -76,13 +95,26 @@ class Sensitivity {
   // the total derivative dF/du = dF_du - (dG/du)^T (dG/ds)^-1 dF_ds, with
   // one solve instead of k.
   Eigen::VectorXd TotalDerivative(const Eigen::VectorXd& dF_ds, const Eigen::VectorXd& dF_du) const;
-  // dG/du over the chosen controls (n x k).
-  const Eigen::MatrixXd& dG_du() const { return dG_du_; }
+  // dG/du over the chosen controls times du (k): n, sparse work.
+  Eigen::VectorXd dG_du_times(const Eigen::VectorXd& du) const;
+
+  // Products with S = ds/du = -(dG/ds)^-1 B (B = dG/du over the chosen
+  // controls) that never form S (dense n x k): with X = L^-1 P B sparse,
+  //   B^T S = -X^T D^-1 X (k x k),  F S = -(L^-1 P F^T)^T D^-1 X for a
+  //   matrix F (rows x n) with few nonzero columns (e.g. de/ds), and
+  //   S^T v = -X^T D^-1 L^-1 P v (k).
+  // O(nonzeros reached + k^2 * shared rows): no n x k anywhere. Returns
+  // false (and leaves `out` alone) if dG/ds could not be factorised.
+  struct Products {
+    Eigen::MatrixXd BtS;  // k x k
+    Eigen::MatrixXd FS;   // rows(F) x k
+    Eigen::VectorXd Stv;  // k
+  };
+  bool ImplicitProducts(const Eigen::MatrixXd& F, const Eigen::VectorXd& v, Products* out) const;
 
  private:
   EnergyDerivatives own_derivatives_;
   EnergyDerivatives* d_;
-  Eigen::MatrixXd dG_du_;
   std::vector<int> controls_;
   std::unique_ptr<HessianSolver> own_solver_;
   HessianSolver* solver_;

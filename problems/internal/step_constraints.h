@@ -15,6 +15,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Eigenvalues>
 
 #include "ccma/model.h"
 #include "ccma/state.h"
@@ -73,11 +74,19 @@ class StepConstraints {
 
 // The damped least-squares step of LM under linear equality constraints:
 //   min |J d + r|^2 + mu |d|^2   subject to   A d = b
-// through the null space of A (SVD, rank-revealing): d = d0 + N z with d0 the
-// least-norm solution of A d = b; z by the same least-norm eigen-solve as the
-// unconstrained step. With no constraint rows it is the unconstrained step.
-Eigen::VectorXd ConstrainedLmStep(const Eigen::MatrixXd& J, const Eigen::VectorXd& r, double mu,
-                                  const LinearConstraints& constraints);
+// given J^T J (k x k) and J^T r (k), through the null space of A (SVD,
+// rank-revealing): d = d0 + N z with d0 the least-norm solution of A d = b; z
+// by the same least-norm eigen-solve as the unconstrained step. With no
+// constraint rows it is the unconstrained step, -V (Lambda + mu)^-1 V^T J^T r
+// with J^T J = V Lambda V^T; pass that decomposition (`JtJ_eigen`) to reuse
+// it across damping trials.
+// Above this many controls the unconstrained step uses an LDLT instead of
+// the eigen-decomposition (see ConstrainedLmStep).
+constexpr int kMaxEigenSolveSize = 64;
+
+Eigen::VectorXd ConstrainedLmStep(const Eigen::MatrixXd& JtJ, const Eigen::VectorXd& Jtr, double mu,
+                                  const LinearConstraints& constraints,
+                                  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>* JtJ_eigen = nullptr);
 
 }  // namespace ccma
 
