@@ -40,14 +40,22 @@ const std::vector<Command>& Commands() {
        {"model", "controls", "from"}, RunSimulate},
       {"control",
        "ccma control --model=FILE --target=x,y,z,roll,pitch,yaw [--controls=...] [--method=lm|bfgs]\n"
-       "             [--max_step_m=0.01] [--max_step_rad=0.005] [--lambda=0.5]",
+       "             [--max_step_m=0.01] [--max_step_rad=0.005] [--lambda=0.5]\n"
+       "             [--singularity_weight=0] [--singularity_threshold=0.1]\n"
+       "             [--secondary=none|spread|sigma|travel] [--secondary_weight=1] [--clearance_m=0.5]",
        "Kinematic control: finds controls that put the end-effector at the target, walking there in\n"
        "small end-effector steps from the start controls (home, or --controls). --target takes all six\n"
        "components, or only the model's controlled ones in the order x y z roll pitch yaw. Warns on\n"
        "stderr when the target is not reached, and when the returned controls, simulated from home\n"
        "(`ccma simulate --controls=...`), land on another assembly branch (reproduce the result with\n"
-       "`ccma simulate --from=<this JSON>`).",
-       Concat({"model", "target", "controls"}, kControlFlags), RunControl},
+       "`ccma simulate --from=<this JSON>`). Redundant systems (more effective controls than\n"
+       "controlled components) can keep the smallest singular value of dX/du away from zero\n"
+       "(--singularity_weight) or keep bases apart / travel little (--secondary), in the null space of\n"
+       "the end-effector task: the end-effector error is unchanged (docs/cli.md).",
+       Concat({"model", "target", "controls", "singularity_weight", "singularity_threshold", "secondary",
+               "secondary_weight", "clearance_m"},
+              kControlFlags),
+       RunControl},
       {"trajectory",
        "ccma trajectory --model=FILE --waypoints=FILE.csv --out=FILE.csv [--controls=...] [control flags]",
        "Follows end-effector waypoints (docs/waypoints.md) in small control steps and writes one CSV row\n"
@@ -83,6 +91,36 @@ const std::vector<Command>& Commands() {
        "Each frame is re-assembled from its controls; frames that are flagged, not assembled or reached\n"
        "by a branch jump are marked red (and counted on stderr and in the JSON).",
        {"model", "trajectory", "replay", "out"}, RunView},
+      {"workspace",
+       "ccma workspace --model=FILE --out=FILE.csv [--x=lo:hi] [--y=..] [--z=..] [--roll=..] [--pitch=..] [--yaw=..]\n"
+       "               [--resolution=11 | --samples=N --seed=1] [--threads=1] [--plot=DIR] [control flags]",
+       "Workspace map: samples end-effector poses over the given ranges of controlled components (a grid\n"
+       "with --resolution points per range, or --samples seeded uniform draws; components not sampled keep\n"
+       "their home value) and reaches each by continuation from the nearest already reached sample (or\n"
+       "home) in small control steps. Writes one CSV row per sample: the controlled components, reachable\n"
+       "(1/0), residual_energy [m^2], sigma_min (smallest singular value of dX/du, 0 when unreachable),\n"
+       "error [m or rad], rcond (pivot ratio of dG/ds), joint limits, u0, u1, ... (empty when unreachable).\n"
+       "Results do not depend on --threads. --plot writes reachability and sigma_min maps over the first\n"
+       "two ranges. Prints {samples, reachable, seconds, ...}; a percentage bar on stderr at a terminal.",
+       Concat({"model", "out", "x", "y", "z", "roll", "pitch", "yaw", "resolution", "samples", "seed", "threads",
+               "plot"},
+              kControlFlags),
+       RunWorkspace},
+      {"design",
+       "ccma design --model=FILE --targets=FILE.csv --out=NEW.yaml [--vary=JOINT.x|.y|.z|.point,...]\n"
+       "            [--vary_length=ANCHOR:JOINT,...] [--max_change=0.5] [--min_length=0.02]\n"
+       "            [--min_singular_value=0.02] [--target_tolerance=1e-6] [--design_iterations=30] [control flags]",
+       "Adjusts the named geometry (joint points in world home coordinates [m], link lengths [m]) so that\n"
+       "every target pose of the waypoint CSV (docs/waypoints.md; times ignored) is reachable with margin:\n"
+       "control error below --target_tolerance, assembled, joint limits held, smallest singular value of\n"
+       "dX/du at least --min_singular_value (docs/design.md). Writes the model file with only the named\n"
+       "joints' point numbers changed (comments and layout kept) and prints {converged, reached (one\n"
+       "boolean per target, in the written model), reached_before, changed (parameter, old, new [m]),\n"
+       "changed_points, targets, iterations}; a warning on stderr when not converged.",
+       Concat({"model", "targets", "out", "vary", "vary_length", "max_change", "min_length", "min_singular_value",
+               "target_tolerance", "design_iterations"},
+              kControlFlags),
+       RunDesign},
   };
   return commands;
 }

@@ -34,5 +34,6 @@
 #include "problems/path.h"
 #include "problems/replay.h"
 #include "problems/trajectory.h"
+#include "problems/workspace.h"
 
 #endif  // CCMA_CCMA_H_

@@ -20,6 +20,7 @@
 #include "problems/internal/end_effector_error.h"
 #include "problems/internal/finite_differences.h"
 #include "problems/internal/sensitivity.h"
+#include "problems/internal/singularity.h"
 #include "problems/internal/step_constraints.h"
 #include "problems/path.h"
 
@@ -57,7 +58,7 @@ double LargestEigenvalue(const Eigen::MatrixXd& JtJ, const Eigen::SelfAdjointEig
 }
 
 // Smallest singular value of the end-effector rows of an LM Jacobian.
-double SmallestSingularValue(const Eigen::MatrixXd& J_end_effector) {
+double SmallestSingularValueOf(const Eigen::MatrixXd& J_end_effector) {
   if (J_end_effector.rows() == 0 || J_end_effector.cols() == 0) return 0.0;
   return Eigen::JacobiSVD<Eigen::MatrixXd>(J_end_effector).singularValues().minCoeff();
 }
@@ -86,6 +87,29 @@ bool ControlOptions::IsValid(std::string* why) const {
     return fail("finite_difference_step must lie in [1e-12, 0.1] (m or rad), got " +
                 FormatG(finite_difference_step));
   }
+  const Secondary& sec = secondary;
+  if (!InRange(sec.singularity_weight, 0, 1e6)) {
+    return fail("secondary.singularity_weight must lie in [0, 1e6], got " + FormatG(sec.singularity_weight));
+  }
+  if (!InRange(sec.singularity_threshold, 1e-6, 100)) {
+    return fail("secondary.singularity_threshold must lie in [1e-6, 100] (m or rad per control unit), got " +
+                FormatG(sec.singularity_threshold));
+  }
+  if (!InRange(sec.spread_weight, 0, 1e6)) {
+    return fail("secondary.spread_weight must lie in [0, 1e6] (1/m^2), got " + FormatG(sec.spread_weight));
+  }
+  if (!InRange(sec.clearance_m, 1e-3, 100)) {
+    return fail("secondary.clearance_m must lie in [0.001, 100] (m), got " + FormatG(sec.clearance_m));
+  }
+  if (!InRange(sec.travel_weight, 0, 1e6)) {
+    return fail("secondary.travel_weight must lie in [0, 1e6], got " + FormatG(sec.travel_weight));
+  }
+  if (!InRange(sec.iterations, 1, 100)) {
+    return fail("secondary.iterations must lie in [1, 100], got " + std::to_string(sec.iterations));
+  }
+  if (!InRange(sec.sigma_step, 1e-8, 1e-2)) {
+    return fail("secondary.sigma_step must lie in [1e-8, 0.01] (m or rad), got " + FormatG(sec.sigma_step));
+  }
   std::string forward_why;
   if (!forward.IsValid(&forward_why)) return fail("forward." + forward_why);
   return true;
@@ -93,7 +117,7 @@ bool ControlOptions::IsValid(std::string* why) const {
 
 struct ControlProblem::Workspace {
   Workspace(const Model& model, const ConstraintSet& constraints, const std::vector<int>& effective)
-      : error(model), step_constraints(model, effective), hessian_solver(constraints),
+      : error(model), step_constraints(model, effective), hessian_solver(constraints), sigma_solver(constraints),
         effective_column(static_cast<size_t>(model.num_controls()), -1) {
     for (size_t c = 0; c < effective.size(); ++c) effective_column[static_cast<size_t>(effective[c])] = static_cast<int>(c);
   }
@@ -101,6 +125,8 @@ struct ControlProblem::Workspace {
   StepConstraints step_constraints;  // differential bases and joint limits
   HessianSolver hessian_solver;  // symbolic analysis of dG/ds, done once
   EnergyDerivatives derivatives;  // reused by every linearisation
+  HessianSolver sigma_solver;     // the singularity gradient's own (keeps hessian_solver's factors)
+  EnergyDerivatives sigma_derivatives;
   std::vector<int> effective_column;  // control index -> column among the effective ones, or -1
 };
 
@@ -171,11 +197,15 @@ ControlProblem::ControlProblem(const Model& model, const ControlOptions& options
     : options_(options),
       forward_(model, ValidatedForwardOptions(options)),
       effective_(model.effective_control_indices()),
-      workspace_(std::make_unique<Workspace>(model, forward_.constraints(), effective_)) {}
+      workspace_(std::make_unique<Workspace>(model, forward_.constraints(), effective_)),
+      travel_origin_(forward_.controls()) {}
 
 ControlProblem::~ControlProblem() = default;
 
-ForwardResult ControlProblem::SetControls(const Eigen::VectorXd& u) { return forward_.Assemble(u); }
+ForwardResult ControlProblem::SetControls(const Eigen::VectorXd& u) {
+  travel_origin_ = u;
+  return forward_.Assemble(u);
+}
 
 PoseTarget ControlProblem::CurrentPose() const {
   const EndEffectorPose pose = forward_.end_effector();
@@ -381,6 +411,156 @@ Eigen::MatrixXd ControlProblem::StateSensitivity() {
   return ds_du;
 }
 
+double ControlProblem::SmallestSingularValue(const PoseTarget& target, Eigen::VectorXd* gradient) {
+  const SmallestSingularValueResult r = SmallestSingularValueOfdXdu(
+      forward_.constraints(), workspace_->error, target, forward_.state(), forward_.controls(), effective_,
+      gradient != nullptr, options_.secondary.sigma_step, &workspace_->sigma_solver, &workspace_->sigma_derivatives);
+  if (!r.valid) {
+    if (gradient != nullptr) gradient->setConstant(static_cast<Eigen::Index>(effective_.size()),
+                                                    std::numeric_limits<double>::quiet_NaN());
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  if (gradient != nullptr) *gradient = r.gradient;
+  return r.sigma;
+}
+
+void ControlProblem::SecondaryResiduals(const PoseTarget& target, Eigen::VectorXd* r2, Eigen::MatrixXd* J2) {
+  const ControlOptions::Secondary& sec = options_.secondary;
+  const Model& model = forward_.model();
+  const Eigen::VectorXd& u = forward_.controls();
+  const int k = static_cast<int>(effective_.size());
+  const std::vector<int>& column = workspace_->effective_column;
+  std::vector<double> values;
+  std::vector<Eigen::VectorXd> rows;
+  if (sec.singularity_weight > 0) {
+    // Barrier sqrt(w) (sigma_0 / sigma - 1) below sigma_0: C1 at sigma_0
+    // (value and slope 0), infinite at sigma = 0.
+    Eigen::VectorXd g;
+    const double sigma = SmallestSingularValue(target, J2 != nullptr ? &g : nullptr);
+    const double sigma_0 = sec.singularity_threshold;
+    if (std::isfinite(sigma) && sigma < sigma_0) {
+      const double root = std::sqrt(sec.singularity_weight);
+      values.push_back(root * (sigma_0 / std::max(sigma, 1e-300) - 1));
+      if (J2 != nullptr) rows.push_back(-root * sigma_0 / (sigma * sigma) * g);
+    } else if (!std::isfinite(sigma)) {
+      values.push_back(std::numeric_limits<double>::infinity());  // singular dG/ds: never accepted
+      if (J2 != nullptr) rows.push_back(Eigen::VectorXd::Zero(k));
+    }
+  }
+  if (sec.spread_weight > 0) {
+    const double root = std::sqrt(sec.spread_weight);
+    for (int i = 0; i < model.num_bases(); ++i) {
+      for (int j = i + 1; j < model.num_bases(); ++j) {
+        const int a = kBaseControlSize * i, b = kBaseControlSize * j;
+        const Eigen::Vector2d d_ij(u[a] - u[b], u[a + 1] - u[b + 1]);
+        const double distance = d_ij.norm();
+        if (distance >= sec.clearance_m) continue;
+        values.push_back(root * (sec.clearance_m - distance));
+        if (J2 == nullptr) continue;
+        Eigen::VectorXd row = Eigen::VectorXd::Zero(k);
+        // d|d_ij|/d(p_i) = d_ij / |d_ij| (0 for coincident bases: no direction to push).
+        const Eigen::Vector2d n = distance > 0 ? Eigen::Vector2d(d_ij / distance) : Eigen::Vector2d::Zero();
+        for (int c = 0; c < 2; ++c) {
+          if (column[a + c] >= 0) row[column[a + c]] -= root * n[c];
+          if (column[b + c] >= 0) row[column[b + c]] += root * n[c];
+        }
+        rows.push_back(row);
+      }
+    }
+  }
+  if (sec.travel_weight > 0) {
+    const double root = std::sqrt(sec.travel_weight);
+    for (int c = 0; c < k; ++c) {
+      values.push_back(root * (u[effective_[c]] - travel_origin_[effective_[c]]));
+      if (J2 != nullptr) rows.push_back(root * Eigen::VectorXd::Unit(k, c));
+    }
+  }
+  r2->resize(static_cast<Eigen::Index>(values.size()));
+  for (size_t i = 0; i < values.size(); ++i) (*r2)[static_cast<Eigen::Index>(i)] = values[i];
+  if (J2 != nullptr) {
+    J2->resize(static_cast<Eigen::Index>(rows.size()), k);
+    for (size_t i = 0; i < rows.size(); ++i) J2->row(static_cast<Eigen::Index>(i)) = rows[i].transpose();
+  }
+}
+
+double ControlProblem::SecondaryObjective(const PoseTarget& target, Eigen::VectorXd* gradient) {
+  Eigen::VectorXd r2;
+  Eigen::MatrixXd J2;
+  SecondaryResiduals(target, &r2, gradient != nullptr ? &J2 : nullptr);
+  if (gradient != nullptr) *gradient = J2.transpose() * r2;
+  return 0.5 * r2.squaredNorm();
+}
+
+bool ControlProblem::NullSpaceIteration(const PoseTarget& target, ControlStepResult* result) {
+  Eigen::VectorXd r2;
+  Eigen::MatrixXd J2;
+  SecondaryResiduals(target, &r2, &J2);
+  const double phi = 0.5 * r2.squaredNorm();
+  if (!(phi > 0) || !std::isfinite(phi)) return false;
+  // Null space of the task's Gauss-Newton model J^T J = J_e^T J_e + lambda
+  // d2E_r/du2: control changes that move neither the end-effector nor the
+  // residual energy to first order (an over-constrained loop also has
+  // control directions that keep the end-effector but pull the loop apart).
+  Linearization lin;
+  Linearize(target, &lin);
+  const int k = static_cast<int>(effective_.size());
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(lin.JtJ);
+  const Eigen::VectorXd& ev = eig.eigenvalues();  // increasing
+  int nullity = 0;
+  while (nullity < k && ev[nullity] <= 1e-9 * std::max(ev[k - 1], 1e-300)) ++nullity;
+  if (nullity == 0) return false;  // no redundancy here
+  const Eigen::MatrixXd N = eig.eigenvectors().leftCols(nullity);
+  const Eigen::MatrixXd JN = J2 * N;
+  const Eigen::MatrixXd JtJ = JN.transpose() * JN;
+  const Eigen::VectorXd Jtr = JN.transpose() * r2;
+  const State base = forward_.state();
+  const Eigen::VectorXd u_base = forward_.controls();
+  const Eigen::VectorXd ue = EffectiveControls(u_base);
+  double mu = 1e-6 * std::max(JtJ.trace(), 1e-30);
+  double radius = options_.max_step_m;  // trust region [m or rad, max-norm]
+  for (int trial = 0; trial < 10; ++trial) {
+    const Eigen::VectorXd z =
+        -(JtJ + mu * Eigen::MatrixXd::Identity(JtJ.rows(), JtJ.cols())).ldlt().solve(Jtr);
+    Eigen::VectorXd du = N * z;
+    // No farther than one path step per iteration (and a quarter of that
+    // after each refusal): the re-converged task stays on the branch and
+    // the first-order prediction stays good.
+    const double largest = du.lpNorm<Eigen::Infinity>();
+    if (!(largest > 1e-14)) return false;
+    if (largest > radius) du *= radius / largest;
+    State predicted = base;
+    predicted.Plus(PredictedStateChange(lin, du));
+    ControlStepResult inner;
+    if (SolveAt(ue + du, predicted) && ConvergeTask(target, &inner, /*report_iterations=*/false)) {
+      Eigen::VectorXd e;
+      workspace_->error.Evaluate(forward_.state(), target, &e, nullptr);
+      const bool reached = (e.size() == 0 || e.lpNorm<Eigen::Infinity>() <= options_.target_tolerance) &&
+                           forward_.Energy() < forward_.options().assembly_tolerance;
+      // Another assembly branch: the state moved far more than a control
+      // change of this size moves it (the same test as Assemble's, with a
+      // factor 10 for the task's re-convergence).
+      const double jump = forward_.state().Minus(base).lpNorm<Eigen::Infinity>();
+      const bool jumped = jump > forward_.options().branch_jump_relative * 10 * du.lpNorm<Eigen::Infinity>() +
+                                     forward_.options().branch_jump_absolute;
+      Eigen::VectorXd r2_new;
+      SecondaryResiduals(target, &r2_new, nullptr);
+      const double phi_new = 0.5 * r2_new.squaredNorm();
+      result->iterations += inner.iterations;
+      result->branch_jumps_rejected += inner.branch_jumps_rejected + jumped;
+      if (reached && !jumped && phi_new < phi) {
+        result->rcond = inner.rcond;
+        result->singular |= inner.singular;
+        result->min_singular_value_dX_du = inner.min_singular_value_dX_du;
+        return true;
+      }
+    }
+    forward_.Restore(base, u_base);
+    mu = mu * 10 + 1e-30;
+    radius = 0.25 * std::min(radius, largest);
+  }
+  return false;
+}
+
 ControlStepResult ControlProblem::SolveStep(const PoseTarget& target) {
   CheckTarget(target);
   return options_.method == ControlMethod::kBfgs ? SolveStepBfgs(target) : SolveStepLm(target);
@@ -532,18 +712,39 @@ ControlStepResult ControlProblem::SolveStepLm(const PoseTarget& target) {
   const auto start = Clock::now();
   const int solves_before = forward_solves_;
   ControlStepResult result;
+  const StepConstraints& step_constraints = workspace_->step_constraints;
+  step_constraints.empty() ? void() : workspace_->step_constraints.Begin(forward_.controls());
+  active_.clear();
+  const bool reached = ConvergeTask(target, &result, /*report_iterations=*/true);
+  const bool constraints_hold = step_constraints.empty() || (step_constraints.MaxLateral(forward_.controls()) <= 1e-10 &&
+                                                             step_constraints.MaxLimitViolation(forward_.state()) <= 1e-10);
+  if (!constraints_hold) ProjectOntoStepConstraints(&result);
+  // Redundancy resolution once the task holds (see ControlOptions::Secondary).
+  if (options_.secondary.enabled() && reached && step_constraints.empty()) {
+    for (int it = 0; it < options_.secondary.iterations; ++it) {
+      if (!NullSpaceIteration(target, &result)) break;
+      ++result.null_space_steps;
+    }
+  }
+  if (options_.secondary.enabled()) result.secondary_objective = SecondaryObjective(target);
+  result.forward_solves = forward_solves_ - solves_before;
+  Finish(target, &result);
+  result.time_ms = Milliseconds(start);
+  return result;
+}
+
+bool ControlProblem::ConvergeTask(const PoseTarget& target, ControlStepResult* result, bool report_iterations) {
+  const auto start = Clock::now();
   const int ne = workspace_->error.size();
   Linearization lin;
   Linearize(target, &lin);
   Eigen::VectorXd r = lin.r;
-  result.rcond = lin.rcond;
-  result.singular |= lin.singular;
-  result.min_singular_value_dX_du = SmallestSingularValue(lin.J_e);
+  result->rcond = lin.rcond;
+  result->singular |= lin.singular;
+  result->min_singular_value_dX_du = SmallestSingularValueOf(lin.J_e);
   double O = 0.5 * r.squaredNorm();
   auto error_of = [&] { return ne > 0 ? r.head(ne).lpNorm<Eigen::Infinity>() : 0.0; };
   const StepConstraints& step_constraints = workspace_->step_constraints;
-  step_constraints.empty() ? void() : workspace_->step_constraints.Begin(forward_.controls());
-  active_.clear();
   auto constraints_hold = [&] {
     return step_constraints.empty() || (step_constraints.MaxLateral(forward_.controls()) <= 1e-10 &&
                                         step_constraints.MaxLimitViolation(forward_.state()) <= 1e-10);
@@ -552,29 +753,25 @@ ControlStepResult ControlProblem::SolveStepLm(const PoseTarget& target) {
     return error_of() <= 0.1 * options_.target_tolerance && forward_.Energy() <= kEnergyFloor && constraints_hold();
   };
   auto report = [&](int iteration) {
-    if (options_.on_iteration) options_.on_iteration(iteration, Milliseconds(start), O, error_of());
+    if (options_.on_iteration && report_iterations) options_.on_iteration(iteration, Milliseconds(start), O, error_of());
   };
   report(0);
   double mu = -1;
   for (int it = 0; it < options_.max_iterations && !done(); ++it) {
-    const bool accepted = LmIteration(target, lin, &O, &mu, &r, &result);
-    ++result.iterations;
+    const bool accepted = LmIteration(target, lin, &O, &mu, &r, result);
+    ++result->iterations;
     if (!accepted) break;
-    report(result.iterations);
+    report(result->iterations);
     // Converged on the new residual? Then no new linearisation is needed
     // (rcond stays that of the last one, a step of ~1e-8 away).
     if (done()) break;
     Linearize(target, &lin);
     r = lin.r;
-    result.rcond = lin.rcond;
-    result.singular |= lin.singular;
-    result.min_singular_value_dX_du = SmallestSingularValue(lin.J_e);
+    result->rcond = lin.rcond;
+    result->singular |= lin.singular;
+    result->min_singular_value_dX_du = SmallestSingularValueOf(lin.J_e);
   }
-  if (!constraints_hold()) ProjectOntoStepConstraints(&result);
-  result.forward_solves = forward_solves_ - solves_before;
-  Finish(target, &result);
-  result.time_ms = Milliseconds(start);
-  return result;
+  return error_of() <= options_.target_tolerance;
 }
 
 ControlStepResult ControlProblem::SolveStepBfgs(const PoseTarget& target) {
@@ -614,7 +811,7 @@ ControlStepResult ControlProblem::SolveStepBfgs(const PoseTarget& target) {
     Linearize(target, &lin);
     result.rcond = lin.rcond;
     result.singular = lin.singular;
-    result.min_singular_value_dX_du = SmallestSingularValue(lin.J_e);
+    result.min_singular_value_dX_du = SmallestSingularValueOf(lin.J_e);
   }
   Finish(target, &result);
   result.time_ms = Milliseconds(start);
@@ -651,8 +848,10 @@ ControlResult ControlProblem::MoveTo(
 
   ControlResult result;
   result.min_rcond = std::numeric_limits<double>::infinity();
+  result.min_singular_value_dX_du_on_path = std::numeric_limits<double>::infinity();
+  travel_origin_ = forward_.controls();
   ControlStepResult last;
-  auto account = [&](const PoseTarget& step_target, const ControlStepResult& step) {
+  auto account = [&](const PoseTarget& step_target, const ControlStepResult& step, bool turn_on_the_spot = false) {
     ++result.steps;
     result.iterations += step.iterations;
     result.forward_solves += step.forward_solves;
@@ -662,13 +861,18 @@ ControlResult ControlProblem::MoveTo(
     result.max_lateral_displacement = std::max(result.max_lateral_displacement, step.max_lateral_displacement);
     result.limited_by = step.limited_by;
     result.min_rcond = std::min(result.min_rcond, step.rcond);
+    if (!turn_on_the_spot) {  // (a turn does not linearise)
+      result.min_singular_value_dX_du_on_path =
+          std::min(result.min_singular_value_dX_du_on_path, step.min_singular_value_dX_du);
+    }
+    result.null_space_steps += step.null_space_steps;
     if (on_step) on_step(step_target, step);
     last = step;
   };
   for (int i = 1; i <= path.steps(); ++i) {
     const PoseTarget step_target = path.At(i);
     ControlStepResult turn;
-    if (TurnDifferentialBases(step_target, &turn)) account(CurrentPose(), turn);
+    if (TurnDifferentialBases(step_target, &turn)) account(CurrentPose(), turn, true);
     const ControlStepResult step = SolveStep(step_target);
     account(step_target, step);
     if (!step.reached) {
@@ -690,6 +894,8 @@ ControlResult ControlProblem::MoveTo(
   result.residual_energy = last.residual_energy;
   result.rcond = last.rcond;
   result.min_singular_value_dX_du = last.min_singular_value_dX_du;
+  if (!std::isfinite(result.min_singular_value_dX_du_on_path)) result.min_singular_value_dX_du_on_path = 0;
+  result.secondary_objective = last.secondary_objective;
   result.solve_time_ms = Milliseconds(start);
   return result;
 }

@@ -14,7 +14,10 @@
 // Redundancy: among equivalent control changes LM's damped least-squares step
 // is the one of least norm, so the bases move as little as possible from where
 // they are; BFGS starts from the identity metric and so also moves along the
-// gradient's row space only.
+// gradient's row space only. Optionally (ControlOptions::Secondary, LM only) a
+// secondary objective -- a barrier on the smallest singular value of dX/du,
+// base spread, base travel -- is then minimised in the null space of the
+// end-effector task, leaving the end-effector error unchanged.
 // Branches: every LM trial solve starts from the first-order prediction
 // s + ds/du du; a trial whose solution lands far from it (another assembly
 // branch) is rejected like a trial that does not decrease O.
@@ -55,6 +58,33 @@ struct ControlOptions {
   double target_tolerance = 1e-10;
   double finite_difference_step = 1e-6;  // [m or rad], kFiniteDifference only
   ForwardOptions forward;
+  // Singularity-aware control and redundancy resolution (issue 12; all
+  // weights 0 = off, the default). A secondary objective
+  //   Phi(u) = 1/2 |r2(u)|^2,  r2 = [sqrt(w_sigma) (sigma_0 / sigma - 1) if sigma < sigma_0;
+  //                                  sqrt(w_spread) (c - d_ij) for every base pair closer than c;
+  //                                  sqrt(w_travel) (u_eff - u_eff_start)]
+  // (sigma: smallest singular value of dX_c/du, see
+  // problems/internal/singularity.h; d_ij: horizontal distance between base
+  // origins i and j [m]; u_start: the controls when MoveTo() began) is
+  // minimised in the null space of the end-effector task: once a step has
+  // reached its target, up to `iterations` Gauss-Newton steps on Phi
+  // restricted to null(de/du) (the end-effector moves only to second order)
+  // each followed by re-converging the task; a step is kept only if the
+  // target is reached again and Phi decreased. So the end-effector error is
+  // that of the plain controller; only redundant (over-actuated) systems,
+  // with more effective controls than controlled components, have a null
+  // space to use. Not applied under step constraints (differential bases,
+  // joint limits).
+  struct Secondary {
+    double singularity_weight = 0;      // w_sigma >= 0 [1], in [0, 1e6]
+    double singularity_threshold = 0.1; // sigma_0: barrier active below [m or rad per control unit], in [1e-6, 100]
+    double spread_weight = 0;           // w_spread [1/m^2], in [0, 1e6]
+    double clearance_m = 0.5;           // c [m], in [1e-3, 100]
+    double travel_weight = 0;           // w_travel [1/(m^2 or rad^2)], in [0, 1e6]
+    int iterations = 3;                 // null-space steps per control step, in [1, 100]
+    double sigma_step = 1e-4;           // h of singularity.h's tangent-line difference [m or rad], in [1e-8, 1e-2]
+    bool enabled() const { return singularity_weight > 0 || spread_weight > 0 || travel_weight > 0; }
+  } secondary;
   // Called at the start of every step (iteration 0) and after every outer
   // iteration with the wall time since the step began [ms], the objective O
   // and the largest end-effector error [m, rad] (convergence curves).
@@ -82,6 +112,8 @@ struct ControlStepResult {
   // control unit: it falls to 0 at the edge of the workspace, where dG/ds
   // may stay well conditioned.
   double min_singular_value_dX_du = 0;
+  double secondary_objective = 0;  // Phi at the returned controls (0 when off; +inf if dG/ds failed to factorise)
+  int null_space_steps = 0;        // accepted secondary (null-space) steps
   // Inequalities and non-holonomic bases (model_format.md): the largest joint
   // limit violation [rad or m] and lateral displacement of a differential
   // base over this step [m] at the returned controls (both ~0), and the
@@ -106,6 +138,9 @@ struct ControlResult {
   double rcond = 0;                     // at the end
   double min_rcond = 0;                 // over the path
   double min_singular_value_dX_du = 0;  // at the end (see ControlStepResult)
+  double min_singular_value_dX_du_on_path = 0;  // smallest over the path's steps
+  double secondary_objective = 0;       // Phi at the end (0 when off)
+  int null_space_steps = 0;             // accepted null-space steps, all steps
   double max_limit_violation = 0;       // worst over the path's steps
   double max_lateral_displacement = 0;  // worst over the path's steps
   std::string limited_by;               // joints at a limit when it stopped
@@ -145,6 +180,16 @@ class ControlProblem {
   // ds/du (state tangent x effective controls) at the current solution, by
   // the chosen gradient method.
   Eigen::MatrixXd StateSensitivity();
+  // Smallest singular value sigma of dX_c/du at the current, solved,
+  // controls (m or rad per control unit) and, if asked, d sigma/du over the
+  // effective controls (problems/internal/singularity.h). NaN if dG/ds is
+  // singular there.
+  double SmallestSingularValue(const PoseTarget& target, Eigen::VectorXd* gradient = nullptr);
+  // The secondary objective Phi (options().secondary) at the current, solved,
+  // controls and, if asked, dPhi/du over the effective controls.
+  double SecondaryObjective(const PoseTarget& target, Eigen::VectorXd* gradient = nullptr);
+  // Where base travel is measured from (set by SetControls and MoveTo).
+  void SetTravelOrigin(const Eigen::VectorXd& u) { travel_origin_ = u; }
 
   const Eigen::VectorXd& controls() const { return forward_.controls(); }
   const std::vector<int>& effective_controls() const { return effective_; }
@@ -187,6 +232,14 @@ class ControlProblem {
   // Returns true (and fills `turn`) when they turned.
   bool TurnDifferentialBases(const PoseTarget& target, ControlStepResult* turn);
   ControlStepResult SolveStepLm(const PoseTarget& target);
+  // The LM loop on the end-effector task from the current solution (the body
+  // of SolveStepLm); returns whether it reached its inner tolerance.
+  bool ConvergeTask(const PoseTarget& target, ControlStepResult* result, bool report_iterations);
+  // r2 and dr2/du_eff (options().secondary) at the current solution.
+  void SecondaryResiduals(const PoseTarget& target, Eigen::VectorXd* r2, Eigen::MatrixXd* J2);
+  // One accepted Gauss-Newton step on Phi in the null space of de/du followed
+  // by re-converging the task, or false (state restored) if none decreased Phi.
+  bool NullSpaceIteration(const PoseTarget& target, ControlStepResult* result);
   ControlStepResult SolveStepBfgs(const PoseTarget& target);
   void Finish(const PoseTarget& target, ControlStepResult* result);
   void CheckTarget(const PoseTarget& target) const;
@@ -196,6 +249,7 @@ class ControlProblem {
   const std::vector<int> effective_;
   std::unique_ptr<Workspace> workspace_;
   std::vector<int> active_;  // joints held at a limit in the current step
+  Eigen::VectorXd travel_origin_;  // all controls; the start of base travel
   int forward_solves_ = 0;
 };
 

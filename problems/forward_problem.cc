@@ -18,6 +18,10 @@
 namespace ccma {
 namespace {
 
+// max |dE/ds| [m] that counts as stationary after the Newton polish (the
+// gradient tolerance of the Ceres path is 1e-15; the polish ends near 1e-16).
+constexpr double kPolishedGradient = 1e-14;
+
 using Clock = std::chrono::steady_clock;
 
 double MillisecondsSince(Clock::time_point start) {
@@ -48,8 +52,12 @@ ceres::Solver::Options SolverOptions(const ForwardOptions& options) {
   so.max_num_iterations = options.max_iterations;
   // Tight tolerances: a reachable assembly must end near E ~ 1e-28, and the
   // sensitivities of the control problem need dE/ds ~ 0 to machine precision.
+  // The gradient tolerance is at rounding level (|dE/ds| ~ 2e-16 at a
+  // solution): at 1e-14 Ceres stopped on 6dof_asymmetric at E ~ 2e-26, its
+  // state 1.6e-11 from the solution, and the native path (which converges to
+  // rounding level) could not be checked against it to 1e-12.
   so.function_tolerance = 1e-15;
-  so.gradient_tolerance = 1e-14;
+  so.gradient_tolerance = 1e-15;
   so.parameter_tolerance = 1e-15;
   so.initial_trust_region_radius = 1e8;  // warm starts are near-Newton steps
   so.num_threads = 1;
@@ -200,11 +208,31 @@ ForwardResult ForwardProblem::Solve(const Eigen::VectorXd& u) {
   controls_ = u;  // the control blocks alias controls_' storage
   ForwardResult result;
   bool usable = true;
+  bool polished = false;
   if (options_.solver == ForwardSolver::kNative) {
-    const SparseLmSummary summary = workspace_->lm.Solve(&state_, controls_, options_.max_iterations);
+    // Where Gauss-Newton turns linear (E > 0 at a stationary point: the
+    // trial controls of a control step, unreachable controls), the exact
+    // Newton polish takes over at once rather than after tens of linearly
+    // converging iterations; should it not reach dE/ds ~ 0, LM resumes.
+    const bool polish = options_.max_newton_polish_steps > 0;
+    SparseLmSummary summary = workspace_->lm.Solve(&state_, controls_, options_.max_iterations, polish);
+    result.iterations = summary.iterations;
+    if (summary.linear) {
+      result.residual_energy = summary.energy;
+      NewtonPolish(&result);
+      polished = true;
+      if (!(result.gradient_norm <= kPolishedGradient)) {
+        summary = workspace_->lm.Solve(&state_, controls_, options_.max_iterations - summary.iterations, false);
+        result.iterations += summary.iterations;
+        polished = false;  // the polish after LM, as without the early stop
+      } else {
+        summary.converged = true;
+        summary.energy = result.residual_energy;
+        summary.gradient_norm = result.gradient_norm;
+      }
+    }
     result.residual_energy = summary.energy;
     result.converged = summary.converged;
-    result.iterations = summary.iterations;
     result.gradient_norm = summary.gradient_norm;
     result.message = summary.converged ? "converged" : "not converged: iteration limit or no decrease";
   } else {
@@ -218,7 +246,7 @@ ForwardResult ForwardProblem::Solve(const Eigen::VectorXd& u) {
   }
   result.solve_time_ms = MillisecondsSince(start);
   result.assembled = usable && result.residual_energy < options_.assembly_tolerance;
-  if (!result.assembled && options_.max_newton_polish_steps > 0) {
+  if (!result.assembled && !polished && options_.max_newton_polish_steps > 0) {
     NewtonPolish(&result);
     result.solve_time_ms = MillisecondsSince(start);
   }

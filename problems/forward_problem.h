@@ -71,9 +71,11 @@ struct ForwardOptions {
   // kCeres only: print Ceres' per-iteration progress to stdout.
   bool log_progress = false;
   // When E stays > assembly_tolerance, Levenberg-Marquardt (Gauss-Newton)
-  // converges only linearly and stops early; up to this many Newton steps on
-  // the exact Hessian of E (as in the paper) then make dE/ds ~ 0 to machine
-  // precision, which the control sensitivities assume.
+  // converges only linearly; up to this many Newton steps on the exact
+  // Hessian of E (as in the paper) then make dE/ds ~ 0 to machine
+  // precision, which the control sensitivities assume. The native solver
+  // hands over to them as soon as its convergence turns linear (and resumes
+  // if they do not reach dE/ds ~ 0); 0 turns both off.
   int max_newton_polish_steps = 8;
   // Branch jumps in Assemble(): a sub-step whose solved state differs from
   // the first-order prediction s + ds/du du by more than

@@ -312,14 +312,19 @@ TEST(Cli, EachCommandHasItsOwnHelpWithUnits) {
   const std::map<std::string, std::vector<std::string>> flags = {
       {"check", {"model"}},
       {"simulate", {"model", "controls", "from"}},
-      {"control", {"model", "target", "controls", "method", "max_step_m", "max_step_rad", "lambda"}},
+      {"control", {"model", "target", "controls", "singularity_weight", "singularity_threshold", "secondary",
+                   "secondary_weight", "clearance_m", "method", "max_step_m", "max_step_rad", "lambda"}},
       {"trajectory", {"model", "waypoints", "out", "controls", "method", "max_step_m", "max_step_rad", "lambda"}},
       {"generate", {"agents", "kind", "out"}},
       {"bench", {"model", "all", "models_dir", "scaling", "steps", "seed", "out"}},
       {"replay", {"model", "waypoints", "out", "noise", "seed", "mocap_noise_m", "mocap_noise_rad",
                   "latency_s", "slip", "kp", "ki", "controller_hz", "max_wheel_speed", "method", "max_step_m",
                   "max_step_rad", "lambda"}},
-      {"view", {"model", "trajectory", "replay", "out"}}};
+      {"view", {"model", "trajectory", "replay", "out"}},
+      {"workspace", {"model", "out", "x", "y", "z", "roll", "pitch", "yaw", "resolution", "samples", "seed",
+                     "threads", "plot", "method", "max_step_m", "max_step_rad", "lambda"}},
+      {"design", {"model", "targets", "out", "vary", "vary_length", "max_change", "min_length", "min_singular_value",
+                  "target_tolerance", "design_iterations", "method", "max_step_m", "max_step_rad", "lambda"}}};
   for (const auto& [command, expected] : flags) {
     const ToolRun r = Ccma(command + " --help");
     ASSERT_EQ(r.status, 0) << command;

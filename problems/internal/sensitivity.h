@@ -31,8 +31,8 @@ class HessianSolver {
   // hessian_pattern() (EnergyDerivatives::H does).
   bool Factorize(const SparseColMajor& H);
   // (dG/ds)^-1 rhs, for one or many right-hand sides.
-  Eigen::VectorXd Solve(const Eigen::VectorXd& rhs) const { return ldlt_.solve(rhs); }
-  Eigen::MatrixXd Solve(const Eigen::MatrixXd& rhs) const { return ldlt_.solve(rhs); }
+  Eigen::VectorXd Solve(const Eigen::VectorXd& rhs) const { return P_.transpose() * ldlt_.solve(P_ * rhs); }
+  Eigen::MatrixXd Solve(const Eigen::MatrixXd& rhs) const { return P_.transpose() * ldlt_.solve(P_ * rhs); }
   // min pivot / max pivot of the last factorisation (see Sensitivity::rcond).
   double pivot_ratio() const { return pivot_ratio_; }
   // Whether the last factorisation succeeded (Solve and the rest are valid).
@@ -51,13 +51,21 @@ class HessianSolver {
   void ForwardSubstitute(const SparseColMajor& M, const std::vector<int>& columns, SparseFactorColumns* out) const;
   // L^-1 P v for a dense v (n).
   Eigen::VectorXd ForwardSubstitute(const Eigen::VectorXd& v) const;
+  // Two reusable result buffers for ForwardSubstitute (their row lists keep
+  // their capacity, so a control loop does not allocate after its first step).
+  SparseFactorColumns* scratch(int i) const { return &scratch_[i]; }
   // D (n), the pivots in permuted order.
   Eigen::VectorXd pivots() const { return ldlt_.vectorD(); }
 
  private:
-  Eigen::SimplicialLDLT<SparseColMajor> ldlt_;
+  // LDLT of P H P^T in natural order (upper triangle, read in place).
+  Eigen::SimplicialLDLT<SparseColMajor, Eigen::Upper, Eigen::NaturalOrdering<int>> ldlt_;
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> P_;  // fill-reducing: (P v)[P[i]] = v[i]
+  SparseColMajor permuted_;           // P H P^T, upper triangle, fixed pattern
+  std::vector<int> permuted_entry_;   // value k of H -> value of permuted_, -1 for H's upper entries
   std::vector<int> parent_;  // elimination tree of L (-1: a root), from its pattern
   mutable std::vector<int> reach_, mark_;
+  mutable SparseFactorColumns scratch_[2];
   mutable Eigen::VectorXd work_;
   double pivot_ratio_ = 0;
   bool factorized_ = false;

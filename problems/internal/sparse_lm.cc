@@ -2,225 +2,466 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <set>
 #include <stdexcept>
+
+#include <Eigen/OrderingMethods>
+#include <Eigen/SparseCore>
+
+#include "ccma/internal/pose_manifold.h"
 
 namespace ccma {
 namespace {
 
-constexpr int kMaxBlockRows = 9;           // the largest cost function (cost_functions/)
-constexpr double kInitialDamping = 1e-8;   // warm starts are near-Newton steps (Ceres: radius 1e8)
-constexpr double kMinDamping = 1e-16;
+constexpr int kT = kPoseTangentSize;
+constexpr int kA = kPoseAmbientSize;
+constexpr int kMaxBlockRows = 9;  // the largest cost function (cost_functions/)
+
+// Damping: Gauss-Newton (mu = 0) as long as its steps decrease E, which
+// they do for every warm-started step; after a rejected step Marquardt's
+// mu diag(J^T J), from kFirstDamping up by 10 per rejection, down by 10 per
+// accepted step, back to 0 below kMinDamping.
+constexpr double kFirstDamping = 1e-6;
+constexpr double kMinDamping = 1e-10;
 constexpr double kMaxDamping = 1e16;
 // Marquardt's scaling D = diag(J^T J), clamped as Ceres clamps it.
 constexpr double kMinDiagonal = 1e-6;
 constexpr double kMaxDiagonal = 1e32;
-// Stop when max |dE/ds| is below this: ~ roundoff of J^T C for reachable
-// controls (E ~ 1e-30), so that the state is exact to ~1e-14 m or rad.
-constexpr double kGradientTolerance = 1e-14;
+// Convergence, all at rounding level so that two solvers that reach it
+// agree to ~1e-13 (tests/forward_solvers_test.cc):
+//  - E at or below kEnergyFloor: |C| ~ 4e-16, the rounding of the constraint
+//    rows themselves (coordinates of order 1 m);
+//  - the next step below kStepTolerance (m or rad);
+//  - a relative decrease of E below kRelativeDecrease (a stationary point
+//    with E > 0: Gauss-Newton converges linearly there, and the Newton
+//    polish of forward_problem.cc takes over).
+constexpr double kEnergyFloor = 1e-31;
+constexpr double kStepTolerance = 1e-14;
+constexpr double kRelativeDecrease = 1e-15;
+// A step this small (m or rad) that does not lower E is rounding noise.
+constexpr double kNoiseStep = 1e-12;
+// How much faster than |dc| / |ds| a chord step contracts the error at
+// worst (measured on the paper's models: 3 to 15 times).
+constexpr double kChordSafety = 30;
+// Linear convergence (SparseLmSummary::linear): two accepted steps in a
+// row whose successor is at least kLinearContraction times as long, at a
+// steady rate (within a factor kRateSpread; the rate alternates between
+// about 0.06 and 0.15 on the paper's models pulled out of reach, while near
+// a solution it shrinks quadratically), with E above kStationaryEnergy
+// (reachable solves pass 1e-20 on their way to 1e-31 with ratios ~ 1e-3).
+constexpr double kLinearContraction = 0.05;
+constexpr double kRateSpread = 4;
+constexpr double kStationaryEnergy = 1e-20;
 
-// The value index of entry (row, col) of a compressed column-major matrix.
-int EntryIndex(const Eigen::SparseMatrix<double>& m, int row, int col) {
-  const int* begin = m.innerIndexPtr() + m.outerIndexPtr()[col];
-  const int* end = m.innerIndexPtr() + m.outerIndexPtr()[col + 1];
-  const int* it = std::lower_bound(begin, end, row);
-  return static_cast<int>(it - m.innerIndexPtr());
+double NextDamping(double mu) { return mu == 0 ? kFirstDamping : 10 * mu; }
+
+// The tangent Jacobian of one pose (Rows x 7 row-major as the cost
+// functions write it; the tangent is the left 6 columns), read in place as
+// its transpose: a column-major 6 x Rows matrix with outer stride 7. The
+// fixed-size products J_a^T J_b = T_a T_b^T then run as vectorised sums of
+// outer products (a copy into column-major Rows x 6 matrices first, and
+// products of their transposes, took twice as long).
+template <int Rows>
+using TangentTranspose = Eigen::Map<const Eigen::Matrix<double, kT, Rows>, Eigen::Unaligned, Eigen::OuterStride<kA>>;
+template <int Rows>
+using Ambient = Eigen::Map<const Eigen::Matrix<double, Rows, kA, Eigen::RowMajor>>;
+
+template <int Rows>
+void AccumulateTerm(const double* jac0, const double* jac1, Eigen::Matrix<double, kT, kT>* diag0,
+                    Eigen::Matrix<double, kT, kT>* diag1, Eigen::Matrix<double, kT, kT>* off,
+                    bool off_transposed) {
+  if (jac0 != nullptr) {
+    const TangentTranspose<Rows> T0(jac0);
+    diag0->noalias() += T0.lazyProduct(T0.transpose());
+  }
+  if (jac1 != nullptr) {
+    const TangentTranspose<Rows> T1(jac1);
+    diag1->noalias() += T1.lazyProduct(T1.transpose());
+  }
+  if (off != nullptr) {
+    const TangentTranspose<Rows> T0(jac0), T1(jac1);
+    if (off_transposed) {
+      off->noalias() += T1.lazyProduct(T0.transpose());
+    } else {
+      off->noalias() += T0.lazyProduct(T1.transpose());
+    }
+  }
+}
+
+template <int Rows>
+void GradientTerm(const double* jac, const double* c, double* g) {
+  Eigen::Map<Eigen::Matrix<double, kT, 1>>(g).noalias() +=
+      Ambient<Rows>(jac).template leftCols<kT>().transpose() * Eigen::Map<const Eigen::Matrix<double, Rows, 1>>(c);
+}
+
+// Replaces the symmetric positive definite 6 x 6 block m (lower triangle
+// read) by L^{-1}, L its Cholesky factor (lower triangular, zeros above);
+// false if m is not positive definite. Fixed-size loops the compiler
+// unrolls: Eigen's LLT and triangular solve of a 6 x 6 block went through
+// its general (blocked, dynamic) kernels and took three times as long.
+bool InvertCholeskyFactor(Eigen::Matrix<double, kT, kT>* m) {
+  Eigen::Matrix<double, kT, kT>& a = *m;
+  double L[kT][kT];
+  double inverse_diagonal[kT];
+  for (int j = 0; j < kT; ++j) {
+    double d = a(j, j);
+    for (int k = 0; k < j; ++k) d -= L[j][k] * L[j][k];
+    if (!(d > 0)) return false;  // also NaN
+    inverse_diagonal[j] = 1 / std::sqrt(d);
+    for (int i = j + 1; i < kT; ++i) {
+      double v = a(i, j);
+      for (int k = 0; k < j; ++k) v -= L[i][k] * L[j][k];
+      L[i][j] = v * inverse_diagonal[j];
+    }
+  }
+  // X = L^{-1}, row by row (each row reads only the rows above it).
+  double X[kT][kT];
+  for (int i = 0; i < kT; ++i) {
+    for (int j = 0; j < i; ++j) {
+      double v = 0;
+      for (int k = j; k < i; ++k) v -= L[i][k] * X[k][j];
+      X[i][j] = v * inverse_diagonal[i];
+    }
+    X[i][i] = inverse_diagonal[i];
+    for (int j = i + 1; j < kT; ++j) X[i][j] = 0;
+  }
+  for (int j = 0; j < kT; ++j) {
+    for (int i = 0; i < kT; ++i) a(i, j) = X[i][j];
+  }
+  return true;
 }
 
 }  // namespace
 
 SparseLevenbergMarquardt::SparseLevenbergMarquardt(const ConstraintSet& constraints)
-    : constraints_(constraints), n_(constraints.state_size()) {
-  const int bodies = n_ / kPoseTangentSize;
-  // The pattern: every body's diagonal block, and both off-diagonal blocks of
-  // every pair of bodies a constraint couples.
-  std::vector<Eigen::Triplet<double>> triplets;
-  auto add_block = [&triplets](int a, int b) {
-    for (int i = 0; i < kPoseTangentSize; ++i) {
-      for (int j = 0; j < kPoseTangentSize; ++j) {
-        triplets.emplace_back(kPoseTangentSize * a + i, kPoseTangentSize * b + j, 0.0);
-      }
-    }
-  };
-  for (int b = 0; b < bodies; ++b) add_block(b, b);
-  for (const ConstraintBlock& block : constraints_.blocks()) {
-    for (int p : block.bodies) {
-      for (int q : block.bodies) {
-        if (p != kWorld && q != kWorld && p != q) add_block(p, q);
-      }
-    }
-  }
-  jtj_.resize(n_, n_);
-  jtj_.setFromTriplets(triplets.begin(), triplets.end());
-  jtj_.makeCompressed();
-  damped_ = jtj_;
-  diagonal_.resize(n_);
-  for (int i = 0; i < n_; ++i) diagonal_[i] = EntryIndex(jtj_, i, i);
-
-  // Where each block's J_p^T J_q lands, and its Jacobian storage.
-  int offset = 0;
-  for (const ConstraintBlock& block : constraints_.blocks()) {
-    if (block.bodies.size() > 2 || block.rows > kMaxBlockRows) {
+    : constraints_(constraints), bodies_(constraints.state_size() / kT) {
+  const std::vector<ConstraintBlock>& blocks = constraints_.blocks();
+  for (const ConstraintBlock& block : blocks) {
+    if (block.bodies.size() > 2 || block.rows > kMaxBlockRows || block.rows < 1) {
       throw std::logic_error("SparseLevenbergMarquardt: a constraint of more than two bodies or 9 rows");
     }
-    jacobian_offset_.push_back(offset);
-    const int params = static_cast<int>(block.bodies.size()) + (block.control_size > 0 ? 1 : 0);
-    offset += params * kMaxBlockRows * kPoseAmbientSize;
-    std::vector<int> entries;
-    for (int p : block.bodies) {
-      for (int q : block.bodies) {
-        if (p == kWorld || q == kWorld) continue;
-        for (int i = 0; i < kPoseTangentSize; ++i) {
-          for (int j = 0; j < kPoseTangentSize; ++j) {
-            entries.push_back(EntryIndex(jtj_, kPoseTangentSize * p + i, kPoseTangentSize * q + j));
-          }
-        }
+  }
+
+  // The body graph (bodies coupled by a constraint) and its fill-reducing
+  // elimination order (AMD on the bodies_ x bodies_ pattern).
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (int b = 0; b < bodies_; ++b) triplets.emplace_back(b, b, 1.0);
+  for (const ConstraintBlock& block : blocks) {
+    if (block.bodies.size() == 2 && block.bodies[0] != kWorld && block.bodies[1] != kWorld &&
+        block.bodies[0] != block.bodies[1]) {
+      triplets.emplace_back(block.bodies[0], block.bodies[1], 1.0);
+      triplets.emplace_back(block.bodies[1], block.bodies[0], 1.0);
+    }
+  }
+  Eigen::SparseMatrix<double> graph(bodies_, bodies_);
+  graph.setFromTriplets(triplets.begin(), triplets.end());
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> order;  // order.indices()[k]: k-th body eliminated
+  Eigen::AMDOrdering<int> amd;
+  amd(graph, order);
+  position_.assign(bodies_, -1);
+  for (int k = 0; k < bodies_; ++k) position_[order.indices()[k]] = k;
+
+  // Symbolic block elimination: the rows of every column of the factor
+  // (the coupled bodies eliminated later, and the fill).
+  std::vector<std::set<int>> rows(bodies_);
+  for (int outer = 0; outer < graph.outerSize(); ++outer) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(graph, outer); it; ++it) {
+      const int i = position_[it.row()], j = position_[it.col()];
+      if (i > j) rows[j].insert(i);
+    }
+  }
+  for (int j = 0; j < bodies_; ++j) {
+    for (int a : rows[j]) {
+      for (int b : rows[j]) {
+        if (a > b) rows[b].insert(a);
       }
     }
-    pair_entries_.push_back(std::move(entries));
   }
-  jacobians_.assign(offset, 0.0);
-
-  // The fill-reducing order P (AMD) of the pattern, applied once to the
-  // pattern itself: damped_ holds P A P^T's upper triangle. Which entry of
-  // jtj_ lands where is found by permuting a matrix of entry numbers.
-  Eigen::AMDOrdering<int> amd;
-  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> inverse;
-  amd(jtj_, inverse);
-  permutation_ = inverse.inverse();
-  Eigen::SparseMatrix<double> numbers = jtj_;
-  for (int k = 0; k < numbers.nonZeros(); ++k) numbers.valuePtr()[k] = k + 1;
-  damped_.resize(n_, n_);
-  damped_.selfadjointView<Eigen::Upper>() = numbers.selfadjointView<Eigen::Lower>().twistedBy(permutation_);
-  damped_.makeCompressed();
-  permuted_entry_.assign(jtj_.nonZeros(), -1);
-  for (int k = 0; k < damped_.nonZeros(); ++k) {
-    permuted_entry_[static_cast<int>(damped_.valuePtr()[k]) - 1] = k;  // only lower entries of jtj_ map
+  // (i, j) -> block; a map per row, not a dense bodies x bodies table (a
+  // 1000-agent model has thousands of bodies).
+  std::vector<std::map<int, int>> index(bodies_);
+  for (int j = 0; j < bodies_; ++j) index[j][j] = j;
+  int count = bodies_;
+  column_start_.push_back(0);
+  for (int j = 0; j < bodies_; ++j) {
+    for (int i : rows[j]) {
+      index[i][j] = count;
+      column_row_.push_back(i);
+      column_block_.push_back(count++);
+    }
+    column_start_.push_back(static_cast<int>(column_row_.size()));
   }
-  permuted_diagonal_.resize(n_);
-  for (int i = 0; i < n_; ++i) permuted_diagonal_[i] = permuted_entry_[diagonal_[i]];
-  ldlt_.analyzePattern(damped_);  // symbolic factorisation, once
-  saved_jtj_.resize(jtj_.nonZeros());
-  permuted_g_.resize(n_);
-  permuted_ds_.resize(n_);
-  C_.resize(constraints_.num_rows());
-  g_.resize(n_);
-  ds_.resize(n_);
-  trial_ = State(bodies);
-}
+  // Right-looking updates of column j: F(a, b) -= L(a, j) L(b, j)^T for
+  // every pair of rows a >= b of column j.
+  update_start_.push_back(0);
+  for (int j = 0; j < bodies_; ++j) {
+    for (int x = column_start_[j]; x < column_start_[j + 1]; ++x) {
+      for (int y = column_start_[j]; y <= x; ++y) {
+        update_.push_back({index[column_row_[x]].at(column_row_[y]), column_block_[x], column_block_[y]});
+      }
+    }
+    update_start_.push_back(static_cast<int>(update_.size()));
+  }
+  normal_.assign(count, Block::Zero());
+  factor_.assign(count, Block::Zero());
 
-double SparseLevenbergMarquardt::Linearize(const State& s, const Eigen::VectorXd& u) {
-  std::fill(jtj_.valuePtr(), jtj_.valuePtr() + jtj_.nonZeros(), 0.0);
-  g_.setZero();
-  const std::vector<ConstraintBlock>& blocks = constraints_.blocks();
-  using Jacobian = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, kPoseAmbientSize, Eigen::RowMajor>>;
+  // Each constraint's place: its Jacobian storage and its blocks.
+  int offset = 0;
   for (size_t k = 0; k < blocks.size(); ++k) {
     const ConstraintBlock& block = blocks[k];
-    const double* params[3];
-    double* jacobians[3];
-    const int num_bodies = static_cast<int>(block.bodies.size());
-    for (int p = 0; p < num_bodies; ++p) params[p] = ConstraintSet::Pose(s, block.bodies[p]);
-    if (block.control_size > 0) params[num_bodies] = u.data() + block.control_offset;
-    const int params_count = num_bodies + (block.control_size > 0 ? 1 : 0);
-    for (int p = 0; p < params_count; ++p) {
-      jacobians[p] = jacobians_.data() + jacobian_offset_[k] + p * kMaxBlockRows * kPoseAmbientSize;
+    Term term;
+    term.block = static_cast<int>(k);
+    term.num_params = static_cast<int>(block.bodies.size()) + (block.control_size > 0 ? 1 : 0);
+    term.jacobian = offset;
+    for (size_t p = 0; p < block.bodies.size(); ++p) {
+      term.pos[p] = block.bodies[p] == kWorld ? -1 : position_[block.bodies[p]];
     }
-    double* c = C_.data() + block.row;
-    block.cost->Evaluate(params, c, jacobians);
-    const Eigen::Map<const Eigen::VectorXd> residual(c, block.rows);
-    // J_p^T C into g, and J_p^T J_q into the pattern (tangent: the left 6
-    // columns). Copied into fixed 9-row matrices, zero below the block's
-    // rows: fixed-size products are unrolled and vectorised (a dynamic row
-    // count made them ten times slower).
-    using Tangent = Eigen::Matrix<double, kMaxBlockRows, kPoseTangentSize>;
-    Tangent J[2];
-    Eigen::Matrix<double, kMaxBlockRows, 1> r = Eigen::Matrix<double, kMaxBlockRows, 1>::Zero();
-    r.head(block.rows) = residual;
-    for (int p = 0; p < num_bodies; ++p) {
-      J[p].setZero();
-      J[p].topRows(block.rows) = Jacobian(jacobians[p], block.rows, kPoseAmbientSize).leftCols<kPoseTangentSize>();
-    }
-    const int* entry = pair_entries_[k].data();
-    double* values = jtj_.valuePtr();
-    for (int p = 0; p < num_bodies; ++p) {
-      if (block.bodies[p] == kWorld) continue;
-      g_.segment<kPoseTangentSize>(kPoseTangentSize * block.bodies[p]).noalias() += J[p].transpose().lazyProduct(r);
-      for (int q = 0; q < num_bodies; ++q) {
-        if (block.bodies[q] == kWorld) continue;
-        Eigen::Matrix<double, kPoseTangentSize, kPoseTangentSize, Eigen::RowMajor> M;
-        M.noalias() = J[p].transpose().lazyProduct(J[q]);
-        for (int e = 0; e < kPoseTangentSize * kPoseTangentSize; ++e) values[entry[e]] += M.data()[e];
-        entry += kPoseTangentSize * kPoseTangentSize;
+    offset += static_cast<int>(block.bodies.size()) * block.rows * kA;
+    if (term.pos[0] >= 0 && term.pos[1] >= 0) {
+      if (term.pos[0] == term.pos[1]) {
+        throw std::logic_error("SparseLevenbergMarquardt: a constraint between a body and itself");
       }
+      const int i = std::max(term.pos[0], term.pos[1]), j = std::min(term.pos[0], term.pos[1]);
+      term.off = index[i].at(j);
+      term.off_transposed = term.pos[1] > term.pos[0];
     }
+    terms_.push_back(term);
+  }
+  jacobians_.assign(offset, 0.0);
+  C_.resize(constraints_.num_rows());
+  g_.resize(kT * bodies_);
+  ds_.resize(kT * bodies_);
+  chord_.resize(kT * bodies_);
+  trial_ = State(bodies_);
+}
+
+double SparseLevenbergMarquardt::Evaluate(const State& s, const Eigen::VectorXd& u) {
+  const std::vector<ConstraintBlock>& blocks = constraints_.blocks();
+  for (const Term& term : terms_) {
+    const ConstraintBlock& block = blocks[term.block];
+    const double* params[3];
+    double* jacobians[3] = {nullptr, nullptr, nullptr};  // none for the ground and the controls
+    const int num_bodies = static_cast<int>(block.bodies.size());
+    for (int p = 0; p < num_bodies; ++p) {
+      params[p] = ConstraintSet::Pose(s, block.bodies[p]);
+      if (term.pos[p] >= 0) jacobians[p] = jacobians_.data() + term.jacobian + p * block.rows * kA;
+    }
+    if (block.control_size > 0) params[num_bodies] = u.data() + block.control_offset;
+    block.cost->Evaluate(params, C_.data() + block.row, jacobians);
   }
   return 0.5 * C_.squaredNorm();
 }
 
-void SparseLevenbergMarquardt::Damp(double mu) {
-  double* out = damped_.valuePtr();
-  std::fill(out, out + damped_.nonZeros(), 0.0);
-  const double* in = jtj_.valuePtr();
-  for (size_t k = 0; k < permuted_entry_.size(); ++k) {
-    if (permuted_entry_[k] >= 0) out[permuted_entry_[k]] += in[k];
+void SparseLevenbergMarquardt::Gradient() {
+  g_.setZero();
+  const std::vector<ConstraintBlock>& blocks = constraints_.blocks();
+  for (const Term& term : terms_) {
+    const ConstraintBlock& block = blocks[term.block];
+    const double* c = C_.data() + block.row;
+    for (int p = 0; p < 2; ++p) {
+      if (term.pos[p] < 0) continue;
+      const double* jac = jacobians_.data() + term.jacobian + p * block.rows * kA;
+      double* g = g_.data() + kT * term.pos[p];
+      switch (block.rows) {
+        case 1: GradientTerm<1>(jac, c, g); break;
+        case 2: GradientTerm<2>(jac, c, g); break;
+        case 3: GradientTerm<3>(jac, c, g); break;
+        case 4: GradientTerm<4>(jac, c, g); break;
+        case 5: GradientTerm<5>(jac, c, g); break;
+        case 6: GradientTerm<6>(jac, c, g); break;
+        case 7: GradientTerm<7>(jac, c, g); break;
+        case 8: GradientTerm<8>(jac, c, g); break;
+        default: GradientTerm<9>(jac, c, g); break;
+      }
+    }
   }
-  // Marquardt: + mu diag(J^T J), the diagonal clamped.
-  for (int i = 0; i < n_; ++i) out[permuted_diagonal_[i]] += mu * std::clamp(in[diagonal_[i]], kMinDiagonal, kMaxDiagonal);
 }
 
-SparseLmSummary SparseLevenbergMarquardt::Solve(State* s, const Eigen::VectorXd& u, int max_iterations) {
+void SparseLevenbergMarquardt::AccumulateNormal() {
+  for (Block& b : normal_) b.setZero();
+  const std::vector<ConstraintBlock>& blocks = constraints_.blocks();
+  for (const Term& term : terms_) {
+    const ConstraintBlock& block = blocks[term.block];
+    const double* jac0 = term.pos[0] >= 0 ? jacobians_.data() + term.jacobian : nullptr;
+    const double* jac1 = term.pos[1] >= 0 ? jacobians_.data() + term.jacobian + block.rows * kA : nullptr;
+    Block* diag0 = term.pos[0] >= 0 ? &normal_[term.pos[0]] : nullptr;
+    Block* diag1 = term.pos[1] >= 0 ? &normal_[term.pos[1]] : nullptr;
+    Block* off = term.off >= 0 ? &normal_[term.off] : nullptr;
+    switch (block.rows) {
+      case 1: AccumulateTerm<1>(jac0, jac1, diag0, diag1, off, term.off_transposed); break;
+      case 2: AccumulateTerm<2>(jac0, jac1, diag0, diag1, off, term.off_transposed); break;
+      case 3: AccumulateTerm<3>(jac0, jac1, diag0, diag1, off, term.off_transposed); break;
+      case 4: AccumulateTerm<4>(jac0, jac1, diag0, diag1, off, term.off_transposed); break;
+      case 5: AccumulateTerm<5>(jac0, jac1, diag0, diag1, off, term.off_transposed); break;
+      case 6: AccumulateTerm<6>(jac0, jac1, diag0, diag1, off, term.off_transposed); break;
+      case 7: AccumulateTerm<7>(jac0, jac1, diag0, diag1, off, term.off_transposed); break;
+      case 8: AccumulateTerm<8>(jac0, jac1, diag0, diag1, off, term.off_transposed); break;
+      default: AccumulateTerm<9>(jac0, jac1, diag0, diag1, off, term.off_transposed); break;
+    }
+  }
+}
+
+bool SparseLevenbergMarquardt::Factorize(double mu) {
+  std::copy(normal_.begin(), normal_.end(), factor_.begin());
+  if (mu > 0) {
+    for (int j = 0; j < bodies_; ++j) {
+      factor_[j].diagonal() += mu * normal_[j].diagonal().cwiseMax(kMinDiagonal).cwiseMin(kMaxDiagonal);
+    }
+  }
+  // Right-looking block LL^T; the diagonal slot keeps L_jj^{-1} (lower
+  // triangular), so that both the column scaling and the substitutions are
+  // plain fixed-size products.
+  for (int j = 0; j < bodies_; ++j) {
+    if (!InvertCholeskyFactor(&factor_[j])) return false;
+    const Block inverse_transpose = factor_[j].transpose();
+    for (int k = column_start_[j]; k < column_start_[j + 1]; ++k) {
+      Block& L = factor_[column_block_[k]];
+      const Block scaled = L.lazyProduct(inverse_transpose);
+      L = scaled;
+    }
+    for (int k = update_start_[j]; k < update_start_[j + 1]; ++k) {
+      const Update& up = update_[k];
+      factor_[up.target].noalias() -= factor_[up.a].lazyProduct(factor_[up.b].transpose());
+    }
+  }
+  return true;
+}
+
+void SparseLevenbergMarquardt::SolveNegative(const Eigen::VectorXd& rhs, Eigen::VectorXd* x) const {
+  Eigen::VectorXd& y = *x;
+  y = -rhs;
+  // L y = -rhs.
+  for (int j = 0; j < bodies_; ++j) {
+    const BlockVector yj = factor_[j].lazyProduct(y.segment<kT>(kT * j));
+    y.segment<kT>(kT * j) = yj;
+    for (int k = column_start_[j]; k < column_start_[j + 1]; ++k) {
+      y.segment<kT>(kT * column_row_[k]).noalias() -= factor_[column_block_[k]].lazyProduct(yj);
+    }
+  }
+  // L^T x = y.
+  for (int j = bodies_ - 1; j >= 0; --j) {
+    BlockVector yj = y.segment<kT>(kT * j);
+    for (int k = column_start_[j]; k < column_start_[j + 1]; ++k) {
+      yj.noalias() -= factor_[column_block_[k]].transpose().lazyProduct(y.segment<kT>(kT * column_row_[k]));
+    }
+    y.segment<kT>(kT * j).noalias() = factor_[j].transpose().lazyProduct(yj);
+  }
+}
+
+void SparseLevenbergMarquardt::Plus(const State& s, const Eigen::VectorXd& ds, State* out) const {
+  const PoseManifold manifold;
+  for (int b = 0; b < bodies_; ++b) manifold.Plus(s.pose(b), ds.data() + kT * position_[b], out->pose(b));
+}
+
+// The iteration. From the state s_k (E, g = J^T C and J^T J there):
+//   ds = -(J^T J + mu D)^{-1} g, the trial s_k (+) ds evaluated (C and J);
+// accepted when E decreases. Then, before J^T J is built at the new point,
+// the next step is estimated with the factorisation just used and the
+// gradient at the new point, dc = -(J^T J + mu D)^{-1} g_new (one
+// substitution). Near a solution such a chord step leaves an error of about
+// rho |dc|, rho ~ |dc| / |ds| (times at most kChordSafety); when that is
+// below kStepTolerance, dc is taken as the last step (one evaluation, no
+// J^T J, no factorisation), otherwise a full iteration follows. So the
+// convergence stays quadratic and its last step is cheap.
+//
+// The same ratio |dc| / |ds| shows when the convergence is only linear
+// (E > 0 at a stationary point): with `stop_when_linear` the loop then
+// stops, for the caller's exact Newton steps (SparseLmSummary::linear).
+//
+// A reachable warm-started paper-size step (E ~ 1e-4 to start) typically
+// takes two Gauss-Newton steps and one chord step and ends at rounding level
+// (E ~ 1e-31), where the previous loop took three full iterations to
+// E ~ 1e-26 (|dE/ds| <= 1e-14).
+SparseLmSummary SparseLevenbergMarquardt::Solve(State* s, const Eigen::VectorXd& u, int max_iterations,
+                                                bool stop_when_linear) {
   SparseLmSummary summary;
-  double energy = Linearize(*s, u);
-  double mu = kInitialDamping;
-  while (summary.iterations < max_iterations) {
-    summary.gradient_norm = g_.lpNorm<Eigen::Infinity>();
-    if (summary.gradient_norm <= kGradientTolerance || energy == 0) {
+  double last_ratio = 0;  // |next step| / |step| of the last accepted Gauss-Newton step, 0 if none
+  double energy = Evaluate(*s, u);
+  Gradient();
+  bool have_normal = false;  // J^T J at *s in normal_
+  double mu = 0;
+  if (energy <= kEnergyFloor) summary.converged = true;
+  while (!summary.converged && summary.iterations < max_iterations) {
+    if (!have_normal) {
+      AccumulateNormal();
+      have_normal = true;
+    }
+    ++summary.iterations;
+    if (!Factorize(mu)) {
+      mu = NextDamping(mu);
+      if (mu > kMaxDamping) break;
+      continue;
+    }
+    SolveNegative(g_, &ds_);
+    const double step = ds_.lpNorm<Eigen::Infinity>();
+    // Converged if the step is at rounding level, or if the decrease it
+    // promises (the linear model's, at least -g.ds / 2) could not be told
+    // from the rounding of E (a stationary point with E > 0).
+    if (step <= kStepTolerance || -0.5 * g_.dot(ds_) <= kRelativeDecrease * energy) {
       summary.converged = true;
       break;
     }
-    // (J^T J + mu D) ds = -J^T C, D = diag(J^T J) clamped; solved as
-    // (P M P^T) (P ds) = -P g.
-    ++summary.iterations;
-    Damp(mu);
-    ldlt_.factorize(damped_);
-    if (ldlt_.info() != Eigen::Success) {
-      mu = std::min(mu * 10, kMaxDamping);
+    Plus(*s, ds_, &trial_);
+    const double trial_energy = Evaluate(trial_, u);
+    if (!(trial_energy < energy)) {
+      // Rejected: J^T J and g at *s are still in place (C_ and jacobians_
+      // now hold the trial's, which nothing reads). A tiny undamped step
+      // that does not lower E is rounding noise: converged.
+      if (mu == 0 && step <= kNoiseStep) {
+        summary.converged = true;
+        break;
+      }
+      mu = NextDamping(mu);
+      if (mu > kMaxDamping) break;
       continue;
     }
-    permuted_g_.noalias() = permutation_ * g_;
-    permuted_ds_ = ldlt_.solve(permuted_g_);
-    ds_.noalias() = permutation_.transpose() * permuted_ds_;
-    ds_ = -ds_;
-    trial_ = *s;  // same size: no allocation
-    trial_.Plus(ds_);
-    // Linearise at the trial point: its E decides, and its derivatives are
-    // the next iteration's when accepted; otherwise the saved ones return.
-    std::copy(jtj_.valuePtr(), jtj_.valuePtr() + jtj_.nonZeros(), saved_jtj_.begin());
-    saved_C_ = C_;
-    saved_g_ = g_;
-    const double trial_energy = Linearize(trial_, u);
-    if (trial_energy < energy) {
-      *s = trial_;  // a copy into the same storage: the state's addresses stay (Ceres holds them)
-      const double decrease = energy - trial_energy;
-      const bool small_step = ds_.lpNorm<Eigen::Infinity>() <= 1e-15;
-      energy = trial_energy;
-      mu = std::max(mu / 10, kMinDamping);
-      if (decrease <= 1e-15 * (energy + decrease) || small_step) {
-        summary.converged = true;
-        summary.gradient_norm = g_.lpNorm<Eigen::Infinity>();
-        break;
-      }
+    *s = trial_;  // a copy into the same storage: the state's addresses stay (Ceres holds them)
+    const double decrease = energy - trial_energy;
+    energy = trial_energy;
+    Gradient();
+    have_normal = false;
+    mu = mu / 10 < kMinDamping ? 0 : mu / 10;
+    if (energy <= kEnergyFloor || decrease <= kRelativeDecrease * (energy + decrease)) {
+      summary.converged = true;
+      break;
+    }
+    // The next step, estimated with this factorisation (one substitution).
+    SolveNegative(g_, &chord_);
+    const double next = chord_.lpNorm<Eigen::Infinity>();
+    if (next <= kStepTolerance) {
+      summary.converged = true;
+      break;
+    }
+    const double ratio = next / step;
+    if (stop_when_linear && energy > kStationaryEnergy && ratio >= kLinearContraction &&
+        last_ratio >= kLinearContraction && ratio >= last_ratio / kRateSpread && ratio <= kRateSpread * last_ratio) {
+      summary.linear = true;
+      break;
+    }
+    last_ratio = ratio;
+    // Taking the chord step instead of a full iteration leaves an error of
+    // about rho |dc|, rho ~ kChordSafety |dc| / |ds|: when that is below
+    // kStepTolerance, the chord step is the last one.
+    if (kChordSafety * next * next > kStepTolerance * step || summary.iterations >= max_iterations) continue;
+    ++summary.iterations;
+    ++summary.chord_steps;
+    Plus(*s, chord_, &trial_);
+    const double chord_energy = Evaluate(trial_, u);
+    if (chord_energy <= energy) {
+      *s = trial_;
+      energy = chord_energy;
+      Gradient();
+      summary.converged = true;
+    } else if (next <= kNoiseStep) {
+      summary.converged = true;  // rounding noise: *s and its gradient stay
     } else {
-      std::copy(saved_jtj_.begin(), saved_jtj_.end(), jtj_.valuePtr());
-      C_ = saved_C_;
-      g_ = saved_g_;
-      if (ds_.lpNorm<Eigen::Infinity>() <= 1e-15 || mu >= kMaxDamping) {
-        summary.converged = ds_.lpNorm<Eigen::Infinity>() <= 1e-15;
-        break;
-      }
-      mu = std::min(mu * 10, kMaxDamping);
+      energy = Evaluate(*s, u);  // back to *s for a full iteration
+      Gradient();
     }
   }
   summary.energy = energy;
+  summary.gradient_norm = g_.lpNorm<Eigen::Infinity>();
   return summary;
 }
 

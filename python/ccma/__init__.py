@@ -27,3 +27,5 @@ except ImportError:  # pragma: no cover - depends on the interpreter
 from ._ccma import *  # noqa: F401,F403
 from ._ccma import __version__  # noqa: F401
 from .viewer import view  # noqa: F401
+from .workspace import workspace  # noqa: F401
+from .design_sweep import design_sweep  # noqa: F401

@@ -417,6 +417,11 @@ class ControlOptions:
         target_tolerance: float = 1e-10,
         finite_difference_step: float = 1e-6,
         forward: ForwardOptions = ...,
+        singularity_weight: float = 0.0,
+        singularity_threshold: float = 0.1,
+        spread_weight: float = 0.0,
+        clearance_m: float = 0.5,
+        travel_weight: float = 0.0,
     ) -> None:
         """Defaults, overridden by the given fields, e.g. ControlOptions(method='bfgs') (unknown keyword: TypeError)."""
     @property
@@ -459,6 +464,31 @@ class ControlOptions:
         """Step of gradient='finite_difference' [m or rad] (default 1e-6)."""
     @finite_difference_step.setter
     def finite_difference_step(self, value: float) -> None: ...
+    @property
+    def singularity_weight(self) -> float:
+        """Weight of the barrier on the smallest singular value of dX/du, in the null space of the end-effector task; 0 = off (default) [1]."""
+    @singularity_weight.setter
+    def singularity_weight(self, value: float) -> None: ...
+    @property
+    def singularity_threshold(self) -> float:
+        """sigma_0: the barrier acts below this smallest singular value of dX/du [m or rad per control unit] (default 0.1)."""
+    @singularity_threshold.setter
+    def singularity_threshold(self, value: float) -> None: ...
+    @property
+    def spread_weight(self) -> float:
+        """Weight of keeping bases clearance_m apart, in the null space of the end-effector task; 0 = off (default) [1/m^2]."""
+    @spread_weight.setter
+    def spread_weight(self, value: float) -> None: ...
+    @property
+    def clearance_m(self) -> float:
+        """Horizontal base-to-base distance below which spread_weight pushes bases apart [m] (default 0.5)."""
+    @clearance_m.setter
+    def clearance_m(self, value: float) -> None: ...
+    @property
+    def travel_weight(self) -> float:
+        """Weight of least base travel from the start of move_to, in the null space of the end-effector task; 0 = off (default) [1/m^2]."""
+    @travel_weight.setter
+    def travel_weight(self, value: float) -> None: ...
     @property
     def forward(self) -> ForwardOptions:
         """ForwardOptions of the inner solves (a reference: options.forward.max_iterations = 50 works)."""
@@ -731,6 +761,45 @@ def analyze_mobility(
     rank_tolerance: float = 1e-8,
 ) -> MobilityReport:
     """Ranks of dC/ds and of the end-effector motions at a state ((num_bodies x 7), default home) and controls (default home)."""
+
+# ------------------------------------------------------------------ design ----
+
+def design_parameter_sensitivity(
+    model: Model,
+    state: ArrayLike,
+    controls: ArrayLike,
+    vary: Sequence[str] = ...,
+    vary_length: Sequence[str] = ...,
+) -> dict:
+    """ds/dp (state tangent per m), dX_EE/dp (6 x P) and dG/dp at a forward solution for the named
+    parameters ('JOINT.x', '.y', '.z', '.point'; 'ANCHOR:JOINT' lengths); keys parameters, ds_dp,
+    dX_dp, dG_dp, rcond (docs/design.md). ValueError for an unknown name or a singular dG/ds."""
+
+def evaluate_design(
+    model: Model,
+    targets: ArrayLike,
+    values: ArrayLike,
+    vary: Sequence[str] = ...,
+    vary_length: Sequence[str] = ...,
+    target_tolerance: float = 1e-6,
+) -> list[dict]:
+    """Reachability of targets (N x 6) on the model with the named parameters set to `values` [m]:
+    per target reached, error, min_singular_value, within_limits, controls (docs/design.md)."""
+
+def design(
+    model: Model,
+    targets: ArrayLike,
+    vary: Sequence[str] = ...,
+    vary_length: Sequence[str] = ...,
+    max_change: float = 0.5,
+    min_length: float = 0.02,
+    min_singular_value: float = 0.02,
+    target_tolerance: float = 1e-6,
+    max_iterations: int = 30,
+) -> dict:
+    """The design loop of `ccma design` on targets (N x 6: x, y, z [m], roll, pitch, yaw [rad]);
+    keys converged, parameters, old, new [m], iterations, targets_before, targets (per target:
+    reached, error, min_singular_value, within_limits, controls), message, model (the designed Model)."""
 
 # ------------------------------------------------------------------ replay ----
 

@@ -87,6 +87,23 @@ void BindOptions(py::module_& m) {
       .def_readwrite("target_tolerance", &ControlOptions::target_tolerance, "[m or rad]")
       .def_readwrite("finite_difference_step", &ControlOptions::finite_difference_step, "[m or rad]")
       .def_readwrite("forward", &ControlOptions::forward, "ForwardOptions of the inner solves")
+      // ControlOptions::Secondary, flattened (redundancy resolution in the
+      // null space of the end-effector task).
+      .def_property(
+          "singularity_weight", [](const ControlOptions& o) { return o.secondary.singularity_weight; },
+          [](ControlOptions& o, double v) { o.secondary.singularity_weight = v; }, "singularity barrier weight (0 = off) [1]")
+      .def_property(
+          "singularity_threshold", [](const ControlOptions& o) { return o.secondary.singularity_threshold; },
+          [](ControlOptions& o, double v) { o.secondary.singularity_threshold = v; }, "sigma_0: smallest singular value of dX/du below which the barrier acts [m or rad per control unit]")
+      .def_property(
+          "spread_weight", [](const ControlOptions& o) { return o.secondary.spread_weight; },
+          [](ControlOptions& o, double v) { o.secondary.spread_weight = v; }, "base-spread weight (0 = off) [1/m^2]")
+      .def_property(
+          "clearance_m", [](const ControlOptions& o) { return o.secondary.clearance_m; },
+          [](ControlOptions& o, double v) { o.secondary.clearance_m = v; }, "base-to-base distance below which bases are pushed apart [m]")
+      .def_property(
+          "travel_weight", [](const ControlOptions& o) { return o.secondary.travel_weight; },
+          [](ControlOptions& o, double v) { o.secondary.travel_weight = v; }, "base-travel weight (0 = off) [1/m^2]")
       .def("is_valid", [](const ControlOptions& o) {
         std::string why;
         const bool ok = o.IsValid(&why);

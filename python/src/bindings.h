@@ -22,6 +22,8 @@ void BindControl(pybind11::module_& m);    // ControlOptions, ControlProblem, pa
 void BindAnalysis(pybind11::module_& m);   // mobility
 void BindReplay(pybind11::module_& m);     // waypoints and the simulated closed loop
 void BindView(pybind11::module_& m);       // the 3D viewer's HTML
+void BindWorkspace(pybind11::module_& m);  // workspace maps (private; ccma.workspace wraps them)
+void BindDesign(pybind11::module_& m);     // design parameters: ds/dp and the design loop
 
 }  // namespace ccma::python
 

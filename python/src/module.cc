@@ -13,4 +13,6 @@ PYBIND11_MODULE(_ccma, m) {
   ccma::python::BindAnalysis(m);
   ccma::python::BindReplay(m);
   ccma::python::BindView(m);
+  ccma::python::BindDesign(m);
+  ccma::python::BindWorkspace(m);
 }

@@ -1,0 +1,158 @@
+// `ccma design --model=FILE --targets=FILE.csv --out=NEW.yaml [--vary=...] [--vary_length=...]`:
+// moves the named geometry (problems/design.h) until every target pose is
+// reachable with margin; writes the model file with only those numbers
+// changed and prints {reached, changed, converged, ...}.
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <iostream>
+#include <sstream>
+
+#include "apps/cli.h"
+#include "apps/commands.h"
+#include "apps/flags.h"
+#include "apps/json_output.h"
+#include "apps/output_file.h"
+#include "ccma/model_loader.h"
+#include "ccma/waypoints.h"
+#include "problems/design.h"
+
+DEFINE_string(targets, "", "design: target poses, waypoint CSV (docs/waypoints.md; time is ignored) [path]");
+DEFINE_string(vary, "",
+              "design: joint points to vary, comma-separated JOINT.x|JOINT.y|JOINT.z|JOINT.point "
+              "(world home coordinates) [list]");
+DEFINE_string(vary_length, "",
+              "design: link lengths to vary, comma-separated ANCHOR:JOINT (JOINT moves along the line from "
+              "ANCHOR; both on one body) [list]");
+DEFINE_double(max_change, 0.5, "design: largest change of any varied quantity, (0, 100] [m]");
+DEFINE_double(min_length, 0.02, "design: smallest allowed varied link length, (0, 100] [m]");
+DEFINE_double(min_singular_value, 0.02,
+              "design: required smallest singular value of dX/du at every target, [0, 100] [m or rad per control unit]");
+DEFINE_double(target_tolerance, 1e-6, "design: a target is reached within this, [1e-12, 1] [m or rad]");
+DEFINE_int32(design_iterations, 30, "design: outer iterations, [1, 1000] [count]");
+
+namespace ccma::cli {
+namespace {
+
+constexpr std::size_t kMaxTargets = 1000;  // each costs a control solve per design trial
+
+std::vector<std::string> SplitList(const std::string& list) {
+  std::vector<std::string> items;
+  std::stringstream in(list);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    if (!item.empty()) items.push_back(item);
+  }
+  return items;
+}
+
+std::string ReadText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+nlohmann::json TargetsJson(const std::vector<DesignTargetResult>& results, bool reached_only) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const DesignTargetResult& r : results) {
+    if (reached_only) {
+      out.push_back(r.reached);
+    } else {
+      out.push_back({{"reached", r.reached},
+                     {"error", std::isfinite(r.error) ? r.error : -1.0},
+                     {"min_singular_value", r.min_singular_value},
+                     {"within_limits", r.within_limits}});
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+int RunDesign(const std::vector<std::string>& args) {
+  ParseCommandFlags(args, "design");
+  const std::string model_path = RequireFlag(FLAGS_model, "model", "design");
+  const Model model = LoadModelOrThrow(model_path);
+  std::vector<Waypoint> waypoints;
+  try {
+    waypoints = LoadWaypoints(RequireFlag(FLAGS_targets, "targets", "design"));
+  } catch (const WaypointError& e) {
+    throw UsageError(std::string("ccma design: --targets: ") + e.what());
+  }
+  if (waypoints.empty() || waypoints.size() > kMaxTargets) {
+    throw UsageError("ccma design: --targets: between 1 and " + std::to_string(kMaxTargets) + " targets needed, got " +
+                     std::to_string(waypoints.size()));
+  }
+  const std::string out_path = RequireFlag(FLAGS_out, "out", "design");
+
+  DesignParameters params;
+  std::string why;
+  for (const std::string& item : SplitList(FLAGS_vary)) {
+    if (!AddJointCoordinates(model, item, &params, &why)) throw UsageError("--vary: " + why);
+  }
+  for (const std::string& item : SplitList(FLAGS_vary_length)) {
+    if (!AddLinkLength(model, item, &params, &why)) throw UsageError("--vary_length: " + why);
+  }
+  if (params.size() == 0) throw UsageError("ccma design: name what to vary with --vary and/or --vary_length");
+
+  DesignOptions options;
+  options.control = ControlOptionsFromFlags();
+  options.max_change = FLAGS_max_change;
+  options.min_length = FLAGS_min_length;
+  options.min_singular_value = FLAGS_min_singular_value;
+  options.target_tolerance = FLAGS_target_tolerance;
+  options.max_iterations = FLAGS_design_iterations;
+  if (!options.IsValid(&why)) throw UsageError("ccma design: " + why);
+
+  std::vector<PoseTarget> targets;
+  for (const Waypoint& w : waypoints) targets.push_back({w.position, w.rpy});
+
+  const DesignResult result = Design(model, params, targets, options);
+  const Model designed = ApplyParameters(model, params, result.p);
+  const std::string text = PatchModelText(ReadText(model_path), model, designed, params);
+  // Reachability in the model as written (loaded back from the new text).
+  const Model written = LoadModelFromString(text, out_path);
+  const std::vector<DesignTargetResult> final_check = EvaluateTargets(written, targets, options);
+  bool all_reached = true;
+  double min_sigma = std::numeric_limits<double>::infinity();
+  for (const DesignTargetResult& r : final_check) {
+    all_reached = all_reached && r.reached;
+    min_sigma = std::min(min_sigma, r.min_singular_value);
+  }
+  const bool converged = all_reached && min_sigma >= options.min_singular_value;
+
+  OutputFile file(out_path, "out");
+  file.stream() << text;
+  file.Commit();
+
+  nlohmann::json out;
+  out["model"] = model.name;
+  out["out"] = out_path;
+  out["converged"] = converged;
+  out["reached"] = TargetsJson(final_check, true);
+  out["reached_before"] = TargetsJson(result.initial, true);
+  out["targets"] = TargetsJson(final_check, false);
+  out["iterations"] = result.iterations;
+  nlohmann::json changed = nlohmann::json::array();
+  for (int k = 0; k < params.size(); ++k) {
+    changed.push_back({{"parameter", params.list[k].label}, {"old", result.p0[k]}, {"new", result.p[k]}, {"unit", "m"}});
+  }
+  out["changed"] = changed;
+  nlohmann::json points = nlohmann::json::array();
+  for (int j = 0; j < static_cast<int>(model.joints.size()); ++j) {
+    const Eigen::Vector3d a = JointPointWorld(model, j), b = JointPointWorld(designed, j);
+    if (a != b) points.push_back({{"joint", model.joints[j].name}, {"old_point", ToJson(Eigen::VectorXd(a))},
+                                  {"new_point", ToJson(Eigen::VectorXd(b))}});
+  }
+  out["changed_points"] = points;
+  if (!converged) {
+    const std::string message = result.message.empty() ? "not every target is reached with margin" : result.message;
+    out["warning"] = message;
+    std::cerr << "ccma design: warning: not converged: " << message << "\n";
+  }
+  PrintJson(out);
+  return 0;
+}
+
+}  // namespace ccma::cli

@@ -1,0 +1,158 @@
+// Design parameters (problems/design.h): ccma.design_parameter_sensitivity
+// (ds/dp, dX_EE/dp at a solved configuration) and ccma.design (the loop of
+// `ccma design`, without writing a file).
+#include <string>
+#include <vector>
+
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+#include "problems/design.h"
+#include "python/src/bindings.h"
+#include "python/src/pose_types.h"
+
+namespace py = pybind11;
+
+namespace ccma::python {
+namespace {
+
+DesignParameters ParametersFrom(const Model& model, const std::vector<std::string>& vary,
+                                const std::vector<std::string>& vary_length) {
+  DesignParameters params;
+  std::string why;
+  for (const std::string& item : vary) {
+    if (!AddJointCoordinates(model, item, &params, &why)) throw py::value_error("vary: " + why);
+  }
+  for (const std::string& item : vary_length) {
+    if (!AddLinkLength(model, item, &params, &why)) throw py::value_error("vary_length: " + why);
+  }
+  if (params.size() == 0) throw py::value_error("name what to vary (vary and/or vary_length)");
+  return params;
+}
+
+std::vector<std::string> Labels(const DesignParameters& params) {
+  std::vector<std::string> labels;
+  for (const DesignParameter& q : params.list) labels.push_back(q.label);
+  return labels;
+}
+
+py::list TargetsList(const std::vector<DesignTargetResult>& results) {
+  py::list out;
+  for (const DesignTargetResult& r : results) {
+    py::dict d;
+    d["reached"] = r.reached;
+    d["error"] = r.error;
+    d["min_singular_value"] = r.min_singular_value;
+    d["within_limits"] = r.within_limits;
+    d["controls"] = r.controls;
+    out.append(d);
+  }
+  return out;
+}
+
+}  // namespace
+
+void BindDesign(py::module_& m) {
+  using StateArray = Eigen::Matrix<double, Eigen::Dynamic, 7, Eigen::RowMajor>;
+  using TargetArray = Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::RowMajor>;
+  m.def(
+      "design_parameter_sensitivity",
+      [](const Model& model, const StateArray& state, const Eigen::VectorXd& controls,
+         const std::vector<std::string>& vary, const std::vector<std::string>& vary_length) {
+        const DesignParameters params = ParametersFrom(model, vary, vary_length);
+        const State s = StateFromArray(model, state);
+        if (controls.size() != model.num_controls()) throw py::value_error("controls: wrong size");
+        ParameterSensitivity sens;
+        bool ok = false;
+        {
+          py::gil_scoped_release release;
+          ok = ComputeParameterSensitivity(model, params, ParameterValues(model, params), s, controls, &sens);
+        }
+        if (!ok) throw py::value_error("dG/ds is singular at this configuration");
+        py::dict d;
+        d["parameters"] = Labels(params);
+        d["ds_dp"] = sens.ds_dp;
+        d["dX_dp"] = sens.dX_dp;
+        d["dG_dp"] = sens.dG_dp;
+        d["rcond"] = sens.rcond;
+        return d;
+      },
+      py::arg("model"), py::arg("state"), py::arg("controls"), py::arg("vary") = std::vector<std::string>{},
+      py::arg("vary_length") = std::vector<std::string>{},
+      "ds/dp (tangent per m), dX_EE/dp (6 x P) and dG/dp at a forward solution (state (num_bodies x 7), "
+      "controls) for the named parameters ('JOINT.x|y|z|point', 'ANCHOR:JOINT'); docs/design.md.");
+  m.def(
+      "evaluate_design",
+      [](const Model& model, const TargetArray& targets, const Eigen::VectorXd& values,
+         const std::vector<std::string>& vary, const std::vector<std::string>& vary_length,
+         double target_tolerance) {
+        const DesignParameters params = ParametersFrom(model, vary, vary_length);
+        if (values.size() != params.size() || !values.allFinite()) {
+          throw py::value_error("values: one finite number per parameter (" + std::to_string(params.size()) + ")");
+        }
+        DesignOptions options;
+        options.target_tolerance = target_tolerance;
+        std::string why;
+        if (!options.IsValid(&why)) throw py::value_error(why);
+        if (targets.rows() == 0 || !targets.allFinite()) throw py::value_error("targets: N x 6 finite numbers, N >= 1");
+        std::vector<PoseTarget> poses;
+        for (int i = 0; i < targets.rows(); ++i) {
+          poses.push_back({targets.row(i).head<3>().transpose(), targets.row(i).tail<3>().transpose()});
+        }
+        std::vector<DesignTargetResult> results;
+        {
+          py::gil_scoped_release release;
+          results = EvaluateTargets(ApplyParameters(model, params, values), poses, options);
+        }
+        return TargetsList(results);
+      },
+      py::arg("model"), py::arg("targets"), py::arg("values"), py::arg("vary") = std::vector<std::string>{},
+      py::arg("vary_length") = std::vector<std::string>{}, py::arg("target_tolerance") = 1e-6,
+      "Reachability of targets (N x 6) on the model with the named parameters set to `values` [m] (one "
+      "candidate design, no optimisation): per target reached, error, min_singular_value, within_limits, "
+      "controls.");
+  m.def(
+      "design",
+      [](const Model& model, const TargetArray& targets, const std::vector<std::string>& vary,
+         const std::vector<std::string>& vary_length, double max_change, double min_length,
+         double min_singular_value, double target_tolerance, int max_iterations) {
+        const DesignParameters params = ParametersFrom(model, vary, vary_length);
+        DesignOptions options;
+        options.max_change = max_change;
+        options.min_length = min_length;
+        options.min_singular_value = min_singular_value;
+        options.target_tolerance = target_tolerance;
+        options.max_iterations = max_iterations;
+        std::string why;
+        if (!options.IsValid(&why)) throw py::value_error(why);
+        if (targets.rows() == 0 || !targets.allFinite()) throw py::value_error("targets: N x 6 finite numbers, N >= 1");
+        std::vector<PoseTarget> poses;
+        for (int i = 0; i < targets.rows(); ++i) {
+          poses.push_back({targets.row(i).head<3>().transpose(), targets.row(i).tail<3>().transpose()});
+        }
+        DesignResult r;
+        {
+          py::gil_scoped_release release;
+          r = Design(model, params, poses, options);
+        }
+        py::dict d;
+        d["converged"] = r.converged;
+        d["parameters"] = Labels(params);
+        d["old"] = r.p0;
+        d["new"] = r.p;
+        d["iterations"] = r.iterations;
+        d["targets_before"] = TargetsList(r.initial);
+        d["targets"] = TargetsList(r.final);
+        d["message"] = r.message;
+        d["model"] = ApplyParameters(model, params, r.p);
+        return d;
+      },
+      py::arg("model"), py::arg("targets"), py::arg("vary") = std::vector<std::string>{},
+      py::arg("vary_length") = std::vector<std::string>{}, py::arg("max_change") = 0.5,
+      py::arg("min_length") = 0.02, py::arg("min_singular_value") = 0.02, py::arg("target_tolerance") = 1e-6,
+      py::arg("max_iterations") = 30,
+      "The design loop of `ccma design` (docs/design.md) on targets (N x 6: x, y, z, roll, pitch, yaw); "
+      "returns converged, parameters, old/new values [m], per-target results and the designed Model.");
+}
+
+}  // namespace ccma::python

@@ -1,0 +1,351 @@
+// Singularity-aware control and redundancy resolution (issue 12 item 2):
+// d sigma_min(dX/du)/du and the secondary objective's gradient against
+// central differences of re-solved forward problems; a wrong derivative
+// (second-order sensitivity left out) fails that check; a path that the
+// plain controller drives toward a singular pose and the singularity-aware
+// one does not, both reaching every waypoint.
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <string>
+
+#include <Eigen/SVD>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "ccma/model_loader.h"
+#include "problems/control_problem.h"
+#include "problems/internal/end_effector_error.h"
+#include "tool_run.h"
+
+namespace ccma {
+namespace {
+
+Model LoadReference(const std::string& name) {
+  return LoadModel(std::string(CCMA_MODELS_DIR) + "/" + name + ".yaml");
+}
+
+// Seeded reachable controls: those the controller finds for a seeded target
+// within 3 cm of home (a random change of every control would in general
+// not close the loops).
+Eigen::VectorXd SeededControls(const Model& m, std::mt19937& rng) {
+  std::normal_distribution<double> n;
+  ControlProblem control(m);
+  PoseTarget target = control.CurrentPose();
+  target.position += 0.06 * Eigen::Vector3d(n(rng), n(rng), n(rng)).normalized();
+  target.rpy.z() += 0.1 * n(rng);
+  const ControlResult r = control.MoveTo(target);
+  EXPECT_TRUE(r.converged) << r.warning;
+  return control.controls();
+}
+
+// The two smallest singular values of dX_c/du at the current solution: the
+// gradient of the smallest is defined (and checkable) only where they differ.
+Eigen::Vector2d TwoSmallestSingularValues(ControlProblem& control, const PoseTarget& target) {
+  const EndEffectorError error(control.forward().model());
+  Eigen::VectorXd e;
+  Eigen::MatrixXd de_ds;
+  error.Evaluate(control.forward().state(), target, &e, &de_ds);
+  const Eigen::VectorXd sv = Eigen::JacobiSVD<Eigen::MatrixXd>(de_ds * control.StateSensitivity()).singularValues();
+  return {sv[sv.size() - 1], sv[sv.size() - 2]};
+}
+
+// Central differences of f over the effective controls, Richardson-extrapolated
+// (h and h/2: error O(h^4)); f re-solves the forward problem from `base`.
+template <typename F>
+Eigen::VectorXd ResolvedGradient(ControlProblem& control, const State& base, const Eigen::VectorXd& u_base,
+                                 const F& f, double h) {
+  const std::vector<int>& effective = control.effective_controls();
+  Eigen::VectorXd g(static_cast<Eigen::Index>(effective.size()));
+  auto at = [&](int c, double t) {
+    Eigen::VectorXd u = u_base;
+    u[effective[c]] += t;
+    control.forward().SetState(base);
+    const ForwardResult r = control.forward().Solve(u);
+    EXPECT_LT(r.gradient_norm, 1e-12) << r.message << " E " << r.residual_energy;
+    return f();
+  };
+  for (size_t c = 0; c < effective.size(); ++c) {
+    const int ci = static_cast<int>(c);
+    const double d1 = (at(ci, h) - at(ci, -h)) / (2 * h);
+    const double d2 = (at(ci, h / 2) - at(ci, -h / 2)) / h;
+    g[ci] = (4 * d2 - d1) / 3;
+  }
+  control.forward().Restore(base, u_base);
+  return g;
+}
+
+// |analytic - numeric|_inf relative to |numeric|_inf.
+double RelativeMismatch(const Eigen::VectorXd& analytic, const Eigen::VectorXd& numeric) {
+  return (analytic - numeric).lpNorm<Eigen::Infinity>() / std::max(numeric.lpNorm<Eigen::Infinity>(), 1e-300);
+}
+
+class SingularityGradients : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(SingularityGradients, SigmaMinGradientMatchesResolvedForwardProblems) {
+  const Model m = LoadReference(GetParam());
+  for (int seed = 0; seed < 3; ++seed) {
+    std::mt19937 rng(seed);
+    ControlProblem control(m);
+    ASSERT_TRUE(control.SetControls(SeededControls(m, rng)).assembled);
+    const PoseTarget target = control.CurrentPose();
+    Eigen::VectorXd analytic;
+    const double sigma = control.SmallestSingularValue(target, &analytic);
+    ASSERT_TRUE(std::isfinite(sigma));
+    EXPECT_GT(sigma, 1e-3);
+    const Eigen::Vector2d smallest = TwoSmallestSingularValues(control, target);
+    EXPECT_NEAR(smallest[0], sigma, 1e-12);
+    // sigma must be simple for its gradient to exist (4dof_reduced's two
+    // smallest coincide everywhere: its three identical legs; not used here).
+    ASSERT_GT((smallest[1] - smallest[0]) / smallest[0], 1e-4) << GetParam() << " seed " << seed;
+    const State base = control.forward().state();
+    const Eigen::VectorXd u_base = control.controls();
+    const Eigen::VectorXd numeric =
+        ResolvedGradient(control, base, u_base, [&] { return control.SmallestSingularValue(target); }, 1e-4);
+    EXPECT_GT(numeric.lpNorm<Eigen::Infinity>(), 1e-3) << "a gradient this small checks nothing";
+    EXPECT_LT(RelativeMismatch(analytic, numeric), 1e-6)
+        << GetParam() << " seed " << seed << "\nanalytic " << analytic.transpose() << "\nnumeric  "
+        << numeric.transpose();
+  }
+}
+
+TEST_P(SingularityGradients, SecondaryAndFullObjectiveGradientsMatchResolvedForwardProblems) {
+  const Model m = LoadReference(GetParam());
+  std::mt19937 rng(7);
+  ControlOptions options;
+  ControlProblem probe(m);
+  ASSERT_TRUE(probe.SetControls(SeededControls(m, rng)).assembled);
+  const PoseTarget home_pose = probe.CurrentPose();
+  // Every term active: the barrier threshold above sigma, the clearance
+  // above every base distance, travel from home.
+  options.secondary.singularity_weight = 0.3;
+  options.secondary.singularity_threshold = 3 * probe.SmallestSingularValue(home_pose);
+  options.secondary.spread_weight = 2.0;
+  options.secondary.clearance_m = 5.0;
+  options.secondary.travel_weight = 1.5;
+  ControlProblem control(m, options);
+  control.SetTravelOrigin(m.home_controls());
+  ASSERT_TRUE(control.forward().Assemble(probe.controls()).assembled);
+  // A target 2 cm off, so that the end-effector term has a gradient too.
+  PoseTarget target = control.CurrentPose();
+  target.position += Eigen::Vector3d(0.02, -0.01, 0.015);
+  Eigen::VectorXd secondary, task;
+  const double phi = control.SecondaryObjective(target, &secondary);
+  control.Objective(target, &task);
+  const State base = control.forward().state();
+  const Eigen::VectorXd u_base = control.controls();
+  EXPECT_GT(phi, 0);
+  const Eigen::Vector2d smallest = TwoSmallestSingularValues(control, target);
+  ASSERT_GT((smallest[1] - smallest[0]) / smallest[0], 1e-4) << GetParam();
+  const Eigen::VectorXd secondary_numeric =
+      ResolvedGradient(control, base, u_base, [&] { return control.SecondaryObjective(target); }, 1e-4);
+  EXPECT_LT(RelativeMismatch(secondary, secondary_numeric), 1e-6)
+      << "analytic " << secondary.transpose() << "\nnumeric  " << secondary_numeric.transpose();
+  const Eigen::VectorXd full_numeric = ResolvedGradient(
+      control, base, u_base, [&] { return control.Objective(target) + control.SecondaryObjective(target); }, 1e-4);
+  EXPECT_LT(RelativeMismatch(task + secondary, full_numeric), 1e-6)
+      << "analytic " << (task + secondary).transpose() << "\nnumeric  " << full_numeric.transpose();
+}
+
+INSTANTIATE_TEST_SUITE_P(RedundantModels, SingularityGradients,
+                         ::testing::Values("4dof_complete", "6dof_symmetric", "6dof_asymmetric", "6dof_six_agents"));
+
+// The check has teeth: the tempting derivative that keeps the state fixed
+// (drops the second-order sensitivity d2s/du2, i.e. differentiates
+// A(s, u) = de/ds S at fixed s) is off by far more than the tolerance.
+TEST(SingularityGradientCheck, FailsForADerivativeWithoutSecondOrderSensitivity) {
+  const Model m = LoadReference("6dof_symmetric");
+  std::mt19937 rng(3);
+  ControlProblem control(m);
+  ASSERT_TRUE(control.SetControls(SeededControls(m, rng)).assembled);
+  const PoseTarget target = control.CurrentPose();
+  const State base = control.forward().state();
+  const Eigen::VectorXd u_base = control.controls();
+  const Eigen::VectorXd numeric =
+      ResolvedGradient(control, base, u_base, [&] { return control.SmallestSingularValue(target); }, 1e-4);
+  const std::vector<int>& effective = control.effective_controls();
+  Eigen::VectorXd frozen(static_cast<Eigen::Index>(effective.size()));
+  const double h = 1e-5;
+  for (size_t c = 0; c < effective.size(); ++c) {
+    Eigen::VectorXd u = u_base;
+    u[effective[c]] += h;
+    control.forward().Restore(base, u);
+    const double plus = control.SmallestSingularValue(target);
+    u[effective[c]] -= 2 * h;
+    control.forward().Restore(base, u);
+    frozen[static_cast<Eigen::Index>(c)] = (plus - control.SmallestSingularValue(target)) / (2 * h);
+  }
+  control.forward().Restore(base, u_base);
+  EXPECT_GT(RelativeMismatch(frozen, numeric), 1e-2) << "frozen " << frozen.transpose() << "\nnumeric "
+                                                    << numeric.transpose();
+  // And the real one passes at the same point.
+  Eigen::VectorXd analytic;
+  control.SmallestSingularValue(target, &analytic);
+  EXPECT_LT(RelativeMismatch(analytic, numeric), 1e-6);
+}
+
+TEST(SingularityOptions, AreValidated) {
+  ControlOptions o;
+  std::string why;
+  EXPECT_TRUE(o.IsValid(&why));
+  EXPECT_FALSE(o.secondary.enabled());
+  o.secondary.singularity_weight = -1;
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_NE(why.find("secondary.singularity_weight"), std::string::npos) << why;
+  o = ControlOptions();
+  o.secondary.singularity_threshold = 0;
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_NE(why.find("secondary.singularity_threshold"), std::string::npos) << why;
+  o = ControlOptions();
+  o.secondary.clearance_m = std::nan("");
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_NE(why.find("secondary.clearance_m"), std::string::npos) << why;
+  o = ControlOptions();
+  o.secondary.iterations = 0;
+  EXPECT_FALSE(o.IsValid(&why));
+  o = ControlOptions();
+  o.secondary.travel_weight = 2e6;
+  EXPECT_FALSE(o.IsValid(&why));
+}
+
+struct PathRecord {
+  ControlResult result;
+  std::vector<double> sigma;  // per step
+  std::vector<double> error;  // per step [m or rad]
+  std::vector<bool> reached;
+};
+
+PathRecord Walk(const Model& m, const ControlOptions& options, const PoseTarget& target) {
+  PathRecord record;
+  ControlProblem control(m, options);
+  record.result = control.MoveTo(target, [&](const PoseTarget&, const ControlStepResult& step) {
+    record.sigma.push_back(step.min_singular_value_dX_du);
+    record.error.push_back(step.error);
+    record.reached.push_back(step.reached);
+  });
+  return record;
+}
+
+// The demonstration: tilting the 6-DOF symmetric platform about y by
+// 0.44 rad along a straight path. The plain (least-norm) controller keeps
+// the bases where they are as far as it can; a leg runs into a singular
+// pose (sigma falls from 0.60 to 0.16 within a few steps, dG/ds singular)
+// and the path stops at step 85 of 88. With the singularity barrier
+// (sigma_0 = 0.6, just under its start) the null-space steps move the
+// bases so that sigma never falls below 0.597, and every waypoint is
+// reached as exactly as before.
+TEST(SingularityDemo, TiltedPlatformAvoidsTheSingularityThePlainControllerHits) {
+  const Model m = LoadReference("6dof_symmetric");
+  ControlProblem probe(m);
+  PoseTarget target = probe.CurrentPose();
+  const double sigma_start = probe.SmallestSingularValue(target);
+  EXPECT_NEAR(sigma_start, 0.6009, 1e-4);
+  target.rpy.y() += 0.44;
+
+  const PathRecord plain = Walk(m, ControlOptions(), target);
+  ControlOptions aware_options;
+  aware_options.secondary.singularity_weight = 1.0;
+  aware_options.secondary.singularity_threshold = 0.6;
+  const PathRecord aware = Walk(m, aware_options, target);
+
+  // Plain: near-singular, and stuck there.
+  EXPECT_FALSE(plain.result.converged);
+  EXPECT_NE(plain.result.warning.find("not reached"), std::string::npos) << plain.result.warning;
+  EXPECT_LT(plain.result.min_singular_value_dX_du_on_path, 0.3 * sigma_start);
+  EXPECT_EQ(plain.result.null_space_steps, 0);
+  // Singularity-aware: every waypoint, sigma kept.
+  ASSERT_TRUE(aware.result.converged) << aware.result.warning;
+  EXPECT_GT(aware.result.null_space_steps, 0);
+  EXPECT_GT(aware.result.min_singular_value_dX_du_on_path, 0.99 * sigma_start);
+  ASSERT_EQ(aware.sigma.size(), 88u);
+  EXPECT_DOUBLE_EQ(aware.result.min_singular_value_dX_du_on_path,
+                   *std::min_element(aware.sigma.begin(), aware.sigma.end()));
+  for (size_t i = 0; i < aware.sigma.size(); ++i) {
+    EXPECT_TRUE(aware.reached[i]) << "step " << i;
+    EXPECT_LE(aware.error[i], 1e-10) << "step " << i;
+  }
+  // End-effector error unchanged where the plain controller still reached:
+  // both within the same tolerance on every common waypoint.
+  size_t plain_reached = 0;
+  while (plain_reached < plain.reached.size() && plain.reached[plain_reached]) ++plain_reached;
+  EXPECT_GE(plain_reached, 80u);
+  for (size_t i = 0; i < plain_reached; ++i) {
+    EXPECT_LE(plain.error[i], 1e-10) << "step " << i;
+    EXPECT_LE(aware.error[i], 1e-10) << "step " << i;
+  }
+}
+
+// Keeping bases apart: with a clearance above their closest pair, the
+// spread term pushes that pair apart in the null space, and the
+// end-effector still reaches its target.
+TEST(SecondaryObjective, SpreadKeepsBasesApartAtTheSameEndEffectorPose) {
+  const Model m = LoadReference("6dof_six_agents");
+  auto closest_pair = [&](const Eigen::VectorXd& u) {
+    double closest = 1e300;
+    for (int i = 0; i < m.num_bases(); ++i) {
+      for (int j = i + 1; j < m.num_bases(); ++j) {
+        closest = std::min(closest, std::hypot(u[3 * i] - u[3 * j], u[3 * i + 1] - u[3 * j + 1]));
+      }
+    }
+    return closest;
+  };
+  const double home = closest_pair(m.home_controls());
+  ControlProblem plain(m);
+  PoseTarget target = plain.CurrentPose();
+  target.position += Eigen::Vector3d(0.03, -0.02, 0.02);
+  const ControlResult plain_result = plain.MoveTo(target);
+  ControlOptions options;
+  options.secondary.spread_weight = 100;
+  options.secondary.clearance_m = home + 0.1;
+  ControlProblem spread(m, options);
+  const ControlResult spread_result = spread.MoveTo(target);
+  ASSERT_TRUE(plain_result.converged) << plain_result.warning;
+  ASSERT_TRUE(spread_result.converged) << spread_result.warning;
+  EXPECT_LE(spread_result.error, 1e-10);
+  EXPECT_GT(spread_result.null_space_steps, 0);
+  const double plain_closest = closest_pair(plain.controls());
+  const double spread_closest = closest_pair(spread.controls());
+  EXPECT_GT(spread_closest, plain_closest + 0.02);
+  // Reassembled independently from home, the spread controls put the
+  // end-effector on target.
+  ForwardProblem check(m);
+  ASSERT_TRUE(check.Assemble(spread.controls()).assembled);
+  EXPECT_LT((check.end_effector().position - target.position).lpNorm<Eigen::Infinity>(), 1e-9);
+}
+
+// The CLI: the demonstration through `ccma control`, and its flags checked.
+TEST(SingularityCli, ControlFlagsReachTheTiltedTargetAndReportSigmaOnThePath) {
+  const std::string model = std::string(CCMA_MODELS_DIR) + "/6dof_symmetric.yaml";
+  const testing::ToolRun plain = testing::RunTool({"control", "--model=" + model, "--target=0,0,0.6,0,0.44,0"});
+  ASSERT_EQ(plain.status, 0) << plain.err;
+  const nlohmann::json p = nlohmann::json::parse(plain.out);
+  EXPECT_FALSE(p["converged"].get<bool>());
+  EXPECT_LT(p["conditioning"]["min_singular_value_dX_du_on_path"].get<double>(), 0.18);
+  EXPECT_FALSE(p.contains("secondary"));
+  const testing::ToolRun aware = testing::RunTool({"control", "--model=" + model, "--target=0,0,0.6,0,0.44,0",
+                                                   "--singularity_weight=1", "--singularity_threshold=0.6"});
+  ASSERT_EQ(aware.status, 0) << aware.err;
+  const nlohmann::json a = nlohmann::json::parse(aware.out);
+  EXPECT_TRUE(a["converged"].get<bool>());
+  EXPECT_LE(a["error"].get<double>(), 1e-10);
+  EXPECT_GT(a["conditioning"]["min_singular_value_dX_du_on_path"].get<double>(), 0.597);
+  EXPECT_GT(a["secondary"]["null_space_steps"].get<int>(), 0);
+}
+
+TEST(SingularityCli, BadSecondaryFlagsExitTwoNamingTheFlag) {
+  const std::string model = "--model=" + std::string(CCMA_MODELS_DIR) + "/6dof_symmetric.yaml";
+  for (const auto& [flag, name] : std::vector<std::pair<std::string, std::string>>{
+           {"--secondary=bogus", "--secondary"},
+           {"--singularity_weight=-1", "--singularity_weight"},
+           {"--singularity_threshold=0", "--singularity_threshold"},
+           {"--secondary_weight=nan", "--secondary_weight"},
+           {"--clearance_m=1e9", "--clearance_m"}}) {
+    const testing::ToolRun r = testing::RunTool({"control", model, "--target=0,0,0.6,0,0,0", flag});
+    EXPECT_EQ(r.status, 2) << flag;
+    EXPECT_TRUE(r.out.empty()) << flag;
+    EXPECT_NE(r.err.find(name), std::string::npos) << flag << ": " << r.err;
+  }
+}
+
+}  // namespace
+}  // namespace ccma
