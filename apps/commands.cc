@@ -41,26 +41,29 @@ const std::vector<Command>& Commands() {
       {"control",
        "ccma control --model=FILE --target=x,y,z,roll,pitch,yaw [--controls=...] [--method=lm|bfgs]\n"
        "             [--max_step_m=0.01] [--max_step_rad=0.005] [--lambda=0.5]\n"
-       "             [--singularity_weight=0] [--singularity_threshold=0.1]\n"
-       "             [--secondary=none|spread|sigma|travel] [--secondary_weight=1] [--clearance_m=0.5]",
+       "             [--singularity_weight=0] [--singularity_threshold=0.1] [--pivot_weight=0]\n"
+       "             [--pivot_threshold=0.001] [--secondary=none|spread|sigma|travel] [--secondary_weight=1]\n"
+       "             [--clearance_m=0.5]",
        "Kinematic control: finds controls that put the end-effector at the target, walking there in\n"
        "small end-effector steps from the start controls (home, or --controls). --target takes all six\n"
        "components, or only the model's controlled ones in the order x y z roll pitch yaw. Warns on\n"
        "stderr when the target is not reached, and when the returned controls, simulated from home\n"
        "(`ccma simulate --controls=...`), land on another assembly branch (reproduce the result with\n"
        "`ccma simulate --from=<this JSON>`). Redundant systems (more effective controls than\n"
-       "controlled components) can keep the smallest singular value of dX/du away from zero\n"
-       "(--singularity_weight) or keep bases apart / travel little (--secondary), in the null space of\n"
-       "the end-effector task: the end-effector error is unchanged (docs/cli.md).",
-       Concat({"model", "target", "controls", "singularity_weight", "singularity_threshold", "secondary",
-               "secondary_weight", "clearance_m"},
-              kControlFlags),
+       "controlled components) can keep the smallest singular value of dX/du (--singularity_weight)\n"
+       "and the pivot ratio of dG/ds (--pivot_weight) away from zero, or keep bases apart / travel\n"
+       "little (--secondary), in the null space of the end-effector task: the end-effector error is\n"
+       "unchanged (docs/cli.md).",
+       Concat(Concat({"model", "target", "controls"}, SecondaryFlagNames()), kControlFlags),
        RunControl},
       {"trajectory",
-       "ccma trajectory --model=FILE --waypoints=FILE.csv --out=FILE.csv [--controls=...] [control flags]",
+       "ccma trajectory --model=FILE --waypoints=FILE.csv --out=FILE.csv [--controls=...] [control flags]\n"
+       "                [singularity and secondary flags, as ccma control]",
        "Follows end-effector waypoints (docs/waypoints.md) in small control steps and writes one CSV row\n"
-       "per step (header names carry units). Stops at the first waypoint it cannot reach and warns.",
-       Concat({"model", "waypoints", "out", "controls"}, kControlFlags), RunTrajectory},
+       "per step (header names carry units). Stops at the first waypoint it cannot reach and warns.\n"
+       "Prints the conditioning along the path (smallest singular value of dX/du, pivot ratio of\n"
+       "dG/ds); the singularity barriers and secondary objectives act at every step as in ccma control.",
+       Concat(Concat({"model", "waypoints", "out", "controls"}, SecondaryFlagNames()), kControlFlags), RunTrajectory},
       {"generate", "ccma generate --agents=N [--kind=ccma|stewart_gough] --out=FILE.yaml",
        "Writes a generated model, validated before it is written: a Stewart-like CCMA with N mobile\n"
        "bases (the family of 6dof_six_agents), or with --kind=stewart_gough an N-leg UPS platform on\n"
@@ -82,15 +85,17 @@ const std::vector<Command>& Commands() {
                "latency_s", "slip", "kp", "ki", "controller_hz", "max_wheel_speed"},
               kControlFlags),
        RunReplay},
-      {"view", "ccma view --model=FILE [--trajectory=FILE.csv | --replay=DIR] --out=FILE.html",
+      {"view", "ccma view --model=FILE [--trajectory=FILE.csv | --replay=DIR | --workspace=MAP.csv] --out=FILE.html",
        "Writes one self-contained HTML page (three.js inlined; it fetches nothing) that shows the\n"
        "mechanism in 3D: links as capsules between joint points, bases as discs with a heading arrow,\n"
        "joint markers by type, the end-effector's frame, the ground grid, orbit controls. With a\n"
        "trajectory CSV (`ccma trajectory`) or a replay directory (`ccma replay`) it is animated (play,\n"
        "pause, time slider) with the end-effector's commanded and tracked paths and the bases' paths.\n"
        "Each frame is re-assembled from its controls; frames that are flagged, not assembled or reached\n"
-       "by a branch jump are marked red (and counted on stderr and in the JSON).",
-       {"model", "trajectory", "replay", "out"}, RunView},
+       "by a branch jump are marked red (and counted on stderr and in the JSON). With a workspace map\n"
+       "(`ccma workspace`, alone) the model at home under the map's end-effector positions as a point\n"
+       "cloud: reachable points coloured by sigma_min [m or rad per control unit], the others grey.",
+       {"model", "trajectory", "replay", "workspace", "out"}, RunView},
       {"workspace",
        "ccma workspace --model=FILE --out=FILE.csv [--x=lo:hi] [--y=..] [--z=..] [--roll=..] [--pitch=..] [--yaw=..]\n"
        "               [--resolution=11 | --samples=N --seed=1] [--threads=1] [--plot=DIR] [control flags]",

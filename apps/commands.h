@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "ccma/ccma.h"
 
 namespace ccma::cli {
@@ -51,6 +53,14 @@ int RunDesign(const std::vector<std::string>& args);
 // The control flags (method, max_step_m, max_step_rad, lambda) as options;
 // throws UsageError when ControlOptions::IsValid says no.
 ControlOptions ControlOptionsFromFlags();
+
+// Singularity-aware control and redundancy resolution (secondary_flags.cc):
+// the flags' names (accepted by control and trajectory),
+// their values checked and applied to options->secondary (UsageError naming
+// the flag), and the "secondary" block of the commands' JSON.
+const std::vector<std::string>& SecondaryFlagNames();
+void ApplySecondaryFlags(ControlOptions* options);
+nlohmann::json SecondaryJson(const ControlOptions::Secondary& secondary, int null_space_steps, double objective);
 
 // Loads the model, printing its warnings (unknown keys) on stderr.
 Model LoadModelOrThrow(const std::string& path);

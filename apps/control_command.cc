@@ -14,53 +14,8 @@ DEFINE_string(target, "",
               "end-effector target: x,y,z [m], roll,pitch,yaw [rad]; or only the model's controlled "
               "components, in that order [m, rad]");
 
-DEFINE_double(singularity_weight, 0,
-              "weight of the barrier keeping the smallest singular value of dX/du above "
-              "--singularity_threshold, resolved in the null space of the end-effector task; 0 = off, "
-              "0..1e6 [1]");
-DEFINE_double(singularity_threshold, 0.1,
-              "smallest singular value of dX/du below which the barrier acts, 1e-6..100 [m or rad per control unit]");
-DEFINE_string(secondary, "none",
-              "secondary objective for redundant systems, resolved in the null space of the end-effector "
-              "task: none, spread (keep bases --clearance_m apart), sigma (the singularity barrier with "
-              "--secondary_weight), travel (least base travel from the start) [none|spread|sigma|travel]");
-DEFINE_double(secondary_weight, 1.0, "weight of --secondary, 0..1e6 [1/m^2 for spread and travel, 1 for sigma]");
-DEFINE_double(clearance_m, 0.5, "--secondary=spread: distance below which bases are pushed apart, 0.001..100 [m]");
-
 namespace ccma::cli {
 namespace {
-
-// The singularity and secondary-objective flags onto `options` (each flag
-// checked and named on error).
-void ApplySecondaryFlags(ControlOptions* options) {
-  auto in = [](double v, double lo, double hi) { return v >= lo && v <= hi; };
-  if (!in(FLAGS_singularity_weight, 0, 1e6)) {
-    throw UsageError("--singularity_weight: " + FormatG(FLAGS_singularity_weight) + " must lie in [0, 1e6]");
-  }
-  if (!in(FLAGS_singularity_threshold, 1e-6, 100)) {
-    throw UsageError("--singularity_threshold: " + FormatG(FLAGS_singularity_threshold) +
-                     " must lie in [1e-6, 100] (m or rad per control unit)");
-  }
-  if (!in(FLAGS_secondary_weight, 0, 1e6)) {
-    throw UsageError("--secondary_weight: " + FormatG(FLAGS_secondary_weight) + " must lie in [0, 1e6]");
-  }
-  if (!in(FLAGS_clearance_m, 1e-3, 100)) {
-    throw UsageError("--clearance_m: " + FormatG(FLAGS_clearance_m) + " must lie in [0.001, 100] (m)");
-  }
-  ControlOptions::Secondary& s = options->secondary;
-  s.singularity_weight = FLAGS_singularity_weight;
-  s.singularity_threshold = FLAGS_singularity_threshold;
-  s.clearance_m = FLAGS_clearance_m;
-  if (FLAGS_secondary == "spread") {
-    s.spread_weight = FLAGS_secondary_weight;
-  } else if (FLAGS_secondary == "sigma") {
-    s.singularity_weight = std::max(s.singularity_weight, FLAGS_secondary_weight);
-  } else if (FLAGS_secondary == "travel") {
-    s.travel_weight = FLAGS_secondary_weight;
-  } else if (FLAGS_secondary != "none") {
-    throw UsageError("--secondary: '" + FLAGS_secondary + "' is not none, spread, sigma or travel");
-  }
-}
 
 // --target: six values, or one per controlled component (the others keep
 // their home value; they are ignored).
@@ -148,14 +103,7 @@ int RunControl(const std::vector<std::string>& args) {
                          {"min_singular_value_dX_du", result.min_singular_value_dX_du},
                          {"min_singular_value_dX_du_on_path", result.min_singular_value_dX_du_on_path}};
   if (options.secondary.enabled()) {
-    out["secondary"] = {{"null_space_steps", result.null_space_steps},
-                        {"singularity_weight", options.secondary.singularity_weight},
-                        {"singularity_threshold", options.secondary.singularity_threshold},
-                        {"spread_weight", options.secondary.spread_weight},
-                        {"clearance_m", options.secondary.clearance_m},
-                        {"travel_weight", options.secondary.travel_weight}};
-    // Phi is infinite only where dG/ds could not be factorised: no number then.
-    if (std::isfinite(result.secondary_objective)) out["secondary"]["objective"] = result.secondary_objective;
+    out["secondary"] = SecondaryJson(options.secondary, result.null_space_steps, result.secondary_objective);
   }
   out["solve_time_ms"] = result.solve_time_ms;
   out["target"] = {target.position[0], target.position[1], target.position[2],

@@ -1,7 +1,9 @@
 // `ccma trajectory --model=FILE --waypoints=FILE.csv --out=FILE.csv [control flags]`:
 // follow end-effector waypoints in small steps; one CSV row per step.
+#include <algorithm>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 
 #include "apps/cli.h"
 #include "apps/commands.h"
@@ -52,7 +54,8 @@ int RunTrajectory(const std::vector<std::string>& args) {
   const Model model = LoadModelOrThrow(RequireFlag(FLAGS_model, "model", "trajectory"));
   const std::vector<Waypoint> waypoints = WaypointsFlag("trajectory");
   const std::string out_path = RequireFlag(FLAGS_out, "out", "trajectory");
-  const ControlOptions options = ControlOptionsFromFlags();
+  ControlOptions options = ControlOptionsFromFlags();
+  ApplySecondaryFlags(&options);
   const Eigen::VectorXd start = ControlsFlagOrHome(model);
 
   ControlProblem control(model, options);
@@ -61,8 +64,18 @@ int RunTrajectory(const std::vector<std::string>& args) {
   std::ostream& csv = file.stream();
   csv << std::setprecision(17);
   WriteHeader(model, csv);
-  const TrajectoryResult result =
-      FollowWaypoints(control, waypoints, [&](const TrajectoryStep& s) { WriteRow(model, s.state, s, csv); });
+  // Conditioning along the path (steps that could not form it report 0).
+  double min_sigma = std::numeric_limits<double>::infinity();
+  double min_rcond = std::numeric_limits<double>::infinity();
+  int null_space_steps = 0;
+  double secondary_objective = 0;
+  const TrajectoryResult result = FollowWaypoints(control, waypoints, [&](const TrajectoryStep& s) {
+    WriteRow(model, s.state, s, csv);
+    min_sigma = std::min(min_sigma, s.result.min_singular_value_dX_du);
+    min_rcond = std::min(min_rcond, s.result.rcond);
+    null_space_steps += s.result.null_space_steps;
+    secondary_objective = s.result.secondary_objective;
+  });
   file.Commit();
 
   nlohmann::json out;
@@ -74,6 +87,13 @@ int RunTrajectory(const std::vector<std::string>& args) {
   out["iterations"] = result.iterations;
   out["max_residual_energy"] = result.max_residual_energy;
   out["max_error"] = result.max_error;
+  if (result.steps > 0) {
+    out["conditioning"] = {{"min_singular_value_dX_du_on_path", min_sigma},
+                           {"min_dG_ds_pivot_ratio_on_path", min_rcond}};
+  }
+  if (options.secondary.enabled()) {
+    out["secondary"] = SecondaryJson(options.secondary, null_space_steps, secondary_objective);
+  }
   out["solve_time_ms"] = result.solve_time_ms;
   out["out"] = out_path;
   out["controls"] = ToJson(control.controls());

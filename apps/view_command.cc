@@ -1,8 +1,9 @@
-// `ccma view --model=FILE [--trajectory=FILE.csv | --replay=DIR] --out=FILE.html`:
+// `ccma view --model=FILE [--trajectory=FILE.csv | --replay=DIR | --workspace=MAP.csv] --out=FILE.html`:
 // one self-contained HTML page showing the mechanism in 3D (viewer/), animated
-// along a trajectory CSV or a replay directory. Prints
-// {"out", "bytes", "frames", ...} on stdout.
+// along a trajectory CSV or a replay directory, or at home under the point
+// cloud of a workspace map. Prints {"out", "bytes", "frames", ...} on stdout.
 #include <iostream>
+#include <optional>
 
 #include <gflags/gflags.h>
 
@@ -14,9 +15,13 @@
 #include "viewer/html.h"
 #include "viewer/scene.h"
 #include "viewer/view_frames.h"
+#include "viewer/workspace_cloud.h"
 
 DEFINE_string(trajectory, "", "a CSV written by `ccma trajectory` to animate [file]");
 DEFINE_string(replay, "", "a directory written by `ccma replay` to animate [directory]");
+DEFINE_string(workspace, "",
+              "a CSV written by `ccma workspace` to draw as a point cloud over the model at home, coloured by "
+              "sigma_min [file]");
 
 namespace ccma::cli {
 
@@ -27,10 +32,19 @@ int RunView(const std::vector<std::string>& args) {
   if (!FLAGS_trajectory.empty() && !FLAGS_replay.empty()) {
     throw UsageError("ccma view: give --trajectory or --replay, not both");
   }
+  // A workspace map is drawn over the model at home: one picture, no animation.
+  if (!FLAGS_workspace.empty() && (!FLAGS_trajectory.empty() || !FLAGS_replay.empty())) {
+    throw UsageError("ccma view: --workspace goes alone, without --trajectory or --replay");
+  }
   const Model model = LoadModelOrThrow(model_path);
   std::vector<viewer::ViewFrame> frames;
+  std::optional<viewer::WorkspaceCloud> workspace;
   std::string source = "model";
   try {
+    if (!FLAGS_workspace.empty()) {
+      workspace = viewer::CloudFromWorkspaceCsv(model, FLAGS_workspace);
+      source = "workspace";
+    }
     if (!FLAGS_trajectory.empty()) {
       frames = viewer::FramesFromTrajectory(model, FLAGS_trajectory);
       source = "trajectory";
@@ -46,7 +60,7 @@ int RunView(const std::vector<std::string>& args) {
                              "found when it was built; install npm and rebuild)");
   }
   viewer::SceneSummary summary;
-  const std::string scene = viewer::BuildScene(model, frames, source, &summary);
+  const std::string scene = viewer::BuildScene(model, frames, source, &summary, workspace ? &*workspace : nullptr);
   const std::string html = viewer::ViewerHtml(scene, model.name);
   OutputFile out(out_path, "out");
   out.stream() << html;
@@ -63,6 +77,10 @@ int RunView(const std::vector<std::string>& args) {
                            {"flagged_frames", summary.flagged_frames},
                            {"not_assembled_frames", summary.not_assembled},
                            {"branch_jumps", summary.branch_jumps}};
+  if (workspace) {
+    result["workspace_points"] = summary.workspace_points;
+    result["workspace_reachable"] = summary.workspace_reachable;
+  }
   PrintJson(result);
   return 0;
 }

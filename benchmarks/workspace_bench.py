@@ -1,14 +1,14 @@
 """Workspace sampling speed: samples per second of ccma.workspace on one thread, on
 two threads and on a 2-worker Dask LocalCluster (one thread per worker process), same
-map, medians of REPS runs. Appends a section to benchmarks/RESULTS.md with --append.
+map, medians of REPS runs. Writes its section of benchmarks/RESULTS.md to
+benchmarks/results/workspace.md, which scripts/results.sh puts into RESULTS.md.
 
-    PYTHONPATH=build/python python3 benchmarks/workspace_bench.py [--append]
+    PYTHONPATH=build/python python3 benchmarks/workspace_bench.py
 """
 import os
 import pathlib
 import platform
 import statistics
-import sys
 import time
 
 import numpy as np
@@ -55,7 +55,7 @@ def main():
                 break
     except OSError:
         pass
-    text = ["", "## Workspace sampling", "",
+    text = ["## Workspace sampling", "",
             f"`benchmarks/workspace_bench.py`: `ccma.workspace` on 4dof_reduced, x in [-0.5, 0.5] m by z in "
             f"[0.4, 1.0] m, {RESOLUTION} x {RESOLUTION} = {n} samples ({int(one[2]['reachable'].sum())} reachable), "
             f"continuation in 1 cm steps; median of {REPS} runs each; all three give identical results (checked). "
@@ -70,9 +70,8 @@ def main():
                 "Larger maps and real clusters amortise it.")
     out = "\n".join(text) + "\n"
     print(out)
-    if "--append" in sys.argv:
-        with open(ROOT / "benchmarks" / "RESULTS.md", "a") as f:
-            f.write(out)
+    (ROOT / "benchmarks" / "results").mkdir(parents=True, exist_ok=True)
+    (ROOT / "benchmarks" / "results" / "workspace.md").write_text(out)
 
 
 if __name__ == "__main__":

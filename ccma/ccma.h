@@ -30,6 +30,7 @@
 #include "ccma/state.h"
 #include "ccma/waypoints.h"
 #include "problems/control_problem.h"
+#include "problems/design.h"
 #include "problems/forward_problem.h"
 #include "problems/path.h"
 #include "problems/replay.h"

@@ -19,6 +19,7 @@
 #include "ccma/rotation.h"
 #include "problems/internal/end_effector_error.h"
 #include "problems/internal/finite_differences.h"
+#include "problems/internal/pivot_ratio.h"
 #include "problems/internal/sensitivity.h"
 #include "problems/internal/singularity.h"
 #include "problems/internal/step_constraints.h"
@@ -94,6 +95,12 @@ bool ControlOptions::IsValid(std::string* why) const {
   if (!InRange(sec.singularity_threshold, 1e-6, 100)) {
     return fail("secondary.singularity_threshold must lie in [1e-6, 100] (m or rad per control unit), got " +
                 FormatG(sec.singularity_threshold));
+  }
+  if (!InRange(sec.pivot_weight, 0, 1e6)) {
+    return fail("secondary.pivot_weight must lie in [0, 1e6], got " + FormatG(sec.pivot_weight));
+  }
+  if (!InRange(sec.pivot_threshold, 1e-9, 1)) {
+    return fail("secondary.pivot_threshold must lie in [1e-9, 1], got " + FormatG(sec.pivot_threshold));
   }
   if (!InRange(sec.spread_weight, 0, 1e6)) {
     return fail("secondary.spread_weight must lie in [0, 1e6] (1/m^2), got " + FormatG(sec.spread_weight));
@@ -424,6 +431,19 @@ double ControlProblem::SmallestSingularValue(const PoseTarget& target, Eigen::Ve
   return r.sigma;
 }
 
+double ControlProblem::PivotRatio(Eigen::VectorXd* gradient) {
+  const PivotRatioResult r =
+      PivotRatioOfdGds(forward_.constraints(), forward_.state(), forward_.controls(), effective_, gradient != nullptr,
+                       options_.secondary.sigma_step, &workspace_->sigma_solver, &workspace_->sigma_derivatives);
+  if (!r.valid) {
+    if (gradient != nullptr) gradient->setConstant(static_cast<Eigen::Index>(effective_.size()),
+                                                    std::numeric_limits<double>::quiet_NaN());
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  if (gradient != nullptr) *gradient = r.gradient;
+  return r.rho;
+}
+
 void ControlProblem::SecondaryResiduals(const PoseTarget& target, Eigen::VectorXd* r2, Eigen::MatrixXd* J2) {
   const ControlOptions::Secondary& sec = options_.secondary;
   const Model& model = forward_.model();
@@ -445,6 +465,29 @@ void ControlProblem::SecondaryResiduals(const PoseTarget& target, Eigen::VectorX
     } else if (!std::isfinite(sigma)) {
       values.push_back(std::numeric_limits<double>::infinity());  // singular dG/ds: never accepted
       if (J2 != nullptr) rows.push_back(Eigen::VectorXd::Zero(k));
+    }
+  }
+  if (sec.pivot_weight > 0) {
+    // The same barrier on every pivot ratio of dG/ds below rho_0, not only
+    // the smallest: where the smallest pivot changes index, a barrier on rho
+    // alone would push up the pivot that is smallest now while another one
+    // falls to zero. A non-positive ratio (an indefinite or singular Hessian:
+    // the assembly is no strict minimum of E there) is never accepted.
+    const PivotRatioResult p =
+        PivotRatioOfdGds(forward_.constraints(), forward_.state(), u, effective_, J2 != nullptr,
+                         sec.sigma_step, &workspace_->sigma_solver, &workspace_->sigma_derivatives);
+    const double rho_0 = sec.pivot_threshold;
+    const double root = std::sqrt(sec.pivot_weight);
+    if (!p.valid || !(p.rho > 0)) {
+      values.push_back(std::numeric_limits<double>::infinity());
+      if (J2 != nullptr) rows.push_back(Eigen::VectorXd::Zero(k));
+    } else {
+      for (Eigen::Index i = 0; i < p.ratios.size(); ++i) {
+        const double rho_i = p.ratios[i];
+        if (rho_i >= rho_0) continue;
+        values.push_back(root * (rho_0 / rho_i - 1));
+        if (J2 != nullptr) rows.push_back(-root * rho_0 / (rho_i * rho_i) * p.ratio_gradients.row(i).transpose());
+      }
     }
   }
   if (sec.spread_weight > 0) {

@@ -61,10 +61,13 @@ struct ControlOptions {
   // Singularity-aware control and redundancy resolution (issue 12; all
   // weights 0 = off, the default). A secondary objective
   //   Phi(u) = 1/2 |r2(u)|^2,  r2 = [sqrt(w_sigma) (sigma_0 / sigma - 1) if sigma < sigma_0;
+  //                                  sqrt(w_rho) (rho_0 / rho_i - 1) for every pivot ratio rho_i < rho_0;
   //                                  sqrt(w_spread) (c - d_ij) for every base pair closer than c;
   //                                  sqrt(w_travel) (u_eff - u_eff_start)]
   // (sigma: smallest singular value of dX_c/du, see
-  // problems/internal/singularity.h; d_ij: horizontal distance between base
+  // problems/internal/singularity.h; rho_i: pivot i of dG/ds's LDL^T over
+  // the largest pivot, the smallest of them is the results' `rcond`, see
+  // problems/internal/pivot_ratio.h; d_ij: horizontal distance between base
   // origins i and j [m]; u_start: the controls when MoveTo() began) is
   // minimised in the null space of the end-effector task: once a step has
   // reached its target, up to `iterations` Gauss-Newton steps on Phi
@@ -78,12 +81,16 @@ struct ControlOptions {
   struct Secondary {
     double singularity_weight = 0;      // w_sigma >= 0 [1], in [0, 1e6]
     double singularity_threshold = 0.1; // sigma_0: barrier active below [m or rad per control unit], in [1e-6, 100]
+    double pivot_weight = 0;            // w_rho >= 0 [1], in [0, 1e6]
+    double pivot_threshold = 1e-3;      // rho_0: barrier active below [1], in [1e-9, 1]
     double spread_weight = 0;           // w_spread [1/m^2], in [0, 1e6]
     double clearance_m = 0.5;           // c [m], in [1e-3, 100]
     double travel_weight = 0;           // w_travel [1/(m^2 or rad^2)], in [0, 1e6]
     int iterations = 3;                 // null-space steps per control step, in [1, 100]
-    double sigma_step = 1e-4;           // h of singularity.h's tangent-line difference [m or rad], in [1e-8, 1e-2]
-    bool enabled() const { return singularity_weight > 0 || spread_weight > 0 || travel_weight > 0; }
+    double sigma_step = 1e-4;           // h of the tangent-line differences (singularity.h, pivot_ratio.h) [m or rad], in [1e-8, 1e-2]
+    bool enabled() const {
+      return singularity_weight > 0 || pivot_weight > 0 || spread_weight > 0 || travel_weight > 0;
+    }
   } secondary;
   // Called at the start of every step (iteration 0) and after every outer
   // iteration with the wall time since the step began [ms], the objective O
@@ -185,6 +192,10 @@ class ControlProblem {
   // effective controls (problems/internal/singularity.h). NaN if dG/ds is
   // singular there.
   double SmallestSingularValue(const PoseTarget& target, Eigen::VectorXd* gradient = nullptr);
+  // Pivot ratio rho of dG/ds (the results' `rcond`, dimensionless) at the
+  // current, solved, controls and, if asked, d rho/du over the effective
+  // controls (problems/internal/pivot_ratio.h). NaN if dG/ds did not factorise.
+  double PivotRatio(Eigen::VectorXd* gradient = nullptr);
   // The secondary objective Phi (options().secondary) at the current, solved,
   // controls and, if asked, dPhi/du over the effective controls.
   double SecondaryObjective(const PoseTarget& target, Eigen::VectorXd* gradient = nullptr);

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Reproduces benchmarks/RESULTS.md and its plots (benchmarks/results/) with
-# `ccma bench`: the five reference models, then the scaling study.
+# `ccma bench`: the five reference models, then the scaling study; the sections
+# "Against Simbody" and "Workspace sampling" come from benchmarks/results/simbody.md
+# (scripts/simbody_bench.sh) and workspace.md (benchmarks/workspace_bench.py).
 #   scripts/results.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -124,6 +126,11 @@ folds the legs, all three iterate, and the ratios compare solvers doing real wor
 `scripts/simbody_bench.sh` (installs `libsimbody-dev` if missing, builds `simbody_benchmark`,
 writes `benchmarks/results/simbody.md` and `.json`), then `scripts/results.sh`.
 TEXT
+  fi
+  # Workspace sampling speed (benchmarks/workspace_bench.py), when it has been run.
+  if [[ -f "$out/workspace.md" ]]; then
+    echo
+    cat "$out/workspace.md"
   fi
 } > benchmarks/RESULTS.md
 echo "wrote benchmarks/RESULTS.md"

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The README's viewer screenshots: `ccma view` of every bundled model and of a
-# replay, opened in headless Chromium by the browser test, which also checks
+# The README's viewer screenshots: `ccma view` of every bundled model, of a
+# replay and of a workspace map (a few seconds of `ccma workspace`), opened in headless Chromium by the browser test, which also checks
 # each page (no console error, no request, the mechanism drawn) before saving
 # docs/images/view_<name>.png. Needs a build (scripts/setup.sh) and chromium.
 #   scripts/screenshots.sh
@@ -21,3 +21,10 @@ done
 node viewer/js/test/browser_test.mjs --html "$out/replay.html" --expect-animation \
   --screenshot docs/images/view_replay_4dof_reduced.png --screenshot-frame 200 > /dev/null
 echo "screenshots: docs/images/view_replay_4dof_reduced.png"
+"$build"/apps/ccma workspace --model=models/4dof_reduced.yaml --x=-0.5:0.5 --y=-0.5:0.5 --z=0.4:1.0 \
+  --resolution=13 --threads=2 --out="$out/workspace.csv" > /dev/null
+"$build"/apps/ccma view --model=models/4dof_reduced.yaml --workspace="$out/workspace.csv" \
+  --out="$out/workspace.html" > /dev/null
+node viewer/js/test/browser_test.mjs --html "$out/workspace.html" \
+  --screenshot docs/images/view_workspace_4dof_reduced.png > /dev/null
+echo "screenshots: docs/images/view_workspace_4dof_reduced.png"

@@ -6,6 +6,7 @@
 // one does not, both reaching every waypoint.
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <random>
 #include <string>
 
@@ -120,6 +121,8 @@ TEST_P(SingularityGradients, SecondaryAndFullObjectiveGradientsMatchResolvedForw
   // above every base distance, travel from home.
   options.secondary.singularity_weight = 0.3;
   options.secondary.singularity_threshold = 3 * probe.SmallestSingularValue(home_pose);
+  options.secondary.pivot_weight = 0.2;
+  options.secondary.pivot_threshold = 3 * probe.PivotRatio();
   options.secondary.spread_weight = 2.0;
   options.secondary.clearance_m = 5.0;
   options.secondary.travel_weight = 1.5;
@@ -137,18 +140,86 @@ TEST_P(SingularityGradients, SecondaryAndFullObjectiveGradientsMatchResolvedForw
   EXPECT_GT(phi, 0);
   const Eigen::Vector2d smallest = TwoSmallestSingularValues(control, target);
   ASSERT_GT((smallest[1] - smallest[0]) / smallest[0], 1e-4) << GetParam();
+  // A smaller difference step than elsewhere: the pivot barrier rho_0 / rho
+  // changes by several per cent over 1e-4 (rho ~ 2e-3), and the reference's
+  // O(h^4) truncation would then reach 1e-6 on its own.
+  const double h = 3e-5;
   const Eigen::VectorXd secondary_numeric =
-      ResolvedGradient(control, base, u_base, [&] { return control.SecondaryObjective(target); }, 1e-4);
+      ResolvedGradient(control, base, u_base, [&] { return control.SecondaryObjective(target); }, h);
   EXPECT_LT(RelativeMismatch(secondary, secondary_numeric), 1e-6)
       << "analytic " << secondary.transpose() << "\nnumeric  " << secondary_numeric.transpose();
   const Eigen::VectorXd full_numeric = ResolvedGradient(
-      control, base, u_base, [&] { return control.Objective(target) + control.SecondaryObjective(target); }, 1e-4);
+      control, base, u_base, [&] { return control.Objective(target) + control.SecondaryObjective(target); }, h);
   EXPECT_LT(RelativeMismatch(task + secondary, full_numeric), 1e-6)
       << "analytic " << (task + secondary).transpose() << "\nnumeric  " << full_numeric.transpose();
 }
 
 INSTANTIATE_TEST_SUITE_P(RedundantModels, SingularityGradients,
                          ::testing::Values("4dof_complete", "6dof_symmetric", "6dof_asymmetric", "6dof_six_agents"));
+
+// The pivot ratio rho of dG/ds (problems/internal/pivot_ratio.h) and its
+// gradient along the solution curve, on every kind of bundled mechanism
+// (it needs no redundancy): the value is the control results' rcond, the
+// gradient matches re-solved central differences.
+class PivotRatioGradients : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(PivotRatioGradients, MatchResolvedForwardProblems) {
+  const Model m = LoadReference(GetParam());
+  for (int seed = 0; seed < 3; ++seed) {
+    std::mt19937 rng(100 + seed);
+    ControlProblem control(m);
+    ASSERT_TRUE(control.SetControls(SeededControls(m, rng)).assembled);
+    Eigen::VectorXd analytic;
+    const double rho = control.PivotRatio(&analytic);
+    ASSERT_TRUE(std::isfinite(rho));
+    EXPECT_GT(rho, 1e-5) << GetParam();
+    EXPECT_LT(rho, 1.0);
+    const ControlStepResult here = control.SolveStep(control.CurrentPose());  // rcond as the results report it
+    EXPECT_NEAR(here.rcond, rho, 1e-9 * rho);
+    const State base = control.forward().state();
+    const Eigen::VectorXd u_base = control.controls();
+    const Eigen::VectorXd numeric =
+        ResolvedGradient(control, base, u_base, [&] { return control.PivotRatio(); }, 1e-4);
+    EXPECT_GT(numeric.lpNorm<Eigen::Infinity>(), 1e-3 * rho) << "a gradient this small checks nothing";
+    EXPECT_LT(RelativeMismatch(analytic, numeric), 1e-6)
+        << GetParam() << " seed " << seed << "\nanalytic " << analytic.transpose() << "\nnumeric  "
+        << numeric.transpose();
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(BundledModels, PivotRatioGradients,
+                         ::testing::Values("4dof_reduced", "4dof_complete", "6dof_symmetric", "6dof_six_agents",
+                                           "stewart_gough_6ups", "planar_3rpr", "hybrid_ccma"));
+
+// The pivot-ratio check has teeth too: differentiating rho(H(s, u)) at a
+// fixed state (no ds/du) misses most of the derivative.
+TEST(PivotRatioGradientCheck, FailsForADerivativeAtAFixedState) {
+  const Model m = LoadReference("6dof_six_agents");
+  std::mt19937 rng(5);
+  ControlProblem control(m);
+  ASSERT_TRUE(control.SetControls(SeededControls(m, rng)).assembled);
+  const State base = control.forward().state();
+  const Eigen::VectorXd u_base = control.controls();
+  const Eigen::VectorXd numeric = ResolvedGradient(control, base, u_base, [&] { return control.PivotRatio(); }, 1e-4);
+  const std::vector<int>& effective = control.effective_controls();
+  Eigen::VectorXd frozen(static_cast<Eigen::Index>(effective.size()));
+  const double h = 1e-5;
+  for (size_t c = 0; c < effective.size(); ++c) {
+    Eigen::VectorXd u = u_base;
+    u[effective[c]] += h;
+    control.forward().Restore(base, u);
+    const double plus = control.PivotRatio();
+    u[effective[c]] -= 2 * h;
+    control.forward().Restore(base, u);
+    frozen[static_cast<Eigen::Index>(c)] = (plus - control.PivotRatio()) / (2 * h);
+  }
+  control.forward().Restore(base, u_base);
+  EXPECT_GT(RelativeMismatch(frozen, numeric), 1e-2) << "frozen " << frozen.transpose() << "\nnumeric "
+                                                    << numeric.transpose();
+  Eigen::VectorXd analytic;
+  control.PivotRatio(&analytic);
+  EXPECT_LT(RelativeMismatch(analytic, numeric), 1e-6);
+}
 
 // The check has teeth: the tempting derivative that keeps the state fixed
 // (drops the second-order sensitivity d2s/du2, i.e. differentiates
@@ -206,6 +277,17 @@ TEST(SingularityOptions, AreValidated) {
   o = ControlOptions();
   o.secondary.travel_weight = 2e6;
   EXPECT_FALSE(o.IsValid(&why));
+  o = ControlOptions();
+  o.secondary.pivot_weight = std::nan("");
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_NE(why.find("secondary.pivot_weight"), std::string::npos) << why;
+  o = ControlOptions();
+  o.secondary.pivot_threshold = 2;
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_NE(why.find("secondary.pivot_threshold"), std::string::npos) << why;
+  o = ControlOptions();
+  o.secondary.pivot_weight = 1;
+  EXPECT_TRUE(o.secondary.enabled());
 }
 
 struct PathRecord {
@@ -275,6 +357,39 @@ TEST(SingularityDemo, TiltedPlatformAvoidsTheSingularityThePlainControllerHits) 
   }
 }
 
+// The second figure: the sigma barrier alone keeps the end-effector
+// Jacobian regular on that path but lets the bases wander where dG/ds
+// itself degenerates (a leg's constraint Jacobian loses rank: the pivot
+// ratio touches 1e-10 around the middle of the path; ds/du is unbounded
+// there). Adding the pivot-ratio barrier (rho_0 = 0.002, under the 0.0029
+// at home) keeps both: rho stays above 1.5e-3 and sigma above 0.597, every
+// step reached as exactly.
+TEST(SingularityDemo, PivotBarrierKeepsdGdsRegularWhereTheSigmaBarrierAloneDoesNot) {
+  const Model m = LoadReference("6dof_symmetric");
+  ControlProblem probe(m);
+  PoseTarget target = probe.CurrentPose();
+  EXPECT_NEAR(probe.PivotRatio(), 0.0029, 1e-4);
+  target.rpy.y() += 0.44;
+  ControlOptions sigma_only;
+  sigma_only.secondary.singularity_weight = 1.0;
+  sigma_only.secondary.singularity_threshold = 0.6;
+  ControlOptions both = sigma_only;
+  both.secondary.pivot_weight = 1.0;
+  both.secondary.pivot_threshold = 0.002;
+  const PathRecord a = Walk(m, sigma_only, target);
+  const PathRecord b = Walk(m, both, target);
+  ASSERT_TRUE(a.result.converged) << a.result.warning;
+  ASSERT_TRUE(b.result.converged) << b.result.warning;
+  EXPECT_LT(a.result.min_rcond, 1e-6);
+  EXPECT_GT(b.result.min_rcond, 1.5e-3);
+  EXPECT_GT(b.result.min_singular_value_dX_du_on_path, 0.597);
+  ASSERT_EQ(b.error.size(), 88u);
+  for (size_t i = 0; i < b.error.size(); ++i) {
+    EXPECT_TRUE(b.reached[i]) << "step " << i;
+    EXPECT_LE(b.error[i], 1e-10) << "step " << i;
+  }
+}
+
 // Keeping bases apart: with a clearance above their closest pair, the
 // spread term pushes that pair apart in the null space, and the
 // end-effector still reaches its target.
@@ -332,6 +447,29 @@ TEST(SingularityCli, ControlFlagsReachTheTiltedTargetAndReportSigmaOnThePath) {
   EXPECT_GT(a["secondary"]["null_space_steps"].get<int>(), 0);
 }
 
+// `ccma trajectory` takes the same flags and reports the conditioning along
+// the path: the tilt as one waypoint, both barriers on.
+TEST(SingularityCli, TrajectoryTakesTheBarriersAndReportsConditioning) {
+  const std::string model = std::string(CCMA_MODELS_DIR) + "/6dof_symmetric.yaml";
+  const std::string waypoints = ::testing::TempDir() + "/tilt_waypoints.csv";
+  {
+    std::ofstream f(waypoints);
+    f << "time,x,y,z,roll,pitch,yaw\n0,0,0,0.6,0,0,0\n1,0,0,0.6,0,0.44,0\n";
+  }
+  const std::string out = ::testing::TempDir() + "/tilt_trajectory.csv";
+  const testing::ToolRun r = testing::RunTool({"trajectory", "--model=" + model, "--waypoints=" + waypoints,
+                                               "--out=" + out, "--singularity_weight=1", "--singularity_threshold=0.6",
+                                               "--pivot_weight=1", "--pivot_threshold=0.002"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j["converged"].get<bool>());
+  EXPECT_LE(j["max_error"].get<double>(), 1e-10);
+  EXPECT_GT(j["conditioning"]["min_singular_value_dX_du_on_path"].get<double>(), 0.597);
+  EXPECT_GT(j["conditioning"]["min_dG_ds_pivot_ratio_on_path"].get<double>(), 1.5e-3);
+  EXPECT_GT(j["secondary"]["null_space_steps"].get<int>(), 0);
+  EXPECT_DOUBLE_EQ(j["secondary"]["pivot_threshold"].get<double>(), 0.002);
+}
+
 TEST(SingularityCli, BadSecondaryFlagsExitTwoNamingTheFlag) {
   const std::string model = "--model=" + std::string(CCMA_MODELS_DIR) + "/6dof_symmetric.yaml";
   for (const auto& [flag, name] : std::vector<std::pair<std::string, std::string>>{
@@ -339,7 +477,9 @@ TEST(SingularityCli, BadSecondaryFlagsExitTwoNamingTheFlag) {
            {"--singularity_weight=-1", "--singularity_weight"},
            {"--singularity_threshold=0", "--singularity_threshold"},
            {"--secondary_weight=nan", "--secondary_weight"},
-           {"--clearance_m=1e9", "--clearance_m"}}) {
+           {"--clearance_m=1e9", "--clearance_m"},
+           {"--pivot_weight=-3", "--pivot_weight"},
+           {"--pivot_threshold=inf", "--pivot_threshold"}}) {
     const testing::ToolRun r = testing::RunTool({"control", model, "--target=0,0,0.6,0,0,0", flag});
     EXPECT_EQ(r.status, 2) << flag;
     EXPECT_TRUE(r.out.empty()) << flag;

@@ -2,7 +2,8 @@
 #  1. a page whose scene is not valid (the viewer reports it; console error);
 #  2. a valid page that also asks for a remote image (a network request;
 #     the page's CSP blocks it, the test still sees the attempt);
-#  3. a valid page whose mechanism is never drawn (bodies hidden by a script).
+#  3. a valid page whose mechanism is never drawn (bodies hidden by a script);
+#  4. a valid workspace page whose cloud is never drawn (hidden by a script).
 #   cmake -DNODE=.. -DTEST_JS=.. -DBUNDLE=.. -DTOOL=.. -DMODEL=.. -DWORK=.. -P this
 cmake_minimum_required(VERSION 3.16)
 file(MAKE_DIRECTORY "${WORK}")
@@ -20,7 +21,26 @@ file(WRITE "${WORK}/remote.html" "${remote}")
 string(REPLACE "</body>" "<script>window.ccmaView.showMechanism(false); window.ccmaView.showMechanism = () => {};</script></body>" hidden "${good}")
 # (The CSP allows inline scripts, so this one runs after the viewer's.)
 file(WRITE "${WORK}/hidden.html" "${hidden}")
-foreach(case "bad_scene|console errors" "remote|network requests" "hidden|body points drawn")
+# A hand-written map of MODEL (4dof_reduced: x, y, z, yaw): a 4 x 4 x 3 grid.
+set(map "x,y,z,yaw,reachable,sigma_min,limited_by\n")
+foreach(z 0.5 0.6 0.7)
+  foreach(x -0.3 -0.1 0.1 0.3)
+    foreach(y -0.3 -0.1 0.1 0.3)
+      string(APPEND map "${x},${y},${z},0,1,0.4,\n")
+    endforeach()
+  endforeach()
+endforeach()
+file(WRITE "${WORK}/map.csv" "${map}")
+execute_process(COMMAND "${TOOL}" view "--model=${MODEL}" "--workspace=${WORK}/map.csv" "--out=${WORK}/cloud.html"
+                RESULT_VARIABLE rc OUTPUT_QUIET)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "ccma view --workspace failed")
+endif()
+file(READ "${WORK}/cloud.html" cloud)
+string(REPLACE "</body>" "<script>window.ccmaView.showWorkspace(false); window.ccmaView.showWorkspace = () => {};</script></body>" cloud "${cloud}")
+file(WRITE "${WORK}/hidden_cloud.html" "${cloud}")
+foreach(case "bad_scene|console errors" "remote|network requests" "hidden|body points drawn"
+             "hidden_cloud|workspace points drawn")
   string(REPLACE "|" ";" parts "${case}")
   list(GET parts 0 page)
   list(GET parts 1 expected)

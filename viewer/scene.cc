@@ -64,11 +64,23 @@ json BodyLinks(const std::vector<Eigen::Vector3d>& points, bool is_base) {
   return links;
 }
 
-// Radius [m] of the mechanism at home around its centroid (marker sizes).
-double Scale(const Model& model) {
+// Radius [m] of the mechanism at home around its centroid (marker sizes),
+// with the lowest and highest corners of the workspace cloud's box when there
+// is one: a cloud far larger than the mechanism is seen from farther, so the
+// markers grow with it and stay visible.
+double Scale(const Model& model, const WorkspaceCloud* workspace) {
   std::vector<Eigen::Vector3d> points;
   for (const Body& b : model.bodies) points.push_back(b.p_WB_home);
   points.push_back(model.end_effector.p_W_home);
+  if (workspace != nullptr && !workspace->points.empty()) {
+    Eigen::Vector3d lo = workspace->points.front(), hi = lo;
+    for (const Eigen::Vector3d& p : workspace->points) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    points.push_back(lo);
+    points.push_back(hi);
+  }
   Eigen::Vector3d c = Eigen::Vector3d::Zero();
   for (const Eigen::Vector3d& p : points) c += p / static_cast<double>(points.size());
   double r = 0;
@@ -116,6 +128,20 @@ json Joints(const Model& model) {
   return joints;
 }
 
+// The "workspace" object (scene_format.md): the cloud's points, flags and
+// sigma_min in row order. Its values are finite by construction
+// (CloudFromWorkspaceCsv), so no null can appear.
+json Workspace(const WorkspaceCloud& cloud) {
+  json points = json::array(), reachable = json::array(), sigma = json::array();
+  for (size_t i = 0; i < cloud.points.size(); ++i) {
+    points.push_back(Vec(cloud.points[i]));
+    reachable.push_back(cloud.reachable[i] ? 1 : 0);
+    sigma.push_back(Round(cloud.sigma_min[i]));
+  }
+  return {{"points", std::move(points)},   {"reachable", std::move(reachable)}, {"sigma_min", std::move(sigma)},
+          {"components", cloud.components}, {"source", cloud.source}};
+}
+
 json Poses(const State& s) {
   json poses = json::array();
   for (int b = 0; b < s.num_bodies(); ++b) {
@@ -132,8 +158,8 @@ double FlagEnergyFor(const std::string& source) {
 }
 
 std::string BuildScene(const Model& model, const std::vector<ViewFrame>& frames, const std::string& source,
-                       SceneSummary* summary) {
-  const double scale = Scale(model);
+                       SceneSummary* summary, const WorkspaceCloud* workspace) {
+  const double scale = Scale(model, workspace);
   json scene = {{"format", "ccma-scene-1"}, {"model", model.name},    {"description", model.description},
                 {"scale", Round(scale)},     {"bodies", Bodies(model, scale)}, {"joints", Joints(model)},
                 {"end_effector", {{"body", model.end_effector.body}, {"point", Vec(model.end_effector.p_B)}}},
@@ -175,6 +201,11 @@ std::string BuildScene(const Model& model, const std::vector<ViewFrame>& frames,
   if (!frames.empty()) {
     scene["paths"] = {{"tracked", tracked}, {"bases", bases}};
     if (any_commanded) scene["paths"]["commanded"] = commanded;
+  }
+  if (workspace != nullptr) {
+    scene["workspace"] = Workspace(*workspace);
+    s.workspace_points = static_cast<long>(workspace->points.size());
+    s.workspace_reachable = workspace->reachable_count;
   }
   if (summary != nullptr) *summary = s;
   // Safe inside <script>: no "</script>", "<!--" or entity can form.

@@ -8,6 +8,7 @@
 
 #include "ccma/model.h"
 #include "viewer/view_frames.h"
+#include "viewer/workspace_cloud.h"
 
 namespace ccma::viewer {
 
@@ -16,6 +17,8 @@ struct SceneSummary {
   int flagged_frames = 0;      // marked by the source or not assembled here
   int not_assembled = 0;       // frames whose E stayed above FlagEnergyFor(source)
   int branch_jumps = 0;        // frames reached by a jump to another branch
+  long workspace_points = 0;     // points of the workspace cloud (0 without one)
+  long workspace_reachable = 0;  // of which reachable
 };
 
 // The residual energy E [m^2] above which a re-assembled frame counts as
@@ -27,11 +30,12 @@ double FlagEnergyFor(const std::string& source);
 // The scene for `frames` (empty: the model at home, one frame). Each frame
 // is assembled from the previous one (ForwardProblem::Assemble, following
 // the branch); frames whose E stays above FlagEnergyFor(source), or reached
-// by a branch jump, are flagged. `source` is "model", "trajectory" or
-// "replay". Returns the JSON text (numbers rounded to 1e-7: display
-// precision, a tenth of a micrometre).
+// by a branch jump, are flagged. `source` is "model", "trajectory",
+// "replay" or "workspace". With `workspace`, the scene's "workspace" object
+// holds its cloud and the scale covers it. Returns the JSON text (numbers
+// rounded to 1e-7: display precision, a tenth of a micrometre; never NaN).
 std::string BuildScene(const Model& model, const std::vector<ViewFrame>& frames, const std::string& source,
-                       SceneSummary* summary);
+                       SceneSummary* summary, const WorkspaceCloud* workspace = nullptr);
 
 }  // namespace ccma::viewer
 

@@ -1,101 +1,26 @@
 #include "viewer/view_frames.h"
 
 #include <algorithm>
-#include <cerrno>
+#include <array>
 #include <cmath>
-#include <cstdlib>
-#include <map>
-#include <sstream>
 
-#include "ccma/internal/format.h"
 #include "ccma/limits.h"
-#include "ccma/model_loader.h"
+#include "viewer/csv_table.h"
 
 namespace ccma::viewer {
 namespace {
 
-// A CSV as written by ccma: '#' comment lines, one header, rows of numbers.
-struct Table {
-  std::string path;
-  std::vector<std::string> header;
-  std::map<std::string, int> column;
-  std::vector<std::vector<double>> rows;
-  std::vector<int> lines;  // file line of each row
-
-  // Index of a column, or -1 (optional) / throw (required).
-  int Find(const std::string& name, bool required) const {
-    const auto it = column.find(name);
-    if (it != column.end()) return it->second;
-    if (required) throw ViewInputError(path + ": no column '" + Printable(name) + "' in the header");
-    return -1;
-  }
-};
-
-std::vector<std::string> SplitCommas(const std::string& line) {
-  std::vector<std::string> cells;
-  std::stringstream ss(line);
-  std::string cell;
-  while (std::getline(ss, cell, ',')) cells.push_back(cell);
-  if (!line.empty() && line.back() == ',') cells.emplace_back();
-  return cells;
-}
-
-double ParseNumber(const Table& t, int line, const std::string& text, int col) {
-  const std::string where = t.path + ":" + std::to_string(line) + ": column '" + Printable(t.header[col]) + "'";
-  if (text.empty()) return std::nan("");  // an empty cell (e.g. a failed step's value)
-  char* end = nullptr;
-  errno = 0;
-  const double v = std::strtod(text.c_str(), &end);
-  if (end == text.c_str() || *end != '\0' || errno == ERANGE) {
-    throw ViewInputError(where + ": not a number: " + Quote(text));
-  }
-  if (!std::isfinite(v) || std::abs(v) > kMaxMagnitude * 100) {
-    throw ViewInputError(where + ": " + Quote(text) + " is outside [-1e6, 1e6]");
-  }
-  return v;
-}
+using Table = CsvTable;
 
 Table ReadTable(const std::string& path) {
-  std::string text, error;
-  if (!internal::ReadRegularFile(path, kMaxViewFileBytes, "CSV file", &text, &error)) throw ViewInputError(error);
-  Table t;
-  t.path = path;
-  std::stringstream in(text);
-  std::string line;
-  int number = 0;
-  while (std::getline(in, line)) {
-    ++number;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty() || line[0] == '#') continue;
-    const std::vector<std::string> cells = SplitCommas(line);
-    if (t.header.empty()) {
-      t.header = cells;
-      for (size_t i = 0; i < cells.size(); ++i) t.column[cells[i]] = static_cast<int>(i);
-      continue;
-    }
-    if (cells.size() != t.header.size()) {
-      throw ViewInputError(path + ":" + std::to_string(number) + ": " + std::to_string(cells.size()) +
-                           " cells, the header has " + std::to_string(t.header.size()));
-    }
-    std::vector<double> row(cells.size());
-    for (size_t i = 0; i < cells.size(); ++i) row[i] = ParseNumber(t, number, cells[i], static_cast<int>(i));
-    t.rows.push_back(std::move(row));
-    t.lines.push_back(number);
-    if (t.rows.size() > static_cast<size_t>(kMaxReplaySamples)) {
-      throw ViewInputError(path + ": more than " + std::to_string(kMaxReplaySamples) + " rows");
-    }
-  }
-  if (t.header.empty()) throw ViewInputError(path + ": no header line");
-  if (t.rows.empty()) throw ViewInputError(path + ": no rows");
-  return t;
+  return ReadCsvTable(path, CsvLimits{kMaxViewFileBytes, kMaxReplaySamples, {}});
 }
 
 // A value that must be present and finite (controls, times).
 double Required(const Table& t, size_t row, int col) {
   const double v = t.rows[row][col];
   if (std::isnan(v)) {
-    throw ViewInputError(t.path + ":" + std::to_string(t.lines[row]) + ": column '" + Printable(t.header[col]) +
-                         "': empty");
+    throw ViewInputError(t.Where(row, col) + ": empty");
   }
   return v;
 }

@@ -5,7 +5,7 @@ Type stub of the extension module `ccma._ccma` (python/src/*.cc), re-exported by
 package `ccma`. Checked against the built module by python/tests/test_stub.py.
 Reference: docs/python.md.
 """
-from typing import Literal, Optional, Sequence, Tuple, TypedDict, overload
+from typing import Literal, NotRequired, Optional, Sequence, Tuple, TypedDict, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -419,6 +419,8 @@ class ControlOptions:
         forward: ForwardOptions = ...,
         singularity_weight: float = 0.0,
         singularity_threshold: float = 0.1,
+        pivot_weight: float = 0.0,
+        pivot_threshold: float = 0.001,
         spread_weight: float = 0.0,
         clearance_m: float = 0.5,
         travel_weight: float = 0.0,
@@ -474,6 +476,16 @@ class ControlOptions:
         """sigma_0: the barrier acts below this smallest singular value of dX/du [m or rad per control unit] (default 0.1)."""
     @singularity_threshold.setter
     def singularity_threshold(self, value: float) -> None: ...
+    @property
+    def pivot_weight(self) -> float:
+        """Weight of the barrier on the pivot ratios of dG/ds, in the null space of the end-effector task; 0 = off (default) [1]."""
+    @pivot_weight.setter
+    def pivot_weight(self, value: float) -> None: ...
+    @property
+    def pivot_threshold(self) -> float:
+        """rho_0: that barrier acts on every pivot ratio of dG/ds below this [1] (default 0.001)."""
+    @pivot_threshold.setter
+    def pivot_threshold(self, value: float) -> None: ...
     @property
     def spread_weight(self) -> float:
         """Weight of keeping bases clearance_m apart, in the null space of the end-effector task; 0 = off (default) [1/m^2]."""
@@ -926,12 +938,15 @@ class _ViewInfo(TypedDict):
     flagged_frames: int
     not_assembled_frames: int
     branch_jumps: int
-    source: Literal["model", "trajectory", "replay"]
+    source: Literal["model", "trajectory", "replay", "workspace"]
+    workspace_points: NotRequired[int]     # only with workspace=: rows drawn
+    workspace_reachable: NotRequired[int]  # of which reachable
 
 def viewer_available() -> bool:
     """Whether this build carries the viewer's JavaScript (else view_html raises RuntimeError)."""
 
 def view_html(
-    model: Model, trajectory: Optional[str] = None, replay: Optional[str] = None
+    model: Model, trajectory: Optional[str] = None, replay: Optional[str] = None, workspace: Optional[str] = None
 ) -> Tuple[str, _ViewInfo]:
-    """(html, info): the self-contained page of `ccma view`, animated along a trajectory CSV or a replay directory."""
+    """(html, info): the self-contained page of `ccma view`, animated along a trajectory CSV or a replay
+    directory, or with a `ccma workspace` CSV drawn as a point cloud (at most one of the three)."""

@@ -96,6 +96,12 @@ void BindOptions(py::module_& m) {
           "singularity_threshold", [](const ControlOptions& o) { return o.secondary.singularity_threshold; },
           [](ControlOptions& o, double v) { o.secondary.singularity_threshold = v; }, "sigma_0: smallest singular value of dX/du below which the barrier acts [m or rad per control unit]")
       .def_property(
+          "pivot_weight", [](const ControlOptions& o) { return o.secondary.pivot_weight; },
+          [](ControlOptions& o, double v) { o.secondary.pivot_weight = v; }, "pivot-ratio barrier weight on dG/ds (0 = off) [1]")
+      .def_property(
+          "pivot_threshold", [](const ControlOptions& o) { return o.secondary.pivot_threshold; },
+          [](ControlOptions& o, double v) { o.secondary.pivot_threshold = v; }, "rho_0: pivot ratio of dG/ds below which that barrier acts [1]")
+      .def_property(
           "spread_weight", [](const ControlOptions& o) { return o.secondary.spread_weight; },
           [](ControlOptions& o, double v) { o.secondary.spread_weight = v; }, "base-spread weight (0 = off) [1/m^2]")
       .def_property(

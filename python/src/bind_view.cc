@@ -1,4 +1,4 @@
-// The 3D viewer's page from Python: ccma.view_html(model, trajectory=..., replay=...)
+// The 3D viewer's page from Python: ccma.view_html(model, trajectory=..., replay=..., workspace=...)
 // (ccma.view in python/ccma/viewer.py writes it or shows it in Jupyter).
 #include <optional>
 
@@ -8,6 +8,7 @@
 #include "viewer/html.h"
 #include "viewer/scene.h"
 #include "viewer/view_frames.h"
+#include "viewer/workspace_cloud.h"
 
 namespace py = pybind11;
 
@@ -18,22 +19,31 @@ void BindView(py::module_& m) {
   m.def("viewer_available", &viewer::HasBundle, "whether this build carries the viewer's JavaScript");
   m.def(
       "view_html",
-      [](const Model& model, std::optional<std::string> trajectory, std::optional<std::string> replay) {
-        if (trajectory && replay) throw py::value_error("give trajectory or replay, not both");
+      [](const Model& model, std::optional<std::string> trajectory, std::optional<std::string> replay,
+         std::optional<std::string> workspace) {
+        if (int(bool(trajectory)) + int(bool(replay)) + int(bool(workspace)) > 1) {
+          throw py::value_error("give one of trajectory, replay or workspace");
+        }
         std::string html;
         viewer::SceneSummary summary;
         std::string source = "model";
         {
           py::gil_scoped_release release;
           std::vector<viewer::ViewFrame> frames;
-          if (trajectory) {
+          std::optional<viewer::WorkspaceCloud> cloud;
+          if (workspace) {
+            // Drawn over the model at home, as `ccma view --workspace` does.
+            cloud = viewer::CloudFromWorkspaceCsv(model, *workspace);
+            source = "workspace";
+          } else if (trajectory) {
             frames = viewer::FramesFromTrajectory(model, *trajectory);
             source = "trajectory";
           } else if (replay) {
             frames = viewer::FramesFromReplay(model, *replay);
             source = "replay";
           }
-          html = viewer::ViewerHtml(viewer::BuildScene(model, frames, source, &summary), model.name);
+          html = viewer::ViewerHtml(
+              viewer::BuildScene(model, frames, source, &summary, cloud ? &*cloud : nullptr), model.name);
         }
         py::dict info;
         info["frames"] = summary.frames;
@@ -41,11 +51,17 @@ void BindView(py::module_& m) {
         info["not_assembled_frames"] = summary.not_assembled;
         info["branch_jumps"] = summary.branch_jumps;
         info["source"] = source;
+        if (workspace) {
+          info["workspace_points"] = summary.workspace_points;
+          info["workspace_reachable"] = summary.workspace_reachable;
+        }
         return py::make_tuple(html, info);
       },
       py::arg("model"), py::arg("trajectory") = py::none(), py::arg("replay") = py::none(),
+      py::arg("workspace") = py::none(),
       "(html, info): the self-contained page of `ccma view` for the model, animated along a "
-      "trajectory CSV or a replay directory; raises ccma.ViewInputError on a bad file.");
+      "trajectory CSV or a replay directory, or with a `ccma workspace` CSV as a point cloud; "
+      "raises ccma.ViewInputError on a bad file.");
 }
 
 }  // namespace ccma::python

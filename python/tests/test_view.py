@@ -62,3 +62,25 @@ def test_view_displays_inline_in_jupyter(monkeypatch):
     frame = shown[0][1]
     assert frame.startswith('<iframe srcdoc="') and "height:400px" in frame
     assert html.unescape(frame[len('<iframe srcdoc="'):frame.index('" style=')]).startswith("<!DOCTYPE html>")
+
+
+def test_view_draws_a_workspace_map_like_the_cli(tmp_path):
+    """ccma.view(workspace=...) writes the same page as `ccma view --workspace`,
+    counts the map's rows and reachable rows as the CSV has them, and refuses
+    a map together with a trajectory."""
+    csv = tmp_path / "ws.csv"
+    run_tool("workspace", "--model=%s" % MODEL, "--out=%s" % csv, "--x=-0.3:0.3", "--z=0.5:0.9",
+             "--resolution=5")
+    rows = csv.read_text().splitlines()
+    header = rows[0].split(",")
+    reachable = sum(int(r.split(",")[header.index("reachable")]) for r in rows[1:])
+    cli = run_tool("view", "--model=%s" % MODEL, "--workspace=%s" % csv, "--out=%s" % (tmp_path / "cli.html"))
+    assert ccma.view(MODEL, workspace=csv, out=tmp_path / "py.html") == str(tmp_path / "py.html")
+    assert (tmp_path / "py.html").read_bytes() == (tmp_path / "cli.html").read_bytes()
+    _page, info = ccma.view_html(ccma.load_model(MODEL), workspace=str(csv))
+    assert info["source"] == "workspace"
+    assert info["workspace_points"] == len(rows) - 1 == cli["workspace_points"] == 25
+    assert info["workspace_reachable"] == reachable == cli["workspace_reachable"]
+    assert 0 < reachable < 25
+    with pytest.raises(ValueError, match="one of"):
+        ccma.view(MODEL, trajectory=csv, workspace=csv)

@@ -2,7 +2,8 @@
 // tell apart gets its own hue: links grey, joints dark slate, actuated joints
 // amber, omni bases blue, differential bases teal; the paths green (commanded),
 // violet (tracked) and dark blue (bases); flagged frames red; the end-effector
-// frame the usual x red, y green, z blue.
+// frame the usual x red, y green, z blue; a workspace map's unreachable
+// points grey (its reachable ones take the sigma_min ramp of workspace.js).
 export const COLORS = {
   background: 0xf4f5f7,
   grid: 0xdadde2,
@@ -18,6 +19,7 @@ export const COLORS = {
   tracked: 0x7c3aed,
   basePath: 0x1e40af,
   flagged: 0xdc2626,
+  unreachable: 0x8b929c,
   axisX: 0xe53935,
   axisY: 0x43a047,
   axisZ: 0x1e88e5,

@@ -9,7 +9,8 @@ import { buildMechanism, sceneSize } from './mechanism.js';
 import { buildOverlay, showError } from './overlay.js';
 import { buildPaths } from './paths.js';
 import { checkScene } from './scene_check.js';
-import { addGround, addLights, frameCamera, gridStep, sceneBox } from './stage.js';
+import { addGround, addLights, FOV, frameCamera, gridStep, sceneBox } from './stage.js';
+import { buildWorkspace, rampColor } from './workspace.js';
 
 Object3D.DEFAULT_UP.set(0, 0, 1);  // the world is z up; OrbitControls orbits about this axis
 
@@ -60,6 +61,7 @@ function start() {
   const size = sceneSize(scene);
   const mechanism = buildMechanism(scene, world, size);
   buildPaths(scene, world, size);
+  const cloud = buildWorkspace(scene, world, size, FOV, renderer.getPixelRatio());
   mechanism.pose(frames, 0);
   const box = sceneBox(scene, mechanism);
   const radius = box.getSize(new Vector3()).length() / 2;
@@ -71,7 +73,7 @@ function start() {
   controls.target.copy(target);
   controls.update();
 
-  const ui = buildOverlay(scene, n, step);
+  const ui = buildOverlay(scene, n, step, cloud);
   let current = 0;
   let playing = false;
   let clock = 0;  // animation time [s] since frame 0
@@ -103,6 +105,18 @@ function start() {
   }
   ui.play.addEventListener('click', () => setPlaying(!playing));
   controls.addEventListener('change', render);
+  // The unreachable points: a switch in the legend, or the key "u".
+  const showUnreachable = (on) => {
+    cloud.setVisible('unreachable', on);
+    ui.unreachable.checked = on;
+    render();
+  };
+  if (ui.unreachable) {
+    ui.unreachable.addEventListener('change', () => showUnreachable(ui.unreachable.checked));
+    window.addEventListener('keydown', (e) => {
+      if (e.key === 'u' && !e.ctrlKey && !e.metaKey && !e.altKey) showUnreachable(!ui.unreachable.checked);
+    });
+  }
   window.addEventListener('resize', () => {
     camera.aspect = window.innerWidth / window.innerHeight;
     camera.updateProjectionMatrix();
@@ -142,6 +156,12 @@ function start() {
     bodyPointsScreen: () => mechanism.bodyPointsWorld().map((p) => toScreen(p.toArray())),
     background: [16, 8, 0].map((shift) => (COLORS.background >> shift) & 255),  // sRGB, as on screen
     showMechanism: (visible) => { mechanism.setVisible(visible); render(); },
+    // The workspace cloud: counts, visibility, reachable points on screen and
+    // the ramp's colours (sRGB 0..255) that they are drawn in.
+    workspace: cloud && { points: cloud.points, reachable: cloud.reachable, sigmaMin: [cloud.range.lo, cloud.range.hi] },
+    showWorkspace: (visible) => { if (cloud) cloud.setVisible('all', visible); render(); },
+    workspacePointsScreen: (max = 400) => (cloud ? cloud.reachableSample(max).map(toScreen) : []),
+    workspaceRamp: Array.from({ length: 33 }, (_, i) => rampColor(i / 32).map((c) => Math.round(255 * c))),
   };
 }
 

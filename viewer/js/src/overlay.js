@@ -1,7 +1,9 @@
 // The page's controls and labels, plain DOM over the canvas (styles set from
 // here: the page has no stylesheet): title, legend, play/pause, the time
-// slider and label, a badge for flagged frames; and the error panel.
+// slider and label, a badge for flagged frames, the workspace cloud's colour
+// scale and its "unreachable" switch; and the error panel.
 import { COLORS, css } from './colors.js';
+import { rampGradient } from './workspace.js';
 
 function el(tag, style, text) {
   const e = document.createElement(tag);
@@ -35,8 +37,51 @@ function swatch(kind, colors) {
   return box;
 }
 
-function legend(scene, gridStep) {
+const ORIENTATION = ['roll', 'pitch', 'yaw'];
+
+// The workspace cloud's part of the legend: the sigma_min colour scale with
+// its range and unit, the unreachable points with a switch (returned), the
+// counts and what the positions are made of.
+function workspaceLegend(panel, scene, cloud) {
+  const ws = scene.workspace;
+  const block = el('div', { margin: '2px 0 6px', paddingBottom: '6px', borderBottom: '1px solid #e5e7eb',
+                            maxWidth: '300px' });
+  block.append(el('div', { fontWeight: '600' }, `workspace map: ${cloud.reachable} of ${cloud.points} reachable`));
+  if (cloud.reachable > 0) {
+    block.append(el('div', { marginTop: '4px' }, 'reachable, coloured by sigma_min, the smallest singular value of dX/du:'));
+    const bar = el('div', { width: '100%', height: '12px', borderRadius: '2px', marginTop: '3px', background: rampGradient() });
+    bar.id = 'ccma-sigma-scale';
+    const ends = el('div', { display: 'flex', justifyContent: 'space-between', width: '100%', color: '#374151',
+                             fontVariantNumeric: 'tabular-nums' });
+    const number = (x) => (x === 0 ? '0' : Math.abs(x) < 1e-3 ? x.toExponential(1) : Number(x.toPrecision(3)).toString());
+    ends.append(el('span', {}, '0 (singular)'), el('span', {}, number(cloud.range.hi)));
+    block.append(bar, ends, el('div', { color: '#6b7280' }, 'in m or rad per control unit'),
+                 el('div', { color: '#6b7280' }, `this map: ${number(cloud.range.lo)} to ${number(cloud.range.hi)}`));
+  }
+  let toggle = null;
+  if (cloud.points > cloud.reachable) {
+    const row = el('label', { display: 'flex', alignItems: 'center', gap: '8px', marginTop: '4px', cursor: 'pointer' });
+    toggle = el('input', { margin: '0' });
+    Object.assign(toggle, { type: 'checkbox', id: 'ccma-unreachable', checked: true });
+    const dot = el('span', { width: '8px', height: '8px', borderRadius: '50%', background: css(COLORS.unreachable),
+                             opacity: '0.6' });
+    row.append(toggle, dot, el('span', {}, `unreachable (${cloud.points - cloud.reachable}); key u`));
+    block.append(row);
+  }
+  const components = ws.components || [];
+  const hidden = components.filter((c) => ORIENTATION.includes(c));
+  const drawn = components.filter((c) => !ORIENTATION.includes(c));
+  let note = `end-effector positions${ws.source ? ` from ${ws.source}` : ''}` +
+             (drawn.length < 3 ? `; ${['x', 'y', 'z'].filter((c) => !drawn.includes(c)).join(', ')} at home` : '');
+  if (hidden.length) note += `; ${hidden.join(', ')} not drawn (samples differing only there coincide)`;
+  block.append(el('div', { marginTop: '4px', color: '#6b7280' }, note));
+  panel.append(block);
+  return toggle;
+}
+
+function legend(scene, gridStep, cloud) {
   const panel = el('div', { ...PANEL, top: '10px', right: '10px' });
+  const toggle = cloud ? workspaceLegend(panel, scene, cloud) : null;
   const item = (kind, colors, label) => {
     const row = el('div', { display: 'flex', alignItems: 'center', gap: '8px', margin: '3px 0' });
     row.append(swatch(kind, colors), el('span', {}, label));
@@ -56,10 +101,11 @@ function legend(scene, gridStep) {
   if ((paths.bases || []).some((b) => b.length > 1)) item('solid', [COLORS.basePath], 'base paths (ground)');
   if ((scene.frames.flags || []).includes(1)) item('dot', [COLORS.flagged], 'suspect frame (not assembled / torn)');
   panel.append(el('div', { marginTop: '5px', color: '#6b7280' }, `grid: ${round(gridStep)} m squares (bold every ${round(5 * gridStep)} m); world z up`));
-  return panel;
+  return { panel, toggle };
 }
 
-export function buildOverlay(scene, frames, gridStep) {
+// `cloud`: what buildWorkspace returned (null without a workspace map).
+export function buildOverlay(scene, frames, gridStep, cloud = null) {
   const title = el('div', { ...PANEL, top: '10px', left: '10px', maxWidth: '46%' });
   title.append(el('div', { fontWeight: '600', fontSize: '15px' }, `ccma view: ${scene.model ?? ''}`));
   if (scene.description) title.append(el('div', { marginTop: '3px', color: '#4b5563' }, scene.description));
@@ -67,7 +113,8 @@ export function buildOverlay(scene, frames, gridStep) {
                   `${scene.bodies.length} bodies, ${(scene.joints || []).length} joints` +
                   (scene.source ? `, from ${scene.source}` : '') +
                   '. Drag to orbit, scroll to zoom, right-drag to pan.'));
-  document.body.append(title, legend(scene, gridStep));
+  const { panel, toggle } = legend(scene, gridStep, cloud);
+  document.body.append(title, panel);
 
   const bar = el('div', { ...PANEL, bottom: '10px', left: '10px', right: '10px', display: 'flex',
                           alignItems: 'center', gap: '12px' });
@@ -87,7 +134,7 @@ export function buildOverlay(scene, frames, gridStep) {
   }
   bar.append(play, slider, label, badge);
   document.body.append(bar);
-  return { play, slider, label, badge };
+  return { play, slider, label, badge, unreachable: toggle };
 }
 
 export function showError(message) {

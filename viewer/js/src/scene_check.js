@@ -2,7 +2,7 @@
 // drawn, so that a malformed page shows one readable message instead of a
 // half-built view or an exception from deep inside three.js. Returns a list
 // of problems (empty when the scene is usable). Optional parts (joints,
-// end_effector, paths, flags) are checked only when present.
+// end_effector, paths, flags, workspace) are checked only when present.
 const isVec = (v, n) => Array.isArray(v) && v.length === n && v.every(Number.isFinite);
 const isList = (v, n) => Array.isArray(v) && v.every((p) => isVec(p, n));
 
@@ -49,6 +49,21 @@ export function checkScene(scene) {
     }
     if (paths.bases !== undefined && !(Array.isArray(paths.bases) && paths.bases.every((b) => isList(b, 2)))) {
       problems.push('paths.bases: per base, a list of [x, y]');
+    }
+  }
+  const ws = scene.workspace;
+  if (ws !== undefined && ws !== null) {
+    const m = Array.isArray(ws.points) ? ws.points.length : -1;
+    if (!isList(ws.points, 3)) problems.push('workspace.points: a list of [x, y, z]');
+    if (!Array.isArray(ws.reachable) || ws.reachable.length !== m || !ws.reachable.every((r) => r === 0 || r === 1)) {
+      problems.push('workspace.reachable: 0 or 1 per point');
+    }
+    if (!Array.isArray(ws.sigma_min) || ws.sigma_min.length !== m ||
+        !ws.sigma_min.every((s) => Number.isFinite(s) && s >= 0)) {
+      problems.push('workspace.sigma_min: a number >= 0 per point');
+    }
+    if (ws.components !== undefined && !(Array.isArray(ws.components) && ws.components.every((c) => typeof c === 'string'))) {
+      problems.push('workspace.components: a list of names');
     }
   }
   return problems;

@@ -38,7 +38,8 @@ export function addGround(world, box, step) {
   bold.renderOrder = 1;  // drawn after the fine grid where they coincide
 }
 
-// The box of everything shown: the mechanism at frame 0 and every path.
+// The box of everything shown: the mechanism at frame 0, every path and the
+// workspace cloud.
 export function sceneBox(scene, mechanism) {
   const box = new Box3();
   mechanism.bodyPointsWorld().forEach((p) => box.expandByPoint(p));
@@ -46,6 +47,12 @@ export function sceneBox(scene, mechanism) {
   const paths = scene.paths || {};
   for (const list of [paths.commanded, paths.tracked]) (list || []).forEach((p) => box.expandByPoint(new Vector3(...p)));
   (paths.bases || []).forEach((b) => b.forEach(([x, y]) => box.expandByPoint(new Vector3(x, y, 0))));
+  const cloud = (scene.workspace || {}).points || [];
+  if (cloud.length) {  // min and max by hand: a million Vector3s would be slow
+    const lo = [...cloud[0]], hi = [...cloud[0]];
+    for (const p of cloud) for (let k = 0; k < 3; ++k) { lo[k] = Math.min(lo[k], p[k]); hi[k] = Math.max(hi[k], p[k]); }
+    box.expandByPoint(new Vector3(...lo)).expandByPoint(new Vector3(...hi));
+  }
   box.expandByPoint(new Vector3(box.min.x, box.min.y, 0));  // down to the ground
   // The bases' discs reach past their points.
   const r = Math.max(0, ...scene.bodies.map((b) => (b.kind !== 'body' && b.radius > 0 ? b.radius : 0)));
@@ -53,6 +60,9 @@ export function sceneBox(scene, mechanism) {
   box.min.z = Math.max(box.min.z, 0);
   return box;
 }
+
+// The camera's vertical field of view [deg].
+export const FOV = 35;
 
 // A camera looking at the box from an elevated three-quarter view (from -y,
 // +x, ~30 degrees up), a little farther than where the box's bounding
@@ -62,7 +72,7 @@ export function sceneBox(scene, mechanism) {
 export function frameCamera(box, aspect) {
   const center = box.getCenter(new Vector3());
   const radius = Math.max(box.getSize(new Vector3()).length() / 2, 0.05);
-  const fov = 35;
+  const fov = FOV;
   const halfV = (fov * Math.PI) / 360, halfH = Math.atan(Math.tan(halfV) * aspect);
   const distance = (1.08 * radius) / Math.sin(Math.min(halfV, halfH));
   const camera = new PerspectiveCamera(fov, aspect, distance / 200, distance * 50);

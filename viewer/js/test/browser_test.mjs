@@ -6,8 +6,15 @@
 //      slider over every frame, time label);
 //   d. the mechanism is drawn: at the screen positions of the body points the
 //      picture differs from the same view with the mechanism hidden (so
-//      neither the grid nor the paths count), and >= 0.2% of all pixels do;
-//      >= 1% of the pixels differ from the background colour;
+//      neither the grid, the paths nor a workspace cloud count), and >= 0.2%
+//      of all pixels do; >= 1% of the pixels differ from the background colour;
+//   g. (pages of `ccma view --workspace`) the cloud is drawn: with the
+//      unreachable points switched off (the legend's checkbox, clicked),
+//      near the screen positions of >= 60% of the reachable points (a sample
+//      of <= 400) the picture differs from the same view without the cloud
+//      and has a colour of the sigma_min ramp, and >= 0.2% of all pixels
+//      have such a colour where the cloud-less view does not; the checkbox
+//      changes the picture (off and on again);
 //   e. (--expect-animation) moving the time slider through the UI moves the
 //      end-effector and the picture; play advances the frames, pause stops them;
 //   f. (--screenshot OUT.png) saves the 1200x800 picture at frame 0 (or at
@@ -86,6 +93,8 @@ try {
     }
     return false;
   };
+  const hasCloud = view.ready && await page.evaluate(() => Boolean(window.ccmaView.workspace));
+  if (hasCloud) await page.evaluate(() => window.ccmaView.showWorkspace(false));  // d. sees the mechanism alone
   if (view.ready) {
     const first = await shot();
     await page.evaluate(() => window.ccmaView.showMechanism(false));
@@ -117,6 +126,53 @@ try {
     if (onScreen.length < points.length * 0.9) failures.push(`only ${onScreen.length} of ${points.length} body points on screen`);
     if (drawn < onScreen.length * 0.9) failures.push(`only ${drawn} of ${onScreen.length} body points drawn`);
     if (fraction < 0.002) failures.push(`the mechanism covers only ${(100 * fraction).toFixed(2)}% of the picture`);
+
+    // g. The workspace cloud, against the same view without it.
+    if (hasCloud) {
+      await page.evaluate(() => window.ccmaView.showWorkspace(true));
+      const full = await shot();
+      const toggle = await page.$('#ccma-unreachable');
+      if (toggle) await toggle.click();  // off: the reachable points alone
+      const cloud = await shot();
+      if (toggle) {
+        let toggled = 0;
+        for (let i = 0; i < full.data.length; i += 4) toggled += full.data[i] !== cloud.data[i] ? 1 : 0;
+        result.unreachable_toggle_pixels = toggled;
+        if (toggled < 20) failures.push('the unreachable checkbox did not change the picture');
+        await toggle.click();  // on again, as the page starts
+      }
+      const ws = await page.evaluate(() => ({ info: window.ccmaView.workspace, ramp: window.ccmaView.workspaceRamp,
+                                               points: window.ccmaView.workspacePointsScreen(400) }));
+      const rampLike = (img, x, y) => {
+        const p = img.at(x, y);
+        return ws.ramp.some((c) => Math.abs(p[0] - c[0]) + Math.abs(p[1] - c[1]) + Math.abs(p[2] - c[2]) <= 45);
+      };
+      const cloudAt = (x, y) => differ(cloud, first, x, y) && rampLike(cloud, x, y);
+      const near = ([x, y]) => {
+        for (let dx = -2; dx <= 2; ++dx) for (let dy = -2; dy <= 2; ++dy) {
+          const px = Math.round(x) + dx, py = Math.round(y) + dy;
+          if (px >= 0 && py >= 0 && px < cloud.width && py < cloud.height && cloudAt(px, py)) return true;
+        }
+        return false;
+      };
+      const visible = ws.points.filter(([x, y]) => x >= 0 && y >= 0 && x < cloud.width && y < cloud.height);
+      const drawnPoints = visible.filter(near).length;
+      let rampPixels = 0;
+      for (let y = 0; y < cloud.height; y += 2) for (let x = 0; x < cloud.width; x += 2) rampPixels += cloudAt(x, y) ? 1 : 0;
+      const rampFraction = rampPixels / ((cloud.width / 2) * (cloud.height / 2));
+      Object.assign(result, { workspace_points: ws.info.points, workspace_reachable: ws.info.reachable,
+                              workspace_sampled: visible.length, workspace_sampled_drawn: drawnPoints,
+                              workspace_ramp_pixels: Number(rampFraction.toFixed(4)) });
+      if (ws.info.reachable === 0) {  // only the grey points: something must still appear
+        let changed = 0;
+        for (let y = 0; y < cloud.height; y += 2) for (let x = 0; x < cloud.width; x += 2) changed += differ(cloud, first, x, y) ? 1 : 0;
+        if (changed < 0.0005 * (cloud.width / 2) * (cloud.height / 2)) failures.push('the (unreachable) workspace cloud is not drawn');
+      } else {
+        if (visible.length < ws.points.length * 0.9) failures.push(`only ${visible.length} of ${ws.points.length} workspace points on screen`);
+        if (drawnPoints < visible.length * 0.6) failures.push(`only ${drawnPoints} of ${visible.length} workspace points drawn in the sigma_min colours`);
+        if (rampFraction < 0.002) failures.push(`the workspace cloud covers only ${(100 * rampFraction).toFixed(2)}% of the picture`);
+      }
+    }
 
     // e. The slider (through the UI) and play move the end-effector.
     if (args.includes('--expect-animation') && view.frames < 2) {

@@ -1,0 +1,100 @@
+#include "viewer/csv_table.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+#include "ccma/internal/format.h"
+#include "ccma/limits.h"
+#include "ccma/model_loader.h"
+#include "viewer/view_frames.h"
+
+namespace ccma::viewer {
+namespace {
+
+std::vector<std::string> SplitCommas(const std::string& line) {
+  std::vector<std::string> cells;
+  std::stringstream ss(line);
+  std::string cell;
+  while (std::getline(ss, cell, ',')) cells.push_back(cell);
+  if (!line.empty() && line.back() == ',') cells.emplace_back();
+  return cells;
+}
+
+std::string LineWhere(const std::string& path, int line) { return path + ":" + std::to_string(line); }
+
+double ParseNumber(const CsvTable& t, int line, const std::string& text, int col) {
+  const std::string where = LineWhere(t.path, line) + ": column '" + Printable(t.header[col]) + "'";
+  if (text.empty()) return std::nan("");  // an empty cell (e.g. a failed step's value)
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(text.c_str(), &end);
+  if (end == text.c_str() || *end != '\0' || errno == ERANGE) {
+    throw ViewInputError(where + ": not a number: " + Quote(text));
+  }
+  // strtod reads "nan" and "inf": numbers to it, never to a scene.
+  if (!std::isfinite(v)) throw ViewInputError(where + ": not a finite number: " + Quote(text));
+  if (std::abs(v) > kMaxMagnitude * 100) throw ViewInputError(where + ": " + Quote(text) + " is outside [-1e6, 1e6]");
+  return v;
+}
+
+}  // namespace
+
+int CsvTable::Find(const std::string& name, bool required) const {
+  const auto it = column.find(name);
+  if (it != column.end()) return it->second;
+  if (required) throw ViewInputError(path + ": no column '" + Printable(name) + "' in the header");
+  return -1;
+}
+
+std::string CsvTable::Where(std::size_t row, int col) const {
+  return LineWhere(path, lines[row]) + ": column '" + Printable(header[col]) + "'";
+}
+
+CsvTable ReadCsvTable(const std::string& path, const CsvLimits& limits) {
+  std::string text, error;
+  if (!internal::ReadRegularFile(path, limits.max_bytes, "CSV file", &text, &error)) throw ViewInputError(error);
+  CsvTable t;
+  t.path = path;
+  std::vector<bool> is_text;
+  // Lines cut from the text in place (no second copy of a large file).
+  std::string line;
+  int number = 0;
+  for (size_t start = 0; start < text.size();) {
+    const size_t end = std::min(text.find('\n', start), text.size());
+    line.assign(text, start, end - start);
+    start = end + 1;
+    ++number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty() || line[0] == '#') continue;
+    const std::vector<std::string> cells = SplitCommas(line);
+    if (t.header.empty()) {
+      t.header = cells;
+      for (size_t i = 0; i < cells.size(); ++i) {
+        t.column[cells[i]] = static_cast<int>(i);
+        is_text.push_back(limits.text_columns.count(cells[i]) > 0);
+      }
+      continue;
+    }
+    if (cells.size() != t.header.size()) {
+      throw ViewInputError(LineWhere(path, number) + ": " + std::to_string(cells.size()) + " cells, the header has " +
+                           std::to_string(t.header.size()));
+    }
+    if (static_cast<long>(t.rows.size()) >= limits.max_rows) {
+      throw ViewInputError(LineWhere(path, number) + ": more than " + std::to_string(limits.max_rows) + " rows");
+    }
+    std::vector<double> row(cells.size());
+    for (size_t i = 0; i < cells.size(); ++i) {
+      row[i] = is_text[i] ? std::nan("") : ParseNumber(t, number, cells[i], static_cast<int>(i));
+    }
+    t.rows.push_back(std::move(row));
+    t.lines.push_back(number);
+  }
+  if (t.header.empty()) throw ViewInputError(path + ": no header line");
+  if (t.rows.empty()) throw ViewInputError(path + ": no rows");
+  return t;
+}
+
+}  // namespace ccma::viewer
