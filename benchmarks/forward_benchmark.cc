@@ -66,19 +66,24 @@ void BM_ForwardWarmStep(benchmark::State& state, const std::string& name, ccma::
 }
 
 // A 200-step track, as a simulation loop runs one: the end-effector goes
-// once round a circle of radius 5 cm in the horizontal plane (controls in
-// closed form, tests/leg_closed_form.h), steps of ~1.6 mm; each solve
-// warm-starts from the last (and, for the native solver, from its secant
-// prediction). Time per step.
+// once round a circle of radius 5 cm (controls in closed form,
+// tests/leg_closed_form.h), steps of ~1.6 mm; each solve warm-starts from
+// the last (and, for the native solver with `predictors`, from its secant or
+// rigid-motion prediction). Horizontal circle: every base moves by the
+// end-effector's displacement, the mechanism translates rigidly and the
+// rigid-motion predictor ends each step without an iteration. Vertical
+// circle: the legs fold, every step iterates. Time per step.
 void BM_ForwardTrack(benchmark::State& state, const std::string& name, ccma::ForwardSolver minimiser,
-                     bool secant) {
+                     bool predictors, bool vertical) {
   const ccma::Model model = ccma::LoadModel(std::string(CCMA_MODELS_DIR) + "/" + name + ".yaml");
   std::vector<Eigen::VectorXd> track;
   constexpr int kSteps = 200;
   for (int k = 0; k <= kSteps; ++k) {
     const double angle = 2 * M_PI * k / kSteps;
     const Eigen::Vector3d p =
-        model.end_effector.p_W_home + 0.05 * Eigen::Vector3d(std::cos(angle) - 1, std::sin(angle), 0);
+        model.end_effector.p_W_home +
+        0.05 * (vertical ? Eigen::Vector3d(std::cos(angle) - 1, 0, std::sin(angle))
+                         : Eigen::Vector3d(std::cos(angle) - 1, std::sin(angle), 0));
     Eigen::VectorXd u = model.home_controls();
     for (const auto& leg : ccma::testing::FindLegs(model)) {
       u.segment<3>(3 * leg.base) = ccma::testing::BasePoseForLeg(model, leg, p, Eigen::Matrix3d::Identity(), 0.0);
@@ -87,7 +92,8 @@ void BM_ForwardTrack(benchmark::State& state, const std::string& name, ccma::For
   }
   ForwardOptions options;
   options.solver = minimiser;
-  options.secant_predictor = secant;
+  options.secant_predictor = predictors;
+  options.rigid_motion_predictor = predictors;
   ForwardProblem forward(model, options);
   long iterations = 0, solves = 0, assembled = 0;
   double worst_energy = 0;
@@ -140,12 +146,15 @@ int Register() {
     }
   }
   for (const std::string& model : {std::string("4dof_reduced"), std::string("6dof_six_agents")}) {
-    benchmark::RegisterBenchmark(("ForwardTrack/" + model + "/native").c_str(), BM_ForwardTrack, model,
-                                 ForwardSolver::kNative, true)->Unit(benchmark::kMillisecond);
-    benchmark::RegisterBenchmark(("ForwardTrack/" + model + "/native_no_predictor").c_str(), BM_ForwardTrack,
-                                 model, ForwardSolver::kNative, false)->Unit(benchmark::kMillisecond);
-    benchmark::RegisterBenchmark(("ForwardTrack/" + model + "/ceres").c_str(), BM_ForwardTrack, model,
-                                 ForwardSolver::kCeres, false)->Unit(benchmark::kMillisecond);
+    for (const bool vertical : {false, true}) {
+      const std::string track = "ForwardTrack/" + model + (vertical ? "/vertical/" : "/horizontal/");
+      benchmark::RegisterBenchmark((track + "native").c_str(), BM_ForwardTrack, model, ForwardSolver::kNative,
+                                   true, vertical)->Unit(benchmark::kMillisecond);
+      benchmark::RegisterBenchmark((track + "native_no_predictor").c_str(), BM_ForwardTrack, model,
+                                   ForwardSolver::kNative, false, vertical)->Unit(benchmark::kMillisecond);
+      benchmark::RegisterBenchmark((track + "ceres").c_str(), BM_ForwardTrack, model, ForwardSolver::kCeres,
+                                   false, vertical)->Unit(benchmark::kMillisecond);
+    }
   }
   for (const auto& [solver_name, minimiser, solver] : solvers) {
     for (const std::string& model : kModels) {

@@ -1,5 +1,6 @@
 #include "problems/forward_problem.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -12,6 +13,7 @@
 #include "ccma/internal/pose_manifold.h"
 #include "ccma/limits.h"
 #include "ccma/rotation.h"
+#include "problems/internal/planar_rigid_motion.h"
 #include "problems/internal/sensitivity.h"
 #include "problems/internal/sparse_lm.h"
 
@@ -95,7 +97,9 @@ bool ForwardOptions::IsValid(std::string* why) const {
 
 // Everything a ForwardProblem owns besides its state and controls.
 struct ForwardProblem::Workspace {
-  explicit Workspace(const Model& model) : constraints(model), lm(constraints), hessian_solver(constraints) {}
+  explicit Workspace(const Model& model)
+      : constraints(model), lm(constraints), hessian_solver(constraints),
+        moves_rigidly(MovesRigidlyWithItsBases(model)) {}
   ConstraintSet constraints;
   SparseLevenbergMarquardt lm;            // ForwardSolver::kNative
   PoseManifold manifold;
@@ -109,6 +113,14 @@ struct ForwardProblem::Workspace {
   State state_before_last;
   Eigen::VectorXd controls_before_last, du, du_last, ds;
   State predicted;
+  const bool moves_rigidly;  // no joint to the ground (planar_rigid_motion.h)
+  // state_ is the converged end of the last Solve() for controls_, with E =
+  // last_energy (nothing has set the state since).
+  bool converged_here = false;
+  double last_energy = 0;
+  // E up to which the rigid image of that state counts as converged (0: no
+  // rigid prediction for this solve).
+  double rigid_energy = 0;
   double world_pose[kPoseAmbientSize] = {0, 0, 0, 1, 0, 0, 0};  // the ground, constant
 };
 
@@ -176,6 +188,22 @@ void ForwardProblem::CheckControls(const Eigen::VectorXd& u) const {
 
 void ForwardProblem::PredictFromLastStep(const Eigen::VectorXd& u) {
   Workspace& w = *workspace_;
+  w.rigid_energy = 0;
+  PlanarRigidMotion motion;
+  if (options_.rigid_motion_predictor && w.moves_rigidly && PlanarRigidMotionBetween(model_, controls_, u, &motion)) {
+    w.state_before_last = state_;
+    w.controls_before_last = controls_;
+    w.has_last_step = true;
+    ApplyPlanarRigidMotion(motion, &state_);
+    // The image of a converged state is converged (E and the norm of dE/ds
+    // are invariant) up to the rounding of the moved poses, which adds up
+    // over many moves: hence an absolute bound (kRigidImageEnergy), past
+    // which the LM iterates back to rounding level. A stationary point out
+    // of reach keeps its E > kRigidImageEnergy: rounding changes it only to
+    // second order.
+    if (w.converged_here) w.rigid_energy = std::max(kRigidImageEnergy, w.last_energy * (1 + 1e-9));
+    return;
+  }
   if (options_.secant_predictor && w.has_last_step) {
     w.du = u - controls_;
     w.du_last = controls_ - w.controls_before_last;
@@ -215,7 +243,8 @@ ForwardResult ForwardProblem::Solve(const Eigen::VectorXd& u) {
     // Newton polish takes over at once rather than after tens of linearly
     // converging iterations; should it not reach dE/ds ~ 0, LM resumes.
     const bool polish = options_.max_newton_polish_steps > 0;
-    SparseLmSummary summary = workspace_->lm.Solve(&state_, controls_, options_.max_iterations, polish);
+    SparseLmSummary summary =
+        workspace_->lm.Solve(&state_, controls_, options_.max_iterations, polish, workspace_->rigid_energy);
     result.iterations = summary.iterations;
     if (summary.linear) {
       result.residual_energy = summary.energy;
@@ -250,6 +279,8 @@ ForwardResult ForwardProblem::Solve(const Eigen::VectorXd& u) {
     NewtonPolish(&result);
     result.solve_time_ms = MillisecondsSince(start);
   }
+  workspace_->converged_here = result.converged;
+  workspace_->last_energy = result.residual_energy;
   return result;
 }
 
@@ -366,6 +397,7 @@ void ForwardProblem::SetState(const State& s) {
   }
   // A state from elsewhere: the last step no longer predicts the next.
   workspace_->has_last_step = false;
+  workspace_->converged_here = false;
   // Copy in place: Ceres holds pointers into state_'s storage.
   if (&s == &state_) return;
   for (int i = 0; i < model_.num_bodies(); ++i) {

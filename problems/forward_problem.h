@@ -68,6 +68,16 @@ struct ForwardOptions {
   // taken only if E is lower there than at s. Saves about one iteration per
   // step along a path; never changes which minimum LM converges to nearby.
   bool secant_predictor = true;
+  // Solve() first checks whether the new controls are the last ones moved by
+  // one planar rigid motion (every base's (x, y) and heading by the same
+  // rotation about world z and horizontal translation, actuated joints held)
+  // in a model with no joint to the ground; if so it moves every body by
+  // that motion, which keeps every constraint, and when the last solve had
+  // converged the solve ends without an iteration: E stays at the last
+  // solve's, plus the rounding of the moved poses, accepted up to 1e-26 m^2
+  // (rows ~1e-13 m; problems/internal/planar_rigid_motion.h). Takes
+  // precedence over the secant predictor.
+  bool rigid_motion_predictor = true;
   // kCeres only: print Ceres' per-iteration progress to stdout.
   bool log_progress = false;
   // When E stays > assembly_tolerance, Levenberg-Marquardt (Gauss-Newton)
@@ -153,8 +163,9 @@ class ForwardProblem {
   void CheckControls(const Eigen::VectorXd& u) const;
   // Exact-Newton steps on E from the current state; updates `result`.
   void NewtonPolish(ForwardResult* result);
-  // Moves the state to the secant prediction for controls u when that lowers
-  // E (ForwardOptions::secant_predictor); remembers this step for the next.
+  // Moves the state to the rigid-motion prediction or else the secant
+  // prediction for controls u (ForwardOptions::rigid_motion_predictor,
+  // secant_predictor); remembers this step for the next.
   void PredictFromLastStep(const Eigen::VectorXd& u);
   // Number of sub-steps to move the controls by `change`; throws when too many.
   int SubstepCount(const Eigen::VectorXd& change) const;

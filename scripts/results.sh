@@ -87,8 +87,8 @@ constraints, spherical = `Constraint::Ball`, revolute = `Ball` plus two `Constan
 degrees (the axis fixed in one body kept perpendicular to two directions normal to the axis in
 the other, as Simbody's documentation recommends for aligning axes). Three solvers run in one
 process, interleaved step by step, each warm from its own previous solution, on 200-step circles
-of radius 5 cm (10 laps): the horizontal one is `BM_ForwardTrack`'s path; the vertical one (x-z
-plane) is added because the horizontal one does not exercise Simbody at all (below). Simbody must
+of radius 5 cm (10 laps), those of `BM_ForwardTrack`: a horizontal one and a vertical one (x-z
+plane), added because the horizontal one exercises neither solver (below). Simbody must
 bring every constraint error below 1e-12 (infinity norm); ccma uses its defaults (assembled at
 E < 1e-16; these solves end below E = 1e-30, every residual row below 1e-15).
 
@@ -98,8 +98,9 @@ TEXT
 
 What each column is:
 
-- **ccma**: `ForwardProblem::Solve(u)`, the default native solver with its secant predictor; the
-  last column is the same without the predictor (Simbody has none).
+- **ccma**: `ForwardProblem::Solve(u)`, the default native solver with its predictors (secant
+  along a path; rigid-motion when every base moves by one planar rigid motion); the last column
+  is the same without either (Simbody has none).
 - **Simbody projectQ**: `System::projectQ` as Simbody itself spells it out: set the time (the
   step index, which prescribes the bases' q), realize to Time, `prescribeQ`, realize to
   Position, `projectQ` with accuracy 1e-12 and the infinity norm. Full Newton steps through
@@ -120,9 +121,11 @@ What each column is:
 Reading it: on the horizontal circle every base moves by the end-effector's displacement, so the
 whole mechanism translates rigidly. In Simbody's joint coordinates nothing but the prescribed
 base q changes; both Simbody solvers find the constraints already satisfied and return after one
-check (0 iterations), so those rows measure Simbody's per-step overhead against ccma, whose state
-is every body's absolute pose and which therefore moves every body. On the vertical circle, which
-folds the legs, all three iterate, and the ratios compare solvers doing real work. Reproduce with
+check (0 iterations). ccma's state is every body's absolute pose; its rigid-motion predictor
+recognises the bases' common motion, moves every body by it and checks the constraints (0
+iterations too), so those rows compare the per-step overheads of a check. Without the predictors
+ccma takes one iteration per step there. On the vertical circle, which folds the legs, all three
+iterate, and the ratios compare solvers doing real work. Reproduce with
 `scripts/simbody_bench.sh` (installs `libsimbody-dev` if missing, builds `simbody_benchmark`,
 writes `benchmarks/results/simbody.md` and `.json`), then `scripts/results.sh`.
 TEXT

@@ -36,7 +36,15 @@ Model LoadReference(const std::string& name) {
 // Controls that move every base by the same planar rigid motion (rotation by
 // psi about the world z axis, then translation t): the whole mechanism moves
 // rigidly, so these are reachable for any model and the end-effector's pose
-// follows in closed form.
+// follows in closed form. The tests below that use them test the solver
+// itself, so they switch off the predictor that moves the state rigidly
+// (planar_rigid_motion_test.cc covers it).
+ForwardOptions WithoutRigidPredictor() {
+  ForwardOptions options;
+  options.rigid_motion_predictor = false;
+  return options;
+}
+
 Eigen::VectorXd RigidlyMovedControls(const Model& m, double psi, const Eigen::Vector2d& t) {
   Eigen::VectorXd u = m.home_controls();
   const Eigen::Matrix2d R = Eigen::Rotation2Dd(psi).toRotationMatrix();
@@ -66,7 +74,7 @@ TEST_P(EveryReferenceModel, RigidPlanarMotionOfAllBasesMovesTheEndEffectorRigidl
   for (int trial = 0; trial < 10; ++trial) {
     const double psi = 0.6 * d(rng);
     const Eigen::Vector2d t(0.2 * d(rng), 0.2 * d(rng));
-    ForwardProblem forward(m);
+    ForwardProblem forward(m, WithoutRigidPredictor());
     const ForwardResult r = forward.Assemble(RigidlyMovedControls(m, psi, t));
     ASSERT_TRUE(r.assembled) << r.residual_energy;
     const Eigen::Matrix3d Rz = RotationZ(psi);
@@ -81,7 +89,7 @@ TEST_P(EveryReferenceModel, WarmStartedPaperSizeStepsConvergeQuadratically) {
   // 1 cm steps of all bases: redundant rows (revolute 6 for 5, fixed 9 for
   // 6, planar 4 for 3) must neither stall nor slow the solve.
   const Model m = LoadReference(GetParam());
-  ForwardProblem forward(m);
+  ForwardProblem forward(m, WithoutRigidPredictor());
   for (int step = 1; step <= 10; ++step) {
     const ForwardResult r =
         forward.Solve(RigidlyMovedControls(m, 0.005 * step, Eigen::Vector2d(0.01 * step, 0)));
@@ -113,7 +121,7 @@ TEST_P(EveryReferenceModel, SameAssemblyWhateverTheBodiesHomeOrientation) {
     } else {
       for (int i = 0; i < u.size(); ++i) u_perturbed[i] += 0.004 * std::sin(3.0 * i);
     }
-    ForwardProblem a(plain), b(turned);
+    ForwardProblem a(plain, WithoutRigidPredictor()), b(turned, WithoutRigidPredictor());
     const ForwardResult ra = a.Assemble(u_perturbed);
     const ForwardResult rb = b.Assemble(u_perturbed);
     ASSERT_TRUE(ra.assembled);

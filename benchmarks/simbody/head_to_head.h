@@ -9,16 +9,19 @@
 //       on the same mechanism with its redundant equations disabled (its
 //       optimiser needs independent ones: simbody_mechanism.h);
 //   (c) ccma ForwardProblem::Solve(u): the default native solver, warm (and
-//       the same without the secant predictor, for reference),
+//       the same without its predictors, secant and rigid-motion, for
+//       reference),
 // each from its own previous solution, interleaved step by step so that all
-// see the same machine load. Each call is timed alone with steady_clock; the
+// see the same machine load, in an order that rotates from step to step (the
+// first to run finds the caches filled by the others). Each call is timed alone with steady_clock; the
 // end-effector point of (a) and (b) is compared with ccma's at every step
 // (outside the timed region).
 //
 // What the two paths measure (circle_track.h): on the horizontal circle the
 // reference models translate rigidly, so Simbody's joint coordinates do not
-// change and both Simbody solvers only check the constraints (0 iterations),
-// while ccma, whose state is every body's absolute pose, moves every body.
+// change and both Simbody solvers only check the constraints (0 iterations);
+// ccma, whose state is every body's absolute pose, recognises the bases'
+// common rigid motion and moves every body by it (0 iterations as well).
 // The vertical circle folds the legs: every solver has to iterate.
 #ifndef CCMA_BENCHMARKS_SIMBODY_HEAD_TO_HEAD_H_
 #define CCMA_BENCHMARKS_SIMBODY_HEAD_TO_HEAD_H_

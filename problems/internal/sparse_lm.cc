@@ -374,14 +374,14 @@ void SparseLevenbergMarquardt::Plus(const State& s, const Eigen::VectorXd& ds, S
 // (E ~ 1e-31), where the previous loop took three full iterations to
 // E ~ 1e-26 (|dE/ds| <= 1e-14).
 SparseLmSummary SparseLevenbergMarquardt::Solve(State* s, const Eigen::VectorXd& u, int max_iterations,
-                                                bool stop_when_linear) {
+                                                bool stop_when_linear, double converged_energy) {
   SparseLmSummary summary;
   double last_ratio = 0;  // |next step| / |step| of the last accepted Gauss-Newton step, 0 if none
   double energy = Evaluate(*s, u);
   Gradient();
   bool have_normal = false;  // J^T J at *s in normal_
   double mu = 0;
-  if (energy <= kEnergyFloor) summary.converged = true;
+  if (energy <= std::max(kEnergyFloor, converged_energy)) summary.converged = true;
   while (!summary.converged && summary.iterations < max_iterations) {
     if (!have_normal) {
       AccumulateNormal();

@@ -58,8 +58,12 @@ class SparseLevenbergMarquardt {
   // m or rad), when E is at rounding level (E <= 1e-31), or when E no longer
   // decreases relatively by more than 1e-15 (a stationary point with E > 0).
   // With `stop_when_linear`, stops as soon as the convergence turns linear
-  // at E > 0 (see SparseLmSummary::linear).
-  SparseLmSummary Solve(State* s, const Eigen::VectorXd& u, int max_iterations, bool stop_when_linear = false);
+  // at E > 0 (see SparseLmSummary::linear). `converged_energy` [m^2]: the
+  // caller knows that `s` is an exact image of a converged state (a rigid
+  // motion of it, planar_rigid_motion.h) whose E, plus rounding, was this;
+  // at or below it the start counts as converged (no iteration).
+  SparseLmSummary Solve(State* s, const Eigen::VectorXd& u, int max_iterations, bool stop_when_linear = false,
+                        double converged_energy = 0);
 
  private:
   using Block = Eigen::Matrix<double, kPoseTangentSize, kPoseTangentSize>;

@@ -259,6 +259,7 @@ class ForwardOptions:
         *,
         solver: Literal["native", "ceres"] = "native",
         secant_predictor: bool = True,
+        rigid_motion_predictor: bool = True,
         assembly_tolerance: float = 1e-16,
         max_iterations: int = 100,
         max_control_step: float = 0.02,
@@ -277,6 +278,11 @@ class ForwardOptions:
         """Start each solve from the secant prediction along a path (default True)."""
     @secant_predictor.setter
     def secant_predictor(self, value: bool) -> None: ...
+    @property
+    def rigid_motion_predictor(self) -> bool:
+        """When every base moves by one planar rigid motion (and no joint ends at the ground), move every body by it: the solve ends without an iteration (default True)."""
+    @rigid_motion_predictor.setter
+    def rigid_motion_predictor(self, value: bool) -> None: ...
     @property
     def assembly_tolerance(self) -> float:
         """E [m^2] below which the mechanism counts as assembled (default 1e-16)."""

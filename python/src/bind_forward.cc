@@ -58,6 +58,9 @@ void BindOptions(py::module_& m) {
           "'native' (ccma's sparse Levenberg-Marquardt, default) or 'ceres' (ceres::Solve, the reference)")
       .def_readwrite("secant_predictor", &ForwardOptions::secant_predictor,
                      "start each solve from the secant prediction along a path (default True)")
+      .def_readwrite("rigid_motion_predictor", &ForwardOptions::rigid_motion_predictor,
+                     "when every base moves by one planar rigid motion (and no joint ends at the ground), "
+                     "move every body by it: the solve ends without an iteration (default True)")
       .def_readwrite("assembly_tolerance", &ForwardOptions::assembly_tolerance,
                      "E [m^2] below which the mechanism counts as assembled")
       .def_readwrite("max_iterations", &ForwardOptions::max_iterations, "per solve (per sub-step)")
