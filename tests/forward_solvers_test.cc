@@ -19,18 +19,12 @@
 #include "ccma/model_loader.h"
 #include "problems/control_problem.h"
 #include "problems/forward_problem.h"
+#include "tests/bundled_models.h"
 
 namespace ccma {
 namespace {
 
-std::vector<std::string> BundledModels() {
-  std::vector<std::string> names;
-  for (const auto& entry : std::filesystem::directory_iterator(CCMA_MODELS_DIR)) {
-    if (entry.path().extension() == ".yaml") names.push_back(entry.path().stem().string());
-  }
-  std::sort(names.begin(), names.end());
-  return names;
-}
+using testing::BundledModels;
 
 // Those with a mobile base (one can be pulled out of reach).
 std::vector<std::string> ModelsWithBases() {

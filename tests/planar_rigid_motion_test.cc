@@ -19,19 +19,13 @@
 #include "problems/control_problem.h"
 #include "problems/forward_problem.h"
 #include "problems/internal/planar_rigid_motion.h"
+#include "tests/bundled_models.h"
 #include "tests/leg_closed_form.h"
 
 namespace ccma {
 namespace {
 
-std::vector<std::string> BundledModels() {
-  std::vector<std::string> names;
-  for (const auto& entry : std::filesystem::directory_iterator(CCMA_MODELS_DIR)) {
-    if (entry.path().extension() == ".yaml") names.push_back(entry.path().stem().string());
-  }
-  std::sort(names.begin(), names.end());
-  return names;
-}
+using testing::BundledModels;
 
 Model Load(const std::string& name) {
   if (name == "generated_12") {

@@ -76,6 +76,26 @@ Eigen::VectorXd ResolvedGradient(ControlProblem& control, const State& base, con
   return g;
 }
 
+// The tempting wrong derivative the checks must reject: central differences
+// of f with the state held at `base` (Restore, no re-solve: ds/du dropped).
+template <typename F>
+Eigen::VectorXd FrozenStateGradient(ControlProblem& control, const State& base, const Eigen::VectorXd& u_base,
+                                    const F& f, double h) {
+  const std::vector<int>& effective = control.effective_controls();
+  Eigen::VectorXd g(static_cast<Eigen::Index>(effective.size()));
+  for (size_t c = 0; c < effective.size(); ++c) {
+    Eigen::VectorXd u = u_base;
+    u[effective[c]] += h;
+    control.forward().Restore(base, u);
+    const double plus = f();
+    u[effective[c]] -= 2 * h;
+    control.forward().Restore(base, u);
+    g[static_cast<Eigen::Index>(c)] = (plus - f()) / (2 * h);
+  }
+  control.forward().Restore(base, u_base);
+  return g;
+}
+
 // |analytic - numeric|_inf relative to |numeric|_inf.
 double RelativeMismatch(const Eigen::VectorXd& analytic, const Eigen::VectorXd& numeric) {
   return (analytic - numeric).lpNorm<Eigen::Infinity>() / std::max(numeric.lpNorm<Eigen::Infinity>(), 1e-300);
@@ -201,19 +221,7 @@ TEST(PivotRatioGradientCheck, FailsForADerivativeAtAFixedState) {
   const State base = control.forward().state();
   const Eigen::VectorXd u_base = control.controls();
   const Eigen::VectorXd numeric = ResolvedGradient(control, base, u_base, [&] { return control.PivotRatio(); }, 1e-4);
-  const std::vector<int>& effective = control.effective_controls();
-  Eigen::VectorXd frozen(static_cast<Eigen::Index>(effective.size()));
-  const double h = 1e-5;
-  for (size_t c = 0; c < effective.size(); ++c) {
-    Eigen::VectorXd u = u_base;
-    u[effective[c]] += h;
-    control.forward().Restore(base, u);
-    const double plus = control.PivotRatio();
-    u[effective[c]] -= 2 * h;
-    control.forward().Restore(base, u);
-    frozen[static_cast<Eigen::Index>(c)] = (plus - control.PivotRatio()) / (2 * h);
-  }
-  control.forward().Restore(base, u_base);
+  const Eigen::VectorXd frozen = FrozenStateGradient(control, base, u_base, [&] { return control.PivotRatio(); }, 1e-5);
   EXPECT_GT(RelativeMismatch(frozen, numeric), 1e-2) << "frozen " << frozen.transpose() << "\nnumeric "
                                                     << numeric.transpose();
   Eigen::VectorXd analytic;
@@ -234,19 +242,8 @@ TEST(SingularityGradientCheck, FailsForADerivativeWithoutSecondOrderSensitivity)
   const Eigen::VectorXd u_base = control.controls();
   const Eigen::VectorXd numeric =
       ResolvedGradient(control, base, u_base, [&] { return control.SmallestSingularValue(target); }, 1e-4);
-  const std::vector<int>& effective = control.effective_controls();
-  Eigen::VectorXd frozen(static_cast<Eigen::Index>(effective.size()));
-  const double h = 1e-5;
-  for (size_t c = 0; c < effective.size(); ++c) {
-    Eigen::VectorXd u = u_base;
-    u[effective[c]] += h;
-    control.forward().Restore(base, u);
-    const double plus = control.SmallestSingularValue(target);
-    u[effective[c]] -= 2 * h;
-    control.forward().Restore(base, u);
-    frozen[static_cast<Eigen::Index>(c)] = (plus - control.SmallestSingularValue(target)) / (2 * h);
-  }
-  control.forward().Restore(base, u_base);
+  const Eigen::VectorXd frozen =
+      FrozenStateGradient(control, base, u_base, [&] { return control.SmallestSingularValue(target); }, 1e-5);
   EXPECT_GT(RelativeMismatch(frozen, numeric), 1e-2) << "frozen " << frozen.transpose() << "\nnumeric "
                                                     << numeric.transpose();
   // And the real one passes at the same point.

@@ -119,7 +119,7 @@ ConstraintSet::ConstraintSet(const Model& model)
         base.name + " (motor)");
   }
   for (const ConstraintBlock& block : blocks_) {
-    // EvaluateDerivatives' fixed-size scratch relies on these bounds.
+    // The fixed-size scratch of EvaluateDerivatives and Energy relies on these bounds.
     if (block.rows > 9 || block.bodies.size() > 2 || block.control_size > kBaseControlSize) {
       throw std::logic_error("ConstraintSet: block " + block.label + " exceeds 9 rows, 2 bodies or " +
                              std::to_string(kBaseControlSize) + " controls");
@@ -328,9 +328,21 @@ void ConstraintSet::EvaluateDerivatives(const State& s, const Eigen::VectorXd& u
 }
 
 double ConstraintSet::Energy(const State& s, const Eigen::VectorXd& u) const {
-  Eigen::VectorXd C;
-  Evaluate(s, u, &C);
-  return 0.5 * C.squaredNorm();
+  // Block by block into a stack buffer: called on every solve by the
+  // predictors, so nothing is allocated (no C vector, no parameter list).
+  constexpr int kMaxRows = 9;       // the most rows of one block (a fixed joint)
+  constexpr int kMaxParameters = 3; // two poses and a control block
+  double residuals[kMaxRows];
+  const double* params[kMaxParameters];
+  double sum = 0;
+  for (const ConstraintBlock& block : blocks_) {
+    int n = 0;
+    for (int body : block.bodies) params[n++] = Pose(s, body);
+    if (block.control_size > 0) params[n++] = u.data() + block.control_offset;
+    block.cost->Evaluate(params, residuals, nullptr);
+    for (int r = 0; r < block.rows; ++r) sum += residuals[r] * residuals[r];
+  }
+  return 0.5 * sum;
 }
 
 }  // namespace ccma
