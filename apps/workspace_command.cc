@@ -143,16 +143,31 @@ std::vector<std::string> WritePlots(const Model& model, const WorkspaceOptions& 
   const std::string xl = std::string(kEndEffectorComponentNames[static_cast<size_t>(a)]) + unit(a);
   const std::string yl = b >= 0 ? std::string(kEndEffectorComponentNames[static_cast<size_t>(b)]) + unit(b) : "-";
   const std::string title = "workspace of " + model.name;
+  // Unreachable samples are never drawn as a colour of the scale: on the
+  // sigma_min map a 0 would read as "reachable but singular". Grey crosses
+  // and the red-to-blue ramp, as in the 3D viewer (viewer/js/src/workspace.js).
+  const std::string unreachable =
+      "'' using 1:($3 > 0.5 ? 1/0 : $2) with points pt 2 ps 1.2 lc rgb '#8b929c' title 'unreachable'";
   for (const std::string& what : {std::string("reachability"), std::string("sigma_min")}) {
     std::ostringstream script;
     script << TerminalCommand("png", 900, 700) << "\nset output '" << what << ".png'\n"
-           << "set title " << GnuplotQuote(title + ": " + (what == "sigma_min" ? "smallest singular value of dX/du" : "reachable (1) or not (0)"))
+           << "set title " << GnuplotQuote(title + ": " + (what == "sigma_min"
+                                                               ? "smallest singular value of dX/du"
+                                                               : "reachable or not"))
            << "\nset xlabel " << GnuplotQuote(xl) << "\nset ylabel " << GnuplotQuote(yl) << "\n"
-           << (what == "reachability" ? "set palette defined (0 '#d73027', 1 '#1a9850')\nset cbrange [0:1]\n"
-                                      : "set palette rgb 33,13,10\n")
-           << "set size ratio -1\nunset key\n"
-           << "plot 'workspace_slice.dat' using 1:2:" << (what == "reachability" ? 3 : 4)
-           << " with points pt 5 ps 1.5 palette\n";
+           << "set size ratio -1\nset key below center horizontal\n";
+    if (what == "reachability") {
+      script << "plot 'workspace_slice.dat' using 1:($3 > 0.5 ? $2 : 1/0) with points pt 5 ps 1.5 "
+                "lc rgb '#43a047' title 'reachable', "
+             << unreachable << "\n";
+    } else {
+      script << "set palette defined (0 '#c62828', 1 '#ef6c00', 2 '#d4a20a', 3 '#43a047', 4 '#1e88e5')\n"
+                "set cbrange [0:*]\n"
+                "set cblabel 'sigma_min [m or rad per control unit] (0: singular)'\n"
+                "plot 'workspace_slice.dat' using 1:2:($3 > 0.5 ? $4 : 1/0) with points pt 5 ps 1.5 palette "
+                "notitle, "
+             << unreachable << "\n";
+    }
     const std::string error = RunGnuplot(script.str(), dir);
     if (!error.empty()) {
       *warning = error;

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # The README's viewer screenshots: `ccma view` of every bundled model, of a
-# replay and of a workspace map (a few seconds of `ccma workspace`), opened in headless Chromium by the browser test, which also checks
+# replay and of a workspace map (a few seconds of `ccma workspace`), opened in headless
+# Chromium by the browser test, which also checks
 # each page (no console error, no request, the mechanism drawn) before saving
-# docs/images/view_<name>.png. Needs a build (scripts/setup.sh) and chromium.
+# docs/images/view_<name>.png; and the workspace slice map of docs/workspace.md (gnuplot).
+# Needs a build (scripts/setup.sh), chromium and gnuplot.
 #   scripts/screenshots.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -28,3 +30,8 @@ echo "screenshots: docs/images/view_replay_4dof_reduced.png"
 node viewer/js/test/browser_test.mjs --html "$out/workspace.html" \
   --screenshot docs/images/view_workspace_4dof_reduced.png > /dev/null
 echo "screenshots: docs/images/view_workspace_4dof_reduced.png"
+# The workspace slice map of docs/workspace.md (gnuplot, `ccma workspace --plot`).
+"$build"/apps/ccma workspace --model=models/4dof_reduced.yaml --x=-0.5:0.5 --z=0.4:1.0 --resolution=25 \
+  --out="$out/slice.csv" --plot="$out/slice" > /dev/null
+cp "$out/slice/sigma_min.png" docs/images/workspace_sigma_min_4dof_reduced.png
+echo "screenshots: docs/images/workspace_sigma_min_4dof_reduced.png"
