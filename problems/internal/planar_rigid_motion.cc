@@ -15,6 +15,14 @@ bool MovesRigidlyWithItsBases(const Model& model) {
   return model.num_bases() > 0;
 }
 
+namespace {
+
+// An angle difference in [-pi, pi]; std::remainder only when needed (it is
+// slow, and the differences here are almost always small).
+double Wrapped(double d) { return std::abs(d) <= M_PI ? d : std::remainder(d, 2 * M_PI); }
+
+}  // namespace
+
 bool PlanarRigidMotionBetween(const Model& model, const Eigen::VectorXd& u_old, const Eigen::VectorXd& u_new,
                               PlanarRigidMotion* motion) {
   const int num_bases = model.num_bases();
@@ -23,20 +31,20 @@ bool PlanarRigidMotionBetween(const Model& model, const Eigen::VectorXd& u_old, 
   double change = 0;  // largest change of a control [m or rad], headings the short way round
   for (int i = 0; i < u_old.size(); ++i) {
     const bool heading = i < kBaseControlSize * num_bases && i % kBaseControlSize == 2;
-    const double d = heading ? std::remainder(u_new[i] - u_old[i], 2 * M_PI) : u_new[i] - u_old[i];
+    const double d = heading ? Wrapped(u_new[i] - u_old[i]) : u_new[i] - u_old[i];
     change = std::max(change, std::abs(d));
   }
   const double scale = std::max(u_old.lpNorm<Eigen::Infinity>(), u_new.lpNorm<Eigen::Infinity>());
   const double tolerance = 1e-10 * change + 8 * std::numeric_limits<double>::epsilon() * (1 + scale);
   // T from the first base: its heading change and where its origin went.
-  const double dtheta = std::remainder(u_new[2] - u_old[2], 2 * M_PI);
+  const double dtheta = Wrapped(u_new[2] - u_old[2]);
   const Eigen::Rotation2Dd R(dtheta);
   const Eigen::Vector2d t = u_new.head<2>() - R * u_old.head<2>();
   for (int k = 0; k < num_bases; ++k) {
     const int i = kBaseControlSize * k;
     const Eigen::Vector2d moved = R * u_old.segment<2>(i) + t;
     if (std::abs(moved.x() - u_new[i]) > tolerance || std::abs(moved.y() - u_new[i + 1]) > tolerance ||
-        std::abs(std::remainder(u_new[i + 2] - u_old[i + 2] - dtheta, 2 * M_PI)) > tolerance) {
+        std::abs(Wrapped(u_new[i + 2] - u_old[i + 2] - dtheta)) > tolerance) {
       return false;
     }
   }
@@ -49,10 +57,30 @@ bool PlanarRigidMotionBetween(const Model& model, const Eigen::VectorXd& u_old, 
 }
 
 void ApplyPlanarRigidMotion(const PlanarRigidMotion& motion, State* s) {
-  const Eigen::Quaterniond q_turn(Eigen::AngleAxisd(motion.dtheta, Eigen::Vector3d::UnitZ()));
-  const Eigen::Vector3d t(motion.t.x(), motion.t.y(), 0.0);
+  // On the stored poses directly ([qx, qy, qz, qw, px, py, pz], state.h):
+  // this runs on every formation step, where it is a third of the solve.
+  const double tx = motion.t.x(), ty = motion.t.y();
+  if (motion.dtheta == 0) {  // a translation: orientations stay exactly as they are
+    for (int body = 0; body < s->num_bodies(); ++body) {
+      double* pose = s->pose(body);
+      pose[4] += tx;
+      pose[5] += ty;
+    }
+    return;
+  }
+  const double c = std::cos(motion.dtheta), sn = std::sin(motion.dtheta);
+  // q_turn = (w, x, y, z) = (cos(dtheta/2), 0, 0, sin(dtheta/2)); q <- q_turn q.
+  const double cw = std::cos(motion.dtheta / 2), sz = std::sin(motion.dtheta / 2);
   for (int body = 0; body < s->num_bodies(); ++body) {
-    s->SetPose(body, (q_turn * s->q_WB(body)).normalized(), q_turn * s->p_WB(body) + t);
+    double* pose = s->pose(body);
+    const double x = pose[0], y = pose[1], z = pose[2], w = pose[3];
+    pose[0] = cw * x - sz * y;
+    pose[1] = cw * y + sz * x;
+    pose[2] = cw * z + sz * w;
+    pose[3] = cw * w - sz * z;
+    const double px = pose[4], py = pose[5];
+    pose[4] = c * px - sn * py + tx;
+    pose[5] = sn * px + c * py + ty;
   }
 }
 
