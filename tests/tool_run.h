@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -57,6 +58,16 @@ inline ToolRun RunTool(const std::vector<std::string>& args, int timeout_s = 120
   r.out = Slurp(out);
   r.err = Slurp(err);
   return r;
+}
+
+// A bundled model file's path (models/NAME.yaml).
+inline std::string ModelPath(const std::string& name) { return std::string(CCMA_MODELS_DIR) + "/" + name + ".yaml"; }
+
+// A path in this test process's own scratch folder TempDir()/PREFIX_PID (created).
+inline std::string ScratchPath(const std::string& prefix, const std::string& name) {
+  const std::string dir = ::testing::TempDir() + "/" + prefix + "_" + std::to_string(getpid());
+  std::filesystem::create_directories(dir);
+  return dir + "/" + name;
 }
 
 }  // namespace ccma::testing

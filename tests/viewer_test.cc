@@ -20,15 +20,10 @@ namespace {
 
 namespace fs = std::filesystem;
 using ccma::testing::RunTool;
+using ccma::testing::ModelPath;
 using ccma::testing::ToolRun;
 
-std::string ModelPath(const std::string& name) { return std::string(CCMA_MODELS_DIR) + "/" + name + ".yaml"; }
-
-std::string Scratch(const std::string& name) {
-  const std::string dir = ::testing::TempDir() + "/viewer_" + std::to_string(getpid());
-  fs::create_directories(dir);
-  return dir + "/" + name;
-}
+std::string Scratch(const std::string& name) { return ccma::testing::ScratchPath("viewer", name); }
 
 // A trajectory CSV written by the tool itself.
 std::string Trajectory(const std::string& model) {

@@ -22,15 +22,10 @@ namespace {
 
 namespace fs = std::filesystem;
 using ccma::testing::RunTool;
+using ccma::testing::ModelPath;
 using ccma::testing::ToolRun;
 
-std::string ModelPath(const std::string& name) { return std::string(CCMA_MODELS_DIR) + "/" + name + ".yaml"; }
-
-std::string Scratch(const std::string& name) {
-  const std::string dir = ::testing::TempDir() + "/viewer_workspace_" + std::to_string(getpid());
-  fs::create_directories(dir);
-  return dir + "/" + name;
-}
+std::string Scratch(const std::string& name) { return ccma::testing::ScratchPath("viewer_workspace", name); }
 
 // A 3 x 3 map of 4dof_reduced over x and z written by the tool: z = 0.9 m
 // is above the legs' reach (0.85 m), so its three rows are unreachable.
