@@ -263,6 +263,7 @@ ForwardResult ForwardProblem::Solve(const Eigen::VectorXd& u) {
     result.residual_energy = summary.energy;
     result.converged = summary.converged;
     result.gradient_norm = summary.gradient_norm;
+    result.gradient_norm_is_bound = summary.gradient_norm_is_bound;
     result.message = summary.converged ? "converged" : "not converged: iteration limit or no decrease";
   } else {
     ceres::Solver::Summary summary;
@@ -311,6 +312,7 @@ void ForwardProblem::NewtonPolish(ForwardResult* result) {
   }
   result->residual_energy = now->energy;
   result->gradient_norm = now->G.lpNorm<Eigen::Infinity>();
+  result->gradient_norm_is_bound = false;
   result->assembled = result->residual_energy < options_.assembly_tolerance;
 }
 
@@ -371,6 +373,7 @@ ForwardResult ForwardProblem::Assemble(const Eigen::VectorXd& u) {
     total.assembled = step.assembled;
     total.residual_energy = step.residual_energy;
     total.gradient_norm = step.gradient_norm;
+    total.gradient_norm_is_bound = step.gradient_norm_is_bound;
     total.message = step.message;
   }
   return total;

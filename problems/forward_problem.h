@@ -107,6 +107,10 @@ struct ForwardResult {
   int substeps = 1;         // solves made (Assemble() may split the step)
   int newton_steps = 0;     // exact-Newton polish steps after LM (E > 0)
   double gradient_norm = 0; // max |dE/ds| at the end
+  // gradient_norm is an upper bound, 2 |J|_F |C|, not the value: the solve
+  // moved an assembled state rigidly with its bases and checked its residuals
+  // only (ForwardOptions::rigid_motion_predictor; E <= 1e-24 m^2 there).
+  bool gradient_norm_is_bound = false;
   double solve_time_ms = 0; // wall time of the solve(s)
   // Assemble() only: some sub-step left the branch its predictor followed
   // (see ForwardOptions::branch_jump_relative); the largest deviation from

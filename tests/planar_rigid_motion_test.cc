@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include "ccma/internal/constraint_set.h"
 #include "ccma/model_generator.h"
 #include "ccma/model_loader.h"
 #include "ccma/rotation.h"
@@ -136,6 +137,7 @@ TEST_P(RigidMotion, FormationMovesEndWithoutAnIterationWhereTheGeometrySays) {
       EXPECT_GT(r.iterations, 0) << "step " << step;
     } else {
       EXPECT_EQ(r.iterations, 0) << "step " << step;
+      EXPECT_TRUE(r.gradient_norm_is_bound) << "step " << step;  // assembled: residuals only
       const Eigen::Matrix3d Rz = RotationZ(psi);
       const Eigen::Vector3d expected = Rz * before.position + Eigen::Vector3d(t.x(), t.y(), 0);
       EXPECT_LT((forward.end_effector().position - expected).norm(), 1e-12) << "step " << step;
@@ -144,6 +146,14 @@ TEST_P(RigidMotion, FormationMovesEndWithoutAnIterationWhereTheGeometrySays) {
     EXPECT_TRUE(r.converged && r.assembled) << "step " << step;
     EXPECT_LE(r.residual_energy, kRigidImageEnergy) << "step " << step;
     EXPECT_LT(r.gradient_norm, 1e-12) << "step " << step;
+    if (r.gradient_norm_is_bound) {
+      // Checked on residuals only: the reported norm bounds the true one.
+      EXPECT_EQ(r.iterations, 0) << "step " << step;
+      EnergyDerivatives derivatives;
+      forward.constraints().EvaluateDerivatives(forward.state(), forward.controls(), &derivatives);
+      EXPECT_LE(derivatives.G.lpNorm<Eigen::Infinity>(), r.gradient_norm) << "step " << step;
+      EXPECT_GT(r.gradient_norm, 0) << "step " << step;
+    }
     EXPECT_LT((forward.end_effector().position - plain.end_effector().position).norm(), 1e-10) << "step " << step;
     EXPECT_LT(forward.state().Minus(plain.state()).lpNorm<Eigen::Infinity>(), 1e-9) << "step " << step;
   }
@@ -175,6 +185,7 @@ TEST(RigidMotionPredictor, AStationaryPointOutOfReachMovesAsItIs) {
   EXPECT_FALSE(moved.assembled);
   EXPECT_NEAR(moved.residual_energy, far.residual_energy, 1e-12 * far.residual_energy);
   EXPECT_LT(moved.gradient_norm, 1e-12);
+  EXPECT_FALSE(moved.gradient_norm_is_bound);  // E > 0: the gradient itself, not a bound
 }
 
 TEST(RigidMotionPredictor, AStateFromElsewhereIsNotTakenAsConverged) {

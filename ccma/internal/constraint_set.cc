@@ -311,8 +311,11 @@ void ConstraintSet::EvaluateDerivatives(const State& s, const Eigen::VectorXd& u
       if (block.bodies[p] == kWorld) continue;
       for (int q = 0; q < poses; ++q) {
         if (block.bodies[q] == kWorld) continue;
+        // lazyProduct: with a run-time inner size (the block's rows) Eigen
+        // would send 6 x 9 by 9 x 6 to its blocked matrix product, whose
+        // packing costs more than the arithmetic.
         const Eigen::Matrix<double, kT, kT> H_pq =
-            J_body[p].transpose() * J_body[q] + local.block<kT, kT>(kT * p, kT * q);
+            J_body[p].transpose().lazyProduct(J_body[q]) + local.block<kT, kT>(kT * p, kT * q);
         // Column-major 6 x 6 block: column c of body q starts H_column_stride apart.
         for (int c = 0; c < kT; ++c) {
           Eigen::Map<Eigen::Matrix<double, kT, 1>>(H + o.H[p][q] + c * o.H_column_stride[q]) += H_pq.col(c);
@@ -320,7 +323,7 @@ void ConstraintSet::EvaluateDerivatives(const State& s, const Eigen::VectorXd& u
       }
       for (int c = 0; c < block.control_size; ++c) {
         Eigen::Map<Eigen::Matrix<double, kT, 1>>(dG_du + o.dG_du[p][c]).noalias() +=
-            J_body[p].transpose() * J_control.col(c);
+            J_body[p].transpose().lazyProduct(J_control.col(c));
       }
     }
   }

@@ -50,7 +50,9 @@ void EndEffectorError::Evaluate(const State& s, const PoseTarget& target, Eigen:
     const Eigen::Matrix3d R_target = RotationFromRpy(target.rpy);
     const Eigen::Vector3d phi = QuaternionLog(Eigen::Quaterniond(pose.rotation * R_target.transpose()));
     e->segment<3>(row) = phi;
-    if (de_ds != nullptr) de_ds->middleRows(row, 3) = InverseLeftJacobian(phi) * X.bottomRows(3);
+    // A coefficient-wise product: 3 x 3 by 3 x n is too small for the
+    // blocked matrix product (its packing cost more than the arithmetic).
+    if (de_ds != nullptr) de_ds->middleRows(row, 3).noalias() = InverseLeftJacobian(phi).lazyProduct(X.bottomRows(3));
   } else if (!angles_.empty()) {
     // World angular velocity w = E * d(rpy)/dt for R = Rz Ry Rx.
     const Eigen::Vector3d& rpy = pose.rpy;
@@ -63,7 +65,7 @@ void EndEffectorError::Evaluate(const State& s, const PoseTarget& target, Eigen:
     if (de_ds != nullptr) E_inv = E.inverse();
     for (int k : angles_) {
       (*e)[row] = WrapAngle(rpy[k] - target.rpy[k]);
-      if (de_ds != nullptr) de_ds->row(row) = E_inv.row(k) * X.bottomRows(3);
+      if (de_ds != nullptr) de_ds->row(row).noalias() = E_inv.row(k).lazyProduct(X.bottomRows(3));
       ++row;
     }
   }

@@ -38,7 +38,10 @@ bool PlanarRigidMotionBetween(const Model& model, const Eigen::VectorXd& u_old, 
   const double tolerance = 1e-10 * change + 8 * std::numeric_limits<double>::epsilon() * (1 + scale);
   // T from the first base: its heading change and where its origin went.
   const double dtheta = Wrapped(u_new[2] - u_old[2]);
-  const Eigen::Rotation2Dd R(dtheta);
+  // The rotation as a matrix, once (Rotation2D would take sin and cos at
+  // every product); a translation needs neither.
+  Eigen::Matrix2d R = Eigen::Matrix2d::Identity();
+  if (dtheta != 0) R = Eigen::Rotation2Dd(dtheta).toRotationMatrix();
   const Eigen::Vector2d t = u_new.head<2>() - R * u_old.head<2>();
   for (int k = 0; k < num_bases; ++k) {
     const int i = kBaseControlSize * k;

@@ -41,6 +41,12 @@ constexpr double kStepTolerance = 1e-14;
 constexpr double kRelativeDecrease = 1e-15;
 // A step this small (m or rad) that does not lower E is rounding noise.
 constexpr double kNoiseStep = 1e-12;
+// A rigid image of a converged state (Solve's converged_energy) is accepted
+// on its residuals alone, without Jacobians, when it is assembled to this
+// level [m^2]: then the bound on |dE/ds| (RigidImageConverged) is at most
+// |J|_F * 3e-13. Above it (a stationary point out of reach, E > 0, where the
+// bound would say nothing) the gradient is evaluated.
+constexpr double kRigidCheckEnergy = 1e-24;
 // How much faster than |dc| / |ds| a chord step contracts the error at
 // worst (measured on the paper's models: 3 to 15 times).
 constexpr double kChordSafety = 30;
@@ -236,7 +242,28 @@ SparseLevenbergMarquardt::SparseLevenbergMarquardt(const ConstraintSet& constrai
   trial_ = State(bodies_);
 }
 
+bool SparseLevenbergMarquardt::RigidImageConverged(const State& s, const Eigen::VectorXd& u, double converged_energy,
+                                                   SparseLmSummary* summary) {
+  if (!evaluated_) return false;  // no Jacobian to bound the gradient with
+  const double energy = constraints_.Energy(s, u);  // residuals only
+  if (!(energy <= converged_energy)) return false;
+  // |J^T C|_inf <= |J^T C|_2 <= |J|_F |C|_2, |C|_2 = sqrt(2 E). |J|_F is
+  // invariant under a rigid motion of the whole mechanism, so the norm of the
+  // last evaluated Jacobian (at the moved state's preimage, or within
+  // rounding-level steps of it) serves; the factor 2 covers that distance.
+  if (jacobian_frobenius_ < 0) {
+    jacobian_frobenius_ = Eigen::Map<const Eigen::VectorXd>(jacobians_.data(), Eigen::Index(jacobians_.size())).norm();
+  }
+  summary->converged = true;
+  summary->energy = energy;
+  summary->gradient_norm = 2 * jacobian_frobenius_ * std::sqrt(2 * energy);
+  summary->gradient_norm_is_bound = true;
+  return true;
+}
+
 double SparseLevenbergMarquardt::Evaluate(const State& s, const Eigen::VectorXd& u) {
+  evaluated_ = true;
+  jacobian_frobenius_ = -1;
   const std::vector<ConstraintBlock>& blocks = constraints_.blocks();
   for (const Term& term : terms_) {
     const ConstraintBlock& block = blocks[term.block];
@@ -376,6 +403,10 @@ void SparseLevenbergMarquardt::Plus(const State& s, const Eigen::VectorXd& ds, S
 SparseLmSummary SparseLevenbergMarquardt::Solve(State* s, const Eigen::VectorXd& u, int max_iterations,
                                                 bool stop_when_linear, double converged_energy) {
   SparseLmSummary summary;
+  if (converged_energy > 0 && converged_energy <= kRigidCheckEnergy && RigidImageConverged(*s, u, converged_energy,
+                                                                                             &summary)) {
+    return summary;
+  }
   double last_ratio = 0;  // |next step| / |step| of the last accepted Gauss-Newton step, 0 if none
   double energy = Evaluate(*s, u);
   Gradient();

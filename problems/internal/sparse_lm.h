@@ -39,6 +39,9 @@ struct SparseLmSummary {
   int chord_steps = 0;
   double energy = 0;          // E at the end [m^2]
   double gradient_norm = 0;   // max |dE/ds| at the end
+  // gradient_norm is an upper bound, not the value: a rigid image of an
+  // assembled state, accepted on its residuals alone (Solve's converged_energy).
+  bool gradient_norm_is_bound = false;
   bool converged = false;     // a convergence test held (not the iteration limit)
   // Stopped early (converged false) because Gauss-Newton converges only
   // linearly here: E > 0 at a stationary point (over-constrained or
@@ -61,7 +64,10 @@ class SparseLevenbergMarquardt {
   // at E > 0 (see SparseLmSummary::linear). `converged_energy` [m^2]: the
   // caller knows that `s` is an exact image of a converged state (a rigid
   // motion of it, planar_rigid_motion.h) whose E, plus rounding, was this;
-  // at or below it the start counts as converged (no iteration).
+  // at or below it the start counts as converged (no iteration). When that
+  // bound is at most 1e-24 (an assembled state) the check reads residuals
+  // only (no Jacobian) and reports gradient_norm as a bound (see
+  // SparseLmSummary::gradient_norm_is_bound).
   SparseLmSummary Solve(State* s, const Eigen::VectorXd& u, int max_iterations, bool stop_when_linear = false,
                         double converged_energy = 0);
 
@@ -83,6 +89,11 @@ class SparseLevenbergMarquardt {
     int target, a, b;
   };
 
+  // The rigid-image check of Solve: E(s, u) from the residuals alone; if it
+  // is at most converged_energy, fills `summary` (converged, 0 iterations,
+  // gradient_norm the bound 2 |J|_F sqrt(2 E)) and returns true.
+  bool RigidImageConverged(const State& s, const Eigen::VectorXd& u, double converged_energy,
+                           SparseLmSummary* summary);
   // C and the tangent Jacobians at (s, u) into C_ and jacobians_; returns E.
   double Evaluate(const State& s, const Eigen::VectorXd& u);
   // g_ = J^T C (elimination order) from C_ and jacobians_.
@@ -113,6 +124,8 @@ class SparseLevenbergMarquardt {
   std::vector<Update> update_;
   Eigen::VectorXd C_, g_, ds_, chord_;
   std::vector<double> jacobians_;
+  bool evaluated_ = false;          // jacobians_ holds a Jacobian
+  double jacobian_frobenius_ = -1;  // |jacobians_|_F, -1: not yet computed
   State trial_;
 };
 

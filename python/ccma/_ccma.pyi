@@ -341,6 +341,10 @@ class ForwardResult:
     def gradient_norm(self) -> float:
         """max |dE/ds| at the end."""
     @property
+    def gradient_norm_is_bound(self) -> bool:
+        """gradient_norm is the upper bound 2 |J|_F |C|, not the value: an
+        assembled state moved rigidly with its bases, checked on its residuals only."""
+    @property
     def solve_time_ms(self) -> float:
         """Wall time of the solve(s) [ms]."""
     @property

@@ -85,6 +85,8 @@ void BindResult(py::module_& m) {
       .def_readonly("substeps", &ForwardSolution::substeps)
       .def_readonly("newton_steps", &ForwardSolution::newton_steps)
       .def_readonly("gradient_norm", &ForwardSolution::gradient_norm, "max |dE/ds|")
+      .def_readonly("gradient_norm_is_bound", &ForwardSolution::gradient_norm_is_bound,
+                    "gradient_norm is the upper bound 2 |J|_F |C| (a rigid move checked on residuals only)")
       .def_readonly("solve_time_ms", &ForwardSolution::solve_time_ms, "[ms]")
       .def_readonly("branch_jump", &ForwardSolution::branch_jump, "assemble(): left the branch")
       .def_readonly("branch_jump_size", &ForwardSolution::branch_jump_size, "[m or rad]")
