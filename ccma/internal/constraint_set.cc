@@ -245,13 +245,75 @@ void ConstraintSet::BuildPatterns() {
   }
 }
 
+namespace {
+
+// Everything one block adds to EnergyDerivatives once its cost function has
+// been evaluated, with the row count a template argument: J_p^T J_q is then
+// a fixed-size coefficient-wise product (6 x Rows by Rows x 6), unrolled and
+// vectorised. (A run-time row count made Eigen loop coefficient by
+// coefficient; a plain `*` sends sizes with 6 + 6 + Rows > 20 to its blocked
+// matrix product, whose packing costs more than the arithmetic.)
+// `jacobians`: Rows x 7 row-major per pose, then Rows x control_size;
+// `local`: the block's second-order terms (6 x 6 per pair of poses).
+struct BlockTargets {
+  double* J_s;
+  double* J_u;
+  double* H;
+  double* dG_du;
+  Eigen::VectorXd* G;
+  Eigen::VectorXd* dE_du;
+};
+
+template <int Rows>
+void AccumulateBlock(const ConstraintBlock& block, const ConstraintSet::BlockOffsets& o,
+                     double* const jacobians[3], const double* C,
+                     const Eigen::Matrix<double, 2 * kPoseTangentSize, 2 * kPoseTangentSize>& local,
+                     const BlockTargets& out) {
+  constexpr int kT = kPoseTangentSize;
+  using AmbientJacobian = Eigen::Matrix<double, Rows, kPoseAmbientSize, Eigen::RowMajor>;
+  using TangentJacobian = Eigen::Matrix<double, Rows, kT>;
+  const Eigen::Map<const Eigen::Matrix<double, Rows, 1>> C_block(C);
+  const int poses = static_cast<int>(block.bodies.size());
+  TangentJacobian J_body[2];
+  for (int p = 0; p < poses; ++p) {
+    if (block.bodies[p] == kWorld) continue;
+    J_body[p] = Eigen::Map<const AmbientJacobian>(jacobians[p]).template leftCols<kT>();
+    for (int r = 0; r < Rows; ++r) {
+      Eigen::Map<Eigen::Matrix<double, 1, kT>>(out.J_s + o.J_s[p] + r * o.J_s_row_stride) = J_body[p].row(r);
+    }
+    out.G->segment<kT>(kT * block.bodies[p]).noalias() += J_body[p].transpose() * C_block;
+  }
+  using ControlJacobian = Eigen::Matrix<double, Rows, Eigen::Dynamic, Eigen::RowMajor, Rows, kBaseControlSize>;
+  ControlJacobian J_control;
+  if (block.control_size > 0) {
+    J_control = Eigen::Map<const ControlJacobian>(jacobians[poses], Rows, block.control_size);
+    Eigen::Map<ControlJacobian>(out.J_u + o.J_u, Rows, block.control_size) = J_control;
+    out.dE_du->segment(block.control_offset, block.control_size).noalias() += J_control.transpose() * C_block;
+  }
+  for (int p = 0; p < poses; ++p) {
+    if (block.bodies[p] == kWorld) continue;
+    for (int q = 0; q < poses; ++q) {
+      if (block.bodies[q] == kWorld) continue;
+      const Eigen::Matrix<double, kT, kT> H_pq =
+          J_body[p].transpose().lazyProduct(J_body[q]) + local.template block<kT, kT>(kT * p, kT * q);
+      // Column-major 6 x 6 block: column c of body q starts H_column_stride apart.
+      for (int c = 0; c < kT; ++c) {
+        Eigen::Map<Eigen::Matrix<double, kT, 1>>(out.H + o.H[p][q] + c * o.H_column_stride[q]) += H_pq.col(c);
+      }
+    }
+    for (int c = 0; c < block.control_size; ++c) {
+      Eigen::Map<Eigen::Matrix<double, kT, 1>>(out.dG_du + o.dG_du[p][c]).noalias() +=
+          J_body[p].transpose() * J_control.col(c);
+    }
+  }
+}
+
+}  // namespace
+
 void ConstraintSet::EvaluateDerivatives(const State& s, const Eigen::VectorXd& u,
                                         EnergyDerivatives* out) const {
   constexpr int kT = kPoseTangentSize;
   constexpr int kMaxRows = 9;  // the largest block (cost_functions/)
-  constexpr int kMaxControls = kBaseControlSize;
-  using RowMajorJacobian = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor, kMaxRows,
-                                         kPoseAmbientSize>;
   // Reused workspaces keep their patterns: only the values are overwritten.
   if (out->H.nonZeros() != H_pattern_.nonZeros() || out->H.rows() != state_size_) {
     out->J_s = J_s_pattern_;
@@ -264,67 +326,34 @@ void ConstraintSet::EvaluateDerivatives(const State& s, const Eigen::VectorXd& u
   out->dE_du.setZero(num_controls_);
   out->H.coeffs().setZero();
   out->dG_du.coeffs().setZero();
-  double* J_s = out->J_s.valuePtr();
-  double* J_u = out->J_u.valuePtr();
-  double* H = out->H.valuePtr();
-  double* dG_du = out->dG_du.valuePtr();
+  const BlockTargets targets{out->J_s.valuePtr(), out->J_u.valuePtr(), out->H.valuePtr(),
+                             out->dG_du.valuePtr(), &out->G,          &out->dE_du};
 
   double jac_storage[3][kMaxRows * kPoseAmbientSize];
   Eigen::Matrix<double, 2 * kT, 2 * kT> local;
   const double* params[3];
   for (size_t k = 0; k < blocks_.size(); ++k) {
     const ConstraintBlock& block = blocks_[k];
-    const BlockOffsets& o = offsets_[k];
-    const int rows = block.rows;
     const int poses = static_cast<int>(block.bodies.size());
     for (int p = 0; p < poses; ++p) params[p] = Pose(s, block.bodies[p]);
     if (block.control_size > 0) params[poses] = u.data() + block.control_offset;
     double* jacobians[3] = {jac_storage[0], jac_storage[1], jac_storage[2]};
     double* C = out->C.data() + block.row;
     block.cost->Evaluate(params, C, jacobians);
-    const Eigen::Map<const Eigen::VectorXd> C_block(C, rows);
-
-    // Tangent Jacobians of this block (the first 6 ambient columns, state.h).
-    Eigen::Matrix<double, Eigen::Dynamic, kT, 0, kMaxRows, kT> J_body[2];
-    for (int p = 0; p < poses; ++p) {
-      if (block.bodies[p] == kWorld) continue;
-      J_body[p] = Eigen::Map<const RowMajorJacobian>(jac_storage[p], rows, kPoseAmbientSize).leftCols<kT>();
-      for (int r = 0; r < rows; ++r) {
-        Eigen::Map<Eigen::Matrix<double, 1, kT>>(J_s + o.J_s[p] + r * o.J_s_row_stride) = J_body[p].row(r);
-      }
-      out->G.segment<kT>(kT * block.bodies[p]).noalias() += J_body[p].transpose() * C_block;
-    }
-    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxRows, kMaxControls> J_control;
-    if (block.control_size > 0) {
-      J_control = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
-          jac_storage[poses], rows, block.control_size);
-      Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(J_u + o.J_u, rows,
-                                                                                          block.control_size) =
-          J_control;
-      out->dE_du.segment(block.control_offset, block.control_size).noalias() += J_control.transpose() * C_block;
-    }
-
-    // Local d2E over the block's bodies: J^T J plus sum_i C_i Hess(C_i).
+    // Local d2E over the block's bodies: J^T J (AccumulateBlock) plus
+    // sum_i C_i Hess(C_i) (here).
     local.setZero();
     block.second_order->AddWeightedHessian(params, C, local.topLeftCorner(kT * poses, kT * poses));
-    for (int p = 0; p < poses; ++p) {
-      if (block.bodies[p] == kWorld) continue;
-      for (int q = 0; q < poses; ++q) {
-        if (block.bodies[q] == kWorld) continue;
-        // lazyProduct: with a run-time inner size (the block's rows) Eigen
-        // would send 6 x 9 by 9 x 6 to its blocked matrix product, whose
-        // packing costs more than the arithmetic.
-        const Eigen::Matrix<double, kT, kT> H_pq =
-            J_body[p].transpose().lazyProduct(J_body[q]) + local.block<kT, kT>(kT * p, kT * q);
-        // Column-major 6 x 6 block: column c of body q starts H_column_stride apart.
-        for (int c = 0; c < kT; ++c) {
-          Eigen::Map<Eigen::Matrix<double, kT, 1>>(H + o.H[p][q] + c * o.H_column_stride[q]) += H_pq.col(c);
-        }
-      }
-      for (int c = 0; c < block.control_size; ++c) {
-        Eigen::Map<Eigen::Matrix<double, kT, 1>>(dG_du + o.dG_du[p][c]).noalias() +=
-            J_body[p].transpose().lazyProduct(J_control.col(c));
-      }
+    switch (block.rows) {
+      case 1: AccumulateBlock<1>(block, offsets_[k], jacobians, C, local, targets); break;
+      case 2: AccumulateBlock<2>(block, offsets_[k], jacobians, C, local, targets); break;
+      case 3: AccumulateBlock<3>(block, offsets_[k], jacobians, C, local, targets); break;
+      case 4: AccumulateBlock<4>(block, offsets_[k], jacobians, C, local, targets); break;
+      case 5: AccumulateBlock<5>(block, offsets_[k], jacobians, C, local, targets); break;
+      case 6: AccumulateBlock<6>(block, offsets_[k], jacobians, C, local, targets); break;
+      case 7: AccumulateBlock<7>(block, offsets_[k], jacobians, C, local, targets); break;
+      case 8: AccumulateBlock<8>(block, offsets_[k], jacobians, C, local, targets); break;
+      default: AccumulateBlock<9>(block, offsets_[k], jacobians, C, local, targets); break;  // <= 9 (constructor)
     }
   }
   out->energy = 0.5 * out->C.squaredNorm();

@@ -94,9 +94,9 @@ class ConstraintSet {
   // E(s, u) = 1/2 C^T C.
   double Energy(const State& s, const Eigen::VectorXd& u) const;
 
- private:
   // Where block b's derivatives land in the value arrays of the patterns
-  // (indices into valuePtr()), computed once in the constructor.
+  // (indices into valuePtr()), computed once in the constructor. Public only
+  // for the accumulation helper in constraint_set.cc.
   struct BlockOffsets {
     int J_s[2] = {-1, -1};        // row 0, first column of body p; rows step by J_s_row_stride
     int J_s_row_stride = 0;
@@ -105,6 +105,8 @@ class ConstraintSet {
     int H_column_stride[2] = {0, 0};
     std::vector<int> dG_du[2];    // (6 a, control c) for body p, c < control_size
   };
+
+ private:
   void BuildPatterns();
 
   std::vector<ConstraintBlock> blocks_;
