@@ -122,8 +122,9 @@ Reading it: on the horizontal circle every base moves by the end-effector's disp
 whole mechanism translates rigidly. In Simbody's joint coordinates nothing but the prescribed
 base q changes; both Simbody solvers find the constraints already satisfied and return after one
 check (0 iterations). ccma's state is every body's absolute pose; its rigid-motion predictor
-recognises the bases' common motion, moves every body by it and checks the constraints (0
-iterations too), so those rows compare the per-step overheads of a check. Without the predictors
+recognises the bases' common motion, moves every body by it and checks the constraint residuals
+(0 iterations too; no Jacobian: the gradient norm it reports there is the bound 2 |J|_F |C|,
+flagged as such), so those rows compare the per-step overheads of a check. Without the predictors
 ccma takes one iteration per step there. On the vertical circle, which folds the legs, all three
 iterate, and the ratios compare solvers doing real work. Reproduce with
 `scripts/simbody_bench.sh` (installs `libsimbody-dev` if missing, builds `simbody_benchmark`,
