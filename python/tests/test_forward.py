@@ -70,6 +70,28 @@ def test_translating_every_base_translates_the_end_effector(path):
     np.testing.assert_allclose(r.end_effector.rotation, np.eye(3), atol=1e-10)
 
 
+def test_a_rigid_move_is_checked_and_its_gradient_bound_flagged():
+    """4dof_reduced hangs from its bases alone: moving them all by one
+    planar rigid motion moves the mechanism without an iteration, checked on
+    the residuals; gradient_norm is then a bound (flagged). Without the
+    predictor the solve iterates and reports the gradient itself. (That the
+    bound holds at the same state: tests/planar_rigid_motion_test.cc.)"""
+    model = ccma.load_model(str([m for m in MODELS if m.stem == "4dof_reduced"][0]))
+    forward = ccma.ForwardProblem(model)
+    u = model.home_controls.copy()
+    assert forward.assemble(u).assembled
+    for k in range(model.num_bases):
+        u[3 * k:3 * k + 2] += [0.004, -0.003]
+    r = forward.solve(u)
+    assert r.iterations == 0 and r.converged and r.assembled
+    assert r.gradient_norm_is_bound
+    assert 0 < r.gradient_norm < 1e-11
+    plain = ccma.ForwardProblem(model, ccma.ForwardOptions(rigid_motion_predictor=False))
+    exact = plain.assemble(u)
+    assert exact.iterations > 0 and exact.assembled
+    assert not exact.gradient_norm_is_bound
+
+
 def test_base_driven_models_are_found():
     assert len(BASE_DRIVEN) >= 6  # the paper's five and 4dof_differential
 
