@@ -14,8 +14,9 @@ class ActuatedPrismaticCost final : public SizedCost<1, kPoseAmbientSize, kPoseA
   ActuatedPrismaticCost(const Eigen::Vector3d& r_A, const Eigen::Vector3d& r_B, const Eigen::Vector3d& a_A)
       : r_A_(r_A), r_B_(r_B), a_A_(a_A) {}
 
-  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
-    const BodyFrame A(parameters[0]), B(parameters[1]);
+  void EvaluateInFrames(const BodyFrame* const* frames, double const* const* parameters, double* residuals,
+                        double** jacobians) const override {
+    const BodyFrame &A = *frames[0], &B = *frames[1];
     const Eigen::Vector3d l_A = A.Rotate(r_A_), l_B = B.Rotate(r_B_);
     const Eigen::Vector3d d = (l_B + B.p_WB) - (l_A + A.p_WB);
     const Eigen::Vector3d a = A.Rotate(a_A_);
@@ -37,12 +38,11 @@ class ActuatedPrismaticCost final : public SizedCost<1, kPoseAmbientSize, kPoseA
       J.block<1, 3>(0, 3) = a.transpose();
     }
     if (J_u != nullptr) J_u[0] = -1.0;
-    return true;
   }
 
-  void AddWeightedHessian(double const* const* parameters, const double* weights,
-                          TangentHessian H) const override {
-    const BodyFrame A(parameters[0]), B(parameters[1]);
+  void AddWeightedHessianInFrames(const BodyFrame* const* frames, double const* const* /*parameters*/,
+                                  const double* weights, TangentHessian H) const override {
+    const BodyFrame &A = *frames[0], &B = *frames[1];
     const double c = weights[0];
     const Eigen::Vector3d l_A = A.Rotate(r_A_), l_B = B.Rotate(r_B_);
     const Eigen::Vector3d d = (l_B + B.p_WB) - (l_A + A.p_WB);

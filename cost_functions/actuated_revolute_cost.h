@@ -20,8 +20,9 @@ class ActuatedRevoluteCost final : public SizedCost<2, kPoseAmbientSize, kPoseAm
   ActuatedRevoluteCost(const Eigen::Vector3d& e1_A, const Eigen::Vector3d& e2_A, const Eigen::Vector3d& w_B)
       : e_A_{e1_A, e2_A}, w_B_(w_B) {}
 
-  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
-    const BodyFrame A(parameters[0]), B(parameters[1]);
+  void EvaluateInFrames(const BodyFrame* const* frames, double const* const* parameters, double* residuals,
+                        double** jacobians) const override {
+    const BodyFrame &A = *frames[0], &B = *frames[1];
     const double u = parameters[2][0];
     const Eigen::Vector3d w = B.Rotate(w_B_);
     const double target[2] = {std::cos(u), std::sin(u)};
@@ -42,12 +43,11 @@ class ActuatedRevoluteCost final : public SizedCost<2, kPoseAmbientSize, kPoseAm
       J_u[0] = std::sin(u);   // d(-cos u)/du
       J_u[1] = -std::cos(u);  // d(-sin u)/du
     }
-    return true;
   }
 
-  void AddWeightedHessian(double const* const* parameters, const double* weights,
-                          TangentHessian H) const override {
-    const BodyFrame A(parameters[0]), B(parameters[1]);
+  void AddWeightedHessianInFrames(const BodyFrame* const* frames, double const* const* /*parameters*/,
+                                  const double* weights, TangentHessian H) const override {
+    const BodyFrame &A = *frames[0], &B = *frames[1];
     const Eigen::Vector3d w = B.Rotate(w_B_);
     for (int row = 0; row < 2; ++row) {
       // c (e . w), each factor turning with its own body (as the universal joint's dot product).

@@ -10,6 +10,8 @@
 #ifndef CCMA_COST_FUNCTIONS_BODY_FRAME_H_
 #define CCMA_COST_FUNCTIONS_BODY_FRAME_H_
 
+#include <cstring>
+
 #include <ceres/autodiff_cost_function.h>
 #include <ceres/sized_cost_function.h>
 #include <Eigen/Core>
@@ -24,16 +26,41 @@ namespace ccma {
 template <int Rows>
 using PoseJacobian = Eigen::Map<Eigen::Matrix<double, Rows, 7, Eigen::RowMajor>>;
 
-// The world pose of one body, read from its parameter block.
+// The world pose of one body, read from its parameter block. The constraint
+// set computes one per body and state and hands them to every joint the body
+// is in (FramedCost::EvaluateInFrames), so each quaternion becomes a matrix
+// once rather than once per joint.
 struct BodyFrame {
-  explicit BodyFrame(const double* pose)
-      : R_WB(Eigen::Quaterniond(Eigen::Map<const Eigen::Vector4d>(pose)).toRotationMatrix()),
-        p_WB(pose[4], pose[5], pose[6]) {}
+  BodyFrame() = default;  // no rotation yet: for workspaces, filled by Set or Update
+  explicit BodyFrame(const double* pose) { Set(pose); }
+  void Set(const double* pose) {
+    R_WB = Eigen::Map<const Eigen::Quaterniond>(pose).toRotationMatrix();
+    std::memcpy(q_from, pose, sizeof(q_from));
+    has_rotation = true;
+    p_WB = Eigen::Map<const Eigen::Vector3d>(pose + 4);
+  }
+  // Set, for a workspace frame: the rotation is recomputed only when the
+  // quaternion's bits changed since, which they do not when a formation
+  // translates (a pure function of the pose, so the result is the same).
+  void Update(const double* pose) {
+    if (!has_rotation || std::memcmp(q_from, pose, sizeof(q_from)) != 0) {
+      Set(pose);
+    } else {
+      p_WB = Eigen::Map<const Eigen::Vector3d>(pose + 4);
+    }
+  }
   // Body-fixed vector r_B in world axes (also the lever arm of a point).
-  Eigen::Vector3d Rotate(const Eigen::Vector3d& r_B) const { return R_WB * r_B; }
+  // Written out: Eigen's 3 x 3 product is an out-of-line call here.
+  EIGEN_ALWAYS_INLINE Eigen::Vector3d Rotate(const Eigen::Vector3d& r_B) const {
+    return {R_WB(0, 0) * r_B.x() + R_WB(0, 1) * r_B.y() + R_WB(0, 2) * r_B.z(),
+            R_WB(1, 0) * r_B.x() + R_WB(1, 1) * r_B.y() + R_WB(1, 2) * r_B.z(),
+            R_WB(2, 0) * r_B.x() + R_WB(2, 1) * r_B.y() + R_WB(2, 2) * r_B.z()};
+  }
 
   Eigen::Matrix3d R_WB;
   Eigen::Vector3d p_WB;
+  double q_from[4];           // the quaternion R_WB was computed from
+  bool has_rotation = false;  // R_WB and q_from are set
 };
 
 // The same, for any scalar (ceres::Jet in the autodiff twins): the pose
@@ -57,7 +84,7 @@ using Vec3Map = Eigen::Map<Eigen::Matrix<T, 3, 1>>;
 // Rows [row, row + 3) of r = (p_B - p_A) for body-fixed points r_A on body A
 // and r_B on body B, and their Jacobian rows (either pointer may be null).
 template <int Rows>
-inline void PointDifference(const BodyFrame& A, const Eigen::Vector3d& r_A,
+EIGEN_ALWAYS_INLINE void PointDifference(const BodyFrame& A, const Eigen::Vector3d& r_A,
                             const BodyFrame& B, const Eigen::Vector3d& r_B, int row,
                             double* residuals, double* jacobian_A, double* jacobian_B) {
   const Eigen::Vector3d lever_A = A.Rotate(r_A);
@@ -78,7 +105,7 @@ inline void PointDifference(const BodyFrame& A, const Eigen::Vector3d& r_A,
 // Rows [row, row + 3) of r = (v_B - v_A) for body-fixed directions v_A on A
 // and v_B on B (world axes), and their Jacobian rows.
 template <int Rows>
-inline void DirectionDifference(const BodyFrame& A, const Eigen::Vector3d& d_A,
+EIGEN_ALWAYS_INLINE void DirectionDifference(const BodyFrame& A, const Eigen::Vector3d& d_A,
                                 const BodyFrame& B, const Eigen::Vector3d& d_B, int row,
                                 double* residuals, double* jacobian_A, double* jacobian_B) {
   const Eigen::Vector3d v_A = A.Rotate(d_A);
@@ -114,27 +141,78 @@ inline void AddDifferenceHessian(const BodyFrame& A, const Eigen::Vector3d& x_A,
   H.block<3, 3>(6, 6) += RotationHessian(w, B.Rotate(x_B));
 }
 
-// The second-order part of a ccma cost function: adds
-//   sum_k weights[k] * d^2 r_k / d(tangent)^2
-// at the given parameters into H (6 x 6 per pose block, in parameter order;
-// control blocks excluded: no ccma constraint couples s and u at second
-// order, so d^2 E / ds du = J_s^T J_u exactly). With weights = C this is the
-// term sum_i C_i Hess(C_i) of the exact Hessian of E.
-class ResidualHessian {
+// The interface the constraint set evaluates a ccma cost function through:
+// at body frames computed once per body and state (frames[k] is the world
+// pose of parameters[k], k over the cost's leading pose blocks; the rest of
+// `parameters` are control blocks), with its second-order part. The poses
+// are read from the frames only: their parameters[k] may be null.
+class FramedCost {
  public:
-  virtual ~ResidualHessian() = default;
+  virtual ~FramedCost() = default;
+  // Residuals and, if `jacobians` is non-null, the Jacobian blocks that
+  // Evaluate would give (same layout, same null entries).
+  virtual void EvaluateInFrames(const BodyFrame* const* frames, double const* const* parameters,
+                                double* residuals, double** jacobians) const = 0;
+  // Adds sum_k weights[k] * d^2 r_k / d(tangent)^2 into H (6 x 6 per pose
+  // block, in parameter order; control blocks excluded: no ccma constraint
+  // couples s and u at second order, so d^2 E / ds du = J_s^T J_u exactly).
+  // With weights = C this is the term sum_i C_i Hess(C_i) of the exact
+  // Hessian of E.
+  virtual void AddWeightedHessianInFrames(const BodyFrame* const* frames, double const* const* parameters,
+                                          const double* weights, TangentHessian H) const = 0;
+  // The same from the parameters alone (frames computed here; tests).
   virtual void AddWeightedHessian(double const* const* parameters, const double* weights,
                                   TangentHessian H) const = 0;
 };
 
+namespace internal {
+// How many of the leading parameter blocks are poses (1 or 2 for ccma's costs).
+template <int... BlockSizes>
+constexpr int LeadingPoseBlocks() {
+  const int sizes[] = {BlockSizes..., 0};
+  int n = 0;
+  while (sizes[n] == kPoseAmbientSize) ++n;
+  return n;
+}
+}  // namespace internal
+
 // The base of every ccma cost function: its sizes are stated once, here in
 // the template arguments (Rows residuals over parameter blocks of the given
-// sizes), and read back as Cost::kNumResiduals by the constraint set, the
-// model's row count and the autodiff twin.
+// sizes, poses first), and read back as Cost::kNumResiduals by the
+// constraint set, the model's row count and the autodiff twin. A cost
+// implements the two *InFrames methods; Ceres' Evaluate computes the frames
+// and calls them.
 template <int Rows, int... BlockSizes>
-class SizedCost : public ceres::SizedCostFunction<Rows, BlockSizes...>, public ResidualHessian {
+class SizedCost : public ceres::SizedCostFunction<Rows, BlockSizes...>, public FramedCost {
  public:
   static constexpr int kNumResiduals = Rows;
+  static constexpr int kNumPoses = internal::LeadingPoseBlocks<BlockSizes...>();
+  static_assert(kNumPoses == 1 || kNumPoses == 2, "a ccma cost reads one or two poses, first");
+
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const final {
+    const BodyFrame A(parameters[0]);
+    if constexpr (kNumPoses == 1) {
+      const BodyFrame* frames[1] = {&A};
+      EvaluateInFrames(frames, parameters, residuals, jacobians);
+    } else {
+      const BodyFrame B(parameters[1]);
+      const BodyFrame* frames[2] = {&A, &B};
+      EvaluateInFrames(frames, parameters, residuals, jacobians);
+    }
+    return true;
+  }
+
+  void AddWeightedHessian(double const* const* parameters, const double* weights, TangentHessian H) const final {
+    const BodyFrame A(parameters[0]);
+    if constexpr (kNumPoses == 1) {
+      const BodyFrame* frames[1] = {&A};
+      AddWeightedHessianInFrames(frames, parameters, weights, H);
+    } else {
+      const BodyFrame B(parameters[1]);
+      const BodyFrame* frames[2] = {&A, &B};
+      AddWeightedHessianInFrames(frames, parameters, weights, H);
+    }
+  }
 };
 
 namespace internal {

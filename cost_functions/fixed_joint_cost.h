@@ -21,9 +21,9 @@ class FixedJointCost final : public SizedCost<9, kPoseAmbientSize, kPoseAmbientS
                  const Eigen::Vector3d& d2_A, const Eigen::Vector3d& d2_B)
       : r_A_(r_A), r_B_(r_B), d1_A_(d1_A), d1_B_(d1_B), d2_A_(d2_A), d2_B_(d2_B) {}
 
-  bool Evaluate(double const* const* parameters, double* residuals,
-                double** jacobians) const override {
-    const BodyFrame A(parameters[0]), B(parameters[1]);
+  void EvaluateInFrames(const BodyFrame* const* frames, double const* const* /*parameters*/, double* residuals,
+                        double** jacobians) const override {
+    const BodyFrame &A = *frames[0], &B = *frames[1];
     double* J_A = JacobianOrNull(jacobians, 0);
     double* J_B = JacobianOrNull(jacobians, 1);
     ZeroIfRequested<kNumResiduals>(J_A);
@@ -31,12 +31,11 @@ class FixedJointCost final : public SizedCost<9, kPoseAmbientSize, kPoseAmbientS
     PointDifference<kNumResiduals>(A, r_A_, B, r_B_, 0, residuals, J_A, J_B);
     DirectionDifference<kNumResiduals>(A, d1_A_, B, d1_B_, 3, residuals, J_A, J_B);
     DirectionDifference<kNumResiduals>(A, d2_A_, B, d2_B_, 6, residuals, J_A, J_B);
-    return true;
   }
 
-  void AddWeightedHessian(double const* const* parameters, const double* weights,
-                          TangentHessian H) const override {
-    const BodyFrame A(parameters[0]), B(parameters[1]);
+  void AddWeightedHessianInFrames(const BodyFrame* const* frames, double const* const* /*parameters*/,
+                                  const double* weights, TangentHessian H) const override {
+    const BodyFrame &A = *frames[0], &B = *frames[1];
     AddDifferenceHessian(A, r_A_, B, r_B_, Eigen::Map<const Eigen::Vector3d>(weights), H);
     AddDifferenceHessian(A, d1_A_, B, d1_B_, Eigen::Map<const Eigen::Vector3d>(weights + 3), H);
     AddDifferenceHessian(A, d2_A_, B, d2_B_, Eigen::Map<const Eigen::Vector3d>(weights + 6), H);

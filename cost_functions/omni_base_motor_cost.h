@@ -22,9 +22,9 @@ namespace ccma {
 class OmniBaseMotorCost final : public SizedCost<5, kPoseAmbientSize, kBaseControlSize> {
  public:
 
-  bool Evaluate(double const* const* parameters, double* residuals,
-                double** jacobians) const override {
-    const BodyFrame base(parameters[0]);
+  void EvaluateInFrames(const BodyFrame* const* frames, double const* const* parameters, double* residuals,
+                        double** jacobians) const override {
+    const BodyFrame& base = *frames[0];
     const double* u = parameters[1];
     const Eigen::Vector3d heading_W = base.R_WB.col(0);
     const double c = std::cos(u[2]), s = std::sin(u[2]);
@@ -50,12 +50,11 @@ class OmniBaseMotorCost final : public SizedCost<5, kPoseAmbientSize, kBaseContr
       J(2, 2) = s;
       J(3, 2) = -c;
     }
-    return true;
   }
 
-  void AddWeightedHessian(double const* const* parameters, const double* weights,
-                          TangentHessian H) const override {
-    const BodyFrame base(parameters[0]);
+  void AddWeightedHessianInFrames(const BodyFrame* const* frames, double const* const* /*parameters*/,
+                                  const double* weights, TangentHessian H) const override {
+    const BodyFrame& base = *frames[0];
     H.block<3, 3>(0, 0) += RotationHessian(Eigen::Map<const Eigen::Vector3d>(weights + 2), base.R_WB.col(0));
   }
 };

@@ -15,9 +15,9 @@ namespace ccma {
 class OmniBasePlanarCost final : public SizedCost<4, kPoseAmbientSize> {
  public:
 
-  bool Evaluate(double const* const* parameters, double* residuals,
-                double** jacobians) const override {
-    const BodyFrame base(parameters[0]);
+  void EvaluateInFrames(const BodyFrame* const* frames, double const* const* /*parameters*/, double* residuals,
+                        double** jacobians) const override {
+    const BodyFrame& base = *frames[0];
     const Eigen::Vector3d n_W = base.R_WB.col(2);  // body normal in world
     residuals[0] = base.p_WB.z();
     Eigen::Map<Eigen::Vector3d>(residuals + 1) = n_W - Eigen::Vector3d::UnitZ();
@@ -28,12 +28,11 @@ class OmniBasePlanarCost final : public SizedCost<4, kPoseAmbientSize> {
       J(0, 5) = 1.0;
       J.block<3, 3>(1, 0) = -Skew(n_W);
     }
-    return true;
   }
 
-  void AddWeightedHessian(double const* const* parameters, const double* weights,
-                          TangentHessian H) const override {
-    const BodyFrame base(parameters[0]);
+  void AddWeightedHessianInFrames(const BodyFrame* const* frames, double const* const* /*parameters*/,
+                                  const double* weights, TangentHessian H) const override {
+    const BodyFrame& base = *frames[0];
     H.block<3, 3>(0, 0) += RotationHessian(Eigen::Map<const Eigen::Vector3d>(weights + 1), base.R_WB.col(2));
   }
 };

@@ -23,9 +23,9 @@ class PrismaticJointCost final : public SizedCost<9, kPoseAmbientSize, kPoseAmbi
       : r_A_(r_A), r_B_(r_B), a_A_(a_A), d1_A_(d1_A), d1_B_(d1_B), d2_A_(d2_A),
         d2_B_(d2_B) {}
 
-  bool Evaluate(double const* const* parameters, double* residuals,
-                double** jacobians) const override {
-    const BodyFrame A(parameters[0]), B(parameters[1]);
+  void EvaluateInFrames(const BodyFrame* const* frames, double const* const* /*parameters*/, double* residuals,
+                        double** jacobians) const override {
+    const BodyFrame &A = *frames[0], &B = *frames[1];
     double* J_A = JacobianOrNull(jacobians, 0);
     double* J_B = JacobianOrNull(jacobians, 1);
     ZeroIfRequested<kNumResiduals>(J_A);
@@ -53,12 +53,11 @@ class PrismaticJointCost final : public SizedCost<9, kPoseAmbientSize, kPoseAmbi
       const Eigen::Matrix<double, 3, 6> dd = J.block<3, 6>(6, 0);
       J.block<3, 6>(6, 0) = P * dd;
     }
-    return true;
   }
 
-  void AddWeightedHessian(double const* const* parameters, const double* weights,
-                          TangentHessian H) const override {
-    const BodyFrame A(parameters[0]), B(parameters[1]);
+  void AddWeightedHessianInFrames(const BodyFrame* const* frames, double const* const* /*parameters*/,
+                                  const double* weights, TangentHessian H) const override {
+    const BodyFrame &A = *frames[0], &B = *frames[1];
     AddDifferenceHessian(A, d1_A_, B, d1_B_, Eigen::Map<const Eigen::Vector3d>(weights), H);
     AddDifferenceHessian(A, d2_A_, B, d2_B_, Eigen::Map<const Eigen::Vector3d>(weights + 3), H);
     // w . (d - a (a . d)) = w . d - alpha beta, alpha = w . a, beta = a . d.

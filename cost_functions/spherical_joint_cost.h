@@ -18,20 +18,19 @@ class SphericalJointCost final : public SizedCost<3, kPoseAmbientSize, kPoseAmbi
   SphericalJointCost(const Eigen::Vector3d& r_A, const Eigen::Vector3d& r_B)
       : r_A_(r_A), r_B_(r_B) {}
 
-  bool Evaluate(double const* const* parameters, double* residuals,
-                double** jacobians) const override {
-    const BodyFrame A(parameters[0]), B(parameters[1]);
+  void EvaluateInFrames(const BodyFrame* const* frames, double const* const* /*parameters*/, double* residuals,
+                        double** jacobians) const override {
+    const BodyFrame &A = *frames[0], &B = *frames[1];
     double* J_A = JacobianOrNull(jacobians, 0);
     double* J_B = JacobianOrNull(jacobians, 1);
     ZeroIfRequested<kNumResiduals>(J_A);
     ZeroIfRequested<kNumResiduals>(J_B);
     PointDifference<kNumResiduals>(A, r_A_, B, r_B_, 0, residuals, J_A, J_B);
-    return true;
   }
 
-  void AddWeightedHessian(double const* const* parameters, const double* weights,
-                          TangentHessian H) const override {
-    const BodyFrame A(parameters[0]), B(parameters[1]);
+  void AddWeightedHessianInFrames(const BodyFrame* const* frames, double const* const* /*parameters*/,
+                                  const double* weights, TangentHessian H) const override {
+    const BodyFrame &A = *frames[0], &B = *frames[1];
     AddDifferenceHessian(A, r_A_, B, r_B_, Eigen::Map<const Eigen::Vector3d>(weights), H);
   }
 

@@ -20,9 +20,9 @@ class UniversalJointCost final : public SizedCost<4, kPoseAmbientSize, kPoseAmbi
                      const Eigen::Vector3d& a_A, const Eigen::Vector3d& b_B)
       : r_A_(r_A), r_B_(r_B), a_A_(a_A), b_B_(b_B) {}
 
-  bool Evaluate(double const* const* parameters, double* residuals,
-                double** jacobians) const override {
-    const BodyFrame A(parameters[0]), B(parameters[1]);
+  void EvaluateInFrames(const BodyFrame* const* frames, double const* const* /*parameters*/, double* residuals,
+                        double** jacobians) const override {
+    const BodyFrame &A = *frames[0], &B = *frames[1];
     double* J_A = JacobianOrNull(jacobians, 0);
     double* J_B = JacobianOrNull(jacobians, 1);
     ZeroIfRequested<kNumResiduals>(J_A);
@@ -35,12 +35,11 @@ class UniversalJointCost final : public SizedCost<4, kPoseAmbientSize, kPoseAmbi
     const Eigen::Vector3d a_cross_b = a.cross(b);
     if (J_A != nullptr) PoseJacobian<kNumResiduals>(J_A).block<1, 3>(3, 0) = a_cross_b.transpose();
     if (J_B != nullptr) PoseJacobian<kNumResiduals>(J_B).block<1, 3>(3, 0) = -a_cross_b.transpose();
-    return true;
   }
 
-  void AddWeightedHessian(double const* const* parameters, const double* weights,
-                          TangentHessian H) const override {
-    const BodyFrame A(parameters[0]), B(parameters[1]);
+  void AddWeightedHessianInFrames(const BodyFrame* const* frames, double const* const* /*parameters*/,
+                                  const double* weights, TangentHessian H) const override {
+    const BodyFrame &A = *frames[0], &B = *frames[1];
     AddDifferenceHessian(A, r_A_, B, r_B_, Eigen::Map<const Eigen::Vector3d>(weights), H);
     // c * (a . b): each factor turns with its own body; the cross term is
     // c (dphi_A x a) . (dphi_B x b) = c dphi_A^T [a]x^T [b]x dphi_B.

@@ -101,6 +101,7 @@ struct ForwardProblem::Workspace {
       : constraints(model), lm(constraints), hessian_solver(constraints),
         moves_rigidly(MovesRigidlyWithItsBases(model)) {}
   ConstraintSet constraints;
+  BodyFrames frames;                      // the predictor's Energy workspace
   SparseLevenbergMarquardt lm;            // ForwardSolver::kNative
   PoseManifold manifold;
   std::unique_ptr<ceres::Problem> problem;
@@ -172,7 +173,7 @@ const ConstraintSet& ForwardProblem::constraints() const { return workspace_->co
 double ForwardProblem::Energy() const { return workspace_->constraints.Energy(state_, controls_); }
 
 void ForwardProblem::CheckControls(const Eigen::VectorXd& u) const {
-  if (u.size() != model_.num_controls()) {
+  if (u.size() != workspace_->constraints.num_controls()) {  // cached: Model counts its joints
     throw std::invalid_argument("controls: expected " + std::to_string(model_.num_controls()) +
                                 " values (3 per mobile base, then 1 per actuated joint), got " +
                                 std::to_string(u.size()));
@@ -215,7 +216,7 @@ void ForwardProblem::PredictFromLastStep(const Eigen::VectorXd& u) {
       w.ds *= alpha;
       w.predicted = state_;
       w.predicted.Plus(w.ds);
-      if (w.constraints.Energy(w.predicted, u) < w.constraints.Energy(state_, u)) {
+      if (w.constraints.Energy(w.predicted, u, &w.frames) < w.constraints.Energy(state_, u, &w.frames)) {
         w.state_before_last = state_;
         state_ = w.predicted;  // a copy into the same storage (Ceres holds its addresses)
         w.controls_before_last = controls_;

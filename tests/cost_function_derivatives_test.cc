@@ -210,7 +210,7 @@ TEST_P(CostFunctionDerivatives, SecondOrderTermsMatchNumericHessian) {
     std::mt19937 rng(5000 + seed);
     const bool degenerate = seed % 5 == 4;
     const auto cost = c.make(rng, degenerate);
-    const auto* second_order = dynamic_cast<const ResidualHessian*>(cost.get());
+    const auto* second_order = dynamic_cast<const FramedCost*>(cost.get());
     ASSERT_NE(second_order, nullptr) << c.name << " has no second-order terms";
     Eigen::Quaterniond q_A = RandomRotation(rng), q_B = RandomRotation(rng);
     if (seed % 10 == 1) q_A = Eigen::Quaterniond(RotationFromRpy({0.2, M_PI / 2, 0.5}));  // pitched 90

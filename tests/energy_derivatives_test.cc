@@ -156,6 +156,39 @@ TEST_P(EnergyDerivativesTest, ReusedWorkspaceKeepsItsPatterns) {
   EXPECT_EQ((Eigen::MatrixXd(d.dG_du) - Eigen::MatrixXd(fresh.dG_du)).cwiseAbs().maxCoeff(), 0.0);
 }
 
+// Energy and EvaluateDerivatives read every body's frame from a workspace
+// (BodyFrames) that keeps a rotation while its quaternion's bits are
+// unchanged. One workspace reused along a sequence of states (random, then
+// only translated, then only rotated, then a quaternion set to NaN) must give
+// what the cost functions give with their own frames (dense Evaluate).
+TEST_P(EnergyDerivativesTest, SharedFramesGiveTheCostFunctionsResiduals) {
+  const ConstraintSet constraints(model_);
+  BodyFrames frames;
+  EnergyDerivatives d;
+  const Point p = RandomPoint(model_, 7, 0.05);
+  State translated = p.s, rotated = p.s, not_finite = p.s;
+  for (int b = 0; b < translated.num_bodies(); ++b) translated.pose(b)[4] += 0.01 * (b + 1);
+  Eigen::VectorXd turn = Eigen::VectorXd::Zero(p.s.tangent_size());
+  turn[0] = 0.02;  // body 0's rotation only
+  rotated.Plus(turn);
+  not_finite.pose(0)[3] = std::nan("");
+  for (const State* s : {&p.s, static_cast<const State*>(&translated), static_cast<const State*>(&rotated), &p.s}) {
+    Eigen::VectorXd C;
+    Eigen::MatrixXd J_s;
+    constraints.Evaluate(*s, p.u, &C, &J_s);
+    const double E = 0.5 * C.squaredNorm();
+    EXPECT_NEAR(constraints.Energy(*s, p.u, &frames), E, 1e-15 * E);
+    constraints.EvaluateDerivatives(*s, p.u, &d);
+    EXPECT_EQ((d.C - C).cwiseAbs().maxCoeff(), 0.0);
+    EXPECT_EQ((Eigen::MatrixXd(d.J_s) - J_s).cwiseAbs().maxCoeff(), 0.0);
+  }
+  // The moves changed the energy: a stale rotation would have shown.
+  EXPECT_NE(constraints.Energy(translated, p.u), constraints.Energy(p.s, p.u));
+  EXPECT_NE(constraints.Energy(rotated, p.u), constraints.Energy(p.s, p.u));
+  EXPECT_TRUE(std::isnan(constraints.Energy(not_finite, p.u, &frames)));
+  EXPECT_FALSE(std::isnan(constraints.Energy(p.s, p.u, &frames)));
+}
+
 INSTANTIATE_TEST_SUITE_P(BundledModels, EnergyDerivativesTest,
                          ::testing::Values("4dof_reduced", "4dof_complete", "4dof_differential", "6dof_symmetric",
                                            "6dof_asymmetric", "6dof_six_agents", "hybrid_ccma", "planar_3rpr",

@@ -97,6 +97,19 @@ TEST_P(RigidMotion, IsRecognisedExactlyAndOnlyForOneRigidMotionOfAllBases) {
   PlanarRigidMotion motion;
   EXPECT_FALSE(PlanarRigidMotionBetween(m, u, u, &motion));  // nothing moved
   EXPECT_FALSE(PlanarRigidMotionBetween(m, u, bad, &motion));
+  // A non-finite value anywhere, on either side (a position, a heading, the
+  // last control), even where the rest is a rigid move.
+  Eigen::VectorXd shifted = u;
+  for (int k = 0; k < m.num_bases(); ++k) shifted[3 * k] += 0.01;
+  ASSERT_TRUE(PlanarRigidMotionBetween(m, u, shifted, &motion));
+  for (const int i : {0, 2, static_cast<int>(u.size()) - 1}) {
+    for (const double x : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+      Eigen::VectorXd poisoned = shifted;
+      poisoned[i] = x;
+      EXPECT_FALSE(PlanarRigidMotionBetween(m, u, poisoned, &motion)) << "control " << i << " = " << x;
+      EXPECT_FALSE(PlanarRigidMotionBetween(m, poisoned, u, &motion)) << "control " << i << " = " << x;
+    }
+  }
   EXPECT_FALSE(PlanarRigidMotionBetween(m, u, u.head(u.size() - 1), &motion));
   // A change at the scale of an outer solver's last steps that is not rigid
   // (one base moved 1e-13 m) is not one, however small.

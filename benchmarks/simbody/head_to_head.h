@@ -11,11 +11,15 @@
 //   (c) ccma ForwardProblem::Solve(u): the default native solver, warm (and
 //       the same without its predictors, secant and rigid-motion, for
 //       reference),
-// each from its own previous solution, interleaved step by step so that all
-// see the same machine load, in an order that rotates from step to step (the
-// first to run finds the caches filled by the others). Each call is timed alone with steady_clock; the
-// end-effector point of (a) and (b) is compared with ccma's at every step
-// (outside the timed region).
+// each from its own previous solution, on two schedules:
+//  * interleaved step by step, so that all see the same machine load, in an
+//    order that rotates from step to step (the first to run finds the caches
+//    filled by the others): the end-effector point of (a) and (b) is
+//    compared with ccma's at every step (outside the timed region);
+//  * then alone: all laps of (c), then of (a), then of (b), each in its own
+//    loop with its code and data left in the caches, as in a program that
+//    runs one solver (end-effectors compared once more at the end).
+// Each call is timed alone with steady_clock.
 //
 // What the two paths measure (circle_track.h): on the horizontal circle the
 // reference models translate rigidly, so Simbody's joint coordinates do not
@@ -55,7 +59,8 @@ struct HeadToHeadResult {
   bool assembler_run = true;   // false: dependent equations remain, (b) not run
   std::string assembler_note;  // why (b) was not run
 
-  StepSamples ccma, ccma_no_predictor, project_q, assembler_track;
+  StepSamples ccma, ccma_no_predictor, project_q, assembler_track;  // interleaved
+  StepSamples ccma_alone, project_q_alone, assembler_track_alone;  // each in its own loop
 
   // Largest |p_WE(Simbody) - p_WE(ccma)| over all steps [m].
   double max_ee_difference_project_q_m = 0, max_ee_difference_track_m = 0;

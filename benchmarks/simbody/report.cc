@@ -67,8 +67,9 @@ std::string MarkdownReport(const Machine& machine, const std::vector<HeadToHeadR
     const HeadToHeadResult& first = results.front();
     out << "Machine: " << machine.cpu << ", " << machine.cores << " cores; Simbody " << machine.simbody_version
         << " (Debian's build); ccma Release build. Paths: " << first.steps << "-step circles (r = 5 cm) x " << first.laps
-        << " laps, warm, all solvers interleaved step by step; Simbody tolerance "
-        << Format("%.0e", first.tolerance) << " on every constraint. Times: median (p95) per step.\n\n";
+        << " laps, warm; Simbody tolerance " << Format("%.0e", first.tolerance)
+        << " on every constraint. Times: median (p95) per step.\n\n"
+        << "All solvers interleaved step by step (each finds the caches filled by the others):\n\n";
   }
   out << "| model | path | ccma [us/step] | Simbody projectQ [us/step] | Simbody Assembler::track [us/step] "
          "| ccma / projectQ | ccma / track | iterations ccma / projectQ / track "
@@ -84,6 +85,17 @@ std::string MarkdownReport(const Machine& machine, const std::vector<HeadToHeadR
         << (r.assembler_run ? Format("%.1e", r.max_ee_difference_track_m) : "n/a")
         << " | " << TimeCell(r.ccma_no_predictor) << " |\n";
   }
+  out << "\nThe same run, then each solver alone, all laps in its own loop (its caches warm, as in a program "
+         "that runs one solver):\n\n"
+      << "| model | path | ccma [us/step] | Simbody projectQ [us/step] | Simbody Assembler::track [us/step] "
+         "| ccma / projectQ | ccma / track |\n"
+      << "|---|---|---|---|---|---|---|\n";
+  for (const HeadToHeadResult& r : results) {
+    out << "| " << r.model << " | " << r.path << " | " << TimeCell(r.ccma_alone) << " | "
+        << TimeCell(r.project_q_alone) << " | " << TimeCell(r.assembler_track_alone) << " | "
+        << RatioCell(r.ccma_alone, r.project_q_alone) << " | " << RatioCell(r.ccma_alone, r.assembler_track_alone)
+        << " |\n";
+  }
   out << "\n";
   for (const HeadToHeadResult& r : results) {
     out << "- " << r.model << ", " << r.path << ": ccma state " << r.ccma_state_size << " (" << r.ccma_constraint_rows
@@ -91,8 +103,10 @@ std::string MarkdownReport(const Machine& machine, const std::vector<HeadToHeadR
         << " tree joints, " << r.simbody_loop_joints << " loop joints as " << r.simbody_constraint_equations
         << " constraint equations (" << r.assembler_disabled_equations
         << " redundant ones disabled for the Assembler"
-        << (r.assembler_run ? std::string() : "; Assembler not run: " + r.assembler_note) << "). Failed steps ccma / projectQ / track: " << r.ccma.failures << " / "
-        << r.project_q.failures << " / " << r.assembler_track.failures
+        << (r.assembler_run ? std::string() : "; Assembler not run: " + r.assembler_note)
+        << "). Failed steps ccma / projectQ / track: " << r.ccma.failures + r.ccma_alone.failures << " / "
+        << r.project_q.failures + r.project_q_alone.failures << " / "
+        << r.assembler_track.failures + r.assembler_track_alone.failures
         << ". Worst constraint error at a step's end: ccma " << Format("%.1e", r.worst_residual_ccma)
         << " (2-norm), projectQ " << Format("%.1e", r.worst_error_project_q) << ", track "
         << Format("%.1e", r.worst_error_track) << " (largest). ccma's end-effector vs the closed form: "
@@ -120,6 +134,14 @@ std::string JsonReport(const Machine& machine, const std::vector<HeadToHeadResul
                       {"ccma_no_predictor", SolverJson(r.ccma_no_predictor)},
                       {"simbody_project_q", SolverJson(r.project_q)},
                       {"simbody_assembler_track", SolverJson(r.assembler_track)},
+                      {"alone",
+                       {{"ccma", SolverJson(r.ccma_alone)},
+                        {"simbody_project_q", SolverJson(r.project_q_alone)},
+                        {"simbody_assembler_track", SolverJson(r.assembler_track_alone)},
+                        {"ccma_over_project_q", Median(r.ccma_alone.time_us) / Median(r.project_q_alone.time_us)},
+                        {"ccma_over_track", r.assembler_run ? nlohmann::json(Median(r.ccma_alone.time_us) /
+                                                                             Median(r.assembler_track_alone.time_us))
+                                                          : nlohmann::json(nullptr)}}},
                       {"ccma_over_project_q", Median(r.ccma.time_us) / Median(r.project_q.time_us)},
                       {"ccma_over_track", r.assembler_run ? nlohmann::json(Median(r.ccma.time_us) /
                                                                            Median(r.assembler_track.time_us))

@@ -78,7 +78,8 @@ int main(int argc, char** argv) {
                   << options.laps << " laps of " << options.steps << " steps\n";
         results.push_back(RunHeadToHead(model, options));
         const HeadToHeadResult& r = results.back();
-        const int failures = r.ccma.failures + r.project_q.failures + r.assembler_track.failures;
+        const int failures = r.ccma.failures + r.project_q.failures + r.assembler_track.failures +
+                             r.ccma_alone.failures + r.project_q_alone.failures + r.assembler_track_alone.failures;
         if (failures > 0 || r.max_ee_difference_project_q_m > kMaxEndEffectorDifference ||
             r.max_ee_difference_track_m > kMaxEndEffectorDifference) {
           std::cerr << "simbody_benchmark: " << name << ", " << r.path << ": " << failures

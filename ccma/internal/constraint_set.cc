@@ -65,14 +65,9 @@ std::unique_ptr<ceres::CostFunction> MakeActuatorTwin(const Joint& j) {
   return std::unique_ptr<ceres::CostFunction>(MakeActuatedPrismaticAutoDiff(j.p_A, j.p_B, j.a_A));
 }
 
-// The ground's pose block: identity rotation, origin.
-const double kWorldPose[kPoseAmbientSize] = {0, 0, 0, 1, 0, 0, 0};
-
 }  // namespace
 
-const double* ConstraintSet::Pose(const State& s, int body) {
-  return body == kWorld ? kWorldPose : s.pose(body);
-}
+const double ConstraintSet::kWorldPose[kPoseAmbientSize] = {0, 0, 0, 1, 0, 0, 0};
 
 std::vector<std::unique_ptr<ceres::CostFunction>> ConstraintSet::MakeAutoDiffTwins(
     const Model& model) const {
@@ -90,11 +85,13 @@ std::vector<std::unique_ptr<ceres::CostFunction>> ConstraintSet::MakeAutoDiffTwi
 
 ConstraintSet::ConstraintSet(const Model& model)
     : state_size_(model.state_size()), num_controls_(model.num_controls()) {
-  auto add = [this](std::unique_ptr<ceres::CostFunction> cost, std::vector<int> bodies,
-                    int control_offset, int control_size, std::string label) {
+  auto add = [this, &model](std::unique_ptr<ceres::CostFunction> cost, std::vector<int> bodies,
+                            int control_offset, int control_size, std::string label) {
     ConstraintBlock block;
+    block.num_poses = static_cast<int>(bodies.size());
+    for (size_t p = 0; p < bodies.size(); ++p) block.frames[p] = bodies[p] == kWorld ? model.num_bodies() : bodies[p];
     block.rows = cost->num_residuals();
-    block.second_order = dynamic_cast<const ResidualHessian*>(cost.get());
+    block.framed = dynamic_cast<const FramedCost*>(cost.get());
     block.cost = std::move(cost);
     block.bodies = std::move(bodies);
     block.control_offset = control_offset;
@@ -332,6 +329,8 @@ void ConstraintSet::EvaluateDerivatives(const State& s, const Eigen::VectorXd& u
   double jac_storage[3][kMaxRows * kPoseAmbientSize];
   Eigen::Matrix<double, 2 * kT, 2 * kT> local;
   const double* params[3];
+  const BodyFrame* block_frames[2];
+  ComputeFrames(s, &out->frames);
   for (size_t k = 0; k < blocks_.size(); ++k) {
     const ConstraintBlock& block = blocks_[k];
     const int poses = static_cast<int>(block.bodies.size());
@@ -339,11 +338,12 @@ void ConstraintSet::EvaluateDerivatives(const State& s, const Eigen::VectorXd& u
     if (block.control_size > 0) params[poses] = u.data() + block.control_offset;
     double* jacobians[3] = {jac_storage[0], jac_storage[1], jac_storage[2]};
     double* C = out->C.data() + block.row;
-    block.cost->Evaluate(params, C, jacobians);
+    BlockFrames(block, out->frames, block_frames);
+    block.framed->EvaluateInFrames(block_frames, params, C, jacobians);
     // Local d2E over the block's bodies: J^T J (AccumulateBlock) plus
     // sum_i C_i Hess(C_i) (here).
     local.setZero();
-    block.second_order->AddWeightedHessian(params, C, local.topLeftCorner(kT * poses, kT * poses));
+    block.framed->AddWeightedHessianInFrames(block_frames, params, C, local.topLeftCorner(kT * poses, kT * poses));
     switch (block.rows) {
       case 1: AccumulateBlock<1>(block, offsets_[k], jacobians, C, local, targets); break;
       case 2: AccumulateBlock<2>(block, offsets_[k], jacobians, C, local, targets); break;
@@ -359,22 +359,41 @@ void ConstraintSet::EvaluateDerivatives(const State& s, const Eigen::VectorXd& u
   out->energy = 0.5 * out->C.squaredNorm();
 }
 
-double ConstraintSet::Energy(const State& s, const Eigen::VectorXd& u) const {
+void ConstraintSet::ComputeFrames(const State& s, BodyFrames* frames) const {
+  const int bodies = state_size_ / kPoseTangentSize;
+  if (frames->size() != size_t(bodies) + 1) {
+    frames->resize(size_t(bodies) + 1);
+    frames->back().Set(kWorldPose);  // the ground's, for kWorld
+  }
+  for (int b = 0; b < bodies; ++b) (*frames)[b].Update(s.pose(b));
+}
+
+double ConstraintSet::Energy(const State& s, const Eigen::VectorXd& u, BodyFrames* frames) const {
   // Block by block into a stack buffer: called on every solve by the
   // predictors, so nothing is allocated (no C vector, no parameter list).
-  constexpr int kMaxRows = 9;       // the most rows of one block (a fixed joint)
-  constexpr int kMaxParameters = 3; // two poses and a control block
-  double residuals[kMaxRows];
-  const double* params[kMaxParameters];
+  // The buffer is zeroed to its full fixed size so that the sum of squares
+  // is one fixed-size (vectorised) reduction whatever the block's rows.
+  // Only the control block is passed as a parameter: the frames carry the
+  // poses (FramedCost).
+  constexpr int kMaxRows = 9;  // the most rows of one block (a fixed joint)
+  ComputeFrames(s, frames);
+  Eigen::Matrix<double, kMaxRows, 1> residuals;
+  const double* params[3] = {nullptr, nullptr, nullptr};
+  const BodyFrame* block_frames[2];
   double sum = 0;
   for (const ConstraintBlock& block : blocks_) {
-    int n = 0;
-    for (int body : block.bodies) params[n++] = Pose(s, body);
-    if (block.control_size > 0) params[n++] = u.data() + block.control_offset;
-    block.cost->Evaluate(params, residuals, nullptr);
-    for (int r = 0; r < block.rows; ++r) sum += residuals[r] * residuals[r];
+    params[block.num_poses] = block.control_size > 0 ? u.data() + block.control_offset : nullptr;
+    BlockFrames(block, *frames, block_frames);
+    residuals.setZero();
+    block.framed->EvaluateInFrames(block_frames, params, residuals.data(), nullptr);
+    sum += residuals.squaredNorm();
   }
   return 0.5 * sum;
+}
+
+double ConstraintSet::Energy(const State& s, const Eigen::VectorXd& u) const {
+  BodyFrames frames;
+  return Energy(s, u, &frames);
 }
 
 }  // namespace ccma

@@ -19,15 +19,16 @@
 
 #include "ccma/model.h"
 #include "ccma/state.h"
+#include "cost_functions/body_frame.h"
 
 namespace ccma {
 
-class ResidualHessian;
-
 struct ConstraintBlock {
   std::unique_ptr<ceres::CostFunction> cost;
-  const ResidualHessian* second_order = nullptr;  // the same object
+  const FramedCost* framed = nullptr;  // the same object, evaluated at precomputed frames
   std::vector<int> bodies;  // pose blocks it reads, in parameter order (kWorld: the ground)
+  int num_poses = 0;        // bodies.size(), for the hot loops
+  int frames[2] = {0, 0};   // their entries in BodyFrames (the ground's last); unused: 0
   // The control block it reads, if any: u[control_offset .. + control_size)
   // (a mobile base's motor rows read its kBaseControlSize controls).
   int control_offset = -1;
@@ -36,6 +37,12 @@ struct ConstraintBlock {
   int rows = 0;
   std::string label;        // e.g. "joints[3] (revolute base0-post0)"
 };
+
+// The world frame of every body at one state, computed once per state
+// (ConstraintSet::ComputeFrames) and shared by all the joints a body is in:
+// entry b for body b, and the ground's (identity) last. A workspace: reused
+// with the same model it is not reallocated.
+using BodyFrames = std::vector<BodyFrame>;
 
 using SparseRowMajor = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 using SparseColMajor = Eigen::SparseMatrix<double, Eigen::ColMajor>;
@@ -56,6 +63,7 @@ struct EnergyDerivatives {
   SparseColMajor dG_du;   // d2E/ds du = J_s^T J_u (n x num_controls), exact
   Eigen::VectorXd dE_du;  // dE/du = J_u^T C (num_controls)
   double energy = 0;
+  BodyFrames frames;      // workspace: the bodies' frames at s
 };
 
 class ConstraintSet {
@@ -89,9 +97,22 @@ class ConstraintSet {
   std::vector<std::unique_ptr<ceres::CostFunction>> MakeAutoDiffTwins(const Model& model) const;
 
   // The pose block of `body` in s, or the ground's (identity) for kWorld.
-  static const double* Pose(const State& s, int body);
+  static const double* Pose(const State& s, int body) { return body == kWorld ? kWorldPose : s.pose(body); }
+  static const double kWorldPose[kPoseAmbientSize];  // identity rotation, origin
 
-  // E(s, u) = 1/2 C^T C.
+  // Every body's world frame at s into `frames` (see BodyFrames).
+  void ComputeFrames(const State& s, BodyFrames* frames) const;
+
+  // The frames of `block`'s pose blocks, in parameter order, from frames
+  // computed by ComputeFrames for this model (the ground's for kWorld).
+  static void BlockFrames(const ConstraintBlock& block, const BodyFrames& frames, const BodyFrame* out[2]) {
+    out[0] = &frames[block.frames[0]];
+    out[1] = &frames[block.frames[1]];
+  }
+
+  // E(s, u) = 1/2 C^T C [m^2], residuals only; `frames` is a workspace
+  // (BodyFrames). The overload without one allocates it.
+  double Energy(const State& s, const Eigen::VectorXd& u, BodyFrames* frames) const;
   double Energy(const State& s, const Eigen::VectorXd& u) const;
 
   // Where block b's derivatives land in the value arrays of the patterns

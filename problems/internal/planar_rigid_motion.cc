@@ -26,15 +26,24 @@ double Wrapped(double d) { return std::abs(d) <= M_PI ? d : std::remainder(d, 2 
 bool PlanarRigidMotionBetween(const Model& model, const Eigen::VectorXd& u_old, const Eigen::VectorXd& u_new,
                               PlanarRigidMotion* motion) {
   const int num_bases = model.num_bases();
-  if (num_bases == 0 || u_old.size() != model.num_controls() || u_new.size() != u_old.size()) return false;
-  if (!u_old.allFinite() || !u_new.allFinite() || u_old == u_new) return false;
-  double change = 0;  // largest change of a control [m or rad], headings the short way round
-  for (int i = 0; i < u_old.size(); ++i) {
+  // (Sizes against the bases only: Model::num_controls() counts the joints,
+  // and the caller has checked u against the model.)
+  if (num_bases == 0 || u_old.size() < kBaseControlSize * num_bases || u_new.size() != u_old.size()) return false;
+  // One pass (this runs before every formation step): the largest change
+  // of a control [m or rad], headings the short way round; the largest
+  // magnitude; and a probe that is 0 when every control is finite, NaN if not.
+  const int n = static_cast<int>(u_old.size());
+  const double* a = u_old.data();
+  const double* b = u_new.data();
+  double change = 0, scale = 0, probe = 0;
+  for (int i = 0; i < n; ++i) {
     const bool heading = i < kBaseControlSize * num_bases && i % kBaseControlSize == 2;
-    const double d = heading ? Wrapped(u_new[i] - u_old[i]) : u_new[i] - u_old[i];
-    change = std::max(change, std::abs(d));
+    const double d = b[i] - a[i];
+    change = std::max(change, std::abs(heading ? Wrapped(d) : d));
+    scale = std::max(scale, std::max(std::abs(a[i]), std::abs(b[i])));
+    probe += (a[i] - a[i]) + (b[i] - b[i]);
   }
-  const double scale = std::max(u_old.lpNorm<Eigen::Infinity>(), u_new.lpNorm<Eigen::Infinity>());
+  if (!(probe == 0) || change == 0) return false;  // not finite, or nothing to predict
   const double tolerance = 1e-10 * change + 8 * std::numeric_limits<double>::epsilon() * (1 + scale);
   // T from the first base: its heading change and where its origin went.
   const double dtheta = Wrapped(u_new[2] - u_old[2]);

@@ -245,7 +245,7 @@ SparseLevenbergMarquardt::SparseLevenbergMarquardt(const ConstraintSet& constrai
 bool SparseLevenbergMarquardt::RigidImageConverged(const State& s, const Eigen::VectorXd& u, double converged_energy,
                                                    SparseLmSummary* summary) {
   if (!evaluated_) return false;  // no Jacobian to bound the gradient with
-  const double energy = constraints_.Energy(s, u);  // residuals only
+  const double energy = constraints_.Energy(s, u, &frames_);  // residuals only
   if (!(energy <= converged_energy)) return false;
   // |J^T C|_inf <= |J^T C|_2 <= |J|_F |C|_2, |C|_2 = sqrt(2 E). |J|_F is
   // invariant under a rigid motion of the whole mechanism, so the norm of the
@@ -265,9 +265,11 @@ double SparseLevenbergMarquardt::Evaluate(const State& s, const Eigen::VectorXd&
   evaluated_ = true;
   jacobian_frobenius_ = -1;
   const std::vector<ConstraintBlock>& blocks = constraints_.blocks();
+  constraints_.ComputeFrames(s, &frames_);
   for (const Term& term : terms_) {
     const ConstraintBlock& block = blocks[term.block];
     const double* params[3];
+    const BodyFrame* block_frames[2];
     double* jacobians[3] = {nullptr, nullptr, nullptr};  // none for the ground and the controls
     const int num_bodies = static_cast<int>(block.bodies.size());
     for (int p = 0; p < num_bodies; ++p) {
@@ -275,7 +277,8 @@ double SparseLevenbergMarquardt::Evaluate(const State& s, const Eigen::VectorXd&
       if (term.pos[p] >= 0) jacobians[p] = jacobians_.data() + term.jacobian + p * block.rows * kA;
     }
     if (block.control_size > 0) params[num_bodies] = u.data() + block.control_offset;
-    block.cost->Evaluate(params, C_.data() + block.row, jacobians);
+    ConstraintSet::BlockFrames(block, frames_, block_frames);
+    block.framed->EvaluateInFrames(block_frames, params, C_.data() + block.row, jacobians);
   }
   return 0.5 * C_.squaredNorm();
 }

@@ -124,6 +124,7 @@ class SparseLevenbergMarquardt {
   std::vector<Update> update_;
   Eigen::VectorXd C_, g_, ds_, chord_;
   std::vector<double> jacobians_;
+  BodyFrames frames_;               // workspace: the bodies' frames at the evaluated state
   bool evaluated_ = false;          // jacobians_ holds a Jacobian
   double jacobian_frobenius_ = -1;  // |jacobians_|_F, -1: not yet computed
   State trial_;
