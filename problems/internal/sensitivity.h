@@ -43,7 +43,7 @@ class HessianSolver {
   // L^-1 P M, by sparse forward substitution along the elimination tree, so
   // the work is that of the nonzeros reached (a control's column is
   // supported on its base's body: its path to the root is a few bodies),
-  // not n per column. Entry lists per row of the result, for the products
+  // not n per column; four columns at a time, over the union of their reaches. Entry lists per row of the result, for the products
   // below: rows[i] = {(column, value)}.
   struct SparseFactorColumns {
     std::vector<std::vector<std::pair<int, double>>> rows;  // n (permuted rows)
@@ -66,7 +66,12 @@ class HessianSolver {
   std::vector<int> parent_;  // elimination tree of L (-1: a root), from its pattern
   mutable std::vector<int> reach_, mark_;
   mutable SparseFactorColumns scratch_[2];
-  mutable Eigen::VectorXd work_;
+  // ForwardSubstitute's dense work rows, kGroup columns at a time (zero
+  // between calls).
+  static constexpr int kGroup = 4;
+  using GroupWork = Eigen::Matrix<double, Eigen::Dynamic, kGroup, Eigen::RowMajor>;
+  using GroupRow = Eigen::Matrix<double, 1, kGroup>;
+  mutable GroupWork group_work_;
   double pivot_ratio_ = 0;
   bool factorized_ = false;
 };
