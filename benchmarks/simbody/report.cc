@@ -23,10 +23,10 @@ std::string TimeCell(const StepSamples& s) {
   return Format("%.1f", Median(s.time_us)) + " (" + Format("%.1f", Quantile(s.time_us, 0.95)) + ")";
 }
 
-// ccma's median time over the other's: below 1 means ccma is faster.
-std::string RatioCell(const StepSamples& ccma, const StepSamples& other) {
+// The other's median time over ccma's: how many times faster ccma is.
+std::string SpeedUpCell(const StepSamples& ccma, const StepSamples& other) {
   if (other.time_us.empty()) return "n/a";
-  return Format("%.2f", Median(ccma.time_us) / Median(other.time_us));
+  return Format("%.1f", Median(other.time_us) / Median(ccma.time_us)) + "x";
 }
 
 nlohmann::json SolverJson(const StepSamples& s) {
@@ -72,13 +72,13 @@ std::string MarkdownReport(const Machine& machine, const std::vector<HeadToHeadR
         << "All solvers interleaved step by step (each finds the caches filled by the others):\n\n";
   }
   out << "| model | path | ccma [us/step] | Simbody projectQ [us/step] | Simbody Assembler::track [us/step] "
-         "| ccma / projectQ | ccma / track | iterations ccma / projectQ / track "
+         "| ccma faster than projectQ | ccma faster than track | iterations ccma / projectQ / track "
          "| max EE difference to ccma, projectQ / track [m] | ccma without predictor [us/step] |\n"
       << "|---|---|---|---|---|---|---|---|---|---|\n";
   for (const HeadToHeadResult& r : results) {
     out << "| " << r.model << " | " << r.path << " | " << TimeCell(r.ccma) << " | " << TimeCell(r.project_q) << " | "
-        << TimeCell(r.assembler_track) << " | " << RatioCell(r.ccma, r.project_q) << " | "
-        << RatioCell(r.ccma, r.assembler_track) << " | " << Format("%.0f", Median(r.ccma.iterations)) << " / "
+        << TimeCell(r.assembler_track) << " | " << SpeedUpCell(r.ccma, r.project_q) << " | "
+        << SpeedUpCell(r.ccma, r.assembler_track) << " | " << Format("%.0f", Median(r.ccma.iterations)) << " / "
         << Format("%.0f", Median(r.project_q.iterations)) << " / "
         << (r.assembler_run ? Format("%.0f", Median(r.assembler_track.iterations)) : "n/a") << " | "
         << Format("%.1e", r.max_ee_difference_project_q_m) << " / "
@@ -88,12 +88,12 @@ std::string MarkdownReport(const Machine& machine, const std::vector<HeadToHeadR
   out << "\nThe same run, then each solver alone, all laps in its own loop (its caches warm, as in a program "
          "that runs one solver):\n\n"
       << "| model | path | ccma [us/step] | Simbody projectQ [us/step] | Simbody Assembler::track [us/step] "
-         "| ccma / projectQ | ccma / track |\n"
+         "| ccma faster than projectQ | ccma faster than track |\n"
       << "|---|---|---|---|---|---|---|\n";
   for (const HeadToHeadResult& r : results) {
     out << "| " << r.model << " | " << r.path << " | " << TimeCell(r.ccma_alone) << " | "
         << TimeCell(r.project_q_alone) << " | " << TimeCell(r.assembler_track_alone) << " | "
-        << RatioCell(r.ccma_alone, r.project_q_alone) << " | " << RatioCell(r.ccma_alone, r.assembler_track_alone)
+        << SpeedUpCell(r.ccma_alone, r.project_q_alone) << " | " << SpeedUpCell(r.ccma_alone, r.assembler_track_alone)
         << " |\n";
   }
   out << "\n";
