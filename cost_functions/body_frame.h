@@ -190,29 +190,32 @@ class SizedCost : public ceres::SizedCostFunction<Rows, BlockSizes...>, public F
   static_assert(kNumPoses == 1 || kNumPoses == 2, "a ccma cost reads one or two poses, first");
 
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const final {
-    const BodyFrame A(parameters[0]);
-    if constexpr (kNumPoses == 1) {
-      const BodyFrame* frames[1] = {&A};
-      EvaluateInFrames(frames, parameters, residuals, jacobians);
-    } else {
-      const BodyFrame B(parameters[1]);
-      const BodyFrame* frames[2] = {&A, &B};
-      EvaluateInFrames(frames, parameters, residuals, jacobians);
-    }
+    const OwnFrames frames(parameters);
+    EvaluateInFrames(frames.get(), parameters, residuals, jacobians);
     return true;
   }
 
   void AddWeightedHessian(double const* const* parameters, const double* weights, TangentHessian H) const final {
-    const BodyFrame A(parameters[0]);
-    if constexpr (kNumPoses == 1) {
-      const BodyFrame* frames[1] = {&A};
-      AddWeightedHessianInFrames(frames, parameters, weights, H);
-    } else {
-      const BodyFrame B(parameters[1]);
-      const BodyFrame* frames[2] = {&A, &B};
-      AddWeightedHessianInFrames(frames, parameters, weights, H);
-    }
+    const OwnFrames frames(parameters);
+    AddWeightedHessianInFrames(frames.get(), parameters, weights, H);
   }
+
+ private:
+  // The frames of the kNumPoses pose blocks, built from the parameters (the
+  // path of Ceres and of the tests; ccma's own solvers share theirs).
+  class OwnFrames {
+   public:
+    explicit OwnFrames(double const* const* parameters) : A_(parameters[0]) {
+      if constexpr (kNumPoses == 2) B_.Set(parameters[1]);
+    }
+    OwnFrames(const OwnFrames&) = delete;
+    OwnFrames& operator=(const OwnFrames&) = delete;
+    const BodyFrame* const* get() const { return pointers_; }
+
+   private:
+    BodyFrame A_, B_;  // B_ unset for one pose
+    const BodyFrame* pointers_[2] = {&A_, &B_};
+  };
 };
 
 namespace internal {
