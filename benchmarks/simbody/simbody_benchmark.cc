@@ -1,5 +1,6 @@
-// ccma against Simbody on the same warm path (issue 11, item 3): prints a
-// Markdown table on stdout and, with --json=FILE, writes the same as JSON.
+// ccma against Simbody on the same warm path (issue 11, item 3), interleaved
+// step by step and then each solver alone (head_to_head.h): prints Markdown
+// tables on stdout and, with --json=FILE, writes the same as JSON.
 //   simbody_benchmark [--laps=10] [--models=4dof_reduced,6dof_six_agents]
 //                     [--paths=horizontal,vertical] [--json=FILE]
 // Built only when CMake finds Simbody (benchmarks/CMakeLists.txt); run by
