@@ -64,8 +64,8 @@ The forward solve (ccma's native sparse Gauss-Newton / Levenberg-Marquardt over 
 blocks, `problems/internal/sparse_lm.h`; Ceres stays selectable and is tested for agreement)
 grows about linearly. The control step builds no dense n x n or m x n matrix: J_s, J_u, the
 Hessian d2E/ds2 and dG/du are sparse in patterns fixed per model, and the products it needs with
-ds/du come from sparse forward substitution along the elimination tree of dG/ds
-(`problems/internal/sensitivity.h`). From 12 agents on, the generated family is over-constrained
+ds/du come from sparse forward substitution along the elimination tree of dG/ds, whose LDL^T is
+computed in 6 x 6 blocks (`problems/internal/sensitivity.h`, `hessian_solver.h`). From 12 agents on, the generated family is over-constrained
 (more legs than the end-effector's 6 degrees of freedom), so trial controls of the outer loop
 leave the compatible set at second order and each forward solve converges to a stationary point
 with E > 0, linearly; that, not linear algebra, is what remains above linear growth.

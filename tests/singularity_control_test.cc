@@ -305,14 +305,28 @@ PathRecord Walk(const Model& m, const ControlOptions& options, const PoseTarget&
   return record;
 }
 
+// Both barriers of the demonstration (docs/cli.md): sigma_0 = 0.6, just
+// under sigma at home, and rho_0 = 0.002, under the pivot ratio 0.0029 there.
+ControlOptions BothBarriers() {
+  ControlOptions options;
+  options.secondary.singularity_weight = 1.0;
+  options.secondary.singularity_threshold = 0.6;
+  options.secondary.pivot_weight = 1.0;
+  options.secondary.pivot_threshold = 0.002;
+  return options;
+}
+
 // The demonstration: tilting the 6-DOF symmetric platform about y by
 // 0.44 rad along a straight path. The plain (least-norm) controller keeps
 // the bases where they are as far as it can; a leg runs into a singular
-// pose (sigma falls from 0.60 to 0.16 within a few steps, dG/ds singular)
-// and the path stops at step 85 of 88. With the singularity barrier
-// (sigma_0 = 0.6, just under its start) the null-space steps move the
-// bases so that sigma never falls below 0.597, and every waypoint is
-// reached as exactly as before.
+// pose (sigma falls from 0.60 to about 0.2 within a few steps, dG/ds
+// singular) and the path stops near step 85 of 88. Where exactly it stops
+// is decided by rounding (ds/du is unbounded there: the old scalar and the
+// new block factorisation of dG/ds, equally accurate, stop at different
+// points, as do targets 1e-7 rad apart), so only the stall and the fall of
+// sigma are asserted. With the barriers on sigma and on the pivot ratio of
+// dG/ds, the null-space steps move the bases so that sigma never falls
+// below 0.597, and every waypoint is reached as exactly as before.
 TEST(SingularityDemo, TiltedPlatformAvoidsTheSingularityThePlainControllerHits) {
   const Model m = LoadReference("6dof_symmetric");
   ControlProblem probe(m);
@@ -322,15 +336,12 @@ TEST(SingularityDemo, TiltedPlatformAvoidsTheSingularityThePlainControllerHits) 
   target.rpy.y() += 0.44;
 
   const PathRecord plain = Walk(m, ControlOptions(), target);
-  ControlOptions aware_options;
-  aware_options.secondary.singularity_weight = 1.0;
-  aware_options.secondary.singularity_threshold = 0.6;
-  const PathRecord aware = Walk(m, aware_options, target);
+  const PathRecord aware = Walk(m, BothBarriers(), target);
 
   // Plain: near-singular, and stuck there.
   EXPECT_FALSE(plain.result.converged);
   EXPECT_NE(plain.result.warning.find("not reached"), std::string::npos) << plain.result.warning;
-  EXPECT_LT(plain.result.min_singular_value_dX_du_on_path, 0.3 * sigma_start);
+  EXPECT_LT(plain.result.min_singular_value_dX_du_on_path, 0.5 * sigma_start);
   EXPECT_EQ(plain.result.null_space_steps, 0);
   // Singularity-aware: every waypoint, sigma kept.
   ASSERT_TRUE(aware.result.converged) << aware.result.warning;
@@ -355,12 +366,13 @@ TEST(SingularityDemo, TiltedPlatformAvoidsTheSingularityThePlainControllerHits) 
 }
 
 // The second figure: the sigma barrier alone keeps the end-effector
-// Jacobian regular on that path but lets the bases wander where dG/ds
-// itself degenerates (a leg's constraint Jacobian loses rank: the pivot
-// ratio touches 1e-10 around the middle of the path; ds/du is unbounded
-// there). Adding the pivot-ratio barrier (rho_0 = 0.002, under the 0.0029
-// at home) keeps both: rho stays above 1.5e-3 and sigma above 0.597, every
-// step reached as exactly.
+// Jacobian regular but lets the bases wander where dG/ds itself
+// degenerates (a leg's constraint Jacobian loses rank: the pivot ratio
+// passes through 0 around the middle of the path; ds/du is unbounded
+// there, and whether the walk gets through is decided by rounding: targets
+// 1e-7 rad apart differ). Adding the pivot-ratio barrier keeps both: rho
+// stays above 1.5e-3 and sigma above 0.597, every step reached as exactly,
+// for the nominal target and for targets up to 1e-6 rad off it.
 TEST(SingularityDemo, PivotBarrierKeepsdGdsRegularWhereTheSigmaBarrierAloneDoesNot) {
   const Model m = LoadReference("6dof_symmetric");
   ControlProblem probe(m);
@@ -370,20 +382,21 @@ TEST(SingularityDemo, PivotBarrierKeepsdGdsRegularWhereTheSigmaBarrierAloneDoesN
   ControlOptions sigma_only;
   sigma_only.secondary.singularity_weight = 1.0;
   sigma_only.secondary.singularity_threshold = 0.6;
-  ControlOptions both = sigma_only;
-  both.secondary.pivot_weight = 1.0;
-  both.secondary.pivot_threshold = 0.002;
   const PathRecord a = Walk(m, sigma_only, target);
-  const PathRecord b = Walk(m, both, target);
-  ASSERT_TRUE(a.result.converged) << a.result.warning;
-  ASSERT_TRUE(b.result.converged) << b.result.warning;
-  EXPECT_LT(a.result.min_rcond, 1e-6);
-  EXPECT_GT(b.result.min_rcond, 1.5e-3);
-  EXPECT_GT(b.result.min_singular_value_dX_du_on_path, 0.597);
-  ASSERT_EQ(b.error.size(), 88u);
-  for (size_t i = 0; i < b.error.size(); ++i) {
-    EXPECT_TRUE(b.reached[i]) << "step " << i;
-    EXPECT_LE(b.error[i], 1e-10) << "step " << i;
+  EXPECT_LT(a.result.min_rcond, 1e-6);  // converged or not
+  for (double offset : {0.0, 1e-7, -1e-6}) {
+    SCOPED_TRACE(::testing::Message() << "tilt 0.44 + " << offset);
+    PoseTarget moved = target;
+    moved.rpy.y() += offset;
+    const PathRecord b = Walk(m, BothBarriers(), moved);
+    ASSERT_TRUE(b.result.converged) << b.result.warning;
+    EXPECT_GT(b.result.min_rcond, 1.5e-3);
+    EXPECT_GT(b.result.min_singular_value_dX_du_on_path, 0.597);
+    ASSERT_GE(b.error.size(), 88u);  // 0.005 rad steps: 89 past 0.44
+    for (size_t i = 0; i < b.error.size(); ++i) {
+      EXPECT_TRUE(b.reached[i]) << "step " << i;
+      EXPECT_LE(b.error[i], 1e-10) << "step " << i;
+    }
   }
 }
 
@@ -432,15 +445,17 @@ TEST(SingularityCli, ControlFlagsReachTheTiltedTargetAndReportSigmaOnThePath) {
   ASSERT_EQ(plain.status, 0) << plain.err;
   const nlohmann::json p = nlohmann::json::parse(plain.out);
   EXPECT_FALSE(p["converged"].get<bool>());
-  EXPECT_LT(p["conditioning"]["min_singular_value_dX_du_on_path"].get<double>(), 0.18);
+  EXPECT_LT(p["conditioning"]["min_singular_value_dX_du_on_path"].get<double>(), 0.3);
   EXPECT_FALSE(p.contains("secondary"));
   const testing::ToolRun aware = testing::RunTool({"control", "--model=" + model, "--target=0,0,0.6,0,0.44,0",
-                                                   "--singularity_weight=1", "--singularity_threshold=0.6"});
+                                                   "--singularity_weight=1", "--singularity_threshold=0.6",
+                                                   "--pivot_weight=1", "--pivot_threshold=0.002"});
   ASSERT_EQ(aware.status, 0) << aware.err;
   const nlohmann::json a = nlohmann::json::parse(aware.out);
   EXPECT_TRUE(a["converged"].get<bool>());
   EXPECT_LE(a["error"].get<double>(), 1e-10);
   EXPECT_GT(a["conditioning"]["min_singular_value_dX_du_on_path"].get<double>(), 0.597);
+  EXPECT_GT(a["conditioning"]["min_dG_ds_pivot_ratio_on_path"].get<double>(), 1.5e-3);
   EXPECT_GT(a["secondary"]["null_space_steps"].get<int>(), 0);
 }
 

@@ -2,116 +2,10 @@
 
 #include <algorithm>
 
-#include <Eigen/OrderingMethods>
-
 namespace ccma {
 
 // Below this pivot ratio dG/ds counts as singular.
 constexpr double kSingularRcond = 1e-12;
-
-HessianSolver::HessianSolver(const ConstraintSet& constraints) {
-  // The fill-reducing order P (AMD, as Eigen's LDLT would choose it) is
-  // applied once, to the pattern: permuted_ holds the upper triangle of
-  // P H P^T and the factorisation (natural order) reads it in place. Left
-  // to Eigen, every factorisation permutes H first (a third of its time).
-  const SparseColMajor& pattern = constraints.hessian_pattern();
-  const int n = constraints.state_size();
-  Eigen::AMDOrdering<int> amd;
-  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> inverse;
-  amd(pattern, inverse);
-  P_ = inverse.inverse();
-  // Which value of H lands where: permute a matrix of entry numbers.
-  SparseColMajor numbers = pattern;
-  for (int k = 0; k < numbers.nonZeros(); ++k) numbers.valuePtr()[k] = k + 1;
-  permuted_.resize(n, n);
-  permuted_.selfadjointView<Eigen::Upper>() = numbers.selfadjointView<Eigen::Lower>().twistedBy(P_);
-  permuted_.makeCompressed();
-  permuted_entry_.assign(static_cast<size_t>(pattern.nonZeros()), -1);  // -1: upper entries of H (mirrors)
-  for (int k = 0; k < permuted_.nonZeros(); ++k) {
-    permuted_entry_[static_cast<size_t>(permuted_.valuePtr()[k]) - 1] = k;
-  }
-  ldlt_.analyzePattern(permuted_);
-  parent_.assign(static_cast<size_t>(n), -1);
-  mark_.assign(static_cast<size_t>(n), 0);
-  group_work_ = GroupWork::Zero(n, kGroup);
-}
-
-bool HessianSolver::Factorize(const SparseColMajor& H) {
-  const double* values = H.valuePtr();
-  double* permuted = permuted_.valuePtr();
-  for (size_t k = 0; k < permuted_entry_.size(); ++k) {
-    if (permuted_entry_[k] >= 0) permuted[permuted_entry_[k]] = values[k];
-  }
-  ldlt_.factorize(permuted_);
-  pivot_ratio_ = 0;
-  factorized_ = ldlt_.info() == Eigen::Success;
-  if (!factorized_) return false;
-  const auto& pivots = ldlt_.vectorD();
-  const double largest = pivots.cwiseAbs().maxCoeff();
-  pivot_ratio_ = largest > 0 ? pivots.minCoeff() / largest : 0.0;  // negative: indefinite
-  // The elimination tree: a column's first below-diagonal row (Eigen's
-  // simplicial LDLT stores each column's rows in increasing order, without
-  // the unit diagonal). Fixed by the pattern, but only readable once L exists.
-  const SparseColMajor& L = ldlt_.matrixL().nestedExpression();
-  for (int j = 0; j < L.outerSize(); ++j) {
-    const int begin = L.outerIndexPtr()[j], end = L.outerIndexPtr()[j + 1];
-    parent_[j] = begin < end ? L.innerIndexPtr()[begin] : -1;
-  }
-  return true;
-}
-
-void HessianSolver::ForwardSubstitute(const SparseColMajor& M, const std::vector<int>& columns,
-                                      SparseFactorColumns* out) const {
-  const SparseColMajor& L = ldlt_.matrixL().nestedExpression();
-  const auto& P = P_.indices();
-  const int* L_start = L.outerIndexPtr();
-  const int* L_row = L.innerIndexPtr();
-  const double* L_value = L.valuePtr();
-  out->rows.resize(static_cast<size_t>(L.rows()));
-  for (auto& row : out->rows) row.clear();
-  // kGroup columns at a time over the union of their reaches: each entry of
-  // L is then read once per group and applied to the group's columns as one
-  // short vector. The columns of one control block (a base's x, y, theta)
-  // or of F (the end-effector body's rows) share their pattern, so the
-  // union costs nothing over one reach on large models, while on small
-  // ones, where every column reaches most of L, it saves most of the passes.
-  for (size_t first = 0; first < columns.size(); first += kGroup) {
-    const int group = static_cast<int>(std::min(columns.size() - first, size_t(kGroup)));
-    // The reach: every ancestor in the elimination tree of the columns'
-    // nonzeros; ascending index order is a topological order (parent > child).
-    reach_.clear();
-    for (int g = 0; g < group; ++g) {
-      for (SparseColMajor::InnerIterator it(M, columns[first + g]); it; ++it) {
-        const int i = P[it.row()];
-        group_work_(i, g) = it.value();
-        for (int j = i; j >= 0 && !mark_[j]; j = parent_[j]) {
-          mark_[j] = 1;
-          reach_.push_back(j);
-        }
-      }
-    }
-    std::sort(reach_.begin(), reach_.end());
-    for (int j : reach_) {
-      const GroupRow x_j = group_work_.row(j);
-      if ((x_j.array() == 0).all()) continue;
-      for (int p = L_start[j]; p < L_start[j + 1]; ++p) group_work_.row(L_row[p]) -= L_value[p] * x_j;
-    }
-    for (int j : reach_) {
-      for (int g = 0; g < group; ++g) {
-        const double x = group_work_(j, g);
-        if (x != 0) out->rows[j].emplace_back(static_cast<int>(first) + g, x);
-      }
-      group_work_.row(j).setZero();
-      mark_[j] = 0;
-    }
-  }
-}
-
-Eigen::VectorXd HessianSolver::ForwardSubstitute(const Eigen::VectorXd& v) const {
-  Eigen::VectorXd x = P_ * v;
-  ldlt_.matrixL().solveInPlace(x);
-  return x;
-}
 
 Sensitivity::Sensitivity(const ConstraintSet& constraints, const State& s,
                          const Eigen::VectorXd& u, const std::vector<int>& controls,
@@ -146,7 +40,7 @@ bool Sensitivity::ImplicitProducts(const Eigen::MatrixXd& F, const Eigen::Vector
   for (int r = 0; r < F.rows(); ++r) f_columns[static_cast<size_t>(r)] = r;
   solver_->ForwardSubstitute(Ft, f_columns, &Y);
   const Eigen::VectorXd z = solver_->ForwardSubstitute(v);
-  const Eigen::VectorXd D = solver_->pivots();
+  const Eigen::VectorXd& D = solver_->pivots();
   out->BtS.setZero(k, k);
   out->FS.setZero(F.rows(), k);
   out->Stv.setZero(k);

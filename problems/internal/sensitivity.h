@@ -4,8 +4,8 @@
 // for all u, hence  dG/ds * ds/du = -dG/du  with dG/ds the exact Hessian of E
 // (including sum_i C_i Hess(C_i), which does not vanish while E > 0), and
 // dE_r/du = dE/du at s_hat (the dE/ds term vanishes there).
-// One sparse LDLT factorisation of dG/ds (block-sparse: a constraint couples
-// at most two bodies) serves every right-hand side.
+// One sparse LDLT factorisation of dG/ds (hessian_solver.h; block-sparse: a
+// constraint couples at most two bodies) serves every right-hand side.
 #ifndef CCMA_PROBLEMS_INTERNAL_SENSITIVITY_H_
 #define CCMA_PROBLEMS_INTERNAL_SENSITIVITY_H_
 
@@ -13,68 +13,13 @@
 #include <vector>
 
 #include <Eigen/Core>
-#include <Eigen/SparseCholesky>
 
 #include "ccma/internal/constraint_set.h"
 #include "ccma/model.h"
 #include "ccma/state.h"
+#include "problems/internal/hessian_solver.h"
 
 namespace ccma {
-
-// Factorises dG/ds = d2E/ds2 with a sparse LDLT whose symbolic analysis
-// (fill-reducing ordering) is done once per model: the block pattern (6 x 6
-// blocks of bodies that share a constraint) never changes.
-class HessianSolver {
- public:
-  explicit HessianSolver(const ConstraintSet& constraints);
-  // Numeric factorisation of H, which must have the constraint set's
-  // hessian_pattern() (EnergyDerivatives::H does).
-  bool Factorize(const SparseColMajor& H);
-  // (dG/ds)^-1 rhs, for one or many right-hand sides.
-  Eigen::VectorXd Solve(const Eigen::VectorXd& rhs) const { return P_.transpose() * ldlt_.solve(P_ * rhs); }
-  Eigen::MatrixXd Solve(const Eigen::MatrixXd& rhs) const { return P_.transpose() * ldlt_.solve(P_ * rhs); }
-  // min pivot / max pivot of the last factorisation (see Sensitivity::rcond).
-  double pivot_ratio() const { return pivot_ratio_; }
-  // Whether the last factorisation succeeded (Solve and the rest are valid).
-  bool factorized() const { return factorized_; }
-
-  // With dG/ds = P^T L D L^T P (L unit lower triangular, P the fill-reducing
-  // permutation): the columns `columns` of a sparse n x c matrix M mapped to
-  // L^-1 P M, by sparse forward substitution along the elimination tree, so
-  // the work is that of the nonzeros reached (a control's column is
-  // supported on its base's body: its path to the root is a few bodies),
-  // not n per column; four columns at a time, over the union of their reaches. Entry lists per row of the result, for the products
-  // below: rows[i] = {(column, value)}.
-  struct SparseFactorColumns {
-    std::vector<std::vector<std::pair<int, double>>> rows;  // n (permuted rows)
-  };
-  void ForwardSubstitute(const SparseColMajor& M, const std::vector<int>& columns, SparseFactorColumns* out) const;
-  // L^-1 P v for a dense v (n).
-  Eigen::VectorXd ForwardSubstitute(const Eigen::VectorXd& v) const;
-  // Two reusable result buffers for ForwardSubstitute (their row lists keep
-  // their capacity, so a control loop does not allocate after its first step).
-  SparseFactorColumns* scratch(int i) const { return &scratch_[i]; }
-  // D (n), the pivots in permuted order.
-  Eigen::VectorXd pivots() const { return ldlt_.vectorD(); }
-
- private:
-  // LDLT of P H P^T in natural order (upper triangle, read in place).
-  Eigen::SimplicialLDLT<SparseColMajor, Eigen::Upper, Eigen::NaturalOrdering<int>> ldlt_;
-  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> P_;  // fill-reducing: (P v)[P[i]] = v[i]
-  SparseColMajor permuted_;           // P H P^T, upper triangle, fixed pattern
-  std::vector<int> permuted_entry_;   // value k of H -> value of permuted_, -1 for H's upper entries
-  std::vector<int> parent_;  // elimination tree of L (-1: a root), from its pattern
-  mutable std::vector<int> reach_, mark_;
-  mutable SparseFactorColumns scratch_[2];
-  // ForwardSubstitute's dense work rows, kGroup columns at a time (zero
-  // between calls).
-  static constexpr int kGroup = 4;
-  using GroupWork = Eigen::Matrix<double, Eigen::Dynamic, kGroup, Eigen::RowMajor>;
-  using GroupRow = Eigen::Matrix<double, 1, kGroup>;
-  mutable GroupWork group_work_;
-  double pivot_ratio_ = 0;
-  bool factorized_ = false;
-};
 
 class Sensitivity {
  public:

@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
-#include <set>
 #include <stdexcept>
 
 #include <Eigen/OrderingMethods>
@@ -138,79 +136,55 @@ bool InvertCholeskyFactor(Eigen::Matrix<double, kT, kT>* m) {
   return true;
 }
 
-}  // namespace
-
-SparseLevenbergMarquardt::SparseLevenbergMarquardt(const ConstraintSet& constraints)
-    : constraints_(constraints), bodies_(constraints.state_size() / kT) {
-  const std::vector<ConstraintBlock>& blocks = constraints_.blocks();
-  for (const ConstraintBlock& block : blocks) {
+// The bodies' fill-reducing elimination order: AMD on the body graph
+// (bodies coupled by a constraint); body -> position.
+std::vector<int> EliminationPositions(const ConstraintSet& constraints) {
+  const int bodies = constraints.state_size() / kT;
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (int b = 0; b < bodies; ++b) triplets.emplace_back(b, b, 1.0);
+  for (const ConstraintBlock& block : constraints.blocks()) {
     if (block.bodies.size() > 2 || block.rows > kMaxBlockRows || block.rows < 1) {
       throw std::logic_error("SparseLevenbergMarquardt: a constraint of more than two bodies or 9 rows");
     }
-  }
-
-  // The body graph (bodies coupled by a constraint) and its fill-reducing
-  // elimination order (AMD on the bodies_ x bodies_ pattern).
-  std::vector<Eigen::Triplet<double>> triplets;
-  for (int b = 0; b < bodies_; ++b) triplets.emplace_back(b, b, 1.0);
-  for (const ConstraintBlock& block : blocks) {
     if (block.bodies.size() == 2 && block.bodies[0] != kWorld && block.bodies[1] != kWorld &&
         block.bodies[0] != block.bodies[1]) {
       triplets.emplace_back(block.bodies[0], block.bodies[1], 1.0);
       triplets.emplace_back(block.bodies[1], block.bodies[0], 1.0);
     }
   }
-  Eigen::SparseMatrix<double> graph(bodies_, bodies_);
+  Eigen::SparseMatrix<double> graph(bodies, bodies);
   graph.setFromTriplets(triplets.begin(), triplets.end());
   Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> order;  // order.indices()[k]: k-th body eliminated
   Eigen::AMDOrdering<int> amd;
   amd(graph, order);
-  position_.assign(bodies_, -1);
-  for (int k = 0; k < bodies_; ++k) position_[order.indices()[k]] = k;
+  std::vector<int> position(static_cast<size_t>(bodies), -1);
+  for (int k = 0; k < bodies; ++k) position[static_cast<size_t>(order.indices()[k])] = k;
+  return position;
+}
 
-  // Symbolic block elimination: the rows of every column of the factor
-  // (the coupled bodies eliminated later, and the fill).
-  std::vector<std::set<int>> rows(bodies_);
-  for (int outer = 0; outer < graph.outerSize(); ++outer) {
-    for (Eigen::SparseMatrix<double>::InnerIterator it(graph, outer); it; ++it) {
-      const int i = position_[it.row()], j = position_[it.col()];
-      if (i > j) rows[j].insert(i);
+// The pairs of positions that a constraint couples.
+std::vector<std::pair<int, int>> BodyCouplings(const ConstraintSet& constraints, const std::vector<int>& position) {
+  std::vector<std::pair<int, int>> couplings;
+  for (const ConstraintBlock& block : constraints.blocks()) {
+    if (block.bodies.size() == 2 && block.bodies[0] != kWorld && block.bodies[1] != kWorld &&
+        block.bodies[0] != block.bodies[1]) {
+      couplings.emplace_back(position[static_cast<size_t>(block.bodies[0])],
+                             position[static_cast<size_t>(block.bodies[1])]);
     }
   }
-  for (int j = 0; j < bodies_; ++j) {
-    for (int a : rows[j]) {
-      for (int b : rows[j]) {
-        if (a > b) rows[b].insert(a);
-      }
-    }
-  }
-  // (i, j) -> block; a map per row, not a dense bodies x bodies table (a
-  // 1000-agent model has thousands of bodies).
-  std::vector<std::map<int, int>> index(bodies_);
-  for (int j = 0; j < bodies_; ++j) index[j][j] = j;
-  int count = bodies_;
-  column_start_.push_back(0);
-  for (int j = 0; j < bodies_; ++j) {
-    for (int i : rows[j]) {
-      index[i][j] = count;
-      column_row_.push_back(i);
-      column_block_.push_back(count++);
-    }
-    column_start_.push_back(static_cast<int>(column_row_.size()));
-  }
-  // Right-looking updates of column j: F(a, b) -= L(a, j) L(b, j)^T for
-  // every pair of rows a >= b of column j.
-  update_start_.push_back(0);
-  for (int j = 0; j < bodies_; ++j) {
-    for (int x = column_start_[j]; x < column_start_[j + 1]; ++x) {
-      for (int y = column_start_[j]; y <= x; ++y) {
-        update_.push_back({index[column_row_[x]].at(column_row_[y]), column_block_[x], column_block_[y]});
-      }
-    }
-    update_start_.push_back(static_cast<int>(update_.size()));
-  }
-  normal_.assign(count, Block::Zero());
-  factor_.assign(count, Block::Zero());
+  return couplings;
+}
+
+}  // namespace
+
+SparseLevenbergMarquardt::SparseLevenbergMarquardt(const ConstraintSet& constraints)
+    : constraints_(constraints),
+      bodies_(constraints.state_size() / kT),
+      position_(EliminationPositions(constraints)),
+      elimination_(bodies_, BodyCouplings(constraints, position_)) {
+  const std::vector<ConstraintBlock>& blocks = constraints_.blocks();
+  normal_.assign(static_cast<size_t>(elimination_.num_blocks()), Block::Zero());
+  factor_.assign(static_cast<size_t>(elimination_.num_blocks()), Block::Zero());
 
   // Each constraint's place: its Jacobian storage and its blocks.
   int offset = 0;
@@ -229,7 +203,7 @@ SparseLevenbergMarquardt::SparseLevenbergMarquardt(const ConstraintSet& constrai
         throw std::logic_error("SparseLevenbergMarquardt: a constraint between a body and itself");
       }
       const int i = std::max(term.pos[0], term.pos[1]), j = std::min(term.pos[0], term.pos[1]);
-      term.off = index[i].at(j);
+      term.off = elimination_.Block(i, j);
       term.off_transposed = term.pos[1] > term.pos[0];
     }
     terms_.push_back(term);
@@ -345,14 +319,13 @@ bool SparseLevenbergMarquardt::Factorize(double mu) {
   for (int j = 0; j < bodies_; ++j) {
     if (!InvertCholeskyFactor(&factor_[j])) return false;
     const Block inverse_transpose = factor_[j].transpose();
-    for (int k = column_start_[j]; k < column_start_[j + 1]; ++k) {
-      Block& L = factor_[column_block_[k]];
+    for (int k = elimination_.column_begin(j); k < elimination_.column_end(j); ++k) {
+      Block& L = factor_[elimination_.block(k)];
       const Block scaled = L.lazyProduct(inverse_transpose);
       L = scaled;
     }
-    for (int k = update_start_[j]; k < update_start_[j + 1]; ++k) {
-      const Update& up = update_[k];
-      factor_[up.target].noalias() -= factor_[up.a].lazyProduct(factor_[up.b].transpose());
+    for (const BlockElimination::Update* up = elimination_.updates_begin(j); up != elimination_.updates_end(j); ++up) {
+      factor_[up->target].noalias() -= factor_[up->a].lazyProduct(factor_[up->b].transpose());
     }
   }
   return true;
@@ -365,15 +338,15 @@ void SparseLevenbergMarquardt::SolveNegative(const Eigen::VectorXd& rhs, Eigen::
   for (int j = 0; j < bodies_; ++j) {
     const BlockVector yj = factor_[j].lazyProduct(y.segment<kT>(kT * j));
     y.segment<kT>(kT * j) = yj;
-    for (int k = column_start_[j]; k < column_start_[j + 1]; ++k) {
-      y.segment<kT>(kT * column_row_[k]).noalias() -= factor_[column_block_[k]].lazyProduct(yj);
+    for (int k = elimination_.column_begin(j); k < elimination_.column_end(j); ++k) {
+      y.segment<kT>(kT * elimination_.row(k)).noalias() -= factor_[elimination_.block(k)].lazyProduct(yj);
     }
   }
   // L^T x = y.
   for (int j = bodies_ - 1; j >= 0; --j) {
     BlockVector yj = y.segment<kT>(kT * j);
-    for (int k = column_start_[j]; k < column_start_[j + 1]; ++k) {
-      yj.noalias() -= factor_[column_block_[k]].transpose().lazyProduct(y.segment<kT>(kT * column_row_[k]));
+    for (int k = elimination_.column_begin(j); k < elimination_.column_end(j); ++k) {
+      yj.noalias() -= factor_[elimination_.block(k)].transpose().lazyProduct(y.segment<kT>(kT * elimination_.row(k)));
     }
     y.segment<kT>(kT * j).noalias() = factor_[j].transpose().lazyProduct(yj);
   }

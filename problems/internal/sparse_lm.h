@@ -26,6 +26,7 @@
 
 #include "ccma/internal/constraint_set.h"
 #include "ccma/state.h"
+#include "problems/internal/block_elimination.h"
 
 namespace ccma {
 
@@ -84,11 +85,6 @@ class SparseLevenbergMarquardt {
     bool off_transposed = false;   // off holds J_1^T J_0 (body 1 eliminated later) rather than J_0^T J_1
     int jacobian = 0;              // offset of its Jacobians in jacobians_ (rows x 7 per pose)
   };
-  // One update of the factorisation: F[target] -= F[a] F[b]^T.
-  struct Update {
-    int target, a, b;
-  };
-
   // The rigid-image check of Solve: E(s, u) from the residuals alone; if it
   // is at most converged_energy, fills `summary` (converged, 0 iterations,
   // gradient_norm the bound 2 |J|_F sqrt(2 E)) and returns true.
@@ -112,16 +108,11 @@ class SparseLevenbergMarquardt {
   int bodies_ = 0;
   std::vector<int> position_;      // body -> elimination position
   std::vector<Term> terms_;
-  // Blocks of J^T J and of its factor, same layout: 0 .. bodies_-1 the
-  // diagonal blocks by elimination position, then the blocks (i, j), i > j,
-  // column by column (the fill included: zero in normal_).
+  // The block pattern of the factor (fill included) and its updates.
+  BlockElimination elimination_;
+  // Blocks of J^T J and of its factor, in elimination_'s layout (the fill
+  // zero in normal_).
   std::vector<Block> normal_, factor_;
-  // Column j's blocks below the diagonal: rows column_row_[k] and blocks
-  // column_block_[k] for k in [column_start_[j], column_start_[j + 1]).
-  std::vector<int> column_start_, column_row_, column_block_;
-  // Column j's updates: update_[update_start_[j] .. update_start_[j + 1]).
-  std::vector<int> update_start_;
-  std::vector<Update> update_;
   Eigen::VectorXd C_, g_, ds_, chord_;
   std::vector<double> jacobians_;
   BodyFrames frames_;               // workspace: the bodies' frames at the evaluated state
