@@ -17,6 +17,7 @@
 #include "ccma/internal/constraint_set.h"
 #include "ccma/model_loader.h"
 #include "problems/forward_problem.h"
+#include "tests/bundled_models.h"
 
 namespace ccma {
 namespace {
@@ -189,10 +190,7 @@ TEST_P(EnergyDerivativesTest, SharedFramesGiveTheCostFunctionsResiduals) {
   EXPECT_FALSE(std::isnan(constraints.Energy(p.s, p.u, &frames)));
 }
 
-INSTANTIATE_TEST_SUITE_P(BundledModels, EnergyDerivativesTest,
-                         ::testing::Values("4dof_reduced", "4dof_complete", "4dof_differential", "6dof_symmetric",
-                                           "6dof_asymmetric", "6dof_six_agents", "hybrid_ccma", "planar_3rpr",
-                                           "stewart_gough_6ups"));
+INSTANTIATE_TEST_SUITE_P(BundledModels, EnergyDerivativesTest, ::testing::ValuesIn(testing::BundledModels()));
 
 TEST(EnergyDerivativesChecker, RejectsAWrongHessian) {
   // The same comparison with one 6 x 6 block's second-order terms dropped

@@ -14,6 +14,7 @@
 
 #include "ccma/model_loader.h"
 #include "problems/internal/hessian_solver.h"
+#include "tests/bundled_models.h"
 
 namespace ccma {
 namespace {
@@ -127,10 +128,7 @@ TEST_P(HessianSolverAgainstEigen, SamePivotsSolvesAndSubstitutions) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Bundled, HessianSolverAgainstEigen,
-                         ::testing::Values("4dof_reduced", "4dof_complete", "4dof_differential", "6dof_symmetric",
-                                           "6dof_asymmetric", "6dof_six_agents", "hybrid_ccma", "planar_3rpr",
-                                           "stewart_gough_6ups"));
+INSTANTIATE_TEST_SUITE_P(Bundled, HessianSolverAgainstEigen, ::testing::ValuesIn(testing::BundledModels()));
 
 TEST(HessianSolver, FailsOnAZeroOrNonFinitePivot) {
   const Model model = LoadModel(std::string(CCMA_MODELS_DIR) + "/4dof_reduced.yaml");
