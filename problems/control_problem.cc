@@ -270,15 +270,23 @@ struct ControlProblem::Linearization {
 };
 
 void ControlProblem::Linearize(const PoseTarget& target, Linearization* lin) {
-  lin->r = Residuals(target);
   const State& s = forward_.state();
   const Eigen::VectorXd& u = forward_.controls();
   const Sensitivity sensitivity(forward_.constraints(), s, u, effective_, &workspace_->hessian_solver,
                                 &workspace_->derivatives);
   lin->rcond = sensitivity.rcond();
   lin->singular = sensitivity.singular();
+  const EnergyDerivatives& d = sensitivity.derivatives();
+  const bool finite_differences = options_.gradient == GradientMethod::kFiniteDifference;
+  Eigen::VectorXd e;
+  Eigen::MatrixXd de_ds;
+  workspace_->error.Evaluate(s, target, &e, finite_differences ? nullptr : &de_ds);
+  // r = [e; sqrt(lambda) C] from these evaluations (the same numbers as
+  // Residuals(target), which would evaluate both again).
+  lin->r.resize(e.size() + d.C.size());
+  lin->r << e, std::sqrt(options_.lambda) * d.C;
   const int ne = workspace_->error.size();
-  if (options_.gradient == GradientMethod::kFiniteDifference) {
+  if (finite_differences) {
     Eigen::MatrixXd J;
     LinearizeByFiniteDifferences(target, &J, &lin->ds_du);
     lin->singular = false;
@@ -299,12 +307,8 @@ void ControlProblem::Linearize(const PoseTarget& target, Linearization* lin) {
   // n x k matrix, this does not.) Without step constraints S is never
   // formed: B^T S, de/ds S and S^T G come from sparse forward substitution
   // (Sensitivity::ImplicitProducts) and the LM trials predict with one solve.
-  const EnergyDerivatives& d = sensitivity.derivatives();
   const double lambda = options_.lambda;
   const int k = static_cast<int>(effective_.size());
-  Eigen::VectorXd e;
-  Eigen::MatrixXd de_ds;
-  workspace_->error.Evaluate(s, target, &e, &de_ds);
   // The step constraints read ds/du itself (joint coordinates' rates).
   const bool dense = !workspace_->step_constraints.empty();
   Sensitivity::Products products;

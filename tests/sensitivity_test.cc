@@ -134,6 +134,35 @@ TEST_P(Sensitivities, ObjectiveGradientMatchesFiniteDifferences) {
   EXPECT_LT(RelativeError(analytic, numeric), kRelativeTolerance);
 }
 
+// The products with S = ds/du that the LM linearisation uses, by both of
+// ImplicitProducts' paths (sparse entry lists, dense L^-1 P B), against the
+// same products with S formed explicitly (StateSensitivity).
+TEST_P(Sensitivities, ImplicitProductsMatchTheExplicitSensitivity) {
+  Fixture f = SolvedAt(GetParam().model, Perturbation(LoadReference(GetParam().model)));
+  const Sensitivity s(f.forward->constraints(), f.forward->state(), f.forward->controls(), f.controls);
+  const Eigen::MatrixXd S = s.StateSensitivity();
+  std::mt19937 rng(5);
+  std::normal_distribution<double> normal;
+  Eigen::MatrixXd F = Eigen::MatrixXd::Zero(6, S.rows());
+  for (Eigen::Index c = 0; c < 6; ++c) {  // the end-effector-like rows: one body's columns
+    for (Eigen::Index r = 0; r < 6; ++r) F(r, c) = normal(rng);
+  }
+  Eigen::VectorXd v(S.rows());
+  for (Eigen::Index i = 0; i < v.size(); ++i) v[i] = normal(rng);
+  Eigen::MatrixXd B(S.rows(), S.cols());
+  for (size_t c = 0; c < f.controls.size(); ++c) B.col(c) = s.derivatives().dG_du.col(f.controls[c]);
+  const Eigen::MatrixXd BtS = B.transpose() * S, FS = F * S;
+  const Eigen::VectorXd Stv = S.transpose() * v;
+  for (const auto path : {Sensitivity::ProductsPath::kSparse, Sensitivity::ProductsPath::kDense}) {
+    SCOPED_TRACE(path == Sensitivity::ProductsPath::kSparse ? "sparse" : "dense");
+    Sensitivity::Products products;
+    ASSERT_TRUE(s.ImplicitProducts(F, v, &products, path));
+    EXPECT_LT(RelativeError(products.BtS, BtS), 1e-9);
+    EXPECT_LT(RelativeError(products.FS, FS), 1e-9);
+    EXPECT_LT(RelativeError(products.Stv, Stv), 1e-9);
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(
     ReferenceModels, Sensitivities,
     ::testing::Values(Case{"4dof_reduced", true}, Case{"4dof_reduced", false},

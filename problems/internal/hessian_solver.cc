@@ -6,6 +6,8 @@
 
 #include <Eigen/OrderingMethods>
 
+#include "problems/internal/block_kernels.h"
+
 namespace ccma {
 namespace {
 
@@ -36,46 +38,6 @@ std::vector<std::pair<int, int>> BlockCouplings(const SparseColMajor& pattern, c
   return couplings;
 }
 
-// a = L D L^T for the symmetric 6 x 6 block a (lower triangle read), L unit
-// lower triangular, without pivoting; a is replaced by L^-1 (unit lower
-// triangular, zeros above) and d by the pivots. False if a pivot is zero or
-// not finite. Fixed-size loops the compiler unrolls (as SparseLM's
-// InvertCholeskyFactor).
-bool InvertLdltFactor(Eigen::Matrix<double, kB, kB>* block, double* d) {
-  Eigen::Matrix<double, kB, kB>& a = *block;
-  double L[kB][kB];
-  for (int c = 0; c < kB; ++c) {
-    double v[kB];  // L(c, k) d_k
-    double pivot = a(c, c);
-    for (int k = 0; k < c; ++k) {
-      v[k] = L[c][k] * d[k];
-      pivot -= L[c][k] * v[k];
-    }
-    if (!(std::isfinite(pivot) && pivot != 0)) return false;
-    d[c] = pivot;
-    const double inverse_pivot = 1 / pivot;
-    for (int r = c + 1; r < kB; ++r) {
-      double x = a(r, c);
-      for (int k = 0; k < c; ++k) x -= L[r][k] * v[k];
-      L[r][c] = x * inverse_pivot;
-    }
-  }
-  // X = L^-1, row by row (each row reads only the rows above it).
-  double X[kB][kB];
-  for (int i = 0; i < kB; ++i) {
-    for (int j = 0; j < i; ++j) {
-      double x = -L[i][j];
-      for (int k = j + 1; k < i; ++k) x -= L[i][k] * X[k][j];
-      X[i][j] = x;
-    }
-    X[i][i] = 1;
-    for (int j = i + 1; j < kB; ++j) X[i][j] = 0;
-  }
-  for (int j = 0; j < kB; ++j) {
-    for (int i = 0; i < kB; ++i) a(i, j) = X[i][j];
-  }
-  return true;
-}
 
 }  // namespace
 
@@ -132,7 +94,7 @@ bool HessianSolver::Factorize(const SparseColMajor& H) {
   // blocks below scaled to L_ij = A_ij L_jj^-T D_j^-1, and the rest of the
   // matrix updated by -L_aj D_j L_bj^T = -(L_aj D_j) L_bj^T.
   for (int j = 0; j < elimination_.num_columns(); ++j) {
-    if (!InvertLdltFactor(&factor_[j], D_.data() + kB * j)) return false;
+    if (!block_kernels::InvertLdltFactor(&factor_[j], D_.data() + kB * j)) return false;
     const Block inverse_transpose = factor_[j].transpose();
     const Eigen::Array<double, 1, kB> inverse_pivots = D_.segment<kB>(kB * j).transpose().array().inverse();
     const int begin = elimination_.column_begin(j), end = elimination_.column_end(j);
@@ -173,6 +135,26 @@ void HessianSolver::BackwardInPlace(double* y) const {
     }
     Eigen::Map<BlockVector>(y + kB * j).noalias() = factor_[j].transpose().lazyProduct(x);
   }
+}
+
+template <int Width>
+void HessianSolver::ForwardSubstituteColumns(Eigen::MatrixXd* Y, Eigen::Index first) const {
+  for (int j = 0; j < elimination_.num_columns(); ++j) {
+    auto y_j = Y->block<kB, Width>(kB * j, first);
+    const Eigen::Matrix<double, kB, Width> x = factor_[j].lazyProduct(y_j);
+    y_j = x;
+    for (int k = elimination_.column_begin(j); k < elimination_.column_end(j); ++k) {
+      Y->block<kB, Width>(kB * elimination_.row(k), first).noalias() -= factor_[elimination_.block(k)].lazyProduct(x);
+    }
+  }
+}
+
+void HessianSolver::ForwardSubstitutePermuted(Eigen::MatrixXd* Y) const {
+  // kGroup columns at a time as fixed-size blocks (no allocation, each
+  // block of L read once per group), then the rest one by one.
+  Eigen::Index first = 0;
+  for (; first + kGroup <= Y->cols(); first += kGroup) ForwardSubstituteColumns<kGroup>(Y, first);
+  for (; first < Y->cols(); ++first) ForwardSubstituteColumns<1>(Y, first);
 }
 
 Eigen::VectorXd HessianSolver::Solve(const Eigen::VectorXd& rhs) const {

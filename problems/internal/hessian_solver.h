@@ -66,6 +66,13 @@ class HessianSolver {
   void ForwardSubstitute(const SparseColMajor& M, const std::vector<int>& columns, SparseFactorColumns* out) const;
   // L^-1 P v for a dense v (n).
   Eigen::VectorXd ForwardSubstitute(const Eigen::VectorXd& v) const;
+  // Y <- L^-1 Y for the columns of Y (n x c), already in permuted order
+  // ((P v)[permutation().indices()[i]] = v[i]): one pass over the factor for
+  // all columns.
+  void ForwardSubstitutePermuted(Eigen::MatrixXd* Y) const;
+  // Three reusable dense matrices for callers of ForwardSubstitutePermuted
+  // (resized only when their size changes).
+  Eigen::MatrixXd* dense_scratch(int i) const { return &dense_scratch_[i]; }
   // Two reusable result buffers for ForwardSubstitute (their row lists keep
   // their capacity, so a control loop does not allocate after its first step).
   SparseFactorColumns* scratch(int i) const { return &scratch_[i]; }
@@ -79,6 +86,9 @@ class HessianSolver {
   using GroupBlock = Eigen::Matrix<double, kB, kGroup, Eigen::RowMajor>;
 
   HessianSolver(const ConstraintSet& constraints, Permutation P);
+  // Columns first .. first + Width - 1 of Y <- L^-1 of them (permuted order).
+  template <int Width>
+  void ForwardSubstituteColumns(Eigen::MatrixXd* Y, Eigen::Index first) const;
   // y <- L^-1 y and y <- L^-T y, y in permuted order (n).
   void ForwardInPlace(double* y) const;
   void BackwardInPlace(double* y) const;
@@ -102,6 +112,7 @@ class HessianSolver {
   mutable std::vector<int> reach_, mark_;
   mutable GroupWork group_work_;
   mutable SparseFactorColumns scratch_[2];
+  mutable Eigen::MatrixXd dense_scratch_[3];
 };
 
 }  // namespace ccma

@@ -28,9 +28,38 @@ Eigen::VectorXd Sensitivity::dG_du_times(const Eigen::VectorXd& du) const {
   return out;
 }
 
-bool Sensitivity::ImplicitProducts(const Eigen::MatrixXd& F, const Eigen::VectorXd& v, Products* out) const {
+bool Sensitivity::ImplicitProducts(const Eigen::MatrixXd& F, const Eigen::VectorXd& v, Products* out,
+                                   ProductsPath path) const {
   if (!solver_->factorized()) return false;
   const int k = static_cast<int>(controls_.size());
+  const Eigen::Index n = d_->H.rows();
+  if (path == ProductsPath::kDense ||
+      (path == ProductsPath::kAuto && n * (k + F.rows()) <= kDenseProductsLimit)) {
+    // X = L^-1 P B and [Y z] = L^-1 P [F^T v] in one pass each, then
+    // B^T S = -X^T D^-1 X, F S = -Y^T D^-1 X, S^T v = -X^T D^-1 z.
+    const auto& P = solver_->permutation().indices();
+    const Eigen::Index ne = F.rows();
+    Eigen::MatrixXd& X = *solver_->dense_scratch(0);
+    Eigen::MatrixXd& Yz = *solver_->dense_scratch(1);
+    Eigen::MatrixXd& DX = *solver_->dense_scratch(2);
+    X.setZero(n, k);
+    for (int c = 0; c < k; ++c) {
+      for (SparseColMajor::InnerIterator it(d_->dG_du, controls_[c]); it; ++it) X(P[it.row()], c) = it.value();
+    }
+    Yz.resize(n, ne + 1);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      Yz.row(P[i]).head(ne) = F.col(i).transpose();
+      Yz(P[i], ne) = v[i];
+    }
+    solver_->ForwardSubstitutePermuted(&X);
+    solver_->ForwardSubstitutePermuted(&Yz);
+    DX.noalias() = solver_->pivots().cwiseInverse().asDiagonal() * X;
+    // Small products: coefficient-based (lazy), no blocked GEMM packing.
+    out->BtS.noalias() = -(X.transpose().lazyProduct(DX));
+    out->FS.noalias() = -(Yz.leftCols(ne).transpose().lazyProduct(DX));
+    out->Stv.noalias() = -(DX.transpose().lazyProduct(Yz.col(ne)));
+    return true;
+  }
   HessianSolver::SparseFactorColumns& X = *solver_->scratch(0);
   HessianSolver::SparseFactorColumns& Y = *solver_->scratch(1);
   solver_->ForwardSubstitute(d_->dG_du, controls_, &X);

@@ -61,14 +61,23 @@ class Sensitivity {
   //   B^T S = -X^T D^-1 X (k x k),  F S = -(L^-1 P F^T)^T D^-1 X for a
   //   matrix F (rows x n) with few nonzero columns (e.g. de/ds), and
   //   S^T v = -X^T D^-1 L^-1 P v (k).
-  // O(nonzeros reached + k^2 * shared rows): no n x k anywhere. Returns
-  // false (and leaves `out` alone) if dG/ds could not be factorised.
+  // Sparse: O(nonzeros reached + k^2 * shared rows), no n x k anywhere;
+  // dense (small models, see ProductsPath): X itself. Returns false (and
+  // leaves `out` alone) if dG/ds could not be factorised.
   struct Products {
     Eigen::MatrixXd BtS;  // k x k
     Eigen::MatrixXd FS;   // rows(F) x k
     Eigen::VectorXd Stv;  // k
   };
-  bool ImplicitProducts(const Eigen::MatrixXd& F, const Eigen::VectorXd& v, Products* out) const;
+  // How: kSparse as above; kDense forms X = L^-1 P B and L^-1 P F^T as dense
+  // n x k and n x rows(F) matrices (one forward substitution per column) and
+  // multiplies them as matrices, which is faster while they are small; kAuto
+  // takes kDense while n (k + rows(F)) <= kDenseProductsLimit, so a large
+  // model never forms them.
+  enum class ProductsPath { kAuto, kSparse, kDense };
+  static constexpr Eigen::Index kDenseProductsLimit = 1 << 15;  // doubles (256 KiB)
+  bool ImplicitProducts(const Eigen::MatrixXd& F, const Eigen::VectorXd& v, Products* out,
+                        ProductsPath path = ProductsPath::kAuto) const;
 
  private:
   EnergyDerivatives own_derivatives_;

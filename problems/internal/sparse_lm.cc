@@ -8,6 +8,7 @@
 #include <Eigen/SparseCore>
 
 #include "ccma/internal/pose_manifold.h"
+#include "problems/internal/block_kernels.h"
 
 namespace ccma {
 namespace {
@@ -75,16 +76,19 @@ template <int Rows>
 void AccumulateTerm(const double* jac0, const double* jac1, Eigen::Matrix<double, kT, kT>* diag0,
                     Eigen::Matrix<double, kT, kT>* diag1, Eigen::Matrix<double, kT, kT>* off,
                     bool off_transposed) {
+  // Packed copies of the strided maps first: the products then run on
+  // contiguous columns (a fifth fewer instructions than on the maps).
+  using Packed = Eigen::Matrix<double, kT, Rows>;
+  Packed T0, T1;
   if (jac0 != nullptr) {
-    const TangentTranspose<Rows> T0(jac0);
+    T0 = TangentTranspose<Rows>(jac0);
     diag0->noalias() += T0.lazyProduct(T0.transpose());
   }
   if (jac1 != nullptr) {
-    const TangentTranspose<Rows> T1(jac1);
+    T1 = TangentTranspose<Rows>(jac1);
     diag1->noalias() += T1.lazyProduct(T1.transpose());
   }
   if (off != nullptr) {
-    const TangentTranspose<Rows> T0(jac0), T1(jac1);
     if (off_transposed) {
       off->noalias() += T1.lazyProduct(T0.transpose());
     } else {
@@ -99,42 +103,6 @@ void GradientTerm(const double* jac, const double* c, double* g) {
       Ambient<Rows>(jac).template leftCols<kT>().transpose() * Eigen::Map<const Eigen::Matrix<double, Rows, 1>>(c);
 }
 
-// Replaces the symmetric positive definite 6 x 6 block m (lower triangle
-// read) by L^{-1}, L its Cholesky factor (lower triangular, zeros above);
-// false if m is not positive definite. Fixed-size loops the compiler
-// unrolls: Eigen's LLT and triangular solve of a 6 x 6 block went through
-// its general (blocked, dynamic) kernels and took three times as long.
-bool InvertCholeskyFactor(Eigen::Matrix<double, kT, kT>* m) {
-  Eigen::Matrix<double, kT, kT>& a = *m;
-  double L[kT][kT];
-  double inverse_diagonal[kT];
-  for (int j = 0; j < kT; ++j) {
-    double d = a(j, j);
-    for (int k = 0; k < j; ++k) d -= L[j][k] * L[j][k];
-    if (!(d > 0)) return false;  // also NaN
-    inverse_diagonal[j] = 1 / std::sqrt(d);
-    for (int i = j + 1; i < kT; ++i) {
-      double v = a(i, j);
-      for (int k = 0; k < j; ++k) v -= L[i][k] * L[j][k];
-      L[i][j] = v * inverse_diagonal[j];
-    }
-  }
-  // X = L^{-1}, row by row (each row reads only the rows above it).
-  double X[kT][kT];
-  for (int i = 0; i < kT; ++i) {
-    for (int j = 0; j < i; ++j) {
-      double v = 0;
-      for (int k = j; k < i; ++k) v -= L[i][k] * X[k][j];
-      X[i][j] = v * inverse_diagonal[i];
-    }
-    X[i][i] = inverse_diagonal[i];
-    for (int j = i + 1; j < kT; ++j) X[i][j] = 0;
-  }
-  for (int j = 0; j < kT; ++j) {
-    for (int i = 0; i < kT; ++i) a(i, j) = X[i][j];
-  }
-  return true;
-}
 
 // The bodies' fill-reducing elimination order: AMD on the body graph
 // (bodies coupled by a constraint); body -> position.
@@ -317,7 +285,7 @@ bool SparseLevenbergMarquardt::Factorize(double mu) {
   // triangular), so that both the column scaling and the substitutions are
   // plain fixed-size products.
   for (int j = 0; j < bodies_; ++j) {
-    if (!InvertCholeskyFactor(&factor_[j])) return false;
+    if (!block_kernels::InvertCholeskyFactor(&factor_[j])) return false;
     const Block inverse_transpose = factor_[j].transpose();
     for (int k = elimination_.column_begin(j); k < elimination_.column_end(j); ++k) {
       Block& L = factor_[elimination_.block(k)];
