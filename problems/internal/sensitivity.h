@@ -75,7 +75,7 @@ class Sensitivity {
   // takes kDense while n (k + rows(F)) <= kDenseProductsLimit, so a large
   // model never forms them.
   enum class ProductsPath { kAuto, kSparse, kDense };
-  static constexpr Eigen::Index kDenseProductsLimit = 1 << 15;  // doubles (256 KiB)
+  static constexpr Eigen::Index kDenseProductsLimit = 1 << 12;  // doubles (32 KiB)
   bool ImplicitProducts(const Eigen::MatrixXd& F, const Eigen::VectorXd& v, Products* out,
                         ProductsPath path = ProductsPath::kAuto) const;
 
