@@ -24,6 +24,32 @@ namespace block_kernels {
 
 constexpr int kT = kPoseTangentSize;
 
+// out = L^-1 for the lower triangular L (strict lower part read) with
+// diagonal 1 / inverse_diagonal; zeros above the diagonal. Row by row: each
+// row of the inverse reads only the rows above it.
+inline void WriteInverseOfLower(const double (&L)[kT][kT], const double (&inverse_diagonal)[kT],
+                                Eigen::Matrix<double, kT, kT>* out) {
+  double X[kT][kT];
+  CCMA_UNROLL_6
+  for (int i = 0; i < kT; ++i) {
+    CCMA_UNROLL_6
+    for (int j = 0; j < i; ++j) {
+      double v = 0;
+      CCMA_UNROLL_6
+      for (int k = j; k < i; ++k) v -= L[i][k] * X[k][j];
+      X[i][j] = v * inverse_diagonal[i];
+    }
+    X[i][i] = inverse_diagonal[i];
+    CCMA_UNROLL_6
+    for (int j = i + 1; j < kT; ++j) X[i][j] = 0;
+  }
+  CCMA_UNROLL_6
+  for (int j = 0; j < kT; ++j) {
+    CCMA_UNROLL_6
+    for (int i = 0; i < kT; ++i) (*out)(i, j) = X[i][j];
+  }
+}
+
 // Replaces the symmetric positive definite 6 x 6 block m (lower triangle
 // read) by L^{-1}, L its Cholesky factor (lower triangular, zeros above);
 // false if m is not positive definite.
@@ -46,26 +72,7 @@ inline bool InvertCholeskyFactor(Eigen::Matrix<double, kT, kT>* m) {
       L[i][j] = v * inverse_diagonal[j];
     }
   }
-  // X = L^{-1}, row by row (each row reads only the rows above it).
-  double X[kT][kT];
-  CCMA_UNROLL_6
-  for (int i = 0; i < kT; ++i) {
-    CCMA_UNROLL_6
-    for (int j = 0; j < i; ++j) {
-      double v = 0;
-      CCMA_UNROLL_6
-      for (int k = j; k < i; ++k) v -= L[i][k] * X[k][j];
-      X[i][j] = v * inverse_diagonal[i];
-    }
-    X[i][i] = inverse_diagonal[i];
-    CCMA_UNROLL_6
-    for (int j = i + 1; j < kT; ++j) X[i][j] = 0;
-  }
-  CCMA_UNROLL_6
-  for (int j = 0; j < kT; ++j) {
-    CCMA_UNROLL_6
-    for (int i = 0; i < kT; ++i) a(i, j) = X[i][j];
-  }
+  WriteInverseOfLower(L, inverse_diagonal, m);
   return true;
 }
 
@@ -96,26 +103,8 @@ inline bool InvertLdltFactor(Eigen::Matrix<double, kT, kT>* block, double* d) {
       L[r][c] = x * inverse_pivot;
     }
   }
-  // X = L^-1, row by row (each row reads only the rows above it).
-  double X[kT][kT];
-  CCMA_UNROLL_6
-  for (int i = 0; i < kT; ++i) {
-    CCMA_UNROLL_6
-    for (int j = 0; j < i; ++j) {
-      double x = -L[i][j];
-      CCMA_UNROLL_6
-      for (int k = j + 1; k < i; ++k) x -= L[i][k] * X[k][j];
-      X[i][j] = x;
-    }
-    X[i][i] = 1;
-    CCMA_UNROLL_6
-    for (int j = i + 1; j < kT; ++j) X[i][j] = 0;
-  }
-  CCMA_UNROLL_6
-  for (int j = 0; j < kT; ++j) {
-    CCMA_UNROLL_6
-    for (int i = 0; i < kT; ++i) a(i, j) = X[i][j];
-  }
+  const double unit[kT] = {1, 1, 1, 1, 1, 1};
+  WriteInverseOfLower(L, unit, block);
   return true;
 }
 
