@@ -1,5 +1,5 @@
 // `ccma design --model=FILE --targets=FILE.csv --out=NEW.yaml [--vary=...] [--vary_length=...]`:
-// moves the named geometry (problems/design.h) until every target pose is
+// moves the named geometry (analyses/design.h) until every target pose is
 // reachable with margin; writes the model file with only those numbers
 // changed and prints {reached, changed, converged, ...}.
 #include <cmath>
@@ -13,9 +13,9 @@
 #include "apps/flags.h"
 #include "apps/json_output.h"
 #include "apps/output_file.h"
-#include "ccma/model_loader.h"
-#include "ccma/waypoints.h"
-#include "problems/design.h"
+#include "formats/model_loader.h"
+#include "formats/waypoints.h"
+#include "analyses/design.h"
 
 DEFINE_string(targets, "", "design: target poses, waypoint CSV (docs/waypoints.md; time is ignored) [path]");
 DEFINE_string(vary, "",

@@ -1,5 +1,5 @@
 // `ccma generate --agents=N --out=FILE`: write a Stewart-like model with N
-// mobile bases (the family of 6dof_six_agents; see ccma/model_generator.h).
+// mobile bases (the family of 6dof_six_agents; see formats/model_generator.h).
 #include <fstream>
 
 #include <gflags/gflags.h>

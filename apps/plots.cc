@@ -352,7 +352,7 @@ void WriteReplayCsv(const std::string& dir, const Model& model, const ReplayResu
     bases << ",set" << k << "_x_m,set" << k << "_y_m,set" << k << "_theta_rad,base" << k << "_x_m,base" << k
           << "_y_m,base" << k << "_theta_rad";
   }
-  // Actuated joints hold their set-points (problems/replay.h): one column each.
+  // Actuated joints hold their set-points (execution/replay.h): one column each.
   for (const Joint& joint : model.joints) {
     if (joint.actuated) bases << ",u_" << joint.name << (joint.type == JointType::kRevolute ? "_rad" : "_m");
   }

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "ccma/model.h"
-#include "problems/replay.h"
+#include "execution/replay.h"
 
 namespace ccma::cli {
 

@@ -1,6 +1,6 @@
 // `ccma replay --model=FILE --waypoints=FILE.csv --out=DIR [--noise=default|none]
 //  [--seed=1] [--mocap_noise_m] [--mocap_noise_rad] [--latency_s] [--slip]`:
-// the paper's closed loop, simulated (problems/replay.h). Writes
+// the paper's closed loop, simulated (execution/replay.h). Writes
 // DIR/end_effector.csv, DIR/bases.csv, DIR/rmse.md and, with gnuplot,
 // DIR/end_effector.{png,svg} and DIR/bases_xy.{png,svg} (apps/plots.h).
 // A replay that failed (plan not converged, chain torn) says so on stderr,

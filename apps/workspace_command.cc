@@ -1,6 +1,6 @@
 // `ccma workspace --model=FILE --out=FILE.csv [--x=lo:hi ...] [--resolution=N | --samples=N --seed=S]
 //                 [--threads=N] [--plot=DIR]`:
-// reachability map over the controlled components (problems/workspace.h);
+// reachability map over the controlled components (analyses/workspace.h);
 // one CSV row per sample, optional gnuplot slice maps, JSON summary on stdout.
 #include <unistd.h>
 

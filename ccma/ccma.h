@@ -17,24 +17,24 @@
 #ifndef CCMA_CCMA_H_
 #define CCMA_CCMA_H_
 
-#include "ccma/base_tracking.h"
+#include "execution/base_tracking.h"
 #include "ccma/end_effector.h"
 #include "ccma/joint_coordinates.h"
 #include "ccma/limits.h"
-#include "ccma/mobility.h"
+#include "analyses/mobility.h"
 #include "ccma/model.h"
-#include "ccma/model_generator.h"
-#include "ccma/model_loader.h"
+#include "formats/model_generator.h"
+#include "formats/model_loader.h"
 #include "ccma/omni_wheels.h"
 #include "ccma/rotation.h"
 #include "ccma/state.h"
-#include "ccma/waypoints.h"
+#include "formats/waypoints.h"
 #include "problems/control_problem.h"
-#include "problems/design.h"
+#include "analyses/design.h"
 #include "problems/forward_problem.h"
 #include "problems/path.h"
-#include "problems/replay.h"
+#include "execution/replay.h"
 #include "problems/trajectory.h"
-#include "problems/workspace.h"
+#include "analyses/workspace.h"
 
 #endif  // CCMA_CCMA_H_

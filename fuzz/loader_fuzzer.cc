@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "ccma/model_loader.h"
+#include "formats/model_loader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

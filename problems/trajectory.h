@@ -7,7 +7,7 @@
 #include <functional>
 #include <vector>
 
-#include "ccma/waypoints.h"
+#include "formats/waypoints.h"
 #include "problems/control_problem.h"
 
 namespace ccma {

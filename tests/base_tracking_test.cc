@@ -9,12 +9,12 @@
 
 #include <gtest/gtest.h>
 
-#include "ccma/base_tracking.h"
+#include "execution/base_tracking.h"
 #include "ccma/limits.h"
-#include "ccma/model_loader.h"
+#include "formats/model_loader.h"
 #include "ccma/omni_wheels.h"
 #include "ccma/rotation.h"
-#include "problems/replay.h"
+#include "execution/replay.h"
 
 namespace ccma {
 namespace {

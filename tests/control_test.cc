@@ -9,9 +9,9 @@
 #include <Eigen/SVD>
 #include <gtest/gtest.h>
 
-#include "ccma/model_loader.h"
+#include "formats/model_loader.h"
 #include "ccma/rotation.h"
-#include "ccma/waypoints.h"
+#include "formats/waypoints.h"
 #include "problems/control_problem.h"
 #include "problems/internal/end_effector_error.h"
 #include "problems/trajectory.h"

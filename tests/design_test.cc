@@ -1,4 +1,4 @@
-// Design parameters (problems/design.h): ds/dp and dX_EE/dp against central
+// Design parameters (analyses/design.h): ds/dp and dX_EE/dp against central
 // differences of RE-SOLVED forward problems on perturbed models (1e-6
 // relative) at seeded random reachable controls on several bundled models;
 // the same check rejects a wrong dG/dp; applying parameters round-trips; and
@@ -14,11 +14,11 @@
 #include <nlohmann/json.hpp>
 
 #include "ccma/internal/constraint_set.h"
-#include "ccma/model_loader.h"
+#include "formats/model_loader.h"
 #include "ccma/rotation.h"
-#include "ccma/waypoints.h"
+#include "formats/waypoints.h"
 #include "problems/control_problem.h"
-#include "problems/design.h"
+#include "analyses/design.h"
 #include "tests/tool_run.h"
 
 namespace ccma {

@@ -10,11 +10,11 @@
 
 #include <gtest/gtest.h>
 
-#include "ccma/base_tracking.h"
-#include "ccma/differential_drive.h"
-#include "ccma/model_loader.h"
+#include "execution/base_tracking.h"
+#include "execution/differential_drive.h"
+#include "formats/model_loader.h"
 #include "ccma/rotation.h"
-#include "problems/replay.h"
+#include "execution/replay.h"
 
 namespace ccma {
 namespace {

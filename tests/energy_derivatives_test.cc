@@ -15,7 +15,7 @@
 #include <gtest/gtest.h>
 
 #include "ccma/internal/constraint_set.h"
-#include "ccma/model_loader.h"
+#include "formats/model_loader.h"
 #include "problems/forward_problem.h"
 #include "tests/bundled_models.h"
 

@@ -24,8 +24,8 @@
 #include <gtest/gtest.h>
 
 #include "ccma/joint_coordinates.h"
-#include "ccma/mobility.h"
-#include "ccma/model_loader.h"
+#include "analyses/mobility.h"
+#include "formats/model_loader.h"
 #include "ccma/rotation.h"
 #include "ccma/state.h"
 #include "problems/forward_problem.h"

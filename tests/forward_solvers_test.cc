@@ -16,7 +16,7 @@
 
 #include <gtest/gtest.h>
 
-#include "ccma/model_loader.h"
+#include "formats/model_loader.h"
 #include "problems/control_problem.h"
 #include "problems/forward_problem.h"
 #include "tests/bundled_models.h"

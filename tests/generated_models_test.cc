@@ -6,9 +6,9 @@
 
 #include <gtest/gtest.h>
 
-#include "ccma/mobility.h"
-#include "ccma/model_generator.h"
-#include "ccma/model_loader.h"
+#include "analyses/mobility.h"
+#include "formats/model_generator.h"
+#include "formats/model_loader.h"
 #include "ccma/rotation.h"
 #include "problems/control_problem.h"
 #include "problems/forward_problem.h"

@@ -12,7 +12,7 @@
 #include <gtest/gtest-spi.h>
 #include <gtest/gtest.h>
 
-#include "ccma/model_loader.h"
+#include "formats/model_loader.h"
 #include "problems/internal/hessian_solver.h"
 #include "tests/bundled_models.h"
 

@@ -13,11 +13,11 @@
 #include <gtest/gtest.h>
 
 #include "ccma/joint_coordinates.h"
-#include "ccma/mobility.h"
-#include "ccma/model_generator.h"
-#include "ccma/model_loader.h"
+#include "analyses/mobility.h"
+#include "formats/model_generator.h"
+#include "formats/model_loader.h"
 #include "ccma/rotation.h"
-#include "ccma/waypoints.h"
+#include "formats/waypoints.h"
 #include "problems/control_problem.h"
 #include "problems/trajectory.h"
 

@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include "ccma/mobility.h"
-#include "ccma/model_loader.h"
+#include "analyses/mobility.h"
+#include "formats/model_loader.h"
 
 namespace ccma {
 namespace {

@@ -17,7 +17,7 @@
 
 #include "ccma/internal/constraint_set.h"
 #include "ccma/limits.h"
-#include "ccma/model_loader.h"
+#include "formats/model_loader.h"
 #include "ccma/rotation.h"
 
 namespace ccma {

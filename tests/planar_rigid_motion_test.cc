@@ -14,8 +14,8 @@
 #include <gtest/gtest.h>
 
 #include "ccma/internal/constraint_set.h"
-#include "ccma/model_generator.h"
-#include "ccma/model_loader.h"
+#include "formats/model_generator.h"
+#include "formats/model_loader.h"
 #include "ccma/rotation.h"
 #include "problems/control_problem.h"
 #include "problems/forward_problem.h"

@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "ccma/model_loader.h"
+#include "formats/model_loader.h"
 #include "ccma/rotation.h"
 #include "problems/forward_problem.h"
 #include "tests/leg_closed_form.h"

@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "ccma/model_loader.h"
+#include "formats/model_loader.h"
 #include "problems/control_problem.h"
 #include "problems/internal/sensitivity.h"
 

@@ -14,7 +14,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "ccma/model_loader.h"
+#include "formats/model_loader.h"
 #include "problems/control_problem.h"
 #include "problems/internal/end_effector_error.h"
 #include "tool_run.h"

@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "ccma/model_loader.h"
+#include "formats/model_loader.h"
 #include "ccma/state.h"
 #include "tests/tool_run.h"
 #include "viewer/html.h"

@@ -12,7 +12,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "ccma/model_loader.h"
+#include "formats/model_loader.h"
 #include "tests/tool_run.h"
 #include "viewer/scene.h"
 #include "viewer/workspace_cloud.h"

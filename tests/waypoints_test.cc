@@ -13,7 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "ccma/limits.h"
-#include "ccma/waypoints.h"
+#include "formats/waypoints.h"
 
 namespace ccma {
 namespace {

@@ -1,4 +1,4 @@
-// Workspace maps (problems/workspace.h, `ccma workspace`): reachability
+// Workspace maps (analyses/workspace.h, `ccma workspace`): reachability
 // against the closed-form leg solutions, independence of the thread count,
 // the sample grid, option bounds, the CSV contract and hostile flags.
 #include <unistd.h>

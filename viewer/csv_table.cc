@@ -8,7 +8,7 @@
 
 #include "ccma/internal/format.h"
 #include "ccma/limits.h"
-#include "ccma/model_loader.h"
+#include "formats/model_loader.h"
 #include "viewer/view_frames.h"
 
 namespace ccma::viewer {

@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "problems/forward_problem.h"
-#include "problems/replay.h"
+#include "execution/replay.h"
 
 namespace ccma::viewer {
 namespace {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <filesystem>
 
-#include "problems/workspace.h"
+#include "analyses/workspace.h"
 #include "viewer/csv_table.h"
 #include "viewer/view_frames.h"
 

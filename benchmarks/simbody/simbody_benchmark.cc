@@ -17,7 +17,7 @@
 
 #include "benchmarks/simbody/head_to_head.h"
 #include "benchmarks/simbody/report.h"
-#include "ccma/model_loader.h"
+#include "formats/model_loader.h"
 
 namespace {
 

@@ -746,7 +746,7 @@ def load_waypoints(path: str) -> list[Waypoint]:
 # ---------------------------------------------------------------- analysis ----
 
 class MobilityReport:
-    """Numerical mobility at a configuration (ccma/mobility.h, `ccma check`). Read-only."""
+    """Numerical mobility at a configuration (analyses/mobility.h, `ccma check`). Read-only."""
 
     @property
     def constraint_rows(self) -> int:
@@ -826,7 +826,7 @@ def design(
 # ------------------------------------------------------------------ replay ----
 
 class ReplayOptions:
-    """Options of ccma.replay (problems/replay.h); every field is a keyword of the constructor."""
+    """Options of ccma.replay (execution/replay.h); every field is a keyword of the constructor."""
 
     def __init__(
         self,

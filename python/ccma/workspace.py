@@ -9,7 +9,7 @@
     m = ccma.workspace(path, ranges, client=Client("tcp://scheduler:8786"))
 
 The samples, their waves and each sample's start are decided here (C++,
-problems/workspace.h); with a client, every wave is split into chunks that
+analyses/workspace.h); with a client, every wave is split into chunks that
 the workers solve (ccma must be importable on them). The model file's text
 is scattered to every worker once and loaded there once per worker process
 (cached by its hash), so a distributed map equals the local one exactly.

@@ -4,7 +4,7 @@
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
-#include "ccma/mobility.h"
+#include "analyses/mobility.h"
 #include "python/src/bindings.h"
 #include "python/src/pose_types.h"
 
@@ -13,7 +13,7 @@ namespace py = pybind11;
 namespace ccma::python {
 
 void BindAnalysis(py::module_& m) {
-  py::class_<MobilityReport>(m, "MobilityReport", "Numerical mobility at a configuration (ccma/mobility.h).")
+  py::class_<MobilityReport>(m, "MobilityReport", "Numerical mobility at a configuration (analyses/mobility.h).")
       .def_readonly("constraint_rows", &MobilityReport::constraint_rows)
       .def_readonly("constraint_rank", &MobilityReport::constraint_rank)
       .def_readonly("dof_with_controls_fixed", &MobilityReport::dof_with_controls_fixed)

@@ -8,7 +8,7 @@
 
 #include "ccma/end_effector.h"
 #include "ccma/internal/format.h"
-#include "ccma/waypoints.h"
+#include "formats/waypoints.h"
 #include "problems/control_problem.h"
 #include "problems/trajectory.h"
 #include "python/src/bindings.h"

@@ -1,4 +1,4 @@
-// Design parameters (problems/design.h): ccma.design_parameter_sensitivity
+// Design parameters (analyses/design.h): ccma.design_parameter_sensitivity
 // (ds/dp, dX_EE/dp at a solved configuration) and ccma.design (the loop of
 // `ccma design`, without writing a file).
 #include <string>
@@ -7,7 +7,7 @@
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
-#include "problems/design.h"
+#include "analyses/design.h"
 #include "python/src/bindings.h"
 #include "python/src/pose_types.h"
 

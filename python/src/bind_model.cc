@@ -6,7 +6,7 @@
 #include <pybind11/stl.h>
 
 #include "ccma/model.h"
-#include "ccma/model_loader.h"
+#include "formats/model_loader.h"
 #include "python/src/bindings.h"
 
 namespace py = pybind11;

@@ -2,7 +2,7 @@
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
-#include "problems/replay.h"
+#include "execution/replay.h"
 #include "python/src/bindings.h"
 #include "python/src/conversions.h"
 
@@ -54,7 +54,7 @@ ReplaySolution Run(const Model& model, const std::vector<Waypoint>& waypoints, c
 
 void BindOptions(py::module_& m) {
   py::class_<ReplayOptions>(m, "ReplayOptions",
-                            "Options of ccma.replay (problems/replay.h); every field is a keyword of the "
+                            "Options of ccma.replay (execution/replay.h); every field is a keyword of the "
                             "constructor, e.g. ReplayOptions(noise='none', seed=3).")
       .def(py::init([](py::kwargs kwargs) { return WithKeywords(ReplayOptions(), kwargs); }))
       .def_property(
@@ -148,7 +148,7 @@ void BindReplay(py::module_& m) {
   m.def("replay", &Run, py::arg("model"), py::arg("waypoints"), py::arg("options") = ReplayOptions(),
         py::call_guard<py::gil_scoped_release>(),
         "The paper's closed loop, simulated: bases track the control solution with noise and latency, "
-        "the chain follows (problems/replay.h). waypoints: a list of ccma.Waypoint. Raises ValueError "
+        "the chain follows (execution/replay.h). waypoints: a list of ccma.Waypoint. Raises ValueError "
         "on waypoints or options out of range.");
   m.def(
       "replay",

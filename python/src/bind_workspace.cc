@@ -1,4 +1,4 @@
-// Workspace maps (problems/workspace.h) for ccma.workspace (python/ccma/workspace.py):
+// Workspace maps (analyses/workspace.h) for ccma.workspace (python/ccma/workspace.py):
 //   _workspace_compute(model, ranges, ..., evaluate_batch=None) -> dict of arrays
 //   _workspace_evaluate(model, ranges, poses, states, controls, ...) -> dict of arrays
 // Private: the public call is ccma.workspace, which adds the Dask path by
@@ -14,7 +14,7 @@
 #include <pybind11/stl.h>
 
 #include "ccma/model.h"
-#include "problems/workspace.h"
+#include "analyses/workspace.h"
 #include "python/src/bindings.h"
 #include "python/src/conversions.h"
 
@@ -206,7 +206,7 @@ void BindWorkspace(py::module_& m) {
       },
       py::arg("model"), py::arg("ranges"), py::arg("resolution"), py::arg("samples"), py::arg("seed"),
       py::arg("threads"), py::arg("wave_size"), py::arg("control"), py::arg("evaluate_batch") = py::none(),
-      "Internal: ccma.workspace's map (problems/workspace.h ComputeWorkspace).");
+      "Internal: ccma.workspace's map (analyses/workspace.h ComputeWorkspace).");
   m.def(
       "_workspace_evaluate",
       [](const Model& model, const std::vector<std::tuple<std::string, double, double>>& ranges,

@@ -9,7 +9,7 @@
 #include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>
 
-#include "ccma/waypoints.h"
+#include "formats/waypoints.h"
 
 namespace ccma::python {
 

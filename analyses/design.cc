@@ -1,4 +1,4 @@
-#include "problems/design.h"
+#include "analyses/design.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -10,7 +10,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "ccma/internal/constraint_set.h"
-#include "ccma/model_loader.h"
+#include "formats/model_loader.h"
 #include "problems/internal/end_effector_error.h"
 #include "problems/internal/sensitivity.h"
 

@@ -1,4 +1,4 @@
-#include "ccma/waypoints.h"
+#include "formats/waypoints.h"
 
 #include "ccma/internal/format.h"
 
@@ -8,7 +8,7 @@
 #include <cstdlib>
 
 #include "ccma/limits.h"
-#include "ccma/model_loader.h"
+#include "formats/model_loader.h"
 
 namespace ccma {
 namespace {

@@ -1,4 +1,4 @@
-#include "ccma/differential_drive.h"
+#include "execution/differential_drive.h"
 
 #include <cmath>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-#include "ccma/model_loader.h"
+#include "formats/model_loader.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>

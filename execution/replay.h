@@ -28,8 +28,8 @@
 
 #include <Eigen/Core>
 
-#include "ccma/base_tracking.h"
-#include "ccma/waypoints.h"
+#include "execution/base_tracking.h"
+#include "formats/waypoints.h"
 #include "problems/control_problem.h"
 
 namespace ccma {

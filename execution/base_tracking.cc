@@ -1,4 +1,4 @@
-#include "ccma/base_tracking.h"
+#include "execution/base_tracking.h"
 
 #include <algorithm>
 #include <cmath>

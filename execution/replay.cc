@@ -1,4 +1,4 @@
-#include "problems/replay.h"
+#include "execution/replay.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <optional>
 #include <stdexcept>
 
-#include "ccma/differential_drive.h"
+#include "execution/differential_drive.h"
 #include "ccma/limits.h"
 #include "ccma/rotation.h"
 #include "problems/trajectory.h"

@@ -17,7 +17,7 @@
 
 #include <Eigen/Core>
 
-#include "ccma/differential_drive.h"
+#include "execution/differential_drive.h"
 #include "ccma/model.h"
 #include "ccma/omni_wheels.h"
 

@@ -1,4 +1,4 @@
-#include "ccma/model_generator.h"
+#include "formats/model_generator.h"
 
 #include <cmath>
 #include <iomanip>

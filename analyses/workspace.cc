@@ -1,4 +1,4 @@
-#include "problems/workspace.h"
+#include "analyses/workspace.h"
 
 #include <algorithm>
 #include <atomic>

@@ -1,4 +1,4 @@
-#include "ccma/mobility.h"
+#include "analyses/mobility.h"
 
 #include <cmath>
 
