@@ -2,7 +2,8 @@
 # Reproduces benchmarks/RESULTS.md and its plots (benchmarks/results/) with
 # `ccma bench`: the five reference models, then the scaling study; the sections
 # "Against Simbody" and "Workspace sampling" come from benchmarks/results/simbody.md
-# (scripts/simbody_bench.sh) and workspace.md (benchmarks/workspace_bench.py).
+# (scripts/simbody_bench.sh) and workspace.md (benchmarks/workspace_bench.py), the
+# last section (measured by hand) from benchmarks/results/by_hand.md.
 #   scripts/results.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -140,6 +141,11 @@ TEXT
   if [[ -f "$out/workspace.md" ]]; then
     echo
     cat "$out/workspace.md"
+  fi
+  # Measurements made by hand (Google Benchmark, repeated runs), kept in by_hand.md.
+  if [[ -f "$out/by_hand.md" ]]; then
+    echo
+    cat "$out/by_hand.md"
   fi
 } > benchmarks/RESULTS.md
 echo "wrote benchmarks/RESULTS.md"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The README's viewer screenshots: `ccma view` of every bundled model, of a
+# The viewer's screenshots in docs/viewer.md: `ccma view` of every bundled model, of a
 # replay and of a workspace map (a few seconds of `ccma workspace`), opened in headless
 # Chromium by the browser test, which also checks
 # each page (no console error, no request, the mechanism drawn) before saving
