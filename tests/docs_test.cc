@@ -4,10 +4,15 @@
 //    mentions no flag a command does not accept;
 //  * docs/cli.md names every JSON key the commands print (normal runs and
 //    the failure cases that add keys such as `warning`);
-//  * docs/model_format.md names every key the model loader knows.
+//  * docs/model_format.md names every key the model loader knows;
+//  * README.md and docs/*.md name only files that are in the repository,
+//    carry no dates or history of past work, and the README stays a front
+//    door (at most 200 lines, one table row per command, its C++ example
+//    taken line by line from apps/embed_example.cc).
 // The docs are read from CCMA_SOURCE_DIR/docs, or from the folder in the
 // environment variable CCMA_DOCS_DIR (to check that an edited copy fails).
 #include <fcntl.h>
+#include <glob.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -536,6 +541,221 @@ TEST(ModelFormatDocs, EveryLoaderKeyIsDocumented) {
 
 TEST(DocsIndex, LinksTheCommandLineReference) {
   EXPECT_NE(ReadDoc("README.md").find("(cli.md)"), std::string::npos);
+}
+
+// ---- (e): README.md and docs/ against the repository ------------------------
+
+struct Page {
+  std::string name;    // for messages: README.md, docs/NAME.md
+  std::string text;
+  std::string folder;  // where its relative links point from (in the source tree)
+};
+
+// README.md and every docs/*.md (from DocsDir(), so an edited copy is checked).
+std::vector<Page> Pages() {
+  const std::string source = CCMA_SOURCE_DIR;
+  std::vector<Page> pages = {{"README.md", Slurp(source + "/README.md"), source}};
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(DocsDir())) {
+    if (entry.path().extension() == ".md") names.push_back(entry.path().filename().string());
+  }
+  std::sort(names.begin(), names.end());
+  for (const std::string& name : names) pages.push_back({"docs/" + name, Slurp(DocsDir() + "/" + name), source + "/docs"});
+  return pages;
+}
+
+int LineOf(const std::string& text, size_t pos) {
+  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(pos), '\n'));
+}
+
+bool IsPathChar(char c) { return IsWordChar(c) || c == '.' || c == '/' || c == '*' || c == '-'; }
+
+// The repository's top-level folders (build trees aside: they hold outputs).
+std::vector<std::string> TopLevelFolders() {
+  std::vector<std::string> folders;
+  for (const auto& entry : std::filesystem::directory_iterator(CCMA_SOURCE_DIR)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.is_directory() && name[0] != '.' && name.rfind("build", 0) != 0) folders.push_back(name);
+  }
+  return folders;
+}
+
+struct PathMention {
+  std::string path;  // relative to the repository root
+  int line;
+};
+
+// Repository paths in `text`: words that start with a top-level folder and a
+// slash (`scripts/demo.sh`, `models/*.yaml`, `docs/`), outside other paths
+// (`$HOME/ccma/lib` is none). Left out: placeholders (`view_<name>.png`,
+// `{png,svg}`) and what a command writes (`--out=...`, `--plot=...`).
+std::vector<PathMention> RepositoryPaths(const std::string& text, const std::vector<std::string>& folders) {
+  std::vector<PathMention> mentions;
+  for (size_t i = 0; i < text.size(); ++i) {
+    if (i > 0 && IsPathChar(text[i - 1])) continue;
+    bool starts = false;
+    for (const std::string& f : folders) starts = starts || text.compare(i, f.size() + 1, f + "/") == 0;
+    if (!starts) continue;
+    size_t end = i;
+    while (end < text.size() && IsPathChar(text[end])) ++end;
+    const bool placeholder = end < text.size() && (text[end] == '<' || text[end] == '{');
+    const bool output = (i >= 4 && text.compare(i - 4, 4, "out=") == 0) || (i >= 5 && text.compare(i - 5, 5, "plot=") == 0);
+    std::string path = text.substr(i, end - i);
+    while (!path.empty() && (path.back() == '.' || path.back() == '-')) path.pop_back();
+    if (!placeholder && !output) mentions.push_back({path, LineOf(text, i)});
+    i = end;
+  }
+  return mentions;
+}
+
+// Targets of Markdown links and images, `[...](TARGET)`, other than web
+// addresses and anchors within the page; the anchor of TARGET#anchor dropped.
+std::vector<PathMention> LinkTargets(const std::string& text) {
+  std::vector<PathMention> links;
+  for (size_t p = text.find("]("); p != std::string::npos; p = text.find("](", p + 2)) {
+    const size_t end = text.find(')', p + 2);
+    if (end == std::string::npos) break;
+    std::string target = text.substr(p + 2, end - p - 2);
+    target = target.substr(0, target.find('#'));
+    if (target.empty() || target.find("://") != std::string::npos || target.rfind("mailto:", 0) == 0) continue;
+    links.push_back({target, LineOf(text, p)});
+  }
+  return links;
+}
+
+// A file or folder (a trailing slash: a folder), or a pattern with `*` that
+// matches at least one.
+bool Exists(const std::string& path) {
+  if (path.find('*') != std::string::npos) {
+    glob_t matches;
+    const bool found = glob(path.c_str(), 0, nullptr, &matches) == 0 && matches.gl_pathc > 0;
+    globfree(&matches);
+    return found;
+  }
+  if (!path.empty() && path.back() == '/') return std::filesystem::is_directory(path);
+  return std::filesystem::exists(path);
+}
+
+TEST(RepositoryDocs, NameOnlyFilesThatExist) {
+  const std::vector<std::string> folders = TopLevelFolders();
+  int checked = 0;
+  for (const Page& page : Pages()) {
+    for (const PathMention& m : RepositoryPaths(page.text, folders)) {
+      ++checked;
+      // docs/python.md also names files of the Python package as Python
+      // sees them (`ccma/_ccma.pyi` is python/ccma/_ccma.pyi).
+      const bool found = Exists(std::string(CCMA_SOURCE_DIR) + "/" + m.path) ||
+                         (page.name == "docs/python.md" && Exists(std::string(CCMA_SOURCE_DIR) + "/python/" + m.path));
+      EXPECT_TRUE(found) << page.name << ":" << m.line << ": names " << m.path << ", which is not in the repository";
+    }
+    for (const PathMention& m : LinkTargets(page.text)) {
+      ++checked;
+      EXPECT_TRUE(Exists(page.folder + "/" + m.path))
+          << page.name << ":" << m.line << ": links to " << m.path << ", which is not in the repository";
+    }
+  }
+  EXPECT_GT(checked, 200);
+}
+
+// The extraction rules themselves, on a small page.
+TEST(RepositoryDocs, PathMentionsAreFound) {
+  const std::string text =
+      "Run `scripts/demo.sh`, see models/*.yaml and docs/.\n"
+      "$HOME/ccma/lib stays; --out=models/new.yaml and docs/images/view_<name>.png too;\n"
+      "[cli](cli.md#ccma-view) [web](https://example.org/x.md) [here](#top) ![i](images/a.png)";
+  std::vector<std::string> paths, links;
+  for (const PathMention& m : RepositoryPaths(text, {"scripts", "models", "docs", "ccma"})) paths.push_back(m.path);
+  for (const PathMention& m : LinkTargets(text)) links.push_back(m.path);
+  EXPECT_EQ(paths, (std::vector<std::string>{"scripts/demo.sh", "models/*.yaml", "docs/"}));
+  EXPECT_EQ(links, (std::vector<std::string>{"cli.md", "images/a.png"}));
+  EXPECT_TRUE(Exists(std::string(CCMA_SOURCE_DIR) + "/models/*.yaml"));
+  EXPECT_FALSE(Exists(std::string(CCMA_SOURCE_DIR) + "/models/*.yml"));
+  EXPECT_FALSE(Exists(std::string(CCMA_SOURCE_DIR) + "/README.md/"));
+}
+
+// Measured runs, with their dates and machines, live in benchmarks/RESULTS.md.
+TEST(RepositoryDocs, CarryNoDatesOrHistory) {
+  auto digit = [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; };
+  for (const Page& page : Pages()) {
+    for (size_t i = 0; i + 10 <= page.text.size(); ++i) {
+      const std::string s = page.text.substr(i, 10);  // YYYY-MM-DD
+      const bool date = (s.compare(0, 2, "19") == 0 || s.compare(0, 2, "20") == 0) && digit(s[2]) && digit(s[3]) &&
+                        s[4] == '-' && digit(s[5]) && digit(s[6]) && s[7] == '-' && digit(s[8]) && digit(s[9]);
+      EXPECT_FALSE(date) << page.name << ":" << LineOf(page.text, i) << ": a date, " << s;
+    }
+    std::string lower = page.text;
+    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    for (const char* phrase : {"this session", "previous session", "earlier session", "last session"}) {
+      const size_t p = lower.find(phrase);
+      EXPECT_EQ(p, std::string::npos) << page.name << ":" << LineOf(page.text, p) << ": \"" << phrase << "\"";
+    }
+  }
+}
+
+TEST(Readme, IsAFrontDoor) {
+  const std::string readme = Slurp(std::string(CCMA_SOURCE_DIR) + "/README.md");
+  EXPECT_LE(Lines(readme).size(), 200u);
+  // The two commands, on its first screen (40 lines).
+  std::string first_screen;
+  for (size_t i = 0; i < std::min<size_t>(40, Lines(readme).size()); ++i) first_screen += Lines(readme)[i] + "\n";
+  EXPECT_NE(first_screen.find("scripts/demo.sh"), std::string::npos);
+  EXPECT_NE(first_screen.find("scripts/test.sh"), std::string::npos);
+  // A table row for every command the tool lists, and none for another.
+  for (const std::string& c : Facts().commands) {
+    EXPECT_NE(readme.find("| `ccma " + c + "` |"), std::string::npos) << "the README's table lacks ccma " << c;
+  }
+  for (const std::string& line : Lines(readme)) {
+    if (line.rfind("| `ccma ", 0) != 0) continue;
+    const std::string name = line.substr(8, line.find('`', 8) - 8);
+    EXPECT_EQ(std::count(Facts().commands.begin(), Facts().commands.end(), name), 1) << line;
+  }
+  EXPECT_NE(readme.find("(docs/architecture.md)"), std::string::npos);
+  EXPECT_NE(ReadDoc("README.md").find("(architecture.md)"), std::string::npos);
+}
+
+// The code of a ```cpp block (comments and indentation dropped, blank lines skipped).
+std::vector<std::string> CodeLines(const std::vector<std::string>& lines) {
+  std::vector<std::string> code;
+  for (std::string line : lines) {
+    line = line.substr(0, line.find("//"));
+    const size_t first = line.find_first_not_of(" \t"), last = line.find_last_not_of(" \t");
+    if (first != std::string::npos) code.push_back(line.substr(first, last - first + 1));
+  }
+  return code;
+}
+
+// The README's and docs/cpp.md's C++ examples are excerpts of
+// apps/embed_example.cc, which the tests build and run: every code line is
+// there, in the same order.
+TEST(Readme, CppExampleIsTakenFromEmbedExample) {
+  const std::vector<std::string> program =
+      CodeLines(Lines(Slurp(std::string(CCMA_SOURCE_DIR) + "/apps/embed_example.cc")));
+  ASSERT_GT(program.size(), 20u);
+  for (const Page& page : Pages()) {
+    if (page.name != "README.md" && page.name != "docs/cpp.md") continue;
+    std::vector<std::string> block;
+    bool in_cpp = false;
+    int blocks = 0;
+    for (const std::string& line : Lines(page.text)) {
+      if (IsFence(line)) {
+        if (!in_cpp && line.find("```cpp") != std::string::npos) ++blocks;
+        in_cpp = !in_cpp && line.find("```cpp") != std::string::npos;
+        continue;
+      }
+      if (in_cpp) block.push_back(line);
+    }
+    EXPECT_EQ(blocks, 1) << page.name;
+    if (page.name == "README.md") EXPECT_LE(block.size(), 20u);
+    const std::vector<std::string> code = CodeLines(block);
+    EXPECT_GT(code.size(), 10u) << page.name;
+    size_t at = 0;
+    for (const std::string& line : code) {
+      const auto found = std::find(program.begin() + static_cast<std::ptrdiff_t>(at), program.end(), line);
+      EXPECT_NE(found, program.end()) << page.name << ": `" << line
+                                      << "` is not in apps/embed_example.cc (after the lines before it)";
+      if (found != program.end()) at = static_cast<size_t>(found - program.begin()) + 1;
+    }
+  }
 }
 
 }  // namespace
