@@ -114,7 +114,12 @@ void BindModelClass(py::module_& m) {
 }  // namespace
 
 void BindModel(py::module_& m) {
-  py::register_exception<ModelError>(m, "ModelError", PyExc_ValueError);
+  py::register_exception<ModelError>(m, "ModelError", PyExc_ValueError).attr("__doc__") =
+      "Raised when a model file (or model text) cannot be read or is not a valid model "
+      "(docs/model_format.md): by load_model, load_model_from_string, and by view, workspace "
+      "and design_sweep given a model file's path. Carries one argument, the message "
+      "'file:line: key: what' (str(e), e.args[0]), the same text `ccma check` prints. "
+      "A subclass of ValueError.";
   BindParts(m);
   BindModelClass(m);
   m.def(
