@@ -24,6 +24,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "ccma/model.h"
+#include "formats/internal/magnitude_checks.h"
 #include "formats/internal/yaml_checks.h"
 
 namespace ccma {
@@ -61,7 +62,7 @@ class Components {
 class ModelParser {
  public:
   // `source` names the file in messages; `warnings` (may be null) receives
-  // unknown keys.
+  // unknown keys and implausible magnitudes.
   ModelParser(const std::string& source, std::vector<std::string>* warnings);
 
   // The model of the document `root`; throws ModelError on any problem.
@@ -109,6 +110,8 @@ class ModelParser {
   // model_end_effector.cc
   void ParseEndEffector(const YAML::Node& ee);
 
+  MagnitudeChecks magnitudes_;
+  std::vector<std::string>* warnings_;
   const YamlReader r_;
   Model model_;
   std::unordered_map<std::string, NamedBody> body_names_;  // bodies and bases

@@ -11,7 +11,7 @@ namespace ccma {
 namespace internal {
 
 ModelParser::ModelParser(const std::string& source, std::vector<std::string>* warnings)
-    : r_(source, warnings) {
+    : magnitudes_(source), warnings_(warnings), r_(source, warnings, &magnitudes_) {
   model_.source = source;
 }
 
@@ -33,6 +33,8 @@ Model ModelParser::Parse(const YAML::Node& root) {
   }
   ParseEndEffector(r_.Map(r_.Require(root, "end_effector", ""), "end_effector"));
   CheckConnected(bodies);
+  // Only a model that loads has its magnitudes reported.
+  if (warnings_ != nullptr) magnitudes_.AppendWarnings(warnings_);
   return std::move(model_);
 }
 

@@ -1,10 +1,12 @@
 #include "formats/internal/yaml_checks.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
 #include "ccma/internal/format.h"
 #include "ccma/limits.h"
+#include "formats/internal/magnitude_checks.h"
 #include "formats/model_loader.h"
 
 namespace ccma {
@@ -13,6 +15,38 @@ namespace {
 
 // Axes shorter than this are "the zero vector".
 constexpr double kMinAxisNorm = 1e-12;
+
+// The edit distance between `a` and `b` (optimal string alignment: a swap of
+// two neighbouring characters counts 1, as in "tpye"), or more than `limit`
+// whenever it exceeds `limit`: lengths that differ by more cost nothing.
+std::size_t EditDistance(const std::string& a, const std::string& b, std::size_t limit) {
+  const std::size_t n = a.size(), m = b.size();
+  if ((n > m ? n - m : m - n) > limit) return limit + 1;
+  // d[i][j]: distance between the first i characters of a and j of b.
+  std::vector<std::vector<std::size_t>> d(n + 1, std::vector<std::size_t>(m + 1));
+  for (std::size_t i = 0; i <= n; ++i) d[i][0] = i;
+  for (std::size_t j = 0; j <= m; ++j) d[0][j] = j;
+  for (std::size_t i = 1; i <= n; ++i) {
+    for (std::size_t j = 1; j <= m; ++j) {
+      const std::size_t cost = a[i - 1] == b[j - 1] ? 0 : 1;
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) {
+        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+      }
+    }
+  }
+  return d[n][m];
+}
+
+// "'a'", "'a' or 'b'", "'a', 'b' or 'c'".
+std::string Alternatives(const std::vector<std::string>& keys) {
+  std::string out;
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    if (i > 0) out += i + 1 == keys.size() ? " or " : ", ";
+    out += "'" + keys[i] + "'";
+  }
+  return out;
+}
 
 }  // namespace
 
@@ -32,6 +66,21 @@ std::string NameRule() {
 
 std::string Indexed(const std::string& list, std::size_t i) {
   return list + "[" + std::to_string(i) + "]";
+}
+
+std::vector<std::string> ClosestKeys(const std::string& key, const std::set<std::string>& known) {
+  std::vector<std::string> closest;
+  std::size_t best = 0;
+  for (const std::string& candidate : known) {
+    // Short keys are one edit from many words ("note" is two from "name").
+    const std::size_t limit = std::min(key.size(), candidate.size()) <= 4 ? 1 : 2;
+    const std::size_t distance = EditDistance(key, candidate, limit);
+    if (distance > limit || (!closest.empty() && distance > best)) continue;
+    if (closest.empty() || distance < best) closest.clear();
+    best = distance;
+    closest.push_back(candidate);
+  }
+  return closest;
 }
 
 void YamlReader::Fail(const YAML::Node& at, const std::string& key, const std::string& what) const {
@@ -56,10 +105,16 @@ bool YamlReader::Has(const YAML::Node& map, const std::string& key) {
 
 void YamlReader::CheckKeys(const YAML::Node& map, const std::set<std::string>& known,
                            const std::string& path) const {
-  if (warnings_ == nullptr) return;
   for (const auto& entry : map) {
     const std::string key = entry.first.IsScalar() ? entry.first.Scalar() : "";
-    if (known.count(key) == 0) {
+    if (known.count(key) != 0) continue;
+    // A non-scalar key ("? [a, b]") is no misspelling of a name.
+    const std::vector<std::string> closest =
+        entry.first.IsScalar() ? ClosestKeys(key, known) : std::vector<std::string>{};
+    if (!closest.empty()) {
+      Fail(entry.first, path, "unknown key " + Quote(key) + " (did you mean " + Alternatives(closest) + "?)");
+    }
+    if (warnings_ != nullptr) {
       warnings_->push_back(Location(entry.first) + ": " + Join(path, Printable(key)) +
                            ": unknown key, ignored");
     }
@@ -112,6 +167,7 @@ double YamlReader::Number(const YAML::Node& node, const std::string& path, const
     Fail(node, path, Quote(node.Scalar()) + " must lie in [" + FormatG(-kMaxMagnitude) + ", " +
                          FormatG(kMaxMagnitude) + "]" + unit_text);
   }
+  if (magnitudes_ != nullptr) magnitudes_->See(value, unit, node.Mark().line, path);
   return value;
 }
 

@@ -1,7 +1,8 @@
 // Validation helpers shared by every section of the model loader: typed reads
 // out of YAML nodes (required and optional keys, mappings, lists, names,
 // bounded numbers, 3-vectors, axes) that turn every problem into a ModelError
-// of the form "file:line: key: what", and the check of a mapping's keys.
+// of the form "file:line: key: what", and the check of a mapping's keys
+// (unknown keys, with a suggestion for a misspelt one).
 //
 // Internal to the library: formats/model_loader.h is the public API.
 #ifndef CCMA_FORMATS_INTERNAL_YAML_CHECKS_H_
@@ -19,6 +20,8 @@
 namespace ccma {
 namespace internal {
 
+class MagnitudeChecks;
+
 // Whether `text` is a name: 1 to kMaxNameLength characters from [A-Za-z0-9_-].
 bool IsName(const std::string& text);
 
@@ -28,14 +31,23 @@ std::string NameRule();
 // "list[i]".
 std::string Indexed(const std::string& list, std::size_t i);
 
+// The entries of `known` closest to `key` by edit distance (insertions,
+// deletions, substitutions and swaps of two neighbours count 1 each), if that
+// distance is at most 1 (when `key` or the entry has at most 4 characters) or
+// 2 (otherwise); several when they tie, in `known`'s order; empty when none
+// is that close. A key far longer than every entry costs no more than a
+// comparison of lengths.
+std::vector<std::string> ClosestKeys(const std::string& key, const std::set<std::string>& known);
+
 // Reads typed values out of YAML nodes, turning every problem into a
 // ModelError that says file:line: key: what. `path` arguments are the key
 // path of the node for messages ("joints[3].axis", "" for the top level).
 class YamlReader {
  public:
-  // `warnings` (may be null) receives unknown keys.
-  YamlReader(std::string source, std::vector<std::string>* warnings)
-      : source_(std::move(source)), warnings_(warnings) {}
+  // `warnings` (may be null) receives unknown keys; `magnitudes` (may be
+  // null) sees every length ("m") and angle ("rad") that Number() reads.
+  YamlReader(std::string source, std::vector<std::string>* warnings, MagnitudeChecks* magnitudes)
+      : source_(std::move(source)), warnings_(warnings), magnitudes_(magnitudes) {}
 
   const std::string& source() const { return source_; }
 
@@ -50,8 +62,11 @@ class YamlReader {
   static bool Has(const YAML::Node& map, const std::string& key);
 
   // Checks the keys of `map` against `known`, before any of its values is
-  // read: an unknown key (a key of a newer format, say) is ignored and adds
-  // "file:line: path.key: unknown key, ignored" to the warnings.
+  // read: a key within ClosestKeys() distance of a known one is a misspelling
+  // and throws "path: unknown key 'betwen' (did you mean 'between'?)" at the
+  // key's line; any other unknown key (a key of a newer format, say) is
+  // ignored and adds "file:line: path.key: unknown key, ignored" to the
+  // warnings.
   void CheckKeys(const YAML::Node& map, const std::set<std::string>& known,
                  const std::string& path) const;
 
@@ -67,7 +82,8 @@ class YamlReader {
   std::string Name(const YAML::Node& node, const std::string& path) const;
 
   // A finite number in [-kMaxMagnitude, kMaxMagnitude]; `unit` is named in
-  // the message ("m", "rad", "unitless"; "" for none).
+  // the message ("m", "rad", "unitless"; "" for none). Lengths ("m") and
+  // angles ("rad") are also shown to the MagnitudeChecks.
   double Number(const YAML::Node& node, const std::string& path, const char* unit) const;
 
   // Three numbers; `units` names each component's unit.
@@ -89,6 +105,7 @@ class YamlReader {
  private:
   std::string source_;
   std::vector<std::string>* warnings_;
+  MagnitudeChecks* magnitudes_;
 };
 
 }  // namespace internal
