@@ -204,7 +204,7 @@ class Model:
         """<ccma.Model 'name': N bodies, N bases, N joints>."""
 
 def load_model(path: str) -> Model:
-    """Reads and validates a model file (YAML or JSON); raises ModelError 'file:line: key: what'; unknown keys warn (UserWarning)."""
+    """Reads and validates a model file (YAML or JSON); raises ModelError 'file:line: key: what' (a misspelt key too); other unknown keys, lengths above 100 m and angles above 2 pi warn (UserWarning)."""
 
 def load_model_from_string(text: str, source_name: str = "<string>") -> Model:
     """load_model for model text in memory; source_name stands in for the file name in messages."""

@@ -26,7 +26,8 @@ std::vector<std::string> Controlled(const EndEffector& ee) {
   return names;
 }
 
-// Unknown keys as UserWarnings; a warning turned into an error (-W error)
+// The loader's warnings (unknown keys, implausible magnitudes) as
+// UserWarnings; a warning turned into an error (-W error)
 // propagates as that error.
 void Warn(const std::vector<std::string>& warnings) {
   for (const std::string& w : warnings) {
@@ -132,8 +133,8 @@ void BindModel(py::module_& m) {
       },
       py::arg("path"),
       "Reads and validates a model file (YAML or JSON, docs/model_format.md). Raises "
-      "ccma.ModelError with 'file:line: key: what' on any problem; unknown keys give a "
-      "UserWarning.");
+      "ccma.ModelError with 'file:line: key: what' on any problem (a misspelt key too); other "
+      "unknown keys, lengths above 100 m and angles above 2 pi give a UserWarning.");
   m.def(
       "load_model_from_string",
       [](const std::string& text, const std::string& source_name) {
