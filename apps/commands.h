@@ -62,7 +62,7 @@ const std::vector<std::string>& SecondaryFlagNames();
 void ApplySecondaryFlags(ControlOptions* options);
 nlohmann::json SecondaryJson(const ControlOptions::Secondary& secondary, int null_space_steps, double objective);
 
-// Loads the model, printing its warnings (unknown keys) on stderr.
+// Loads the model, printing its warnings (unknown keys, implausible magnitudes) on stderr.
 Model LoadModelOrThrow(const std::string& path);
 // The --waypoints file, its errors turned into UsageError (exit 2).
 std::vector<Waypoint> WaypointsFlag(const std::string& command);

@@ -29,8 +29,14 @@ class ModelError : public std::runtime_error {
 // Reads and validates the model file at `path` (YAML, or JSON). Only a
 // regular file (symlinks followed) of at most kMaxModelFileBytes is read;
 // a directory, device or FIFO is rejected without being opened for reading.
-// Unknown keys are not errors (the format may be extended); each one adds a
-// line to `warnings` when it is given. Throws ModelError on any problem.
+// Throws ModelError on any problem, including a misspelt key: an unknown key
+// within edit distance 2 (1 for short keys) of a key that mapping knows, e.g.
+//   m.yaml:12: joints[3]: unknown key 'betwen' (did you mean 'between'?)
+// When `warnings` is given, the model loads and one line per finding is
+// appended to it ("file:line: key: what"; the library prints nothing):
+//  - any other unknown key (the format may be extended): ignored;
+//  - implausible magnitudes, one line per kind naming the first one: a length
+//    above 100 m (millimetres?) or an angle above 2 pi (degrees?).
 Model LoadModel(const std::string& path,
                 std::vector<std::string>* warnings = nullptr);
 

@@ -2,7 +2,9 @@
 //
 // Any text must either load or be rejected with ccma::ModelError; any other
 // exception, a crash, a sanitizer report, a leak or a hang is a bug.
-//   fuzz/run_fuzz.sh [seconds]
+//   fuzz/run_fuzz.sh [seconds]      live fuzzing (clang, sanitizers)
+// The corpus in fuzz/corpus/ is also replayed through this function by every
+// test run (fuzz/corpus_replay.cc, CTest `fuzz_corpus_replay`, any compiler).
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -18,11 +20,19 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   std::vector<std::string> warnings;
   try {
     const ccma::Model model = ccma::LoadModelFromString(text, "fuzz.yaml", &warnings);
-    // A loaded model is internally consistent.
-    if (model.name.empty() || model.mobile_bases.empty() || model.end_effector.body < 0 ||
-        model.end_effector.body >= model.num_bodies()) {
+    // A loaded model is internally consistent: it has an actuator (a mobile
+    // base or an actuated joint) and its end-effector is on one of its bodies.
+    if (model.name.empty() || model.num_bases() + model.num_actuated_joints() == 0 ||
+        model.end_effector.body < 0 || model.end_effector.body >= model.num_bodies()) {
       std::fprintf(stderr, "loaded an inconsistent model\n");
       std::abort();
+    }
+    // Warnings (unknown keys, implausible magnitudes) name the file too.
+    for (const std::string& w : warnings) {
+      if (w.rfind("fuzz.yaml", 0) != 0) {
+        std::fprintf(stderr, "warning without the file name: %s\n", w.c_str());
+        std::abort();
+      }
     }
   } catch (const ccma::ModelError& e) {
     // Messages start with the source name.

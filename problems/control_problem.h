@@ -40,6 +40,8 @@
 
 namespace ccma {
 
+struct ControlLinearization;  // problems/internal/control_linearization.h
+
 enum class ControlMethod { kLevenbergMarquardt, kBfgs };
 // kFiniteDifference: central differences of re-solved forward problems,
 // 2k solves per gradient (the baseline the paper avoids).
@@ -211,8 +213,16 @@ class ControlProblem {
   PoseTarget CurrentPose() const;
 
  private:
+  // The parts of a control step (problems/internal/): the outer loops, the
+  // null-space secondary objectives and the differential bases' turning.
+  // They drive the forward problem through the private services below.
+  friend class LmLoop;
+  friend class BfgsLoop;
   friend class BfgsObjective;
-  struct Workspace;  // end-effector error, Hessian solver, derivative buffers
+  friend class NullSpaceStep;
+  friend class SecondaryObjectiveTerms;
+  friend class DifferentialTurning;
+  struct Workspace;  // end-effector error, Hessian solver, step constraints, buffers
   // The entries of u that are controls.
   Eigen::VectorXd EffectiveControls(const Eigen::VectorXd& u) const;
   // Re-solves the forward problem at u (effective entries replaced by ue)
@@ -221,37 +231,14 @@ class ControlProblem {
   // r = [e; sqrt(lambda) C] at the current solution.
   Eigen::VectorXd Residuals(const PoseTarget& target) const;
   // The Gauss-Newton model of r(u) at the current solution: r, ds/du and
-  // J^T J, J^T r of dr/du_eff (implicit or finite differences).
-  struct Linearization;
-  void Linearize(const PoseTarget& target, Linearization* lin);
+  // J^T J, J^T r of dr/du_eff (implicit or finite differences;
+  // problems/internal/control_linearization.h).
+  void Linearize(const PoseTarget& target, ControlLinearization* lin);
   void LinearizeByFiniteDifferences(const PoseTarget& target, Eigen::MatrixXd* J, Eigen::MatrixXd* ds_du);
   // ds/du * du at the last linearisation (one sparse solve when ds/du was
   // not formed).
-  Eigen::VectorXd PredictedStateChange(const Linearization& lin, const Eigen::VectorXd& du) const;
-  // One LM iteration from the current solution; false when no trial step was
-  // accepted (or the step vanished).
-  bool LmIteration(const PoseTarget& target, const Linearization& lin, double* O, double* mu, Eigen::VectorXd* r,
-                   ControlStepResult* result);
-  // The LM step for damping mu: unconstrained, or under the step constraints
-  // (differential bases, active joint limits; `active` is updated).
-  Eigen::VectorXd LmStep(const Linearization& lin, double mu, std::vector<int>* active) const;
-  // Newton steps on the step constraints alone until they hold to 1e-10.
-  void ProjectOntoStepConstraints(ControlStepResult* result);
-  // Differential bases that the step toward `target` would move more than
-  // kMaxArcTurn off their heading first turn on the spot (a path step of its
-  // own, the end-effector held), so that the step itself is a gentle arc.
-  // Returns true (and fills `turn`) when they turned.
-  bool TurnDifferentialBases(const PoseTarget& target, ControlStepResult* turn);
-  ControlStepResult SolveStepLm(const PoseTarget& target);
-  // The LM loop on the end-effector task from the current solution (the body
-  // of SolveStepLm); returns whether it reached its inner tolerance.
-  bool ConvergeTask(const PoseTarget& target, ControlStepResult* result, bool report_iterations);
-  // r2 and dr2/du_eff (options().secondary) at the current solution.
-  void SecondaryResiduals(const PoseTarget& target, Eigen::VectorXd* r2, Eigen::MatrixXd* J2);
-  // One accepted Gauss-Newton step on Phi in the null space of de/du followed
-  // by re-converging the task, or false (state restored) if none decreased Phi.
-  bool NullSpaceIteration(const PoseTarget& target, ControlStepResult* result);
-  ControlStepResult SolveStepBfgs(const PoseTarget& target);
+  Eigen::VectorXd PredictedStateChange(const ControlLinearization& lin, const Eigen::VectorXd& du) const;
+  // Error, energy, step-constraint measures and `reached` of a step's result.
   void Finish(const PoseTarget& target, ControlStepResult* result);
   void CheckTarget(const PoseTarget& target) const;
 
@@ -259,7 +246,6 @@ class ControlProblem {
   ForwardProblem forward_;
   const std::vector<int> effective_;
   std::unique_ptr<Workspace> workspace_;
-  std::vector<int> active_;  // joints held at a limit in the current step
   Eigen::VectorXd travel_origin_;  // all controls; the start of base travel
   int forward_solves_ = 0;
 };

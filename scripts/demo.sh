@@ -5,10 +5,13 @@
 #   a target 3 cm and 0.05 rad away, the paper's two 4-DOF paths with
 #   trajectory, a simulated replay of the first with plots, and 3D pages of
 #   every model and of the replay (ccma view: open them in a browser).
+# It builds only the `ccma` tool (about 3 minutes on 2 cores the first time;
+# the runs take about 20 s); scripts/test.sh builds and runs everything else.
 #   scripts/demo.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/setup.sh
+echo "demo: set-up and build of the ccma tool first (about 3 minutes on 2 cores the first time), then about 20 s of runs"
+scripts/setup.sh ccma_tool
 ccma=build/apps/ccma
 out=build/demo
 mkdir -p "$out"
@@ -16,6 +19,8 @@ summary=()
 
 # The value of a top-level JSON key (true/false/number) in a file.
 key() { sed -n "s/^  \"$2\": \([^,]*\),\{0,1\}$/\1/p" "$1" | head -n 1; }
+# Why a control run did not converge: its top-level "warning" (empty if none).
+why() { sed -n 's/^  "warning": "\(.*\)",\{0,1\}$/\1/p' "$1" | head -n 1; }
 
 for model in models/*.yaml; do
   name=$(basename "$model" .yaml)
@@ -27,6 +32,8 @@ for model in models/*.yaml; do
   summary+=("$(printf '%-16s rigid %-5s  assembled at home %-5s  control converged %-5s in %s ms' "$name" \
     "$(key "$out/${name}_check.json" rigid_with_controls_fixed)" "$(key "$out/${name}_simulate.json" assembled)" \
     "$(key "$out/${name}_control.json" converged)" "$(key "$out/${name}_control.json" solve_time_ms | cut -c1-6)")")
+  reason=$(why "$out/${name}_control.json")
+  if [ -n "$reason" ]; then summary+=("$(printf '%-16s   not converged: %s' "" "$reason")"); fi
 done
 for model in 4dof_reduced 4dof_complete; do
   for path in 4dof_sequential 4dof_combined; do
@@ -53,5 +60,5 @@ echo "  $out/*_check.json, *_simulate.json, *_control.json   per model"
 echo "  $out/4dof_*_4dof_*.csv                                 trajectory rows (one per control step)"
 echo "  $out/replay/end_effector.png, bases_xy.png (+ .svg)    replay plots; CSVs beside them"
 echo "  $out/<model>.html, replay.html, 4dof_reduced_4dof_combined.html   3D views (open in a browser)"
-echo "  Python: python3 -c 'import ccma; help(ccma)'  (docs/python.md; examples/python/)"
+echo "  Python: scripts/setup.sh builds the module, then PYTHONPATH=build/python python3 -c 'import ccma'  (docs/python.md)"
 echo "Next: build/apps/ccma --help, docs/README.md"

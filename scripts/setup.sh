@@ -1,11 +1,27 @@
 #!/usr/bin/env bash
 # Installs what ccma needs from Debian's packages (only the missing ones) and
-# builds it into build/ (Release), showing progress. Safe to run again: it
-# does nothing twice.
-#   scripts/setup.sh                 # set up and build
-#   CCMA_EXTRA_PACKAGES="clang libclang-rt-14-dev" scripts/setup.sh   # more packages
+# builds it into build/ (Release), printing progress at least every 20 s.
+# Safe to run again: it does nothing twice.
+#   scripts/setup.sh                      # set up and build everything (tests too)
+#   scripts/setup.sh ccma_tool            # only these CMake targets (the demo's choice)
+#   scripts/setup.sh --register-python    # also make `import ccma` work without PYTHONPATH
+#   CCMA_EXTRA_PACKAGES="chromium" scripts/setup.sh   # more packages
+# Without --register-python nothing is written outside this clone: use
+# PYTHONPATH=build/python python3 ... (docs/python.md).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+
+register=0
+targets=()
+for arg in "$@"; do
+  case "$arg" in
+    --register-python) register=1 ;;
+    -h|--help) sed -n '2,11p' "$0"; exit 0 ;;
+    -*) echo "setup: unknown option '$arg' (see scripts/setup.sh --help)" >&2; exit 2 ;;
+    *) [[ "$arg" =~ ^[A-Za-z0-9_]+$ ]] || { echo "setup: '$arg' is not a target name" >&2; exit 2; }
+       targets+=("$arg") ;;
+  esac
+done
 
 PACKAGES=(g++ make cmake pkg-config
           libceres-dev libeigen3-dev libgoogle-glog-dev libgflags-dev
@@ -24,65 +40,90 @@ for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
 if ((${#missing[@]})); then
-  echo "setup: installing ${missing[*]} (apt-get)"
+  echo "setup: installing ${#missing[@]} Debian packages (apt-get, about 2-4 minutes): ${missing[*]}"
   SUDO=""
   [ "$(id -u)" -ne 0 ] && SUDO="sudo"
   $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" > /dev/null
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" \
+    > apt.log 2>&1 &
+  apt_pid=$!
+  while kill -0 "$apt_pid" 2> /dev/null; do
+    sleep 20
+    kill -0 "$apt_pid" 2> /dev/null && echo "setup: still installing ($(grep -c '^Setting up' apt.log || true) set up)"
+  done
+  wait "$apt_pid" || { tail -30 apt.log; exit 1; }
 fi
 
 BUILD_TYPE="${CCMA_BUILD_TYPE:-Release}"
-echo "setup: configuring build/ ($BUILD_TYPE); the first build takes about 3 minutes on 2 cores"
-cmake -S . -B build -DCMAKE_BUILD_TYPE="$BUILD_TYPE" > build.log 2>&1 || { cat build.log; exit 1; }
-# Progress: one line per 10% of the build (the whole log is in build.log).
-# A shell loop, not awk: mawk reads its input in blocks and would print late.
-progress() {
-  local next=0 line p
-  while IFS= read -r line; do
-    printf '%s\n' "$line" >> build.log
-    if [[ "$line" =~ ^\[\ *([0-9]+)%\] ]]; then
-      p=${BASH_REMATCH[1]}
-      if (( p >= next )); then
-        printf 'setup: building %3d%%\n' "$p"
-        next=$(( p - p % 10 + 10 ))
-      fi
-    fi
-  done
-}
-if ! cmake --build build -j"$(nproc)" 2>&1 | progress; then
-  tail -50 build.log
+launcher=()
+# ccache, when installed, makes a second clone's or a rebuilt branch's build fast.
+command -v ccache > /dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+cmake -S . -B build -DCMAKE_BUILD_TYPE="$BUILD_TYPE" "${launcher[@]}" > build.log 2>&1 || { cat build.log; exit 1; }
+
+what="everything (library, tool, tests, benchmarks, examples, Python module)"
+estimate="about 9 minutes on 2 cores the first time"
+if ((${#targets[@]})); then
+  what="${targets[*]}"
+  estimate="about 3 minutes on 2 cores the first time"
+fi
+echo "setup: building $what into build/ ($BUILD_TYPE), $estimate; log in build.log"
+
+# The build runs in the background; a line for every 10 % and, between
+# them, a line at least every 20 s naming what is being compiled.
+target_args=()
+for t in "${targets[@]}"; do target_args+=(--target "$t"); done
+cmake --build build -j"$(nproc)" "${target_args[@]}" >> build.log 2>&1 &
+build_pid=$!
+start=$SECONDS last_print=$SECONDS next=0
+while kill -0 "$build_pid" 2> /dev/null; do
+  sleep 2
+  line=$(grep -E '^\[ *[0-9]+%\]' build.log | tail -n 1 || true)
+  p=$(sed -nE 's/^\[ *([0-9]+)%\].*/\1/p' <<< "$line")
+  if [[ -n "$p" ]] && (( p >= next )); then
+    printf 'setup: building %3d%% (%d s)\n' "$p" $((SECONDS - start))
+    next=$(( p - p % 10 + 10 ))
+    last_print=$SECONDS
+  elif (( SECONDS - last_print >= 20 )); then
+    echo "setup: building ${p:-0}% ($((SECONDS - start)) s): ${line##*object }"
+    last_print=$SECONDS
+  fi
+done
+if ! wait "$build_pid"; then
+  grep -E 'error|Error' build.log | head -20
+  tail -30 build.log
   exit 1
 fi
-echo "setup: built build/apps/ccma ($BUILD_TYPE; log in build.log)"
+echo "setup: built $what in $((SECONDS - start)) s (build/apps/ccma; log in build.log)"
 
-# `python3 -c "import ccma"`: a ccma-build.pth file in the site-packages of
-# each python3 of the version the module was built for (Debian's, and the one
-# first on PATH if different) adds build/python to its path. Remove that file
-# to undo. ccma/__init__.py finds Debian's python3-numpy for other interpreters.
+# `import ccma` without PYTHONPATH, on request only: a ccma-build.pth file in
+# the site-packages of the python3 the module was built for adds build/python
+# to its path (one clone at a time; remove the file to undo).
 register_python() {
-  local module built py version site seen=""
+  local module built py version site
   module=$(ls build/python/ccma/_ccma.cpython-*.so 2>/dev/null | head -1)
   if [ -z "$module" ]; then
     echo "setup: the Python module was not built (see build.log)"
     return
   fi
   built=$(basename "$module" | sed -E 's/^_ccma\.cpython-([0-9])([0-9]+)-.*/\1.\2/')
-  for py in /usr/bin/python3 "$(command -v python3 || true)"; do
-    [ -x "$py" ] || continue
-    py=$(readlink -f "$py")
-    case " $seen " in *" $py "*) continue ;; esac
-    seen="$seen $py"
-    version=$("$py" -c 'import sys; print("%d.%d" % sys.version_info[:2])')
-    if [ "$version" != "$built" ]; then
-      echo "setup: $py is Python $version, the module is for $built: use PYTHONPATH=build/python with Python $built"
-      continue
-    fi
-    site=$("$py" -c 'import sysconfig; print(sysconfig.get_path("purelib"))')
-    if mkdir -p "$site" 2> /dev/null && printf '%s\n' "$PWD/build/python" > "$site/ccma-build.pth" 2> /dev/null; then
-      echo "setup: import ccma works in $py ($site/ccma-build.pth)"
-    else
-      echo "setup: cannot write $site: use PYTHONPATH=$PWD/build/python"
-    fi
-  done
+  py=$(readlink -f /usr/bin/python3)
+  version=$("$py" -c 'import sys; print("%d.%d" % sys.version_info[:2])')
+  if [ "$version" != "$built" ]; then
+    echo "setup: $py is Python $version, the module is for $built: use PYTHONPATH=build/python with Python $built"
+    return
+  fi
+  site=$("$py" -c 'import sysconfig; print(sysconfig.get_path("purelib"))')
+  if [ -e "$site/ccma-build.pth" ] && [ "$(cat "$site/ccma-build.pth")" != "$PWD/build/python" ]; then
+    echo "setup: $site/ccma-build.pth pointed at $(cat "$site/ccma-build.pth"); now at this clone"
+  fi
+  if mkdir -p "$site" 2> /dev/null && printf '%s\n' "$PWD/build/python" > "$site/ccma-build.pth" 2> /dev/null; then
+    echo "setup: import ccma works in $py ($site/ccma-build.pth; remove it to undo)"
+  else
+    echo "setup: cannot write $site: use PYTHONPATH=$PWD/build/python"
+  fi
 }
-register_python
+if ((register)); then
+  register_python
+elif [ -d build/python/ccma ]; then
+  echo "setup: Python: PYTHONPATH=$PWD/build/python python3 -c 'import ccma'  (or scripts/setup.sh --register-python)"
+fi

@@ -518,7 +518,7 @@ TEST(CliDocs, ReplayAndBenchKeysAreDocumented) {
 // ---- (d): model format keys -----------------------------------------------
 
 TEST(ModelFormatDocs, EveryLoaderKeyIsDocumented) {
-  // The known-key lists of formats/model_loader.cc (WarnUnknownKeys calls).
+  // The known-key lists of formats/internal/model_*.cc (CheckKeys calls).
   const std::vector<std::string> keys = {
       // top level
       "name", "description", "bodies", "mobile_bases", "joints", "end_effector",

@@ -131,6 +131,34 @@ TEST(HostileFiles, AQuoteInANameIsRefusedBeforeAnythingRuns) {
   ExpectRefused(r, "must be 1-64 characters from [A-Za-z0-9_-]");
 }
 
+// A misspelt key is bad input: exit 2, the unknown key and a suggestion,
+// nothing on stdout.
+TEST(HostileFiles, AMisspeltKeyIsRefusedWithASuggestion) {
+  std::string text = Slurp(std::string(CCMA_MODELS_DIR) + "/4dof_reduced.yaml");
+  const std::string from = "{type: revolute, between: [post1, link1]";
+  text.replace(text.find(from), from.size(), "{type: revolute, betwen: [post1, link1]");
+  const std::string model = Scratch("misspelt.yaml");
+  std::ofstream(model) << text;
+  const ToolRun r = Ccma({"check", "--model=" + model});
+  ExpectRefused(r, model + ":23: joints[4]: unknown key 'betwen' (did you mean 'between'?)");
+}
+
+// Millimetres and degrees load, with one warning line per kind on stderr;
+// stdout is the usual JSON and the exit status 0.
+TEST(LoudFailures, ImplausibleMagnitudesWarnOnStderrOnly) {
+  std::string text = Slurp(std::string(CCMA_MODELS_DIR) + "/4dof_reduced.yaml");
+  const std::string from = "pose: [0, 0.583012702, 1.570796327]";
+  text.replace(text.find(from), from.size(), "pose: [0, 0.583012702, 90]");
+  const std::string model = Scratch("degrees.yaml");
+  std::ofstream(model) << text;
+  const ToolRun r = Ccma({"check", "--model=" + model});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(ParseClean(r)["model"], "4dof_reduced");
+  EXPECT_EQ(r.out.find("degrees"), std::string::npos) << r.out;
+  EXPECT_EQ(r.err, "warning: " + model + ":14: mobile_bases[0].pose[2]: 90 rad is more than a full turn; "
+                   "is the angle in degrees? (1 angle above 2 pi)\n");
+}
+
 TEST(OutputFiles, ASymlinkStaysALinkAndItsTargetGetsTheCsv) {
   const std::string target = Scratch("target.csv"), link = Scratch("link.csv");
   std::ofstream(target) << "old\n";

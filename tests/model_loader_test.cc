@@ -17,8 +17,10 @@
 
 #include "ccma/internal/constraint_set.h"
 #include "ccma/limits.h"
+#include "formats/model_generator.h"
 #include "formats/model_loader.h"
 #include "ccma/rotation.h"
+#include "bundled_models.h"
 
 namespace ccma {
 namespace {
@@ -192,8 +194,8 @@ INSTANTIATE_TEST_SUITE_P(
                   "controlled: [x, y, z, spin]", "unknown component 'spin'", 26},
         Rejection{"component listed twice", "controlled: [x, y, z, yaw]",
                   "controlled: [x, y, x, yaw]", "listed twice", 26},
-        Rejection{"unknown key mobile_basis leaves base0 undeclared", "mobile_bases:", "mobile_basis:",
-                  "unknown body 'base0'", 16},
+        Rejection{"misspelt mobile_bases", "mobile_bases:", "mobile_basis:",
+                  "unknown key 'mobile_basis' (did you mean 'mobile_bases'?)", 9},
         Rejection{"body not connected to a base", "  - type: universal\n    between: [post, arm]\n"
                   "    point: [1, 2, 0.5]\n    axes: [[1, 0, 0], [0, 1, 0]]\n", "",
                   "body 'arm' is not connected", 6}),
@@ -697,6 +699,168 @@ TEST(HostileModelText, ValidModelsStillLoadIdentically) {
     std::stringstream text;
     text << in.rdbuf();
     ExpectIdentical(LoadModel(path), LoadModelFromString(text.str(), path));
+  }
+}
+
+
+// ------------------------------------------------------------------------
+// Misspelt keys: an unknown key close to a known one is an error that names
+// it and suggests the known key, checked before anything else in its mapping.
+
+struct Misspelling {
+  std::string what;
+  std::string from, to;  // the edit applied to kValid
+  std::string expected;  // the whole message
+};
+
+void PrintTo(const Misspelling& m, std::ostream* os) { *os << m.what; }
+
+class MisspeltKey : public ::testing::TestWithParam<Misspelling> {};
+
+TEST_P(MisspeltKey, IsAnUnknownKeyWithASuggestion) {
+  const Misspelling& m = GetParam();
+  EXPECT_EQ(ErrorOf(Replace(kValid, m.from, m.to)), m.expected) << m.what;
+  // The same with warnings collected: still an error, not a warning.
+  std::vector<std::string> warnings;
+  EXPECT_THROW(LoadModelFromString(Replace(kValid, m.from, m.to), "bad.yaml", &warnings), ModelError);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    EverySection, MisspeltKey,
+    ::testing::Values(
+        Misspelling{"between in a joint", "    between: [post, arm]", "    betwen: [post, arm]",
+                    "bad.yaml:20: joints[1]: unknown key 'betwen' (did you mean 'between'?)"},
+        Misspelling{"top level", "mobile_bases:", "mobile_basis:",
+                    "bad.yaml:9: unknown key 'mobile_basis' (did you mean 'mobile_bases'?)"},
+        Misspelling{"position in a body", "    position: [1, 2, 0.1]", "    positon: [1, 2, 0.1]",
+                    "bad.yaml:5: bodies[0]: unknown key 'positon' (did you mean 'position'?)"},
+        Misspelling{"swapped letters", "  - type: revolute", "  - tpye: revolute",
+                    "bad.yaml:15: joints[0]: unknown key 'tpye' (did you mean 'type'?)"},
+        Misspelling{"a tie lists both", "    axis: [0, 0, 2]", "    axs: [0, 0, 2]",
+                    "bad.yaml:18: joints[0]: unknown key 'axs' (did you mean 'axes' or 'axis'?)"},
+        Misspelling{"an optional key", "    rpy: [0.1, 0.2, 0.3]", "    rpx: [0.1, 0.2, 0.3]",
+                    "bad.yaml:8: bodies[1]: unknown key 'rpx' (did you mean 'rpy'?)"},
+        Misspelling{"optional actuated", "    axis: [0, 0, 2]", "    axis: [0, 0, 2]\n    acutated: true",
+                    "bad.yaml:19: joints[0]: unknown key 'acutated' (did you mean 'actuated'?)"},
+        Misspelling{"a base", "    pose: [1, 2, 0.5]", "    Pose: [1, 2, 0.5]",
+                    "bad.yaml:13: mobile_bases[0]: unknown key 'Pose' (did you mean 'pose'?)"},
+        Misspelling{"a wheel", "    pose: [1, 2, 0.5]",
+                    "    pose: [1, 2, 0.5]\n    wheels:\n      - {angle: 0, distance: 0.1, raduis: 0.03}",
+                    "bad.yaml:15: mobile_bases[0].wheels[0]: unknown key 'raduis' (did you mean 'radius'?)"},
+        Misspelling{"the end-effector", "  controlled: [x, y, z, yaw]", "  controled: [x, y, z, yaw]",
+                    "bad.yaml:26: end_effector: unknown key 'controled' (did you mean 'controlled'?)"},
+        // Checked first: before the joint's (also wrong) type and name.
+        Misspelling{"before other errors", "  - type: universal\n    between:",
+                    "  - type: helical\n    name: a b\n    betwen:",
+                    "bad.yaml:21: joints[1]: unknown key 'betwen' (did you mean 'between'?)"},
+        Misspelling{"hostile text is quoted", "    between: [post, arm]", "    \"betw\\ten\": [post, arm]",
+                    "bad.yaml:20: joints[1]: unknown key 'betw\\x09en' (did you mean 'between'?)"}),
+    [](const auto& info) { return std::regex_replace(info.param.what, std::regex("[^A-Za-z0-9]"), "_"); });
+
+// Keys far from every known key stay warnings (the format may be extended),
+// also short ones two edits away ("note" is not "name"), and long ones.
+TEST(ModelLoader, KeysFarFromKnownOnesStayWarnings) {
+  std::vector<std::string> warnings;
+  const std::string text = Replace(Replace(kValid, "  - name: arm\n", "  - name: arm\n    note: the forearm\n"),
+                                   "name: tiny\n", "name: tiny\n" + std::string(1000, 'k') + ": 1\n");
+  const auto start = std::chrono::steady_clock::now();
+  const Model m = LoadModelFromString(text, "w.yaml", &warnings);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
+  EXPECT_EQ(m.bodies[1].name, "arm");
+  ASSERT_EQ(warnings.size(), 2u);
+  EXPECT_EQ(warnings[0].rfind("w.yaml:2: " + std::string(40, 'k') + "...: unknown key, ignored", 0), 0u)
+      << warnings[0];
+  EXPECT_EQ(warnings[1], "w.yaml:8: bodies[1].note: unknown key, ignored");
+}
+
+// ------------------------------------------------------------------------
+// Implausible magnitudes: warnings, and the model still loads unchanged.
+
+std::vector<std::string> WarningsOf(const std::string& text) {
+  std::vector<std::string> warnings;
+  LoadModelFromString(text, "w.yaml", &warnings);
+  return warnings;
+}
+
+// kValid written in millimetres: every length times 1000.
+std::string InMillimetres() {
+  std::string text = kValid;
+  for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{
+           {"position: [1, 2, 0.1]", "position: [1000, 2000, 100]"},
+           {"position: [1, 2, 0.5]", "position: [1000, 2000, 500]"},
+           {"pose: [1, 2, 0.5]", "pose: [1000, 2000, 0.5]"},
+           {"point: [1, 2, 0.1]", "point: [1000, 2000, 100]"},
+           {"point: [1, 2, 0.5]", "point: [1000, 2000, 500]"},
+           {"point: [1, 2, 0.6]", "point: [1000, 2000, 600]"}}) {
+    text = Replace(text, from, to);
+  }
+  return text;
+}
+
+TEST(ImplausibleMagnitudes, AModelInMillimetresWarnsOnceAndStillLoads) {
+  std::vector<std::string> warnings;
+  const Model m = LoadModelFromString(InMillimetres(), "w.yaml", &warnings);
+  ASSERT_EQ(warnings.size(), 1u);
+  // The first length above 100 m, and how many there are: 2 + 3 in the bodies,
+  // 2 in the pose, 2 + 3 in the joint points, 3 in the end-effector point.
+  EXPECT_EQ(warnings[0],
+            "w.yaml:5: bodies[0].position[0]: 1000 m is implausible for a mobile mechanism; "
+            "are the lengths in millimetres? (15 lengths above 100 m)");
+  EXPECT_EQ(m.bodies[1].p_WB_home, Eigen::Vector3d(1000, 2000, 500));
+  EXPECT_EQ(m.mobile_bases[0].home_pose, Eigen::Vector3d(1000, 2000, 0.5));
+}
+
+TEST(ImplausibleMagnitudes, AHeadingInDegreesWarns) {
+  const std::vector<std::string> warnings = WarningsOf(Replace(kValid, "pose: [1, 2, 0.5]", "pose: [1, 2, 90]"));
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(warnings[0],
+            "w.yaml:13: mobile_bases[0].pose[2]: 90 rad is more than a full turn; is the angle in degrees? "
+            "(1 angle above 2 pi)");
+}
+
+TEST(ImplausibleMagnitudes, AnglesInDegreesAndMillimetresWarnOncePerKind) {
+  std::string text = Replace(InMillimetres(), "rpy: [0.1, 0.2, 0.3]", "rpy: [0, -45, 30]");
+  text = Replace(text, "axis: [0, 0, 2]", "axis: [0, 0, 2]\n    limits: [-90, 90]");
+  const std::vector<std::string> warnings = WarningsOf(text);
+  ASSERT_EQ(warnings.size(), 2u);
+  EXPECT_EQ(warnings[0].rfind("w.yaml:5: bodies[0].position[0]: 1000 m is implausible", 0), 0u) << warnings[0];
+  EXPECT_EQ(warnings[1],
+            "w.yaml:8: bodies[1].rpy[1]: -45 rad is more than a full turn; is the angle in degrees? "
+            "(4 angles above 2 pi)");
+}
+
+TEST(ImplausibleMagnitudes, ThresholdsAre100MetresAndAFullTurn) {
+  EXPECT_TRUE(WarningsOf(Replace(kValid, "position: [1, 2, 0.1]", "position: [100, -100, 0.1]")).empty());
+  EXPECT_EQ(WarningsOf(Replace(kValid, "position: [1, 2, 0.1]", "position: [1, -100.5, 0.1]")).size(), 1u);
+  EXPECT_TRUE(WarningsOf(Replace(kValid, "pose: [1, 2, 0.5]", "pose: [1, 2, -6.2832]")).empty());
+  EXPECT_EQ(WarningsOf(Replace(kValid, "pose: [1, 2, 0.5]", "pose: [1, 2, -6.3]")).size(), 1u);
+  // Axes have no unit: any length is fine.
+  EXPECT_TRUE(WarningsOf(Replace(kValid, "axis: [0, 0, 2]", "axis: [0, 0, 2000]")).empty());
+  // A rejected model reports its error only.
+  std::vector<std::string> warnings;
+  EXPECT_THROW(LoadModelFromString(Replace(InMillimetres(), "body: arm", "body: hand"), "w.yaml", &warnings),
+               ModelError);
+  EXPECT_TRUE(warnings.empty());
+}
+
+TEST(ImplausibleMagnitudes, NoBundledOrGeneratedModelWarns) {
+  std::vector<std::string> paths = {std::string(CCMA_MODELS_DIR) + "/../examples/my_first_mechanism.yaml"};
+  for (const std::string& name : testing::BundledModels()) {
+    paths.push_back(std::string(CCMA_MODELS_DIR) + "/" + name + ".yaml");
+  }
+  ASSERT_GE(paths.size(), 10u);
+  for (const std::string& path : paths) {
+    std::vector<std::string> warnings;
+    LoadModel(path, &warnings);
+    EXPECT_TRUE(warnings.empty()) << path << ": " << (warnings.empty() ? "" : warnings[0]);
+  }
+  for (const int agents : {3, 6, 12, 64}) {
+    StewartOptions options;
+    options.agents = agents;
+    std::vector<std::string> warnings;
+    LoadModelFromString(GenerateStewartModel(options), "generated", &warnings);
+    if (agents >= 6) LoadModelFromString(GenerateStewartGoughModel(options), "generated", &warnings);
+    EXPECT_TRUE(warnings.empty()) << agents << ": " << (warnings.empty() ? "" : warnings[0]);
   }
 }
 

@@ -31,35 +31,72 @@ Eigen::VectorXd Sensitivity::dG_du_times(const Eigen::VectorXd& du) const {
 bool Sensitivity::ImplicitProducts(const Eigen::MatrixXd& F, const Eigen::VectorXd& v, Products* out,
                                    ProductsPath path) const {
   if (!solver_->factorized()) return false;
+  const Eigen::Index k = static_cast<Eigen::Index>(controls_.size());
+  const Eigen::Index n = d_->H.rows();
+  if (path == ProductsPath::kDense || (path == ProductsPath::kAuto && n * (k + F.rows()) <= kDenseProductsLimit)) {
+    DenseProducts(F, v, out);
+  } else {
+    SparseProducts(F, v, out);
+  }
+  return true;
+}
+
+void Sensitivity::DenseProducts(const Eigen::MatrixXd& F, const Eigen::VectorXd& v, Products* out) const {
   const int k = static_cast<int>(controls_.size());
   const Eigen::Index n = d_->H.rows();
-  if (path == ProductsPath::kDense ||
-      (path == ProductsPath::kAuto && n * (k + F.rows()) <= kDenseProductsLimit)) {
-    // X = L^-1 P B and [Y z] = L^-1 P [F^T v] in one pass each, then
-    // B^T S = -X^T D^-1 X, F S = -Y^T D^-1 X, S^T v = -X^T D^-1 z.
-    const auto& P = solver_->permutation().indices();
-    const Eigen::Index ne = F.rows();
-    Eigen::MatrixXd& X = *solver_->dense_scratch(0);
-    Eigen::MatrixXd& Yz = *solver_->dense_scratch(1);
-    Eigen::MatrixXd& DX = *solver_->dense_scratch(2);
-    X.setZero(n, k);
-    for (int c = 0; c < k; ++c) {
-      for (SparseColMajor::InnerIterator it(d_->dG_du, controls_[c]); it; ++it) X(P[it.row()], c) = it.value();
-    }
-    Yz.resize(n, ne + 1);
-    for (Eigen::Index i = 0; i < n; ++i) {
-      Yz.row(P[i]).head(ne) = F.col(i).transpose();
-      Yz(P[i], ne) = v[i];
-    }
-    solver_->ForwardSubstitutePermuted(&X);
-    solver_->ForwardSubstitutePermuted(&Yz);
-    DX.noalias() = solver_->pivots().cwiseInverse().asDiagonal() * X;
-    // Small products: coefficient-based (lazy), no blocked GEMM packing.
-    out->BtS.noalias() = -(X.transpose().lazyProduct(DX));
-    out->FS.noalias() = -(Yz.leftCols(ne).transpose().lazyProduct(DX));
-    out->Stv.noalias() = -(DX.transpose().lazyProduct(Yz.col(ne)));
-    return true;
+  // X = L^-1 P B and [Y z] = L^-1 P [F^T v] in one pass each, then
+  // B^T S = -X^T D^-1 X, F S = -Y^T D^-1 X, S^T v = -X^T D^-1 z.
+  const auto& P = solver_->permutation().indices();
+  const Eigen::Index ne = F.rows();
+  Eigen::MatrixXd& X = *solver_->dense_scratch(0);
+  Eigen::MatrixXd& Yz = *solver_->dense_scratch(1);
+  Eigen::MatrixXd& DX = *solver_->dense_scratch(2);
+  X.setZero(n, k);
+  for (int c = 0; c < k; ++c) {
+    for (SparseColMajor::InnerIterator it(d_->dG_du, controls_[c]); it; ++it) X(P[it.row()], c) = it.value();
   }
+  Yz.resize(n, ne + 1);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    Yz.row(P[i]).head(ne) = F.col(i).transpose();
+    Yz(P[i], ne) = v[i];
+  }
+  solver_->ForwardSubstitutePermuted(&X);
+  solver_->ForwardSubstitutePermuted(&Yz);
+  DX.noalias() = solver_->pivots().cwiseInverse().asDiagonal() * X;
+  // Small products: coefficient-based (lazy), no blocked GEMM packing.
+  out->BtS.noalias() = -(X.transpose().lazyProduct(DX));
+  out->FS.noalias() = -(Yz.leftCols(ne).transpose().lazyProduct(DX));
+  out->Stv.noalias() = -(DX.transpose().lazyProduct(Yz.col(ne)));
+}
+
+namespace {
+
+// The rows of L^-1 P B that nearly every control reaches (`dense_rows`),
+// gathered into dense blocks and subtracted from the products as one rank
+// update each.
+void SubtractRootBlock(const std::vector<int>& dense_rows, const HessianSolver::SparseFactorColumns& X,
+                       const HessianSolver::SparseFactorColumns& Y, const Eigen::VectorXd& D,
+                       const Eigen::VectorXd& z, int k, Eigen::Index num_f, Sensitivity::Products* out) {
+  const int r = static_cast<int>(dense_rows.size());
+  Eigen::MatrixXd Xd = Eigen::MatrixXd::Zero(r, k), Yd = Eigen::MatrixXd::Zero(r, num_f);
+  Eigen::VectorXd inverse_pivots(r), zd(r);
+  for (int q = 0; q < r; ++q) {
+    const int i = dense_rows[static_cast<size_t>(q)];
+    for (const auto& [a, x_a] : X.rows[static_cast<size_t>(i)]) Xd(q, a) = x_a;
+    for (const auto& [f, y_f] : Y.rows[static_cast<size_t>(i)]) Yd(q, f) = y_f;
+    inverse_pivots[q] = 1.0 / D[i];
+    zd[q] = z[i];
+  }
+  const Eigen::MatrixXd DXd = inverse_pivots.asDiagonal() * Xd;
+  out->BtS.noalias() -= Xd.transpose() * DXd;
+  out->FS.noalias() -= Yd.transpose() * DXd;
+  out->Stv.noalias() -= DXd.transpose() * zd;
+}
+
+}  // namespace
+
+void Sensitivity::SparseProducts(const Eigen::MatrixXd& F, const Eigen::VectorXd& v, Products* out) const {
+  const int k = static_cast<int>(controls_.size());
   HessianSolver::SparseFactorColumns& X = *solver_->scratch(0);
   HessianSolver::SparseFactorColumns& Y = *solver_->scratch(1);
   solver_->ForwardSubstitute(d_->dG_du, controls_, &X);
@@ -94,23 +131,7 @@ bool Sensitivity::ImplicitProducts(const Eigen::MatrixXd& F, const Eigen::Vector
       out->Stv[a] -= scaled * z[static_cast<Eigen::Index>(i)];
     }
   }
-  if (!dense_rows.empty()) {
-    const int r = static_cast<int>(dense_rows.size());
-    Eigen::MatrixXd Xd = Eigen::MatrixXd::Zero(r, k), Yd = Eigen::MatrixXd::Zero(r, F.rows());
-    Eigen::VectorXd inverse_pivots(r), zd(r);
-    for (int q = 0; q < r; ++q) {
-      const int i = dense_rows[static_cast<size_t>(q)];
-      for (const auto& [a, x_a] : X.rows[static_cast<size_t>(i)]) Xd(q, a) = x_a;
-      for (const auto& [f, y_f] : Y.rows[static_cast<size_t>(i)]) Yd(q, f) = y_f;
-      inverse_pivots[q] = 1.0 / D[i];
-      zd[q] = z[i];
-    }
-    const Eigen::MatrixXd DXd = inverse_pivots.asDiagonal() * Xd;
-    out->BtS.noalias() -= Xd.transpose() * DXd;
-    out->FS.noalias() -= Yd.transpose() * DXd;
-    out->Stv.noalias() -= DXd.transpose() * zd;
-  }
-  return true;
+  if (!dense_rows.empty()) SubtractRootBlock(dense_rows, X, Y, D, z, k, F.rows(), out);
 }
 
 Eigen::MatrixXd Sensitivity::StateSensitivity() const {

@@ -80,6 +80,10 @@ class Sensitivity {
                         ProductsPath path = ProductsPath::kAuto) const;
 
  private:
+  // The two paths of ImplicitProducts (dG/ds factorised).
+  void DenseProducts(const Eigen::MatrixXd& F, const Eigen::VectorXd& v, Products* out) const;
+  void SparseProducts(const Eigen::MatrixXd& F, const Eigen::VectorXd& v, Products* out) const;
+
   EnergyDerivatives own_derivatives_;
   EnergyDerivatives* d_;
   std::vector<int> controls_;

@@ -325,6 +325,53 @@ void SparseLevenbergMarquardt::Plus(const State& s, const Eigen::VectorXd& ds, S
   for (int b = 0; b < bodies_; ++b) manifold.Plus(s.pose(b), ds.data() + kT * position_[b], out->pose(b));
 }
 
+// After an accepted Gauss-Newton step of length `step` [max-norm] that
+// lowered E by `decrease`: the convergence tests, the stop on a linear rate
+// and the chord step. Returns true when Solve's loop ends.
+bool SparseLevenbergMarquardt::AfterAcceptedStep(State* s, const Eigen::VectorXd& u, double step, double decrease,
+                                                 int max_iterations, bool stop_when_linear, double* energy,
+                                                 double* last_ratio, SparseLmSummary* summary) {
+  if (*energy <= kEnergyFloor || decrease <= kRelativeDecrease * (*energy + decrease)) {
+    summary->converged = true;
+    return true;
+  }
+  // The next step, estimated with this factorisation (one substitution).
+  SolveNegative(g_, &chord_);
+  const double next = chord_.lpNorm<Eigen::Infinity>();
+  if (next <= kStepTolerance) {
+    summary->converged = true;
+    return true;
+  }
+  const double ratio = next / step;
+  if (stop_when_linear && *energy > kStationaryEnergy && ratio >= kLinearContraction &&
+      *last_ratio >= kLinearContraction && ratio >= *last_ratio / kRateSpread &&
+      ratio <= kRateSpread * *last_ratio) {
+    summary->linear = true;
+    return true;
+  }
+  *last_ratio = ratio;
+  // Taking the chord step instead of a full iteration leaves an error of
+  // about rho |dc|, rho ~ kChordSafety |dc| / |ds|: when that is below
+  // kStepTolerance, the chord step is the last one.
+  if (kChordSafety * next * next > kStepTolerance * step || summary->iterations >= max_iterations) return false;
+  ++summary->iterations;
+  ++summary->chord_steps;
+  Plus(*s, chord_, &trial_);
+  const double chord_energy = Evaluate(trial_, u);
+  if (chord_energy <= *energy) {
+    *s = trial_;
+    *energy = chord_energy;
+    Gradient();
+    summary->converged = true;
+  } else if (next <= kNoiseStep) {
+    summary->converged = true;  // rounding noise: *s and its gradient stay
+  } else {
+    *energy = Evaluate(*s, u);  // back to *s for a full iteration
+    Gradient();
+  }
+  return summary->converged;
+}
+
 // The iteration. From the state s_k (E, g = J^T C and J^T J there):
 //   ds = -(J^T J + mu D)^{-1} g, the trial s_k (+) ds evaluated (C and J);
 // accepted when E decreases. Then, before J^T J is built at the new point,
@@ -397,42 +444,8 @@ SparseLmSummary SparseLevenbergMarquardt::Solve(State* s, const Eigen::VectorXd&
     Gradient();
     have_normal = false;
     mu = mu / 10 < kMinDamping ? 0 : mu / 10;
-    if (energy <= kEnergyFloor || decrease <= kRelativeDecrease * (energy + decrease)) {
-      summary.converged = true;
+    if (AfterAcceptedStep(s, u, step, decrease, max_iterations, stop_when_linear, &energy, &last_ratio, &summary)) {
       break;
-    }
-    // The next step, estimated with this factorisation (one substitution).
-    SolveNegative(g_, &chord_);
-    const double next = chord_.lpNorm<Eigen::Infinity>();
-    if (next <= kStepTolerance) {
-      summary.converged = true;
-      break;
-    }
-    const double ratio = next / step;
-    if (stop_when_linear && energy > kStationaryEnergy && ratio >= kLinearContraction &&
-        last_ratio >= kLinearContraction && ratio >= last_ratio / kRateSpread && ratio <= kRateSpread * last_ratio) {
-      summary.linear = true;
-      break;
-    }
-    last_ratio = ratio;
-    // Taking the chord step instead of a full iteration leaves an error of
-    // about rho |dc|, rho ~ kChordSafety |dc| / |ds|: when that is below
-    // kStepTolerance, the chord step is the last one.
-    if (kChordSafety * next * next > kStepTolerance * step || summary.iterations >= max_iterations) continue;
-    ++summary.iterations;
-    ++summary.chord_steps;
-    Plus(*s, chord_, &trial_);
-    const double chord_energy = Evaluate(trial_, u);
-    if (chord_energy <= energy) {
-      *s = trial_;
-      energy = chord_energy;
-      Gradient();
-      summary.converged = true;
-    } else if (next <= kNoiseStep) {
-      summary.converged = true;  // rounding noise: *s and its gradient stay
-    } else {
-      energy = Evaluate(*s, u);  // back to *s for a full iteration
-      Gradient();
     }
   }
   summary.energy = energy;

@@ -90,6 +90,10 @@ class SparseLevenbergMarquardt {
   // gradient_norm the bound 2 |J|_F sqrt(2 E)) and returns true.
   bool RigidImageConverged(const State& s, const Eigen::VectorXd& u, double converged_energy,
                            SparseLmSummary* summary);
+  // Solve's tail of an accepted step: convergence tests, linear-rate stop,
+  // chord step (see sparse_lm.cc); true when the loop ends.
+  bool AfterAcceptedStep(State* s, const Eigen::VectorXd& u, double step, double decrease, int max_iterations,
+                         bool stop_when_linear, double* energy, double* last_ratio, SparseLmSummary* summary);
   // C and the tangent Jacobians at (s, u) into C_ and jacobians_; returns E.
   double Evaluate(const State& s, const Eigen::VectorXd& u);
   // g_ = J^T C (elimination order) from C_ and jacobians_.

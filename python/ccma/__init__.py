@@ -16,9 +16,13 @@ import sys as _sys
 try:
     import numpy as _numpy  # noqa: F401  (the extension returns NumPy arrays)
 except ImportError:  # pragma: no cover - depends on the interpreter
-    # An interpreter other than Debian's (e.g. pyenv) of the same version as
-    # the one the extension was built for: use Debian's python3-numpy, placed
-    # after the interpreter's own packages so that those still win.
+    # An interpreter other than Debian's (e.g. pyenv's) of the version the
+    # extension was built for, without a NumPy of its own: use Debian's
+    # python3-numpy, placed after the interpreter's own packages so that those
+    # still win. With PYTHONPATH=build/python the build tree's sitecustomize
+    # (python/sitecustomize.py) has done this already at start-up, so that
+    # `import numpy` works before `import ccma` too; this covers the rest
+    # (an installed copy, python -S).
     _debian = "/usr/lib/python3/dist-packages"
     if _debian not in _sys.path:
         _sys.path.append(_debian)

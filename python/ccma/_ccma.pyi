@@ -16,13 +16,20 @@ __version__: str
 # ------------------------------------------------------------------ errors ----
 
 class ModelError(ValueError):
-    """A malformed or unreadable model file; the message is 'file:line: key: what'."""
+    """Raised when a model file (or model text) cannot be read or is not a valid model: by
+    load_model, load_model_from_string, and by view, workspace and design_sweep given a model
+    file's path. Carries one argument, the message 'file:line: key: what' (str(e), e.args[0]),
+    the same text `ccma check` prints."""
 
 class WaypointError(ValueError):
-    """A malformed or unreadable waypoint CSV; the message names the file and line."""
+    """Raised by load_waypoints when a waypoint CSV cannot be read or is malformed (a missing
+    column, a value that is not a number, time going backwards). Carries one argument, the
+    message 'file:line: what' (str(e), e.args[0])."""
 
 class ViewInputError(ValueError):
-    """A bad trajectory CSV or replay directory for the viewer; the message names file, line and column."""
+    """Raised by view and view_html when the trajectory CSV, replay directory or workspace CSV to
+    draw cannot be read or is malformed. Carries one argument, the message naming the file, and
+    the line and column where there is one: 'file:line: column 'name': what' (str(e), e.args[0])."""
 
 # ------------------------------------------------------------------ models ----
 
@@ -197,7 +204,7 @@ class Model:
         """<ccma.Model 'name': N bodies, N bases, N joints>."""
 
 def load_model(path: str) -> Model:
-    """Reads and validates a model file (YAML or JSON); raises ModelError 'file:line: key: what'; unknown keys warn (UserWarning)."""
+    """Reads and validates a model file (YAML or JSON); raises ModelError 'file:line: key: what' (a misspelt key too); other unknown keys, lengths above 100 m and angles above 2 pi warn (UserWarning)."""
 
 def load_model_from_string(text: str, source_name: str = "<string>") -> Model:
     """load_model for model text in memory; source_name stands in for the file name in messages."""
@@ -233,7 +240,7 @@ class BodyPose:
         """R_WB (3x3)."""
     @property
     def quaternion(self) -> NDArray[np.float64]:
-        """R_WB as [w, x, y, z] (note: the state array stores [qx, qy, qz, qw])."""
+        """R_WB as a unit quaternion [w, x, y, z] (scalar first, as in ForwardProblem.state and the CLI)."""
     @property
     def rpy(self) -> NDArray[np.float64]:
         """R_WB as [roll, pitch, yaw], shape (3,) [rad]."""
@@ -384,9 +391,9 @@ class ForwardProblem:
         """Home state and home controls (no solve)."""
     @property
     def state(self) -> NDArray[np.float64]:
-        """(num_bodies x 7) array, rows [qx, qy, qz, qw, px, py, pz] ([m] for p) (a copy)."""
+        """(num_bodies x 7) array, rows [qw, qx, qy, qz, px, py, pz]: the unit quaternion of R_WB, scalar first, then p_WB [m] (a copy)."""
     def set_state(self, state: ArrayLike) -> None:
-        """Replaces the state ((num_bodies x 7), as .state; quaternions normalised) without solving."""
+        """Replaces the state ((num_bodies x 7), rows [qw, qx, qy, qz, px, py, pz] as .state; quaternions normalised) without solving."""
     @property
     def controls(self) -> NDArray[np.float64]:
         """Current controls, shape (num_controls,) (read-only; a live view: copy it to keep it)."""
@@ -689,9 +696,13 @@ class ControlProblem:
     def set_controls(self, u: ArrayLike) -> ForwardResult:
         """Assembles the mechanism at u, shape (num_controls,) [m, rad] (following the branch) and starts from there."""
     def step(self, target: ArrayLike) -> ControlStepResult:
-        """One solve toward target [x, y, z, roll, pitch, yaw] ([m], [rad]) without path splitting (small moves)."""
+        """One solve toward target [x, y, z, roll, pitch, yaw] ([m], [rad]), or only the controlled components, without path splitting (small moves)."""
     def move_to(self, target: ArrayLike) -> ControlResult:
-        """Walks the end-effector to target [x, y, z, roll, pitch, yaw] ([m], [rad]) in steps of max_step_m / max_step_rad."""
+        """Walks the end-effector to target in steps of max_step_m / max_step_rad.
+
+        target: [x, y, z, roll, pitch, yaw] ([m], [rad]), or one value per component of
+        model.controlled in that order (as `ccma control --target`, e.g. [x, y, z, yaw] on a 4dof
+        model); components not controlled are ignored. ValueError on any other length."""
     @overload
     def follow(self, waypoints: Sequence[Waypoint]) -> TrajectoryResult:
         """Follows ccma.Waypoint's (e.g. load_waypoints(path)) from the current controls; stops at the first unreachable one."""
@@ -699,7 +710,7 @@ class ControlProblem:
     def follow(self, waypoints: ArrayLike) -> TrajectoryResult:
         """The same for an (N x 7) array of rows [time [s], x, y, z [m], roll, pitch, yaw [rad]]."""
     def objective(self, target: ArrayLike) -> Tuple[float, NDArray[np.float64]]:
-        """(O, dO/du_eff) at the current controls for target (6,); the gradient over the effective controls."""
+        """(O, dO/du_eff) at the current controls for target (6 values, or the controlled components); the gradient over the effective controls."""
     def state_sensitivity(self) -> NDArray[np.float64]:
         """ds/du: (state_size x effective controls) at the current solution (m or rad per control unit)."""
     def end_effector_jacobian(self) -> NDArray[np.float64]:
@@ -782,7 +793,7 @@ def analyze_mobility(
     controls: Optional[ArrayLike] = None,
     rank_tolerance: float = 1e-8,
 ) -> MobilityReport:
-    """Ranks of dC/ds and of the end-effector motions at a state ((num_bodies x 7), default home) and controls (default home)."""
+    """Ranks of dC/ds and of the end-effector motions at a state ((num_bodies x 7), rows [qw, qx, qy, qz, px, py, pz] as ForwardProblem.state; default home) and controls (default home)."""
 
 # ------------------------------------------------------------------ design ----
 
@@ -793,8 +804,8 @@ def design_parameter_sensitivity(
     vary: Sequence[str] = ...,
     vary_length: Sequence[str] = ...,
 ) -> dict:
-    """ds/dp (state tangent per m), dX_EE/dp (6 x P) and dG/dp at a forward solution for the named
-    parameters ('JOINT.x', '.y', '.z', '.point'; 'ANCHOR:JOINT' lengths); keys parameters, ds_dp,
+    """ds/dp (state tangent per m), dX_EE/dp (6 x P) and dG/dp at a forward solution (state: (num_bodies x 7),
+    rows [qw, qx, qy, qz, px, py, pz] as ForwardProblem.state) for the named parameters ('JOINT.x', '.y', '.z', '.point'; 'ANCHOR:JOINT' lengths); keys parameters, ds_dp,
     dX_dp, dG_dp, rcond (docs/design.md). ValueError for an unknown name or a singular dG/ds."""
 
 def evaluate_design(

@@ -23,7 +23,6 @@ void BindAnalysis(py::module_& m) {
       .def_readonly("end_effector_dof_nonholonomic", &MobilityReport::end_effector_dof_nonholonomic)
       .def_readonly("smallest_singular_value", &MobilityReport::smallest_singular_value, "of dC/ds")
       .def_readonly("energy", &MobilityReport::energy, "E [m^2]");
-  using StateArray = Eigen::Matrix<double, Eigen::Dynamic, 7, Eigen::RowMajor>;
   m.def(
       "analyze_mobility",
       [](const Model& model, std::optional<StateArray> state, std::optional<Eigen::VectorXd> controls,
@@ -36,8 +35,9 @@ void BindAnalysis(py::module_& m) {
       },
       py::arg("model"), py::arg("state") = py::none(), py::arg("controls") = py::none(),
       py::arg("rank_tolerance") = 1e-8,
-      "Ranks of dC/ds and of the end-effector motions at a state ((num_bodies x 7), default home) "
-      "and controls (default home); dense SVDs, for analysis.");
+      "Ranks of dC/ds and of the end-effector motions at a state ((num_bodies x 7), rows [qw, qx, qy, "
+      "qz, px, py, pz] as ForwardProblem.state; default home) and controls (default home); dense SVDs, "
+      "for analysis.");
 }
 
 }  // namespace ccma::python

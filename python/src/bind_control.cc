@@ -1,6 +1,9 @@
 // Kinematic control: ccma.ControlProblem(model).move_to([x, y, z, r, p, y]),
 // one step, path following (waypoints) and the sensitivities ds/du, dX/du.
+#include <array>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include <pybind11/eigen.h>
 #include <pybind11/stl/filesystem.h>
@@ -8,6 +11,7 @@
 
 #include "ccma/end_effector.h"
 #include "ccma/internal/format.h"
+#include "ccma/model.h"
 #include "formats/waypoints.h"
 #include "problems/control_problem.h"
 #include "problems/trajectory.h"
@@ -22,17 +26,37 @@ namespace {
 
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 
-PoseTarget TargetFrom(const Vector6d& t) {
-  PoseTarget target;
-  target.position = t.head<3>();
-  target.rpy = t.tail<3>();
-  return target;
-}
-
 Vector6d AsVector(const PoseTarget& t) {
   Vector6d v;
   v << t.position, t.rpy;
   return v;
+}
+
+// A target as `ccma control --target` takes it: six numbers x, y, z [m],
+// roll, pitch, yaw [rad], or one per controlled component in that order (the
+// others are filled in from the current pose; they are ignored either way).
+// Another length is a ValueError naming both accepted forms; the range of
+// each entry is checked by the solver (ValueError too).
+PoseTarget TargetFrom(const ControlProblem& p, const Eigen::VectorXd& values) {
+  const std::array<bool, 6>& controlled = p.forward().model().end_effector.controlled;
+  std::vector<int> components;
+  for (int c = 0; c < 6; ++c) {
+    if (controlled[static_cast<size_t>(c)]) components.push_back(c);
+  }
+  Vector6d full = AsVector(p.CurrentPose());
+  if (values.size() == 6) {
+    full = values;
+  } else if (values.size() == static_cast<Eigen::Index>(components.size())) {
+    for (size_t i = 0; i < components.size(); ++i) full[components[i]] = values[static_cast<Eigen::Index>(i)];
+  } else {
+    std::string names;
+    for (int c : components) {
+      names += std::string(names.empty() ? "" : ",") + kEndEffectorComponentNames[static_cast<size_t>(c)];
+    }
+    throw py::value_error("target: expected 6 values x,y,z,roll,pitch,yaw or " + std::to_string(components.size()) +
+                          " (the controlled " + names + "); got " + std::to_string(values.size()));
+  }
+  return {full.head<3>(), full.tail<3>()};
 }
 
 // ControlResult plus where it left the mechanism.
@@ -53,13 +77,37 @@ struct TrajectorySolution : TrajectoryResult {
   Eigen::Matrix<bool, Eigen::Dynamic, 1> step_reached;
 };
 
+using OptionsClass = py::class_<ControlOptions>;
+
 ControlOptions MakeControlOptions(py::kwargs kwargs) { return WithKeywords(ControlOptions(), kwargs); }
 
+// One field of ControlOptions::Secondary as a property of ControlOptions.
+void SecondaryField(OptionsClass& c, const char* name, double ControlOptions::Secondary::*field, const char* doc) {
+  c.def_property(
+      name, [field](const ControlOptions& o) { return o.secondary.*field; },
+      [field](ControlOptions& o, double v) { o.secondary.*field = v; }, doc);
+}
+
+// ControlOptions::Secondary, flattened (redundancy resolution in the null
+// space of the end-effector task).
+void BindSecondaryOptions(OptionsClass& c) {
+  using S = ControlOptions::Secondary;
+  SecondaryField(c, "singularity_weight", &S::singularity_weight, "singularity barrier weight (0 = off) [1]");
+  SecondaryField(c, "singularity_threshold", &S::singularity_threshold,
+                 "sigma_0: smallest singular value of dX/du below which the barrier acts [m or rad per control unit]");
+  SecondaryField(c, "pivot_weight", &S::pivot_weight, "pivot-ratio barrier weight on dG/ds (0 = off) [1]");
+  SecondaryField(c, "pivot_threshold", &S::pivot_threshold,
+                 "rho_0: pivot ratio of dG/ds below which that barrier acts [1]");
+  SecondaryField(c, "spread_weight", &S::spread_weight, "base-spread weight (0 = off) [1/m^2]");
+  SecondaryField(c, "clearance_m", &S::clearance_m, "base-to-base distance below which bases are pushed apart [m]");
+  SecondaryField(c, "travel_weight", &S::travel_weight, "base-travel weight (0 = off) [1/m^2]");
+}
+
 void BindOptions(py::module_& m) {
-  py::class_<ControlOptions>(m, "ControlOptions",
-                             "Options of the control solve (problems/control_problem.h); every field "
-                             "is a keyword of the constructor, e.g. ControlOptions(method='bfgs').")
-      .def(py::init(&MakeControlOptions))
+  OptionsClass c(m, "ControlOptions",
+                 "Options of the control solve (problems/control_problem.h); every field "
+                 "is a keyword of the constructor, e.g. ControlOptions(method='bfgs').");
+  c.def(py::init(&MakeControlOptions))
       .def_property(
           "method",
           [](const ControlOptions& o) { return o.method == ControlMethod::kBfgs ? "bfgs" : "lm"; },
@@ -86,35 +134,13 @@ void BindOptions(py::module_& m) {
       .def_readwrite("max_iterations", &ControlOptions::max_iterations, "outer iterations per step")
       .def_readwrite("target_tolerance", &ControlOptions::target_tolerance, "[m or rad]")
       .def_readwrite("finite_difference_step", &ControlOptions::finite_difference_step, "[m or rad]")
-      .def_readwrite("forward", &ControlOptions::forward, "ForwardOptions of the inner solves")
-      // ControlOptions::Secondary, flattened (redundancy resolution in the
-      // null space of the end-effector task).
-      .def_property(
-          "singularity_weight", [](const ControlOptions& o) { return o.secondary.singularity_weight; },
-          [](ControlOptions& o, double v) { o.secondary.singularity_weight = v; }, "singularity barrier weight (0 = off) [1]")
-      .def_property(
-          "singularity_threshold", [](const ControlOptions& o) { return o.secondary.singularity_threshold; },
-          [](ControlOptions& o, double v) { o.secondary.singularity_threshold = v; }, "sigma_0: smallest singular value of dX/du below which the barrier acts [m or rad per control unit]")
-      .def_property(
-          "pivot_weight", [](const ControlOptions& o) { return o.secondary.pivot_weight; },
-          [](ControlOptions& o, double v) { o.secondary.pivot_weight = v; }, "pivot-ratio barrier weight on dG/ds (0 = off) [1]")
-      .def_property(
-          "pivot_threshold", [](const ControlOptions& o) { return o.secondary.pivot_threshold; },
-          [](ControlOptions& o, double v) { o.secondary.pivot_threshold = v; }, "rho_0: pivot ratio of dG/ds below which that barrier acts [1]")
-      .def_property(
-          "spread_weight", [](const ControlOptions& o) { return o.secondary.spread_weight; },
-          [](ControlOptions& o, double v) { o.secondary.spread_weight = v; }, "base-spread weight (0 = off) [1/m^2]")
-      .def_property(
-          "clearance_m", [](const ControlOptions& o) { return o.secondary.clearance_m; },
-          [](ControlOptions& o, double v) { o.secondary.clearance_m = v; }, "base-to-base distance below which bases are pushed apart [m]")
-      .def_property(
-          "travel_weight", [](const ControlOptions& o) { return o.secondary.travel_weight; },
-          [](ControlOptions& o, double v) { o.secondary.travel_weight = v; }, "base-travel weight (0 = off) [1/m^2]")
-      .def("is_valid", [](const ControlOptions& o) {
-        std::string why;
-        const bool ok = o.IsValid(&why);
-        return py::make_tuple(ok, why);
-      }, "(ok, why): whether every field is in range");
+      .def_readwrite("forward", &ControlOptions::forward, "ForwardOptions of the inner solves");
+  BindSecondaryOptions(c);
+  c.def("is_valid", [](const ControlOptions& o) {
+    std::string why;
+    const bool ok = o.IsValid(&why);
+    return py::make_tuple(ok, why);
+  }, "(ok, why): whether every field is in range");
 }
 
 void BindResults(py::module_& m) {
@@ -177,10 +203,11 @@ void BindResults(py::module_& m) {
       .def_readonly("step_reached", &TrajectorySolution::step_reached, "(steps,) bool");
 }
 
-ControlSolution MoveTo(ControlProblem& p, const Vector6d& target) {
+ControlSolution MoveTo(ControlProblem& p, const Eigen::VectorXd& values) {
+  const PoseTarget target = TargetFrom(p, values);
   ControlSolution s;
-  static_cast<ControlResult&>(s) = p.MoveTo(TargetFrom(target));
-  s.target = target;
+  static_cast<ControlResult&>(s) = p.MoveTo(target);
+  s.target = AsVector(target);
   s.controls = p.controls();
   s.end_effector = p.forward().end_effector();
   return s;
@@ -211,14 +238,17 @@ TrajectorySolution Follow(ControlProblem& p, const std::vector<Waypoint>& waypoi
   return s;
 }
 
-void BindProblem(py::module_& m) {
-  py::class_<ControlProblem>(
-      m, "ControlProblem",
-      "Kinematic control: controls u whose assembly puts the end-effector at a target "
-      "(min 1/2 |e|^2 + lambda E, gradients from implicit sensitivities). Keeps the model alive. "
-      "Not for use by two threads at once.")
-      .def(py::init<const Model&, const ControlOptions&>(), py::arg("model"),
-           py::arg("options") = ControlOptions(), py::keep_alive<1, 2>())
+using ProblemClass = py::class_<ControlProblem>;
+
+// The target forms every method below accepts (TargetFrom).
+constexpr const char* kTargetForms =
+    "target: [x, y, z, roll, pitch, yaw] ([m], [rad]), or only the model's controlled components in that "
+    "order (as `ccma control --target`; the others are ignored); ValueError on another length";
+
+// Setting the controls, one step, a whole move and a path.
+void BindSolves(ProblemClass& c) {
+  c.def(py::init<const Model&, const ControlOptions&>(), py::arg("model"), py::arg("options") = ControlOptions(),
+        py::keep_alive<1, 2>())
       .def(
           "set_controls",
           [](ControlProblem& p, const Eigen::VectorXd& u) {
@@ -231,13 +261,15 @@ void BindProblem(py::module_& m) {
           py::arg("u"), py::call_guard<py::gil_scoped_release>(),
           "Assembles the mechanism at u (following the branch) and starts from there.")
       .def(
-          "step", [](ControlProblem& p, const Vector6d& t) { return p.SolveStep(TargetFrom(t)); }, py::arg("target"),
-          py::call_guard<py::gil_scoped_release>(),
-          "One solve toward target [x, y, z, roll, pitch, yaw] ([m], [rad]) without path "
-          "splitting (for small moves).")
+          "step",
+          [](ControlProblem& p, const Eigen::VectorXd& t) { return p.SolveStep(TargetFrom(p, t)); },
+          py::arg("target"), py::call_guard<py::gil_scoped_release>(),
+          (std::string("One solve toward the target without path splitting (for small moves). ") + kTargetForms)
+              .c_str())
       .def("move_to", &MoveTo, py::arg("target"), py::call_guard<py::gil_scoped_release>(),
-           "Walks the end-effector to target [x, y, z, roll, pitch, yaw] ([m], [rad]) in steps of "
-           "at most max_step_m and max_step_rad (components not controlled are ignored).")
+           (std::string("Walks the end-effector to the target in steps of at most max_step_m and max_step_rad. ") +
+            kTargetForms)
+               .c_str())
       .def("follow", &Follow, py::arg("waypoints"), py::call_guard<py::gil_scoped_release>(),
            "Follows a list of ccma.Waypoint (e.g. ccma.load_waypoints(path)); stops at the first "
            "waypoint it cannot reach.")
@@ -248,19 +280,25 @@ void BindProblem(py::module_& m) {
             py::gil_scoped_release release;
             return Follow(p, w);
           },
-          py::arg("waypoints"), "The same for an (N x 7) array of rows [time, x, y, z, roll, pitch, yaw].")
-      .def(
-          "objective",
-          [](ControlProblem& p, const Vector6d& t) {
-            Eigen::VectorXd g;
-            double o = 0;
-            {
-              py::gil_scoped_release release;
-              o = p.Objective(TargetFrom(t), &g);
-            }
-            return py::make_tuple(o, g);
-          },
-          py::arg("target"), "(O, dO/du_eff) at the current controls (effective controls only).")
+          py::arg("waypoints"), "The same for an (N x 7) array of rows [time, x, y, z, roll, pitch, yaw].");
+}
+
+// The objective, the sensitivities and where the problem is now.
+void BindDerivatives(ProblemClass& c) {
+  c.def(
+       "objective",
+       [](ControlProblem& p, const Eigen::VectorXd& t) {
+         const PoseTarget target = TargetFrom(p, t);
+         Eigen::VectorXd g;
+         double o = 0;
+         {
+           py::gil_scoped_release release;
+           o = p.Objective(target, &g);
+         }
+         return py::make_tuple(o, g);
+       },
+       py::arg("target"),
+       (std::string("(O, dO/du_eff) at the current controls (effective controls only). ") + kTargetForms).c_str())
       .def("state_sensitivity", &ControlProblem::StateSensitivity, py::call_guard<py::gil_scoped_release>(),
            "ds/du: (state_size x effective controls) at the current solution (m or rad per control unit)")
       .def(
@@ -284,8 +322,20 @@ void BindProblem(py::module_& m) {
           "[x, y, z, roll, pitch, yaw] of the end-effector now");
 }
 
+void BindProblem(py::module_& m) {
+  ProblemClass c(m, "ControlProblem",
+                 "Kinematic control: controls u whose assembly puts the end-effector at a target "
+                 "(min 1/2 |e|^2 + lambda E, gradients from implicit sensitivities). Keeps the model alive. "
+                 "Not for use by two threads at once.");
+  BindSolves(c);
+  BindDerivatives(c);
+}
+
 void BindWaypoints(py::module_& m) {
-  py::register_exception<WaypointError>(m, "WaypointError", PyExc_ValueError);
+  py::register_exception<WaypointError>(m, "WaypointError", PyExc_ValueError).attr("__doc__") =
+      "Raised by load_waypoints when a waypoint CSV cannot be read or is malformed (a missing "
+      "column, a value that is not a number, time going backwards; docs/waypoints.md). Carries "
+      "one argument, the message 'file:line: what' (str(e), e.args[0]). A subclass of ValueError.";
   py::class_<Waypoint>(m, "Waypoint", "An end-effector waypoint: time [s], position [m], rpy [rad].")
       .def(py::init([](double time, const Eigen::Vector3d& position, const Eigen::Vector3d& rpy) {
              return Waypoint{time, position, rpy};

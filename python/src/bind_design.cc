@@ -50,109 +50,109 @@ py::list TargetsList(const std::vector<DesignTargetResult>& results) {
   return out;
 }
 
+using TargetArray = Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::RowMajor>;
+
+// Rows x, y, z [m], roll, pitch, yaw [rad] -> targets (at least one, finite).
+std::vector<PoseTarget> PoseTargets(const TargetArray& targets) {
+  if (targets.rows() == 0 || !targets.allFinite()) throw py::value_error("targets: N x 6 finite numbers, N >= 1");
+  std::vector<PoseTarget> poses;
+  for (int i = 0; i < targets.rows(); ++i) {
+    poses.push_back({targets.row(i).head<3>().transpose(), targets.row(i).tail<3>().transpose()});
+  }
+  return poses;
+}
+
+py::dict ParameterSensitivityDict(const Model& model, const StateArray& state, const Eigen::VectorXd& controls,
+                                  const std::vector<std::string>& vary, const std::vector<std::string>& vary_length) {
+  const DesignParameters params = ParametersFrom(model, vary, vary_length);
+  const State s = StateFromArray(model, state);
+  if (controls.size() != model.num_controls()) throw py::value_error("controls: wrong size");
+  ParameterSensitivity sens;
+  bool ok = false;
+  {
+    py::gil_scoped_release release;
+    ok = ComputeParameterSensitivity(model, params, ParameterValues(model, params), s, controls, &sens);
+  }
+  if (!ok) throw py::value_error("dG/ds is singular at this configuration");
+  py::dict d;
+  d["parameters"] = Labels(params);
+  d["ds_dp"] = sens.ds_dp;
+  d["dX_dp"] = sens.dX_dp;
+  d["dG_dp"] = sens.dG_dp;
+  d["rcond"] = sens.rcond;
+  return d;
+}
+
+py::list EvaluateDesign(const Model& model, const TargetArray& targets, const Eigen::VectorXd& values,
+                        const std::vector<std::string>& vary, const std::vector<std::string>& vary_length,
+                        double target_tolerance) {
+  const DesignParameters params = ParametersFrom(model, vary, vary_length);
+  if (values.size() != params.size() || !values.allFinite()) {
+    throw py::value_error("values: one finite number per parameter (" + std::to_string(params.size()) + ")");
+  }
+  DesignOptions options;
+  options.target_tolerance = target_tolerance;
+  std::string why;
+  if (!options.IsValid(&why)) throw py::value_error(why);
+  const std::vector<PoseTarget> poses = PoseTargets(targets);
+  std::vector<DesignTargetResult> results;
+  {
+    py::gil_scoped_release release;
+    results = EvaluateTargets(ApplyParameters(model, params, values), poses, options);
+  }
+  return TargetsList(results);
+}
+
+py::dict RunDesign(const Model& model, const TargetArray& targets, const std::vector<std::string>& vary,
+                   const std::vector<std::string>& vary_length, double max_change, double min_length,
+                   double min_singular_value, double target_tolerance, int max_iterations) {
+  const DesignParameters params = ParametersFrom(model, vary, vary_length);
+  DesignOptions options;
+  options.max_change = max_change;
+  options.min_length = min_length;
+  options.min_singular_value = min_singular_value;
+  options.target_tolerance = target_tolerance;
+  options.max_iterations = max_iterations;
+  std::string why;
+  if (!options.IsValid(&why)) throw py::value_error(why);
+  const std::vector<PoseTarget> poses = PoseTargets(targets);
+  DesignResult r;
+  {
+    py::gil_scoped_release release;
+    r = Design(model, params, poses, options);
+  }
+  py::dict d;
+  d["converged"] = r.converged;
+  d["parameters"] = Labels(params);
+  d["old"] = r.p0;
+  d["new"] = r.p;
+  d["iterations"] = r.iterations;
+  d["targets_before"] = TargetsList(r.initial);
+  d["targets"] = TargetsList(r.final);
+  d["message"] = r.message;
+  d["model"] = ApplyParameters(model, params, r.p);
+  return d;
+}
+
 }  // namespace
 
 void BindDesign(py::module_& m) {
-  using StateArray = Eigen::Matrix<double, Eigen::Dynamic, 7, Eigen::RowMajor>;
-  using TargetArray = Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::RowMajor>;
-  m.def(
-      "design_parameter_sensitivity",
-      [](const Model& model, const StateArray& state, const Eigen::VectorXd& controls,
-         const std::vector<std::string>& vary, const std::vector<std::string>& vary_length) {
-        const DesignParameters params = ParametersFrom(model, vary, vary_length);
-        const State s = StateFromArray(model, state);
-        if (controls.size() != model.num_controls()) throw py::value_error("controls: wrong size");
-        ParameterSensitivity sens;
-        bool ok = false;
-        {
-          py::gil_scoped_release release;
-          ok = ComputeParameterSensitivity(model, params, ParameterValues(model, params), s, controls, &sens);
-        }
-        if (!ok) throw py::value_error("dG/ds is singular at this configuration");
-        py::dict d;
-        d["parameters"] = Labels(params);
-        d["ds_dp"] = sens.ds_dp;
-        d["dX_dp"] = sens.dX_dp;
-        d["dG_dp"] = sens.dG_dp;
-        d["rcond"] = sens.rcond;
-        return d;
-      },
-      py::arg("model"), py::arg("state"), py::arg("controls"), py::arg("vary") = std::vector<std::string>{},
-      py::arg("vary_length") = std::vector<std::string>{},
-      "ds/dp (tangent per m), dX_EE/dp (6 x P) and dG/dp at a forward solution (state (num_bodies x 7), "
-      "controls) for the named parameters ('JOINT.x|y|z|point', 'ANCHOR:JOINT'); docs/design.md.");
-  m.def(
-      "evaluate_design",
-      [](const Model& model, const TargetArray& targets, const Eigen::VectorXd& values,
-         const std::vector<std::string>& vary, const std::vector<std::string>& vary_length,
-         double target_tolerance) {
-        const DesignParameters params = ParametersFrom(model, vary, vary_length);
-        if (values.size() != params.size() || !values.allFinite()) {
-          throw py::value_error("values: one finite number per parameter (" + std::to_string(params.size()) + ")");
-        }
-        DesignOptions options;
-        options.target_tolerance = target_tolerance;
-        std::string why;
-        if (!options.IsValid(&why)) throw py::value_error(why);
-        if (targets.rows() == 0 || !targets.allFinite()) throw py::value_error("targets: N x 6 finite numbers, N >= 1");
-        std::vector<PoseTarget> poses;
-        for (int i = 0; i < targets.rows(); ++i) {
-          poses.push_back({targets.row(i).head<3>().transpose(), targets.row(i).tail<3>().transpose()});
-        }
-        std::vector<DesignTargetResult> results;
-        {
-          py::gil_scoped_release release;
-          results = EvaluateTargets(ApplyParameters(model, params, values), poses, options);
-        }
-        return TargetsList(results);
-      },
-      py::arg("model"), py::arg("targets"), py::arg("values"), py::arg("vary") = std::vector<std::string>{},
-      py::arg("vary_length") = std::vector<std::string>{}, py::arg("target_tolerance") = 1e-6,
-      "Reachability of targets (N x 6) on the model with the named parameters set to `values` [m] (one "
-      "candidate design, no optimisation): per target reached, error, min_singular_value, within_limits, "
-      "controls.");
-  m.def(
-      "design",
-      [](const Model& model, const TargetArray& targets, const std::vector<std::string>& vary,
-         const std::vector<std::string>& vary_length, double max_change, double min_length,
-         double min_singular_value, double target_tolerance, int max_iterations) {
-        const DesignParameters params = ParametersFrom(model, vary, vary_length);
-        DesignOptions options;
-        options.max_change = max_change;
-        options.min_length = min_length;
-        options.min_singular_value = min_singular_value;
-        options.target_tolerance = target_tolerance;
-        options.max_iterations = max_iterations;
-        std::string why;
-        if (!options.IsValid(&why)) throw py::value_error(why);
-        if (targets.rows() == 0 || !targets.allFinite()) throw py::value_error("targets: N x 6 finite numbers, N >= 1");
-        std::vector<PoseTarget> poses;
-        for (int i = 0; i < targets.rows(); ++i) {
-          poses.push_back({targets.row(i).head<3>().transpose(), targets.row(i).tail<3>().transpose()});
-        }
-        DesignResult r;
-        {
-          py::gil_scoped_release release;
-          r = Design(model, params, poses, options);
-        }
-        py::dict d;
-        d["converged"] = r.converged;
-        d["parameters"] = Labels(params);
-        d["old"] = r.p0;
-        d["new"] = r.p;
-        d["iterations"] = r.iterations;
-        d["targets_before"] = TargetsList(r.initial);
-        d["targets"] = TargetsList(r.final);
-        d["message"] = r.message;
-        d["model"] = ApplyParameters(model, params, r.p);
-        return d;
-      },
-      py::arg("model"), py::arg("targets"), py::arg("vary") = std::vector<std::string>{},
-      py::arg("vary_length") = std::vector<std::string>{}, py::arg("max_change") = 0.5,
-      py::arg("min_length") = 0.02, py::arg("min_singular_value") = 0.02, py::arg("target_tolerance") = 1e-6,
-      py::arg("max_iterations") = 30,
-      "The design loop of `ccma design` (docs/design.md) on targets (N x 6: x, y, z, roll, pitch, yaw); "
-      "returns converged, parameters, old/new values [m], per-target results and the designed Model.");
+  const std::vector<std::string> none;
+  m.def("design_parameter_sensitivity", &ParameterSensitivityDict, py::arg("model"), py::arg("state"),
+        py::arg("controls"), py::arg("vary") = none, py::arg("vary_length") = none,
+        "ds/dp (tangent per m), dX_EE/dp (6 x P) and dG/dp at a forward solution (state (num_bodies x 7), rows "
+        "[qw, qx, qy, qz, px, py, pz] as ForwardProblem.state; controls) for the named parameters "
+        "('JOINT.x|y|z|point', 'ANCHOR:JOINT'); docs/design.md.");
+  m.def("evaluate_design", &EvaluateDesign, py::arg("model"), py::arg("targets"), py::arg("values"),
+        py::arg("vary") = none, py::arg("vary_length") = none, py::arg("target_tolerance") = 1e-6,
+        "Reachability of targets (N x 6) on the model with the named parameters set to `values` [m] (one "
+        "candidate design, no optimisation): per target reached, error, min_singular_value, within_limits, "
+        "controls.");
+  m.def("design", &RunDesign, py::arg("model"), py::arg("targets"), py::arg("vary") = none,
+        py::arg("vary_length") = none, py::arg("max_change") = 0.5, py::arg("min_length") = 0.02,
+        py::arg("min_singular_value") = 0.02, py::arg("target_tolerance") = 1e-6, py::arg("max_iterations") = 30,
+        "The design loop of `ccma design` (docs/design.md) on targets (N x 6: x, y, z, roll, pitch, yaw); "
+        "returns converged, parameters, old/new values [m], per-target results and the designed Model.");
 }
 
 }  // namespace ccma::python

@@ -15,8 +15,6 @@ namespace py = pybind11;
 namespace ccma::python {
 namespace {
 
-using StateArray = Eigen::Matrix<double, Eigen::Dynamic, 7, Eigen::RowMajor>;
-
 void BindPoses(py::module_& m) {
   py::class_<EndEffectorPose>(m, "EndEffectorPose", "The end-effector pose X_EE.")
       .def_readonly("position", &EndEffectorPose::position, "p_WE: the controlled point in world [m]")
@@ -109,13 +107,12 @@ ForwardSolution Solved(const ForwardProblem& problem, const ForwardResult& r) {
   return s;
 }
 
-void BindProblem(py::module_& m) {
-  py::class_<ForwardProblem>(
-      m, "ForwardProblem",
-      "Simulation: s_hat(u) = argmin_s E(s, u), warm-started from the last state. Keeps the "
-      "model alive. Not for use by two threads at once.")
-      .def(py::init<const Model&, const ForwardOptions&>(), py::arg("model"),
-           py::arg("options") = ForwardOptions(), py::keep_alive<1, 2>())
+using ForwardClass = py::class_<ForwardProblem>;
+
+// solve, assemble and going home.
+void BindSolves(ForwardClass& c) {
+  c.def(py::init<const Model&, const ForwardOptions&>(), py::arg("model"), py::arg("options") = ForwardOptions(),
+        py::keep_alive<1, 2>())
       .def(
           "solve",
           [](ForwardProblem& p, const Eigen::VectorXd& u) { return Solved(p, p.Solve(u)); },
@@ -128,9 +125,14 @@ void BindProblem(py::module_& m) {
           py::arg("u"), py::call_guard<py::gil_scoped_release>(),
           "Moves the controls to u in small sub-steps, following the assembly branch (what "
           "`ccma simulate` does); reports a branch jump.")
-      .def("reset_to_home", &ForwardProblem::ResetToHome, "home state and home controls (no solve)")
-      .def_property_readonly("state", [](const ForwardProblem& p) { return StateToArray(p.state()); },
-                             "(num_bodies x 7) array, rows [qx, qy, qz, qw, px, py, pz] (a copy)")
+      .def("reset_to_home", &ForwardProblem::ResetToHome, "home state and home controls (no solve)");
+}
+
+// The state and controls as arrays, the end-effector and E.
+void BindState(ForwardClass& c) {
+  c.def_property_readonly("state", [](const ForwardProblem& p) { return StateToArray(p.state()); },
+                          "(num_bodies x 7) array, rows [qw, qx, qy, qz, px, py, pz]: the unit quaternion "
+                          "of R_WB, scalar first, then p_WB [m] (a copy)")
       .def(
           "set_state",
           [](ForwardProblem& p, const Eigen::Ref<const StateArray>& a) {
@@ -141,14 +143,18 @@ void BindProblem(py::module_& m) {
           "controls", [](const ForwardProblem& p) -> Eigen::VectorXd { return p.controls(); },
           "current controls (a copy)")
       .def_property_readonly("end_effector", &ForwardProblem::end_effector)
-      .def("energy", &ForwardProblem::Energy, "E at the current state and controls [m^2]")
-      .def(
-          "body_pose",
-          [](const ForwardProblem& p, int body) {
-            if (body < 0 || body >= p.model().num_bodies()) throw py::index_error("body index out of range");
-            return PoseOfBody(p.model(), p.state(), body);
-          },
-          py::arg("body"))
+      .def("energy", &ForwardProblem::Energy, "E at the current state and controls [m^2]");
+}
+
+// Per-body poses, joint coordinates and dX/ds at the current state.
+void BindQueries(ForwardClass& c) {
+  c.def(
+       "body_pose",
+       [](const ForwardProblem& p, int body) {
+         if (body < 0 || body >= p.model().num_bodies()) throw py::index_error("body index out of range");
+         return PoseOfBody(p.model(), p.state(), body);
+       },
+       py::arg("body"))
       .def(
           "body_pose",
           [](const ForwardProblem& p, const std::string& name) {
@@ -175,6 +181,15 @@ void BindProblem(py::module_& m) {
           "end_effector_state_jacobian",
           [](const ForwardProblem& p) { return EndEffectorJacobian(p.model(), p.state()); },
           "dX_EE/ds (6 x state_size): rows position [m] then rotation increment [rad]");
+}
+
+void BindProblem(py::module_& m) {
+  ForwardClass c(m, "ForwardProblem",
+                 "Simulation: s_hat(u) = argmin_s E(s, u), warm-started from the last state. Keeps the "
+                 "model alive. Not for use by two threads at once.");
+  BindSolves(c);
+  BindState(c);
+  BindQueries(c);
 }
 
 }  // namespace

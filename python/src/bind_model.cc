@@ -26,7 +26,8 @@ std::vector<std::string> Controlled(const EndEffector& ee) {
   return names;
 }
 
-// Unknown keys as UserWarnings; a warning turned into an error (-W error)
+// The loader's warnings (unknown keys, implausible magnitudes) as
+// UserWarnings; a warning turned into an error (-W error)
 // propagates as that error.
 void Warn(const std::vector<std::string>& warnings) {
   for (const std::string& w : warnings) {
@@ -114,7 +115,12 @@ void BindModelClass(py::module_& m) {
 }  // namespace
 
 void BindModel(py::module_& m) {
-  py::register_exception<ModelError>(m, "ModelError", PyExc_ValueError);
+  py::register_exception<ModelError>(m, "ModelError", PyExc_ValueError).attr("__doc__") =
+      "Raised when a model file (or model text) cannot be read or is not a valid model "
+      "(docs/model_format.md): by load_model, load_model_from_string, and by view, workspace "
+      "and design_sweep given a model file's path. Carries one argument, the message "
+      "'file:line: key: what' (str(e), e.args[0]), the same text `ccma check` prints. "
+      "A subclass of ValueError.";
   BindParts(m);
   BindModelClass(m);
   m.def(
@@ -127,8 +133,8 @@ void BindModel(py::module_& m) {
       },
       py::arg("path"),
       "Reads and validates a model file (YAML or JSON, docs/model_format.md). Raises "
-      "ccma.ModelError with 'file:line: key: what' on any problem; unknown keys give a "
-      "UserWarning.");
+      "ccma.ModelError with 'file:line: key: what' on any problem (a misspelt key too); other "
+      "unknown keys, lengths above 100 m and angles above 2 pi give a UserWarning.");
   m.def(
       "load_model_from_string",
       [](const std::string& text, const std::string& source_name) {

@@ -15,7 +15,12 @@ namespace py = pybind11;
 namespace ccma::python {
 
 void BindView(py::module_& m) {
-  py::register_exception<viewer::ViewInputError>(m, "ViewInputError", PyExc_ValueError);
+  py::register_exception<viewer::ViewInputError>(m, "ViewInputError", PyExc_ValueError).attr("__doc__") =
+      "Raised by view and view_html when the trajectory CSV, replay directory or workspace CSV "
+      "to draw cannot be read or is malformed (a missing column, an empty or out-of-range "
+      "value, files of a replay that disagree). Carries one argument, the message naming the "
+      "file, and the line and column where there is one, e.g. 'file:line: column 'name': what' "
+      "(str(e), e.args[0]). A subclass of ValueError.";
   m.def("viewer_available", &viewer::HasBundle, "whether this build carries the viewer's JavaScript");
   m.def(
       "view_html",

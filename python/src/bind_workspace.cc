@@ -5,7 +5,8 @@
 // passing an `evaluate_batch` that sends each wave to the workers in chunks,
 // where _workspace_evaluate runs. States cross as (bodies x 7) arrays copied
 // bit for bit, so a distributed run gives the same numbers as a local one.
-#include <algorithm>
+#include <cstdint>
+#include <tuple>
 #include <string>
 #include <vector>
 
@@ -17,16 +18,17 @@
 #include "analyses/workspace.h"
 #include "python/src/bindings.h"
 #include "python/src/conversions.h"
+#include "python/src/pose_types.h"
 
 namespace py = pybind11;
 
 namespace ccma::python {
 namespace {
 
-using StateArray = Eigen::Matrix<double, Eigen::Dynamic, 7, Eigen::RowMajor>;
-
 // [(name, lo, hi), ...] with names x y z roll pitch yaw.
-std::vector<WorkspaceRange> Ranges(const std::vector<std::tuple<std::string, double, double>>& ranges) {
+using RangeList = std::vector<std::tuple<std::string, double, double>>;
+
+std::vector<WorkspaceRange> Ranges(const RangeList& ranges) {
   std::vector<WorkspaceRange> out;
   for (const auto& [name, lo, hi] : ranges) {
     int component = -1;
@@ -39,9 +41,8 @@ std::vector<WorkspaceRange> Ranges(const std::vector<std::tuple<std::string, dou
   return out;
 }
 
-WorkspaceOptions Options(const Model& model, const std::vector<std::tuple<std::string, double, double>>& ranges,
-                         int resolution, int samples, std::uint64_t seed, int threads, int wave_size,
-                         const ControlOptions& control) {
+WorkspaceOptions Options(const Model& model, const RangeList& ranges, int resolution, int samples,
+                         std::uint64_t seed, int threads, int wave_size, const ControlOptions& control) {
   WorkspaceOptions o;
   o.ranges = Ranges(ranges);
   o.resolution = resolution;
@@ -55,20 +56,26 @@ WorkspaceOptions Options(const Model& model, const std::vector<std::tuple<std::s
   return o;
 }
 
-StateArray ToArray(const State& s) {
-  StateArray a(s.num_bodies(), 7);
-  for (int b = 0; b < s.num_bodies(); ++b) std::copy(s.pose(b), s.pose(b) + kPoseAmbientSize, &a(b, 0));
-  return a;
-}
+// A state crosses to the workers as StateToArray's rows [qw, qx, qy, qz, px,
+// py, pz] (the Python convention) and comes back through FromArray,
+StateArray ToArray(const State& s) { return StateToArray(s); }
 
-// Bit-exact (no re-normalisation: the continuation must see the same state).
+// the inverse of ToArray, bit-exact (no re-normalisation: the continuation
+// must see the same state).
 State FromArray(const Model& model, const StateArray& a) {
   if (a.rows() != model.num_bodies() || !a.allFinite()) {
     throw std::invalid_argument("workspace: a start state must be " + std::to_string(model.num_bodies()) +
                                 " x 7 finite numbers");
   }
   State s(model.num_bodies());
-  for (int b = 0; b < model.num_bodies(); ++b) std::copy(&a(b, 0), &a(b, 0) + kPoseAmbientSize, s.pose(b));
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    double* pose = s.pose(b);  // storage: qx qy qz qw px py pz
+    pose[0] = a(b, 1);
+    pose[1] = a(b, 2);
+    pose[2] = a(b, 3);
+    pose[3] = a(b, 0);
+    for (int i = 4; i < kPoseAmbientSize; ++i) pose[i] = a(b, i);
+  }
   return s;
 }
 
@@ -169,76 +176,81 @@ std::vector<WorkspaceSample> SamplesFromDict(const Model& model, const py::dict&
   return out;
 }
 
+// Sends each wave to Python's `evaluate_batch(poses, states, controls)` (the
+// Dask path of ccma.workspace) and reads its dict of arrays back. Captures
+// by reference (no Python object is copied while the GIL is released); both
+// outlive the map's computation.
+WorkspaceBatchEvaluator PythonBatchEvaluator(const Model& model, const py::object& evaluate_batch) {
+  return [&model, &evaluate_batch](const std::vector<PoseTarget>& poses, const std::vector<WorkspaceStart>& starts) {
+    py::gil_scoped_acquire gil;
+    py::list states;
+    RowMatrix controls(static_cast<Eigen::Index>(starts.size()), model.num_controls());
+    for (size_t k = 0; k < starts.size(); ++k) {
+      states.append(ToArray(starts[k].state));
+      controls.row(static_cast<Eigen::Index>(k)) = starts[k].controls.transpose();
+    }
+    const py::dict result = evaluate_batch(PosesArray(poses), states, controls);
+    return SamplesFromDict(model, result, poses.size());
+  };
+}
+
+py::dict WorkspaceCompute(const Model& model, const RangeList& ranges, int resolution, int samples,
+                          std::uint64_t seed, int threads, int wave_size, const ControlOptions& control,
+                          const py::object& evaluate_batch) {
+  const WorkspaceOptions o = Options(model, ranges, resolution, samples, seed, threads, wave_size, control);
+  WorkspaceBatchEvaluator batch;
+  if (!evaluate_batch.is_none()) batch = PythonBatchEvaluator(model, evaluate_batch);
+  WorkspaceResult r;
+  {
+    py::gil_scoped_release release;
+    r = ComputeWorkspace(model, o, nullptr, batch);
+  }
+  py::dict d = SamplesDict(model, r.samples, false);
+  std::vector<std::string> components;
+  for (int c : r.components) components.emplace_back(kEndEffectorComponentNames[static_cast<size_t>(c)]);
+  d["components"] = components;
+  d["seconds"] = r.seconds;
+  return d;
+}
+
+py::dict WorkspaceEvaluate(const Model& model, const RangeList& ranges, const RowMatrix& poses,
+                           const std::vector<StateArray>& states, const RowMatrix& controls, int threads,
+                           const ControlOptions& control) {
+  const WorkspaceOptions o = Options(model, ranges, 1, 0, 1, threads, 64, control);
+  if (poses.cols() != 6 || poses.rows() > WorkspaceOptions::kMaxSamples || !poses.allFinite()) {
+    throw std::invalid_argument("workspace: poses must be n x 6 finite numbers, n <= 1e6");
+  }
+  std::vector<PoseTarget> targets(static_cast<size_t>(poses.rows()));
+  for (Eigen::Index i = 0; i < poses.rows(); ++i) {
+    targets[static_cast<size_t>(i)].position = poses.row(i).head<3>().transpose();
+    targets[static_cast<size_t>(i)].rpy = poses.row(i).tail<3>().transpose();
+  }
+  if (states.size() != targets.size() || controls.rows() != poses.rows() ||
+      controls.cols() != model.num_controls()) {
+    throw std::invalid_argument("workspace: one start state and one row of controls per pose");
+  }
+  std::vector<WorkspaceStart> starts;
+  for (size_t i = 0; i < states.size(); ++i) {
+    starts.push_back({FromArray(model, states[i]), controls.row(static_cast<Eigen::Index>(i)).transpose()});
+  }
+  std::vector<WorkspaceSample> samples;
+  {
+    py::gil_scoped_release release;
+    samples = EvaluateWorkspacePoses(model, o, targets, starts);
+  }
+  return SamplesDict(model, samples, true);
+}
+
 }  // namespace
 
 void BindWorkspace(py::module_& m) {
-  m.def(
-      "_workspace_compute",
-      [](const Model& model, const std::vector<std::tuple<std::string, double, double>>& ranges, int resolution,
-         int samples, std::uint64_t seed, int threads, int wave_size, const ControlOptions& control,
-         const py::object& evaluate_batch) {
-        const WorkspaceOptions o = Options(model, ranges, resolution, samples, seed, threads, wave_size, control);
-        WorkspaceBatchEvaluator batch;
-        if (!evaluate_batch.is_none()) {
-          batch = [&](const std::vector<PoseTarget>& poses, const std::vector<WorkspaceStart>& starts) {
-            py::gil_scoped_acquire gil;
-            py::list states;
-            RowMatrix controls(static_cast<Eigen::Index>(starts.size()), model.num_controls());
-            for (size_t k = 0; k < starts.size(); ++k) {
-              states.append(ToArray(starts[k].state));
-              controls.row(static_cast<Eigen::Index>(k)) = starts[k].controls.transpose();
-            }
-            const py::dict result = evaluate_batch(PosesArray(poses), states, controls);
-            return SamplesFromDict(model, result, poses.size());
-          };
-        }
-        WorkspaceResult r;
-        {
-          py::gil_scoped_release release;
-          r = ComputeWorkspace(model, o, nullptr, batch);
-        }
-        py::dict d = SamplesDict(model, r.samples, false);
-        std::vector<std::string> components;
-        for (int c : r.components) components.emplace_back(kEndEffectorComponentNames[static_cast<size_t>(c)]);
-        d["components"] = components;
-        d["seconds"] = r.seconds;
-        return d;
-      },
-      py::arg("model"), py::arg("ranges"), py::arg("resolution"), py::arg("samples"), py::arg("seed"),
-      py::arg("threads"), py::arg("wave_size"), py::arg("control"), py::arg("evaluate_batch") = py::none(),
-      "Internal: ccma.workspace's map (analyses/workspace.h ComputeWorkspace).");
-  m.def(
-      "_workspace_evaluate",
-      [](const Model& model, const std::vector<std::tuple<std::string, double, double>>& ranges,
-         const RowMatrix& poses, const std::vector<StateArray>& states, const RowMatrix& controls, int threads,
-         const ControlOptions& control) {
-        const WorkspaceOptions o = Options(model, ranges, 1, 0, 1, threads, 64, control);
-        if (poses.cols() != 6 || poses.rows() > WorkspaceOptions::kMaxSamples || !poses.allFinite()) {
-          throw std::invalid_argument("workspace: poses must be n x 6 finite numbers, n <= 1e6");
-        }
-        std::vector<PoseTarget> targets(static_cast<size_t>(poses.rows()));
-        for (Eigen::Index i = 0; i < poses.rows(); ++i) {
-          targets[static_cast<size_t>(i)].position = poses.row(i).head<3>().transpose();
-          targets[static_cast<size_t>(i)].rpy = poses.row(i).tail<3>().transpose();
-        }
-        if (states.size() != targets.size() || controls.rows() != poses.rows() ||
-            controls.cols() != model.num_controls()) {
-          throw std::invalid_argument("workspace: one start state and one row of controls per pose");
-        }
-        std::vector<WorkspaceStart> starts;
-        for (size_t i = 0; i < states.size(); ++i) {
-          starts.push_back({FromArray(model, states[i]), controls.row(static_cast<Eigen::Index>(i)).transpose()});
-        }
-        std::vector<WorkspaceSample> samples;
-        {
-          py::gil_scoped_release release;
-          samples = EvaluateWorkspacePoses(model, o, targets, starts);
-        }
-        return SamplesDict(model, samples, true);
-      },
-      py::arg("model"), py::arg("ranges"), py::arg("poses"), py::arg("states"), py::arg("controls"),
-      py::arg("threads"), py::arg("control"),
-      "Internal: one chunk of a distributed workspace map (EvaluateWorkspacePoses).");
+  m.def("_workspace_compute", &WorkspaceCompute, py::arg("model"), py::arg("ranges"), py::arg("resolution"),
+        py::arg("samples"), py::arg("seed"), py::arg("threads"), py::arg("wave_size"), py::arg("control"),
+        py::arg("evaluate_batch") = py::none(),
+        "Internal: ccma.workspace's map (analyses/workspace.h ComputeWorkspace).");
+  m.def("_workspace_evaluate", &WorkspaceEvaluate, py::arg("model"), py::arg("ranges"), py::arg("poses"),
+        py::arg("states"), py::arg("controls"), py::arg("threads"), py::arg("control"),
+        "Internal: one chunk of a distributed workspace map (EvaluateWorkspacePoses).");
 }
 
 }  // namespace ccma::python

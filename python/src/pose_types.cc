@@ -18,16 +18,16 @@ BodyPose PoseOfBody(const Model& model, const State& s, int body) {
   return pose;
 }
 
-Eigen::Matrix<double, Eigen::Dynamic, 7, Eigen::RowMajor> StateToArray(const State& s) {
-  Eigen::Matrix<double, Eigen::Dynamic, 7, Eigen::RowMajor> a(s.num_bodies(), 7);
+StateArray StateToArray(const State& s) {
+  StateArray a(s.num_bodies(), 7);
   for (int b = 0; b < s.num_bodies(); ++b) {
-    for (int i = 0; i < kPoseAmbientSize; ++i) a(b, i) = s.pose(b)[i];
+    const double* pose = s.pose(b);  // storage: qx qy qz qw px py pz
+    a.row(b) << pose[3], pose[0], pose[1], pose[2], pose[4], pose[5], pose[6];
   }
   return a;
 }
 
-State StateFromArray(const Model& model,
-                     const Eigen::Ref<const Eigen::Matrix<double, Eigen::Dynamic, 7, Eigen::RowMajor>>& a) {
+State StateFromArray(const Model& model, const Eigen::Ref<const StateArray>& a) {
   if (a.rows() != model.num_bodies()) {
     throw std::invalid_argument("state: expected " + std::to_string(model.num_bodies()) +
                                 " rows (one per body), got " + std::to_string(a.rows()));
@@ -35,7 +35,7 @@ State StateFromArray(const Model& model,
   if (!a.allFinite()) throw std::invalid_argument("state: every entry must be finite");
   State s(model.num_bodies());
   for (int b = 0; b < model.num_bodies(); ++b) {
-    Eigen::Quaterniond q(a(b, 3), a(b, 0), a(b, 1), a(b, 2));
+    Eigen::Quaterniond q(a(b, 0), a(b, 1), a(b, 2), a(b, 3));  // (w, x, y, z)
     if (q.norm() < 1e-12) throw std::invalid_argument("state: row " + std::to_string(b) + " has a zero quaternion");
     q.normalize();
     s.SetPose(b, q, Eigen::Vector3d(a(b, 4), a(b, 5), a(b, 6)));

@@ -32,11 +32,15 @@ struct BodyPose {
 
 BodyPose PoseOfBody(const Model& model, const State& s, int body);
 
-// The state as a (num_bodies x 7) array [qx, qy, qz, qw, px, py, pz] per row
-// (the C++ storage order, state.h), and back (quaternions normalised;
+// A state as Python sees it: one row per body (see below).
+using StateArray = Eigen::Matrix<double, Eigen::Dynamic, 7, Eigen::RowMajor>;
+
+// The state as a (num_bodies x 7) array [qw, qx, qy, qz, px, py, pz] per row
+// (the quaternion scalar first, as the `ccma` tool writes quaternions; the
+// C++ storage, state.h, keeps it last), and back (quaternions normalised;
 // throws std::invalid_argument on a wrong shape or a non-finite entry).
-Eigen::Matrix<double, Eigen::Dynamic, 7, Eigen::RowMajor> StateToArray(const State& s);
-State StateFromArray(const Model& model, const Eigen::Ref<const Eigen::Matrix<double, Eigen::Dynamic, 7, Eigen::RowMajor>>& a);
+StateArray StateToArray(const State& s);
+State StateFromArray(const Model& model, const Eigen::Ref<const StateArray>& a);
 
 }  // namespace ccma::python
 

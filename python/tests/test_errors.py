@@ -102,3 +102,17 @@ def test_model_outlives_its_problem():
     gc.collect()
     model = ccma.load_model(MODEL)
     assert forward.assemble(model.home_controls).assembled
+
+
+def test_every_exception_class_says_when_it_is_raised():
+    """ccma's own exception classes (all of them) have docstrings naming what raises
+    them and what they carry."""
+    from ccma import _ccma
+    classes = {n: c for n, c in vars(_ccma).items() if isinstance(c, type) and issubclass(c, BaseException)}
+    assert sorted(classes) == ["ModelError", "ViewInputError", "WaypointError"]
+    raisers = {"ModelError": "load_model", "ViewInputError": "view_html", "WaypointError": "load_waypoints"}
+    for name, cls in classes.items():
+        assert cls.__doc__ and cls.__doc__.strip(), name
+        assert cls.__doc__ != ValueError.__doc__, name
+        assert raisers[name] in cls.__doc__ and "message" in cls.__doc__, name
+        assert getattr(ccma, name) is cls and issubclass(cls, ValueError)

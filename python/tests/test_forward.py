@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import ccma
-from conftest import MODELS
+from conftest import MODELS, csv_numbers, run_tool
 from test_agreement import control_target, shifted_controls
 
 
@@ -108,6 +108,50 @@ def test_state_round_trip_and_reset():
     np.testing.assert_array_equal(forward.state, home)
     forward.reset_to_home()
     np.testing.assert_array_equal(forward.controls, model.home_controls)
+
+
+def test_state_rows_are_scalar_first_quaternions_then_positions(model_path):
+    """Rows [qw, qx, qy, qz, px, py, pz], the quaternion order of BodyPose.quaternion
+    and of the tool's JSON; home bodies of identity rotation read [1, 0, 0, 0]."""
+    model = ccma.load_model(model_path)
+    forward = ccma.ForwardProblem(model)
+    home = forward.state
+    for b, body in enumerate(model.bodies):
+        if np.array_equal(body.R_WB_home, np.eye(3)):
+            np.testing.assert_array_equal(home[b, :4], [1, 0, 0, 0])
+    forward.assemble(shifted_controls(model))
+    state = forward.state
+    cli = run_tool("simulate", "--model=" + model_path, "--controls=" + csv_numbers(shifted_controls(model)))
+    for b, (pose, reported) in enumerate(zip(forward.body_poses(), cli["bodies"])):
+        np.testing.assert_array_equal(state[b, :4], pose.quaternion)
+        np.testing.assert_array_equal(state[b, 4:], pose.position)
+        np.testing.assert_allclose(state[b, :4], reported["quaternion"], rtol=0, atol=1e-12)
+        # The rotation matrix of the unit quaternion (w, x, y, z), written out.
+        w, x, y, z = state[b, :4]
+        R = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+                      [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+                      [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+        np.testing.assert_allclose(R, pose.rotation, rtol=0, atol=1e-14)
+
+
+def test_set_state_reads_scalar_first_quaternions():
+    """A row [cos(a/2), 0, 0, sin(a/2), ...] turns that body by a about z."""
+    model = ccma.load_model(str(MODELS[0]))
+    forward = ccma.ForwardProblem(model)
+    state = forward.state
+    a = 0.3
+    state[0, :4] = [np.cos(a / 2), 0, 0, np.sin(a / 2)]
+    state[0, 4:] = [0.1, -0.2, 0.7]
+    forward.set_state(state)
+    pose = forward.body_pose(0)
+    np.testing.assert_allclose(pose.rpy, [0, 0, a], rtol=0, atol=1e-15)
+    np.testing.assert_allclose(pose.rotation, [[np.cos(a), -np.sin(a), 0], [np.sin(a), np.cos(a), 0], [0, 0, 1]],
+                               rtol=0, atol=1e-15)
+    np.testing.assert_array_equal(pose.position, [0.1, -0.2, 0.7])
+    # set_state normalises: a scaled row gives the same rotation.
+    state[0, :4] *= 3.0
+    forward.set_state(state)
+    np.testing.assert_allclose(forward.state[0, :4], [np.cos(a / 2), 0, 0, np.sin(a / 2)], rtol=0, atol=1e-15)
 
 
 def test_assemble_reports_its_substeps():

@@ -1,0 +1,96 @@
+// Reading an untrusted file path safely (declared in formats/model_loader.h,
+// shared by the model and waypoint loaders): only regular files, never
+// blocking on a FIFO or reading a device, at most a given size.
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <string>
+
+#include "formats/model_loader.h"
+
+namespace ccma {
+namespace {
+
+std::string MiB(std::size_t bytes) { return std::to_string(bytes >> 20) + " MiB"; }
+
+// Closes a file descriptor on every path out.
+class FileDescriptor {
+ public:
+  explicit FileDescriptor(int fd) : fd_(fd) {}
+  ~FileDescriptor() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  FileDescriptor(const FileDescriptor&) = delete;
+  FileDescriptor& operator=(const FileDescriptor&) = delete;
+  int get() const { return fd_; }
+
+ private:
+  int fd_;
+};
+
+}  // namespace
+
+namespace internal {
+
+bool ReadRegularFile(const std::string& path, std::size_t max_bytes, const char* noun,
+                     std::string* text, std::string* error) {
+  const std::string cannot_open = path + ": cannot open the " + noun;
+  // Look before opening: opening a FIFO blocks, reading a device never ends.
+  std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (status.type() == std::filesystem::file_type::not_found) {
+    *error = cannot_open + " (no such file)";
+    return false;
+  }
+  if (ec) {
+    *error = cannot_open + " (" + ec.message() + ")";
+    return false;
+  }
+  if (status.type() != std::filesystem::file_type::regular) {
+    const bool directory = status.type() == std::filesystem::file_type::directory;
+    *error = path + ": not a regular file" + (directory ? " (a directory)" : "");
+    return false;
+  }
+  // O_NONBLOCK and the fstat below: the path may have been swapped since.
+  const FileDescriptor fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY | O_NONBLOCK));
+  if (fd.get() < 0) {
+    *error = cannot_open + " (" + std::strerror(errno) + ")";
+    return false;
+  }
+  struct stat info {};
+  if (::fstat(fd.get(), &info) != 0 || !S_ISREG(info.st_mode)) {
+    *error = path + ": not a regular file";
+    return false;
+  }
+  const std::string too_large = path + ": larger than " + MiB(max_bytes) + " (the limit for a " +
+                                noun + ")";
+  if (info.st_size > 0 && static_cast<std::uintmax_t>(info.st_size) > max_bytes) {
+    *error = too_large;
+    return false;
+  }
+  text->clear();
+  char buffer[65536];
+  for (;;) {
+    const ssize_t got = ::read(fd.get(), buffer, sizeof buffer);
+    if (got < 0 && errno == EINTR) continue;
+    if (got < 0) {
+      *error = path + ": cannot read the " + noun + " (" + std::strerror(errno) + ")";
+      return false;
+    }
+    if (got == 0) break;
+    if (text->size() + static_cast<std::size_t>(got) > max_bytes) {
+      *error = too_large;  // it grew, or st_size was not its size
+      return false;
+    }
+    text->append(buffer, static_cast<std::size_t>(got));
+  }
+  return true;
+}
+
+}  // namespace internal
+}  // namespace ccma

@@ -1,0 +1,37 @@
+// The Gauss-Newton model of the control residual r(u) = [e; sqrt(lambda) C]
+// at the current solution (ControlProblem::Linearize), shared by the parts
+// of a control step: the LM loop, the null-space step, the differential
+// turning and the BFGS loop's final report.
+#ifndef CCMA_PROBLEMS_INTERNAL_CONTROL_LINEARIZATION_H_
+#define CCMA_PROBLEMS_INTERNAL_CONTROL_LINEARIZATION_H_
+
+#include <Eigen/Core>
+#include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
+
+namespace ccma {
+
+struct ControlLinearization {
+  Eigen::VectorXd r;      // [e; sqrt(lambda) C] (ne + m)
+  Eigen::MatrixXd ds_du;  // n x k, or empty when not formed (sparse products)
+  Eigen::MatrixXd J_e;    // de/du_eff (ne x k): the end-effector rows of dr/du
+  Eigen::MatrixXd JtJ;    // (dr/du)^T dr/du (k x k)
+  Eigen::VectorXd Jtr;    // (dr/du)^T r (k)
+  // Once per linearisation, for every trial (up to kMaxEigenSolveSize controls).
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> JtJ_eigen;
+  bool has_eigen = false;
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>* eigen() const { return has_eigen ? &JtJ_eigen : nullptr; }
+  double rcond = 0;       // pivot ratio of dG/ds
+  bool singular = false;  // dG/ds singular
+};
+
+// Smallest singular value of the end-effector rows of an LM Jacobian
+// (dX_c/du, m or rad per control unit); 0 for an empty one.
+inline double SmallestSingularValueOf(const Eigen::MatrixXd& J_end_effector) {
+  if (J_end_effector.rows() == 0 || J_end_effector.cols() == 0) return 0.0;
+  return Eigen::JacobiSVD<Eigen::MatrixXd>(J_end_effector).singularValues().minCoeff();
+}
+
+}  // namespace ccma
+
+#endif  // CCMA_PROBLEMS_INTERNAL_CONTROL_LINEARIZATION_H_

@@ -1,0 +1,131 @@
+#!/usr/bin/env python3
+"""Checks the source layout rules of docs/architecture.md and exits 1 on a breach.
+
+  scripts/check_layout.py              (run by ctest as `layout`)
+  scripts/check_layout.py --self-test  (the checker finds planted breaches)
+
+- every library source file (ccma/, cost_functions/, formats/, problems/,
+  analyses/, execution/, viewer/, apps/, python/src/) has at most 500 lines;
+- every function body in them has at most 60 lines;
+- no #include points from a lower layer to a higher one.
+Functions are found by braces: a `{` at namespace or class level whose text
+since the previous `;`, `{` or `}` has a `)` and is not a namespace, class,
+struct, enum or initialiser. Comments and string literals are blanked first.
+"""
+import os
+import re
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+MAX_FILE_LINES = 500
+MAX_FUNCTION_LINES = 60
+SOURCE_DIRS = ["ccma", "cost_functions", "formats", "problems", "analyses",
+               "execution", "viewer", "apps", "python/src"]
+# Layer of each top folder, lowest first. A file may include its own layer
+# and lower ones. ccma/ccma.h (the umbrella header) may include everything.
+LAYERS = {"ccma": 0, "cost_functions": 0, "formats": 1, "problems": 2,
+          "analyses": 3, "execution": 4, "viewer": 5, "apps": 6, "python": 6}
+UMBRELLA = "ccma/ccma.h"
+
+
+def blank(text):
+    """Comments, string and char literals replaced by spaces (newlines kept)."""
+    pattern = re.compile(r'//[^\n]*|/\*.*?\*/|R"(\w*)\(.*?\)\1"|"(?:\\.|[^"\\\n])*"'
+                         r"|'(?:\\.|[^'\\\n])*'", re.S)
+    return pattern.sub(lambda m: re.sub(r"[^\n]", " ", m.group(0)), text)
+
+
+def functions(text):
+    """(name, first line, line count) of each function body at namespace or class level."""
+    code = blank(text)
+    found, stack, start = [], [], 0  # stack: 'scope' or ('function', name, line)
+    for i, c in enumerate(code):
+        if c in ";{}":
+            head = code[start:i]
+            if c == "{":
+                in_function = any(isinstance(s, tuple) for s in stack)
+                if (not in_function and ")" in head and not re.search(
+                        r"\b(namespace|class|struct|enum|union)\b[^()]*$", head)
+                        and not re.search(r"=\s*$", head)):
+                    name = re.findall(r"([~\w:]+)\s*\(", head)
+                    stack.append(("function", name[0] if name else "?",
+                                  code.count("\n", 0, i) + 1))
+                else:
+                    stack.append("scope")
+            elif c == "}" and stack:
+                top = stack.pop()
+                if isinstance(top, tuple):
+                    end = code.count("\n", 0, i) + 1
+                    found.append((top[1], top[2], end - top[2] + 1))
+            start = i + 1
+    return found
+
+
+def layer_of(path):
+    top = path.split("/")[0]
+    return LAYERS.get(top)
+
+
+def check_text(path, text):
+    """The breaches of one file (path relative to the repository)."""
+    breaches = []
+    lines = text.count("\n")
+    if lines > MAX_FILE_LINES:
+        breaches.append(f"{path}: {lines} lines (at most {MAX_FILE_LINES})")
+    for name, line, count in functions(text):
+        if count > MAX_FUNCTION_LINES:
+            breaches.append(f"{path}:{line}: {name} has {count} lines (at most {MAX_FUNCTION_LINES})")
+    own = layer_of(path)
+    if path != UMBRELLA and own is not None:
+        for m in re.finditer(r'^#include "([^"]+)"', text, re.M):
+            other = layer_of(m.group(1))
+            if other is not None and other > own:
+                breaches.append(f"{path}: includes {m.group(1)} (a higher layer)")
+    return breaches
+
+
+def self_test():
+    """Planted breaches are found; their clean twins are not."""
+    body = "".join(f"  x += {i};\n" for i in range(58))
+    ok = "int F(int x) {\n" + body + "  return x;\n}\n"  # 61 lines with braces: 60 + 1
+    ok = ok.replace("  x += 0;\n", "")  # 60 lines
+    long = ok.replace("  return x;", "  x += 99;\n  return x;")  # 61 lines
+    lambda_inside = "void G() {\n  auto f = [] { return 1; };\n  (void)f;\n}\n"
+    assert functions(ok) == [("F", 1, 60)], functions(ok)
+    assert functions(long) == [("F", 1, 61)], functions(long)
+    assert functions(lambda_inside) == [("G", 1, 4)], functions(lambda_inside)
+    assert functions('const char* s = "}{";\nvoid H() {\n}\n') == [("H", 2, 2)]
+    assert functions("namespace a {\nstruct S {\n  int f() const {\n    return 1;\n  }\n};\n}\n") == [("f", 3, 3)]
+    assert not check_text("problems/a.cc", ok)
+    assert len(check_text("problems/a.cc", long)) == 1
+    assert len(check_text("problems/a.cc", "x\n" * 501)) == 1
+    assert not check_text("problems/a.cc", "x\n" * 500)
+    assert len(check_text("ccma/a.cc", '#include "problems/forward_problem.h"\n')) == 1
+    assert not check_text("problems/a.cc", '#include "ccma/model.h"\n')
+    assert not check_text("ccma/ccma.h", '#include "analyses/design.h"\n')
+    print("layout self-test: ok")
+    return 0
+
+
+def main():
+    if "--self-test" in sys.argv:
+        return self_test()
+    breaches = []
+    for d in SOURCE_DIRS:
+        for dirpath, _, names in os.walk(os.path.join(ROOT, d)):
+            if "node_modules" in dirpath:
+                continue
+            for n in sorted(names):
+                if not n.endswith((".h", ".cc")):
+                    continue
+                path = os.path.relpath(os.path.join(dirpath, n), ROOT)
+                text = open(os.path.join(ROOT, path), encoding="utf-8").read()
+                breaches += check_text(path, text)
+    for b in breaches:
+        print(b)
+    print(f"layout: {len(breaches)} breaches")
+    return 1 if breaches else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
