@@ -1,5 +1,6 @@
 #include "analyses/mobility.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <Eigen/SVD>
@@ -14,6 +15,50 @@ int Rank(const Eigen::VectorXd& singular_values, double threshold) {
   int rank = 0;
   for (int i = 0; i < singular_values.size(); ++i) rank += singular_values[i] > threshold;
   return rank;
+}
+
+// The end-effector DOF over the null space of A = [J_s, J_u_eff, ...] (its
+// first n columns act on the state): rank of dX/ds over the null space's
+// state parts. `free_dof` receives the null space's dimension.
+int EndEffectorDof(const Model& model, const State& s, const Eigen::MatrixXd& A, double threshold,
+                   double rank_tolerance, int* free_dof) {
+  const int n = model.state_size();
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
+  const int rank = Rank(svd.singularValues(), threshold);
+  *free_dof = static_cast<int>(A.cols()) - rank;
+  const Eigen::MatrixXd X = EndEffectorJacobian(model, s) * svd.matrixV().rightCols(*free_dof).topRows(n);
+  return X.cols() > 0 ? Rank(Eigen::JacobiSVD<Eigen::MatrixXd>(X).singularValues(), rank_tolerance) : 0;
+}
+
+// One row over (ds, du_effective) per differential base that constrains the
+// motion: no lateral velocity, -sin(theta) dx + cos(theta) dy = 0. A
+// differential base whose heading turns without moving the end-effector (it
+// turns on the spot under a revolute post) can face any direction first: it
+// constrains nothing. Test: adding its heading column to [J_s; dX/ds] does
+// not raise the rank.
+Eigen::MatrixXd LateralRows(const Model& model, const State& s, const Eigen::VectorXd& u, const Eigen::MatrixXd& J_s,
+                            const Eigen::MatrixXd& J_u, const std::vector<int>& effective, double threshold) {
+  const int n = model.state_size(), k = static_cast<int>(effective.size());
+  Eigen::MatrixXd L = Eigen::MatrixXd::Zero(model.num_bases(), n + k);
+  int rows = 0;
+  const Eigen::MatrixXd X_s = EndEffectorJacobian(model, s);
+  Eigen::MatrixXd held(J_s.rows() + X_s.rows(), n + 1);
+  held.setZero();
+  held.topLeftCorner(J_s.rows(), n) = J_s;
+  held.bottomLeftCorner(X_s.rows(), n) = X_s;
+  const int held_rank = Rank(Eigen::JacobiSVD<Eigen::MatrixXd>(held.leftCols(n)).singularValues(), threshold);
+  for (int b = 0; b < model.num_bases(); ++b) {
+    if (model.mobile_bases[b].type != BaseType::kDifferential) continue;
+    held.col(n).head(J_s.rows()) = J_u.col(kBaseControlSize * b + 2);
+    if (Rank(Eigen::JacobiSVD<Eigen::MatrixXd>(held).singularValues(), threshold) == held_rank) continue;
+    const double theta = u[kBaseControlSize * b + 2];
+    for (int c = 0; c < k; ++c) {
+      if (effective[c] == kBaseControlSize * b) L(rows, n + c) = -std::sin(theta);
+      if (effective[c] == kBaseControlSize * b + 1) L(rows, n + c) = std::cos(theta);
+    }
+    ++rows;
+  }
+  return L.topRows(rows);
 }
 
 }  // namespace
@@ -45,45 +90,16 @@ MobilityReport AnalyzeMobility(const Model& model, const State& s, const Eigen::
   Eigen::MatrixXd J(J_s.rows(), n + k);
   J.leftCols(n) = J_s;
   for (int c = 0; c < k; ++c) J.col(n + c) = J_u.col(effective[c]);
-  auto end_effector_dof = [&](const Eigen::MatrixXd& A, int* free_dof) {
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
-    const int rank = Rank(svd.singularValues(), rank_tolerance * scale);
-    *free_dof = static_cast<int>(A.cols()) - rank;
-    const Eigen::MatrixXd X = EndEffectorJacobian(model, s) * svd.matrixV().rightCols(*free_dof).topRows(n);
-    return X.cols() > 0 ? Rank(Eigen::JacobiSVD<Eigen::MatrixXd>(X).singularValues(), rank_tolerance) : 0;
-  };
-  report.end_effector_dof = end_effector_dof(J, &report.dof_with_controls_free);
-  std::vector<int> lateral_rows;
-  Eigen::MatrixXd L = Eigen::MatrixXd::Zero(model.num_bases(), n + k);
-  int rows = 0;
-  // A differential base whose heading turns without moving the end-effector
-  // (it turns on the spot under a revolute post) can face any direction
-  // first: it constrains nothing. Test: adding its heading column to
-  // [J_s; dX/ds] does not raise the rank.
-  const Eigen::MatrixXd X_s = EndEffectorJacobian(model, s);
-  Eigen::MatrixXd held(J_s.rows() + X_s.rows(), n + 1);
-  held.setZero();
-  held.topLeftCorner(J_s.rows(), n) = J_s;
-  held.bottomLeftCorner(X_s.rows(), n) = X_s;
-  const int held_rank = Rank(Eigen::JacobiSVD<Eigen::MatrixXd>(held.leftCols(n)).singularValues(), rank_tolerance * scale);
-  for (int b = 0; b < model.num_bases(); ++b) {
-    if (model.mobile_bases[b].type != BaseType::kDifferential) continue;
-    held.col(n).head(J_s.rows()) = J_u.col(kBaseControlSize * b + 2);
-    if (Rank(Eigen::JacobiSVD<Eigen::MatrixXd>(held).singularValues(), rank_tolerance * scale) == held_rank) continue;
-    const double theta = u[kBaseControlSize * b + 2];
-    for (int c = 0; c < k; ++c) {
-      if (effective[c] == kBaseControlSize * b) L(rows, n + c) = -std::sin(theta);
-      if (effective[c] == kBaseControlSize * b + 1) L(rows, n + c) = std::cos(theta);
-    }
-    ++rows;
-  }
-  if (rows == 0) {
+  report.end_effector_dof =
+      EndEffectorDof(model, s, J, rank_tolerance * scale, rank_tolerance, &report.dof_with_controls_free);
+  const Eigen::MatrixXd L = LateralRows(model, s, u, J_s, J_u, effective, rank_tolerance * scale);
+  if (L.rows() == 0) {
     report.end_effector_dof_nonholonomic = report.end_effector_dof;
   } else {
-    Eigen::MatrixXd JL(J.rows() + rows, n + k);
-    JL << J, L.topRows(rows);
+    Eigen::MatrixXd JL(J.rows() + L.rows(), n + k);
+    JL << J, L;
     int free_dof = 0;
-    report.end_effector_dof_nonholonomic = end_effector_dof(JL, &free_dof);
+    report.end_effector_dof_nonholonomic = EndEffectorDof(model, s, JL, rank_tolerance * scale, rank_tolerance, &free_dof);
   }
   return report;
 }

@@ -8,15 +8,10 @@
 #include "ccma/internal/format.h"
 
 namespace ccma::cli {
+namespace {
 
-int RunCheck(const std::vector<std::string>& args) {
-  ParseCommandFlags(args, "check");
-  const Model model = LoadModelOrThrow(RequireFlag(FLAGS_model, "model", "check"));
-  const State home = State::Home(model);
-  const MobilityReport mobility = AnalyzeMobility(model, home, model.home_controls());
-  const ForwardOptions defaults;
-  const bool assembled = mobility.energy < defaults.assembly_tolerance;
-
+// The counts and the mobility at home (docs/cli.md, `ccma check`).
+nlohmann::json CheckJson(const Model& model, const MobilityReport& mobility, bool assembled) {
   nlohmann::json out;
   out["model"] = model.name;
   out["bodies"] = model.num_bodies();
@@ -36,16 +31,18 @@ int RunCheck(const std::vector<std::string>& args) {
   out["smallest_singular_value"] = mobility.smallest_singular_value;
   out["energy_at_home"] = mobility.energy;
   nlohmann::json controlled = nlohmann::json::array();
-  int controlled_count = 0;
   for (int c = 0; c < 6; ++c) {
-    if (model.end_effector.controlled[c]) {
-      controlled.push_back(kEndEffectorComponentNames[c]);
-      ++controlled_count;
-    }
+    if (model.end_effector.controlled[c]) controlled.push_back(kEndEffectorComponentNames[c]);
   }
   out["controlled"] = controlled;
+  return out;
+}
 
-  // A mechanism that is not what a user expects is said so on stderr too.
+// What a user would not expect of the mechanism, one sentence each.
+nlohmann::json CheckWarnings(const Model& model, const MobilityReport& mobility, bool assembled) {
+  const ForwardOptions defaults;
+  int controlled_count = 0;
+  for (int c = 0; c < 6; ++c) controlled_count += model.end_effector.controlled[c] ? 1 : 0;
   nlohmann::json warnings = nlohmann::json::array();
   if (!mobility.rigid_with_controls_fixed) {
     warnings.push_back("not rigid with its controls fixed: " + std::to_string(mobility.dof_with_controls_fixed) +
@@ -66,6 +63,20 @@ int RunCheck(const std::vector<std::string>& args) {
                        std::to_string(mobility.end_effector_dof_nonholonomic) + " instantaneous DOF at home, fewer than the " +
                        std::to_string(controlled_count) + " controlled components: most paths are infeasible");
   }
+  return warnings;
+}
+
+}  // namespace
+
+int RunCheck(const std::vector<std::string>& args) {
+  ParseCommandFlags(args, "check");
+  const Model model = LoadModelOrThrow(RequireFlag(FLAGS_model, "model", "check"));
+  const State home = State::Home(model);
+  const MobilityReport mobility = AnalyzeMobility(model, home, model.home_controls());
+  const bool assembled = mobility.energy < ForwardOptions().assembly_tolerance;
+  nlohmann::json out = CheckJson(model, mobility, assembled);
+  // A mechanism that is not what a user expects is said so on stderr too.
+  const nlohmann::json warnings = CheckWarnings(model, mobility, assembled);
   if (!warnings.empty()) {
     out["warnings"] = warnings;
     for (const auto& w : warnings) std::cerr << "ccma check: warning: " << w.get<std::string>() << "\n";
