@@ -17,6 +17,39 @@ int Rank(const Eigen::VectorXd& singular_values, double threshold) {
   return rank;
 }
 
+// The bodies whose components of the direction ds exceed
+// kMovingBodyTolerance times its largest component.
+std::vector<int> MovingBodies(const Eigen::VectorXd& ds) {
+  const double threshold = kMovingBodyTolerance * ds.cwiseAbs().maxCoeff();
+  std::vector<int> bodies;
+  for (int b = 0; b < ds.size() / kPoseTangentSize; ++b) {
+    if (ds.segment(kPoseTangentSize * b, kPoseTangentSize).cwiseAbs().maxCoeff() > threshold) bodies.push_back(b);
+  }
+  return bodies;
+}
+
+// The null space of J_s (its last n - rank right singular vectors), split
+// body by body as MobilityReport::free_motions describes. The directions
+// stay orthonormal: each split is a rotation within the unassigned span.
+std::vector<FreeMotion> FreeMotions(const Eigen::MatrixXd& J_s, int rank) {
+  const int n = static_cast<int>(J_s.cols());
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(J_s, Eigen::ComputeFullV);
+  Eigen::MatrixXd unassigned = svd.matrixV().rightCols(n - rank);
+  std::vector<FreeMotion> motions;
+  for (int b = 0; b < n / kPoseTangentSize && unassigned.cols() > 0; ++b) {
+    // Right singular vectors of this body's rows: the first `moving` mix the
+    // directions into ones that move the body, the others leave it still.
+    const Eigen::JacobiSVD<Eigen::MatrixXd> block(unassigned.middleRows(kPoseTangentSize * b, kPoseTangentSize),
+                                                  Eigen::ComputeFullV);
+    const int moving = Rank(block.singularValues(), kMovingBodyTolerance);
+    if (moving == 0) continue;
+    const Eigen::MatrixXd rotated = unassigned * block.matrixV();
+    for (int k = 0; k < moving; ++k) motions.push_back({rotated.col(k), MovingBodies(rotated.col(k))});
+    unassigned = rotated.rightCols(rotated.cols() - moving);
+  }
+  return motions;
+}
+
 // The end-effector DOF over the null space of A = [J_s, J_u_eff, ...] (its
 // first n columns act on the state): rank of dX/ds over the null space's
 // state parts. `free_dof` receives the null space's dimension.
@@ -82,6 +115,7 @@ MobilityReport AnalyzeMobility(const Model& model, const State& s, const Eigen::
   report.rigid_with_controls_fixed = report.dof_with_controls_fixed == 0;
   report.smallest_singular_value =
       sigma.size() >= n ? sigma[n - 1] : 0.0;  // fewer rows than columns: singular
+  if (!report.rigid_with_controls_fixed) report.free_motions = FreeMotions(J_s, report.constraint_rank);
 
   // Motions with the effective controls free: null space of [J_s, J_u_eff],
   // and of the same with no lateral velocity of the differential bases.

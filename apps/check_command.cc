@@ -35,7 +35,26 @@ nlohmann::json CheckJson(const Model& model, const MobilityReport& mobility, boo
     if (model.end_effector.controlled[c]) controlled.push_back(kEndEffectorComponentNames[c]);
   }
   out["controlled"] = controlled;
+  nlohmann::json motions = nlohmann::json::array();
+  for (const FreeMotion& motion : mobility.free_motions) {
+    nlohmann::json bodies = nlohmann::json::array();
+    for (const int b : motion.bodies) bodies.push_back(model.bodies[b].name);
+    motions.push_back({{"bodies", bodies}});
+  }
+  out["free_motions"] = motions;
   return out;
+}
+
+// "motion 1 moves post2, link2; motion 2 moves link2".
+std::string FreeMotionText(const Model& model, const std::vector<FreeMotion>& motions) {
+  std::string text;
+  for (size_t m = 0; m < motions.size(); ++m) {
+    text += (m ? "; motion " : "motion ") + std::to_string(m + 1) + " moves ";
+    for (size_t i = 0; i < motions[m].bodies.size(); ++i) {
+      text += (i ? ", " : "") + model.bodies[motions[m].bodies[i]].name;
+    }
+  }
+  return text;
 }
 
 // What a user would not expect of the mechanism, one sentence each.
@@ -47,7 +66,8 @@ nlohmann::json CheckWarnings(const Model& model, const MobilityReport& mobility,
   if (!mobility.rigid_with_controls_fixed) {
     warnings.push_back("not rigid with its controls fixed: " + std::to_string(mobility.dof_with_controls_fixed) +
                        " free motion(s) remain (smallest singular value of dC/ds " +
-                       FormatG(mobility.smallest_singular_value) + "); simulation and control are ill-posed");
+                       FormatG(mobility.smallest_singular_value) + "): " +
+                       FreeMotionText(model, mobility.free_motions) + "; simulation and control are ill-posed");
   }
   if (!assembled) {
     warnings.push_back("not assembled at home: E = " + FormatG(mobility.energy) + " m^2 (above " +

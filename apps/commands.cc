@@ -27,7 +27,7 @@ Command CheckCommand() {
           "Validates the model and analyses it at home: counts, constraint rows, the numerical mobility\n"
           "(rank of dC/ds with the controls fixed, end-effector DOF when the controls move) and whether\n"
           "the home configuration is assembled. Warns on stderr when the mechanism is not rigid with its\n"
-          "controls fixed or not assembled at home.",
+          "controls fixed (naming the bodies each free motion moves) or not assembled at home.",
           {"model"}, RunCheck};
 }
 

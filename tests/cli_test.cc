@@ -64,6 +64,30 @@ TEST(Cli, CheckPrintsTheContractKeys) {
   EXPECT_EQ(j["assembled_at_home"], true);
 }
 
+// `check` names the bodies each free motion moves (JSON and stderr). Leg 2
+// of 4dof_reduced without its joint to ee hangs from its base: its post
+// spins carrying its link, and the link swings alone.
+TEST(Cli, CheckNamesTheBodiesOfEachFreeMotion) {
+  std::string text = Slurp(std::string(CCMA_MODELS_DIR) + "/4dof_reduced.yaml");
+  const size_t at = text.find("  - {type: revolute, between: [link2, ee]");
+  ASSERT_NE(at, std::string::npos);
+  text.erase(at, text.find('\n', at) + 1 - at);
+  const ToolRun r = Ccma("check --model=" + WriteFile("loose_leg.yaml", text));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["rigid_with_controls_fixed"], false);
+  EXPECT_EQ(j["dof_with_controls_fixed"], 2);
+  EXPECT_EQ(j["free_motions"], nlohmann::json::parse(R"([{"bodies": ["post2", "link2"]}, {"bodies": ["link2"]}])"));
+  EXPECT_NE(r.err.find("ccma check: warning: not rigid with its controls fixed: 2 free motion(s) remain"),
+            std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("): motion 1 moves post2, link2; motion 2 moves link2; simulation and control are ill-posed"),
+            std::string::npos) << r.err;
+  // A rigid mechanism: the field is there, empty.
+  const ToolRun rigid = Ccma("check " + Model("4dof_reduced"));
+  ASSERT_EQ(rigid.status, 0) << rigid.err;
+  EXPECT_EQ(nlohmann::json::parse(rigid.out)["free_motions"], nlohmann::json::array());
+}
+
 TEST(Cli, SimulatePrintsTheContractKeys) {
   const ToolRun r = Ccma("simulate " + Model("6dof_six_agents"));
   ASSERT_EQ(r.status, 0) << r.err;
