@@ -1,5 +1,6 @@
 #include "apps/commands.h"
 
+#include <algorithm>
 #include <iostream>
 #include <sstream>
 #include <stdexcept>
@@ -23,7 +24,8 @@ std::vector<std::string> Concat(std::vector<std::string> a, const std::vector<st
 
 // One function per command (the registry entry), in help order.
 Command CheckCommand() {
-  return {"check", "ccma check --model=FILE",
+  return {"check", "validate a model: counts, mobility (which bodies move freely), assembly at home",
+          "ccma check --model=FILE",
           "Validates the model and analyses it at home: counts, constraint rows, the numerical mobility\n"
           "(rank of dC/ds with the controls fixed, end-effector DOF when the controls move) and whether\n"
           "the home configuration is assembled. Warns on stderr when the mechanism is not rigid with its\n"
@@ -32,7 +34,8 @@ Command CheckCommand() {
 }
 
 Command SimulateCommand() {
-  return {"simulate", "ccma simulate --model=FILE [--controls=u0,u1,...] [--from=RESULT.json]",
+  return {"simulate", "forward problem: assemble the mechanism at given controls",
+          "ccma simulate --model=FILE [--controls=u0,u1,...] [--from=RESULT.json]",
           "Forward problem: assembles the mechanism for the controls, walking them from the start in\n"
           "sub-steps (2 cm / 0.02 rad) so that it stays on the assembly branch it starts on. The start is\n"
           "home, or the configuration and controls in a JSON document printed by `ccma simulate` or\n"
@@ -42,7 +45,8 @@ Command SimulateCommand() {
 }
 
 Command ControlCommand() {
-  return {"control", "ccma control --model=FILE --target=x,y,z,roll,pitch,yaw [--controls=...] [--method=lm|bfgs]\n"
+  return {"control", "find the controls that bring the end-effector to a target pose",
+          "ccma control --model=FILE --target=x,y,z,roll,pitch,yaw [--controls=...] [--method=lm|bfgs]\n"
           "             [--max_step_m=0.01] [--max_step_rad=0.005] [--lambda=0.5]\n"
           "             [--singularity_weight=0] [--singularity_threshold=0.1] [--pivot_weight=0]\n"
           "             [--pivot_threshold=0.001] [--secondary=none|spread|sigma|travel] [--secondary_weight=1]\n"
@@ -62,7 +66,8 @@ Command ControlCommand() {
 }
 
 Command TrajectoryCommand() {
-  return {"trajectory", "ccma trajectory --model=FILE --waypoints=FILE.csv --out=FILE.csv [--controls=...] [control flags]\n"
+  return {"trajectory", "follow end-effector waypoints; one CSV row per control step",
+          "ccma trajectory --model=FILE --waypoints=FILE.csv --out=FILE.csv [--controls=...] [control flags]\n"
           "                [singularity and secondary flags, as ccma control]",
           "Follows end-effector waypoints (docs/waypoints.md) in small control steps and writes one CSV row\n"
           "per step (header names carry units). Stops at the first waypoint it cannot reach and warns.\n"
@@ -72,7 +77,8 @@ Command TrajectoryCommand() {
 }
 
 Command GenerateCommand() {
-  return {"generate", "ccma generate --agents=N [--kind=ccma|stewart_gough] --out=FILE.yaml",
+  return {"generate", "write a generated model (N-base CCMA or Stewart-Gough platform)",
+          "ccma generate --agents=N [--kind=ccma|stewart_gough] --out=FILE.yaml",
           "Writes a generated model, validated before it is written: a Stewart-like CCMA with N mobile\n"
           "bases (the family of 6dof_six_agents), or with --kind=stewart_gough an N-leg UPS platform on\n"
           "the ground with actuated prismatic legs and no mobile base.",
@@ -80,7 +86,8 @@ Command GenerateCommand() {
 }
 
 Command BenchCommand() {
-  return {"bench", "ccma bench --model=FILE | --all [--models_dir=DIR] | --scaling  [--steps=N] [--seed=1] [--out=DIR]",
+  return {"bench", "time forward solves and control steps (LM, BFGS) on models",
+          "ccma bench --model=FILE | --all [--models_dir=DIR] | --scaling  [--steps=N] [--seed=1] [--out=DIR]",
           "The paper's convergence study: seeded paper-size control steps (10 mm + 0.005 rad) solved by LM\n"
           "and BFGS with implicit-function and finite-difference gradients, the warm forward solve and the\n"
           "Jacobians, all in one run; medians and p95. --out writes per-step CSVs, tables and plots.",
@@ -88,7 +95,8 @@ Command BenchCommand() {
 }
 
 Command ReplayCommand() {
-  return {"replay", "ccma replay --model=FILE --waypoints=FILE.csv --out=DIR [--noise=default|none] [--seed=1]\n"
+  return {"replay", "simulate the closed loop: bases tracking the plan from motion capture",
+          "ccma replay --model=FILE --waypoints=FILE.csv --out=DIR [--noise=default|none] [--seed=1]\n"
           "            [noise, tracking and control flags]",
           "The paper's closed loop, simulated: the control solution of every path step is fed to the bases,\n"
           "each base tracks it with a PI controller from simulated motion capture, and the chain follows\n"
@@ -101,7 +109,8 @@ Command ReplayCommand() {
 }
 
 Command ViewCommand() {
-  return {"view", "ccma view --model=FILE [--trajectory=FILE.csv | --replay=DIR | --workspace=MAP.csv] --out=FILE.html",
+  return {"view", "write a self-contained 3D HTML view (animated for a trajectory or replay)",
+          "ccma view --model=FILE [--trajectory=FILE.csv | --replay=DIR | --workspace=MAP.csv] --out=FILE.html",
           "Writes one self-contained HTML page (three.js inlined; it fetches nothing) that shows the\n"
           "mechanism in 3D: links as capsules between joint points, bases as discs with a heading arrow,\n"
           "joint markers by type, the end-effector's frame, the ground grid, orbit controls. With a\n"
@@ -115,7 +124,8 @@ Command ViewCommand() {
 }
 
 Command WorkspaceCommand() {
-  return {"workspace", "ccma workspace --model=FILE --out=FILE.csv [--x=lo:hi] [--y=..] [--z=..] [--roll=..] [--pitch=..] [--yaw=..]\n"
+  return {"workspace", "map the reachable end-effector poses and their conditioning",
+          "ccma workspace --model=FILE --out=FILE.csv [--x=lo:hi] [--y=..] [--z=..] [--roll=..] [--pitch=..] [--yaw=..]\n"
           "               [--resolution=11 | --samples=N --seed=1] [--threads=1] [--plot=DIR] [control flags]",
           "Workspace map: samples end-effector poses over the given ranges of controlled components (a grid\n"
           "with --resolution points per range, or --samples seeded uniform draws; components not sampled keep\n"
@@ -132,7 +142,8 @@ Command WorkspaceCommand() {
 }
 
 Command DesignCommand() {
-  return {"design", "ccma design --model=FILE --targets=FILE.csv --out=NEW.yaml [--vary=JOINT.x|.y|.z|.point,...]\n"
+  return {"design", "move joint points or link lengths until every target pose is reachable",
+          "ccma design --model=FILE --targets=FILE.csv --out=NEW.yaml [--vary=JOINT.x|.y|.z|.point,...]\n"
           "            [--vary_length=ANCHOR:JOINT,...] [--max_change=0.5] [--min_length=0.02]\n"
           "            [--min_singular_value=0.02] [--target_tolerance=1e-6] [--design_iterations=30] [control flags]",
           "Adjusts the named geometry (joint points in world home coordinates [m], link lengths [m]) so that\n"
@@ -201,8 +212,13 @@ std::string CommandHelp(const Command& command) {
 
 std::string GlobalHelp() {
   std::ostringstream os;
-  os << "ccma: simulation and kinematic control of Constrained Collaborative Mobile Agents\n\ncommands:\n";
-  for (const Command& command : Commands()) os << "  " << command.synopsis << "\n";
+  size_t width = 0;  // names padded to one column
+  for (const Command& command : Commands()) width = std::max(width, command.name.size());
+  os << "ccma: simulation and kinematic control of Constrained Collaborative Mobile Agents\n\n"
+        "usage: ccma COMMAND --NAME=VALUE ...\n\ncommands:\n";
+  for (const Command& command : Commands()) {
+    os << "  ccma " << command.name << std::string(width + 2 - command.name.size(), ' ') << command.summary << "\n";
+  }
   os << "\n`ccma COMMAND --help` describes a command and its flags (with units and defaults);\n"
         "`ccma --version` prints the version. Results are one JSON document on stdout; diagnostics\n"
         "go to stderr. Exit status: 0 ok, 1 failure, 2 bad usage or bad input. Reference: docs/cli.md.\n";

@@ -316,6 +316,35 @@ TEST(Cli, BinaryGarbageIsABadModel) {
   EXPECT_NE(r.err.find("garbage.yaml"), std::string::npos) << r.err;
 }
 
+// `ccma --help`: one line per command, "  ccma NAME  what it does", every
+// command of the tool exactly once, each a real command.
+TEST(Cli, GlobalHelpHasOneLinePerCommand) {
+  const ToolRun r = Ccma("--help");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::vector<std::string> listed;
+  std::istringstream lines(r.out);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("  ccma ", 0) != 0) continue;
+    std::istringstream words(line.substr(7));
+    std::string name, first_word;
+    words >> name >> first_word;
+    EXPECT_FALSE(first_word.empty()) << "no description: " << line;
+    EXPECT_LE(line.size(), 100u) << line;
+    listed.push_back(name);
+  }
+  EXPECT_EQ(listed, (std::vector<std::string>{"check", "simulate", "control", "trajectory", "generate", "bench",
+                                              "replay", "view", "workspace", "design"}))
+      << r.out;
+  for (const std::string& name : listed) {
+    const ToolRun help = Ccma(name + " --help");
+    EXPECT_EQ(help.status, 0) << name;
+    EXPECT_EQ(help.out.rfind("usage: ccma " + name, 0), 0u) << name;
+  }
+  const size_t check = r.out.find("\n  ccma check ");
+  ASSERT_NE(check, std::string::npos);
+  EXPECT_NE(r.out.substr(check, r.out.find('\n', check + 1) - check).find("validate a model"), std::string::npos);
+}
+
 TEST(Cli, HelpGoesToStdout) {
   const ToolRun global = Ccma("--help");
   EXPECT_EQ(global.status, 0);
