@@ -160,21 +160,133 @@ std::string EndEffectorFigure(const std::string& format, const Model& model, con
   return s.str();
 }
 
-std::string BasesFigure(const std::string& format, const Model& model, const ReplayResult& r) {
-  const int n = model.num_bases();
-  const bool named = n <= 8;  // a key entry per base only for a few
-  // The page follows the data's aspect (equal axes), within limits.
+// The extent of paths in the ground plane [m] (finite points only).
+struct Extent {
   double x0 = HUGE_VAL, x1 = -HUGE_VAL, y0 = HUGE_VAL, y1 = -HUGE_VAL;
+  void Add(double x, double y) {
+    if (!std::isfinite(x) || !std::isfinite(y)) return;
+    x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+  }
+  void Add(const Extent& e) {
+    if (!e.empty()) Add(e.x0, e.y0), Add(e.x1, e.y1);
+  }
+  bool empty() const { return !(x1 >= x0); }
+  double width() const { return empty() ? 0 : x1 - x0; }
+  double height() const { return empty() ? 0 : y1 - y0; }
+};
+
+// Smallest side of a window [m]: a base that hardly moves still gets a
+// readable frame.
+constexpr double kMinWindow = 0.01;
+
+// The smallest 1, 1.5, 2, 3, 4, 5, 6 or 8 times a power of ten at least
+// `length` > 0: a window side that reads well in a title.
+double NiceLength(double length) {
+  const double least = length * (1 - 1e-9);  // 0.3 stays 0.3 whatever the rounding
+  const double decade = std::pow(10.0, std::floor(std::log10(least)));
+  for (const double step : {1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 6.0, 8.0}) {
+    if (step * decade >= least) return step * decade;
+  }
+  return 10 * decade;
+}
+
+// Each base's extent over the samples: its set and true x, y.
+std::vector<Extent> BaseExtents(int n, const ReplayResult& r) {
+  std::vector<Extent> extents(static_cast<size_t>(n));
   for (const ReplaySample& sample : r.samples) {
-    for (const Eigen::VectorXd* u : {&sample.set_controls, &sample.true_controls}) {
-      for (int k = 0; k < n; ++k) {
-        if (!std::isfinite((*u)[3 * k]) || !std::isfinite((*u)[3 * k + 1])) continue;
-        x0 = std::min(x0, (*u)[3 * k]), x1 = std::max(x1, (*u)[3 * k]);
-        y0 = std::min(y0, (*u)[3 * k + 1]), y1 = std::max(y1, (*u)[3 * k + 1]);
-      }
+    for (int k = 0; k < n; ++k) {
+      extents[k].Add(sample.set_controls[3 * k], sample.set_controls[3 * k + 1]);
+      extents[k].Add(sample.true_controls[3 * k], sample.true_controls[3 * k + 1]);
     }
   }
-  const double aspect = x1 > x0 && y1 > y0 ? (y1 - y0) / (x1 - x0) : 1.0;
+  return extents;
+}
+
+// A range bound with enough digits for a centimetre window far from the origin.
+std::string Bound(double v) { return FormatG(v, 10); }
+
+// `set xrange` and `set yrange`: the extent with `margin` [m] on every side,
+// the shorter side widened (about its centre) to a third of the longer one
+// so that a row of bases does not make a sliver (the page's aspect follows
+// the ranges; `set size ratio -1` keeps the axes equal).
+std::string FittedRanges(const Extent& e, double margin) {
+  if (e.empty()) return "set autoscale\n";
+  const double w = e.width() + 2 * margin, h = e.height() + 2 * margin;
+  const double wx = std::max(w, h / 3) / 2, wy = std::max(h, w / 3) / 2;  // half sides
+  const double cx = 0.5 * (e.x0 + e.x1), cy = 0.5 * (e.y0 + e.y1);
+  return "set xrange [" + Bound(cx - wx) + ":" + Bound(cx + wx) + "]\nset yrange [" + Bound(cy - wy) + ":" +
+         Bound(cy + wy) + "]\n";
+}
+
+// A square window of side `side` [m] centred on the extent.
+std::string WindowRanges(const Extent& e, double side) {
+  if (e.empty()) return "set autoscale\n";
+  const double cx = 0.5 * (e.x0 + e.x1), cy = 0.5 * (e.y0 + e.y1);
+  return "set xrange [" + Bound(cx - side / 2) + ":" + Bound(cx + side / 2) + "]\nset yrange [" +
+         Bound(cy - side / 2) + ":" + Bound(cy + side / 2) + "]\n";
+}
+
+// $starts: each base's true x, y at the first sample, one line per base.
+std::string StartsBlock(int n, const ReplayResult& r) {
+  std::ostringstream s;
+  s << "$starts << EOD\n" << std::setprecision(12);
+  for (int k = 0; k < n && !r.samples.empty(); ++k) {
+    s << r.samples.front().true_controls[3 * k] << "," << r.samples.front().true_controls[3 * k + 1] << "\n";
+  }
+  s << "EOD\n";
+  return s.str();
+}
+
+// Red dots where base k's tracked pose was recorded while the chain was
+// torn (drawn under its paths), followed by ", ".
+std::string TornClause(const Model& model, int k, bool titled) {
+  const int torn_column = 2 + 6 * model.num_bases() + model.num_actuated_joints();  // bases, joints, torn
+  std::ostringstream s;
+  s << "'bases.csv' using ($" << torn_column << ">0 ? $" << 5 + 6 * k << " : NaN):" << 6 + 6 * k
+    << " with points pt 7 ps 0.4 lc rgb '" << kFailColour << "' "
+    << (titled ? "title 'tracked pose while the chain was torn'" : "notitle") << ", ";
+  return s.str();
+}
+
+// Base k's set path (solid, with `title`) and tracked path (dashed) in its colour.
+std::string PathClauses(const Model& model, int k, const std::string& title) {
+  const std::string colour = DistinctColour(k, model.num_bases());
+  std::ostringstream s;
+  s << "'bases.csv' using " << 2 + 6 * k << ":" << 3 + 6 * k << " with lines lw 2 lc rgb '" << colour << "' " << title
+    << ", '' using " << 5 + 6 * k << ":" << 6 + 6 * k << " with lines lw 1.5 dt 2 lc rgb '" << colour << "' notitle";
+  return s.str();
+}
+
+// Every base's paths and start in one plot; a key entry per base when
+// `named`; `windows` adds each base's panel window as a square in its colour.
+std::string AllBasesPlot(const Model& model, const ReplayResult& r, bool named, bool windows) {
+  const int n = model.num_bases();
+  std::string s = "plot ";
+  for (int k = 0; r.torn && k < n; ++k) s += TornClause(model, k, k == 0);
+  for (int k = 0; windows && k < n; ++k) {
+    s += "$windows using 1:2:3:3 every ::" + std::to_string(k) + "::" + std::to_string(k) +
+         " with boxxyerror fillstyle empty lw 1 lc rgb '" + DistinctColour(k, n) + "' notitle, ";
+  }
+  for (int k = 0; k < n; ++k) {
+    s += (k ? ", " : "") +
+         PathClauses(model, k, named ? "title " + GnuplotQuote(model.mobile_bases[k].name) : std::string("notitle"));
+  }
+  return s + ", $starts using 1:2 with points pt 6 ps 1.2 lc rgb 'black' title 'start'" +
+         ", keyentry with lines lw 2 lc rgb 'black' title 'set pose (solid)'" +
+         ", keyentry with lines lw 1.5 dt 2 lc rgb 'black' title 'tracked pose (dashed)'\n";
+}
+
+// Every base in one frame fitted to their paths: for one base, for many
+// (more than 8), or when the paths are large against the distances between
+// the bases.
+std::string SingleBasesFigure(const std::string& format, const Model& model, const ReplayResult& r,
+                              const Extent& all) {
+  const int n = model.num_bases();
+  const bool named = n <= 8;  // a key entry per base only for a few
+  const double margin = std::max(0.05 * std::max(all.width(), all.height()), kMinWindow / 2);
+  // The page follows the data's aspect (equal axes), within limits.
+  const double w = all.width() + 2 * margin, h = all.height() + 2 * margin;
+  const double aspect = all.empty() ? 1.0 : std::max(h, w / 3) / std::max(w, h / 3);  // as FittedRanges
   const int width = 1000, key_height = 40 + 18 * ((n <= 8 ? n + 4 : 4) + 1) / 2;
   const int plot_height = static_cast<int>(std::clamp(860 * aspect, 350.0, 1100.0));
   const int height = HeadingHeight(r) + 20 + plot_height + 60 + key_height;
@@ -182,33 +294,72 @@ std::string BasesFigure(const std::string& format, const Model& model, const Rep
   s << TerminalCommand(format, width, height) << "set output 'bases_xy." << format << "'\n"
     << "set size ratio -1\nset grid\nset tmargin at screen " << G(1 - (HeadingHeight(r) + 20.0) / height)
     << "\nset bmargin at screen " << G((key_height + 50.0) / height) << "\nset xlabel 'x [m]'\nset ylabel 'y [m]'\n"
-    << "set key below horizontal\n"
+    << "set key below horizontal\n" << FittedRanges(all, margin)
     << HeadingLabels("SIMULATION (ccma replay): " + model.name + ", " + std::to_string(n) +
                          " mobile bases in the ground plane" + (named ? "" : " (one colour per base)"),
                      r, height, "red dots")
-    << "$starts << EOD\n" << std::setprecision(12);
-  for (int k = 0; k < n && !r.samples.empty(); ++k) {
-    s << r.samples.front().true_controls[3 * k] << "," << r.samples.front().true_controls[3 * k + 1] << "\n";
-  }
-  s << "EOD\nplot ";
-  const int torn_column = 2 + 6 * n + model.num_actuated_joints();  // bases, joints, torn
-  for (int k = 0; r.torn && k < n; ++k) {  // under the paths
-    s << "'bases.csv' using ($" << torn_column << ">0 ? $" << 5 + 6 * k << " : NaN):" << 6 + 6 * k
-      << " with points pt 7 ps 0.4 lc rgb '" << kFailColour << "' "
-      << (k == 0 ? "title 'tracked pose while the chain was torn'" : "notitle") << ", ";
-  }
-  for (int k = 0; k < n; ++k) {
-    const std::string colour = DistinctColour(k, n);
-    s << (k ? ", " : "") << "'bases.csv' using " << 2 + 6 * k << ":" << 3 + 6 * k << " with lines lw 2 lc rgb '"
-      << colour << "' " << (named ? "title " + GnuplotQuote(model.mobile_bases[k].name) : std::string("notitle"))
-      << ", '' using " << 5 + 6 * k << ":" << 6 + 6 * k << " with lines lw 1.5 dt 2 lc rgb '" << colour
-      << "' notitle";
-  }
-  s << ", $starts using 1:2 with points pt 6 ps 1.2 lc rgb 'black' title 'start'"
-    << ", keyentry with lines lw 2 lc rgb 'black' title 'set pose (solid)'"
-    << ", keyentry with lines lw 1.5 dt 2 lc rgb 'black' title 'tracked pose (dashed)'\n"
-    << UnsetHeadingLabels(r) << "set size noratio\nset tmargin\nset bmargin\nset key default\nset output\n";
+    << StartsBlock(n, r) << AllBasesPlot(model, r, named, false) << UnsetHeadingLabels(r)
+    << "set size noratio\nset tmargin\nset bmargin\nset autoscale\nset key default\nset output\n";
   return s.str();
+}
+
+// A few bases far apart against their paths: the layout of all of them,
+// then one panel per base, every panel a square window of the same side
+// `side` [m] around that base's path (one scale, so the panels compare).
+std::string ZoomedBasesFigure(const std::string& format, const Model& model, const ReplayResult& r,
+                              const std::vector<Extent>& extents, const Extent& all, double side) {
+  const int n = model.num_bases(), panels = n + 1, columns = panels <= 4 ? 2 : 3;
+  const int rows = (panels + columns - 1) / columns, cell = columns == 2 ? 470 : 400;
+  // The key: one line per base, the start, set and tracked poses, the torn dots.
+  const int width = columns == 2 ? 1000 : 1200, key_height = 30 + 17 * (n + 4);
+  const int height = HeadingHeight(r) + 35 + rows * cell + 30 + key_height;
+  std::ostringstream s;
+  s << TerminalCommand(format, width, height) << "set output 'bases_xy." << format << "'\n"
+    << "set grid\nset xlabel 'x [m]'\nset ylabel 'y [m]'\n"
+    << HeadingLabels("SIMULATION (ccma replay): " + model.name + ", " + std::to_string(n) +
+                         " mobile bases in the ground plane",
+                     r, height, "red dots")
+    << StartsBlock(n, r) << "$windows << EOD\n" << std::setprecision(12);
+  for (const Extent& e : extents) s << 0.5 * (e.x0 + e.x1) << "," << 0.5 * (e.y0 + e.y1) << "," << side / 2 << "\n";
+  s << "EOD\nset key at screen 0.5, screen " << G((key_height - 10.0) / height) << " center top\n"
+    << "set multiplot layout " << rows << "," << columns << " margins 0.08,0.97," << G((key_height + 20.0) / height)
+    << "," << G(1 - (HeadingHeight(r) + 45.0) / height) << " spacing 0.1," << G(70.0 / height) << "\n"
+    << "set size ratio -1\nset title 'all bases (squares: the " << G(100 * side) << " cm windows of the panels)'\n"
+    << FittedRanges(all, std::max(0.05 * std::max(all.width(), all.height()), side / 2))
+    << AllBasesPlot(model, r, true, true) << UnsetHeadingLabels(r) << "unset key\n";
+  // One tic step on both axes of every window, 1, 2 or 5 times a power of
+  // ten, 3 to 6 intervals (gnuplot's own choice crowds a narrow panel).
+  const double least = side / 6 * (1 - 1e-9);  // rounding must not skip 0.3 / 6 = 0.05
+  const double decade = std::pow(10.0, std::floor(std::log10(least)));
+  const double tic = least <= decade ? decade : least <= 2 * decade ? 2 * decade
+                   : least <= 5 * decade ? 5 * decade : 10 * decade;
+  s << "set xtics " << G(tic) << "\nset ytics " << G(tic) << "\n";
+  for (int k = 0; k < n; ++k) {
+    s << "set title " << GnuplotQuote(model.mobile_bases[k].name) << "\n" << WindowRanges(extents[k], side) << "plot "
+      << (r.torn ? TornClause(model, k, false) : "") << PathClauses(model, k, "notitle") << ", $starts using 1:2 every ::"
+      << k << "::" << k << " with points pt 6 ps 1.2 lc rgb 'black' notitle\n";
+  }
+  s << "unset multiplot\nunset title\nset xtics autofreq\nset ytics autofreq\nset size noratio\nset autoscale\n"
+    << "set key default\nset output\n";
+  return s.str();
+}
+
+// bases_xy.FORMAT: the bases' set and tracked paths, axes equal, ranges
+// fitted to the paths with a margin. When a few bases stand far apart
+// against their paths (more than 3 windows), each also gets its own panel.
+std::string BasesFigure(const std::string& format, const Model& model, const ReplayResult& r) {
+  const int n = model.num_bases();
+  const std::vector<Extent> extents = BaseExtents(n, r);
+  Extent all;
+  double largest = 0;  // the largest side of one base's path [m]
+  for (const Extent& e : extents) {
+    all.Add(e);
+    largest = std::max({largest, e.width(), e.height()});
+  }
+  const double side = std::max(1.2 * largest, kMinWindow);
+  const bool zoom = n >= 2 && n <= 8 && std::max(all.width(), all.height()) > 3 * side;
+  return zoom ? ZoomedBasesFigure(format, model, r, extents, all, NiceLength(side))
+              : SingleBasesFigure(format, model, r, all);
 }
 
 }  // namespace
