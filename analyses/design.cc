@@ -1,274 +1,18 @@
+// The design loop behind `ccma design` (analyses/design.h): reach every
+// target (Levenberg-Marquardt over the stacked errors), then raise the
+// smallest sigma_min while every target stays reached.
 #include "analyses/design.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
 #include <Eigen/Dense>
-#include <yaml-cpp/yaml.h>
 
-#include "ccma/internal/constraint_set.h"
-#include "formats/model_loader.h"
 #include "problems/internal/end_effector_error.h"
-#include "problems/internal/sensitivity.h"
 
 namespace ccma {
-namespace {
-
-// Pivot ratio below which dG/ds counts as singular (as in sensitivity.cc).
-constexpr double kSingularRcond = 1e-12;
-// Step of the central difference of G in p [m]. G is quadratic in p, so the
-// difference is exact for any h; 1e-3 keeps rounding (~eps |G| / h) tiny.
-constexpr double kGradientStep = 1e-3;
-// Step of the central difference of sigma_min in p [m] (margin phase).
-constexpr double kSigmaStep = 1e-4;
-// Distinct home points: two joints closer than this cannot define a length.
-constexpr double kMinAnchorDistance = 1e-9;
-// Joint-limit violation still counted as respecting the limits [rad or m].
-constexpr double kLimitSlack = 1e-9;
-
-bool IsVaried(const DesignParameters& params, int joint) {
-  for (const DesignParameter& q : params.list) {
-    if (q.joint == joint) return true;
-  }
-  return false;
-}
-
-bool IsAnchor(const DesignParameters& params, int joint) {
-  for (const DesignParameter& q : params.list) {
-    if (q.kind == DesignParameterKind::kLinkLength && q.anchor == joint) return true;
-  }
-  return false;
-}
-
-bool SharesBody(const Joint& a, const Joint& b) {
-  for (int x : {a.body_a, a.body_b}) {
-    if (x == kWorld) continue;
-    if (x == b.body_a || x == b.body_b) return true;
-  }
-  return false;
-}
-
-// Body-frame copy of a world home point on `body` (the world: itself).
-Eigen::Vector3d InBody(const Model& model, int body, const Eigen::Vector3d& p_W) {
-  if (body == kWorld) return p_W;
-  const Body& b = model.bodies[body];
-  return b.R_WB_home.transpose() * (p_W - b.p_WB_home);
-}
-
-}  // namespace
-
-bool AddJointCoordinates(const Model& model, const std::string& item, DesignParameters* params, std::string* why) {
-  const std::size_t dot = item.rfind('.');
-  const std::string name = dot == std::string::npos ? item : item.substr(0, dot);
-  const std::string what = dot == std::string::npos ? "" : item.substr(dot + 1);
-  const int joint = model.FindJoint(name);
-  if (joint < 0) {
-    *why = "'" + item + "': no joint named '" + name + "' (expected JOINT.x, .y, .z or .point)";
-    return false;
-  }
-  std::vector<int> axes;
-  if (what == "x") axes = {0};
-  else if (what == "y") axes = {1};
-  else if (what == "z") axes = {2};
-  else if (what == "point") axes = {0, 1, 2};
-  else {
-    *why = "'" + item + "': expected JOINT.x, JOINT.y, JOINT.z or JOINT.point";
-    return false;
-  }
-  for (int axis : axes) {
-    for (const DesignParameter& q : params->list) {
-      const bool same = q.joint == joint && (q.kind == DesignParameterKind::kLinkLength || q.axis == axis);
-      if (same || q.anchor == joint) {
-        *why = "'" + item + "': the point of joint '" + name + "' is already varied or anchors a length";
-        return false;
-      }
-    }
-    DesignParameter q;
-    q.kind = DesignParameterKind::kJointCoordinate;
-    q.joint = joint;
-    q.axis = axis;
-    q.label = name + "." + "xyz"[axis];
-    params->list.push_back(q);
-  }
-  return true;
-}
-
-bool AddLinkLength(const Model& model, const std::string& item, DesignParameters* params, std::string* why) {
-  const std::size_t colon = item.find(':');
-  if (colon == std::string::npos) {
-    *why = "'" + item + "': expected ANCHOR_JOINT:MOVED_JOINT";
-    return false;
-  }
-  const std::string a_name = item.substr(0, colon), b_name = item.substr(colon + 1);
-  const int a = model.FindJoint(a_name), b = model.FindJoint(b_name);
-  if (a < 0 || b < 0) {
-    *why = "'" + item + "': no joint named '" + (a < 0 ? a_name : b_name) + "'";
-    return false;
-  }
-  if (a == b || !SharesBody(model.joints[a], model.joints[b])) {
-    *why = "'" + item + "': the two joints must differ and share a body (the link)";
-    return false;
-  }
-  if (IsVaried(*params, b) || IsVaried(*params, a) || IsAnchor(*params, b)) {
-    *why = "'" + item + "': a joint of it is already varied or anchors another length";
-    return false;
-  }
-  const Eigen::Vector3d d = JointPointWorld(model, b) - JointPointWorld(model, a);
-  if (!(d.norm() > kMinAnchorDistance)) {
-    *why = "'" + item + "': the two joints are at the same point (no length)";
-    return false;
-  }
-  DesignParameter q;
-  q.kind = DesignParameterKind::kLinkLength;
-  q.joint = b;
-  q.anchor = a;
-  q.direction_W = d.normalized();
-  q.label = "length:" + a_name + ":" + b_name;
-  params->list.push_back(q);
-  return true;
-}
-
-Eigen::Vector3d JointPointWorld(const Model& model, int joint) {
-  const Joint& j = model.joints[joint];
-  if (j.body_a == kWorld) return j.p_A;
-  const Body& a = model.bodies[j.body_a];
-  return a.R_WB_home * j.p_A + a.p_WB_home;
-}
-
-Eigen::VectorXd ParameterValues(const Model& model, const DesignParameters& params) {
-  Eigen::VectorXd p(params.size());
-  for (int k = 0; k < params.size(); ++k) {
-    const DesignParameter& q = params.list[k];
-    const Eigen::Vector3d P = JointPointWorld(model, q.joint);
-    p[k] = q.kind == DesignParameterKind::kJointCoordinate ? P[q.axis]
-                                                           : (P - JointPointWorld(model, q.anchor)).norm();
-  }
-  return p;
-}
-
-Model ApplyParameters(const Model& model, const DesignParameters& params, const Eigen::VectorXd& p) {
-  if (p.size() != params.size()) throw std::invalid_argument("ApplyParameters: p has the wrong size");
-  Model out = model;
-  // New world points of the moved joints (anchors never move, so the order
-  // of the parameters does not matter).
-  std::vector<std::pair<int, Eigen::Vector3d>> moved;
-  auto point = [&](int joint) -> Eigen::Vector3d& {
-    for (auto& m : moved) {
-      if (m.first == joint) return m.second;
-    }
-    moved.emplace_back(joint, JointPointWorld(model, joint));
-    return moved.back().second;
-  };
-  for (int k = 0; k < params.size(); ++k) {
-    const DesignParameter& q = params.list[k];
-    if (q.kind == DesignParameterKind::kJointCoordinate) {
-      point(q.joint)[q.axis] = p[k];
-    } else {
-      point(q.joint) = JointPointWorld(model, q.anchor) + p[k] * q.direction_W;
-    }
-  }
-  for (const auto& [joint, P_W] : moved) {
-    Joint& j = out.joints[joint];
-    j.p_A = InBody(model, j.body_a, P_W);
-    j.p_B = InBody(model, j.body_b, P_W);
-  }
-  return out;
-}
-
-Eigen::MatrixXd EnergyGradientParameterJacobian(const Model& model, const DesignParameters& params,
-                                                const Eigen::VectorXd& p, const State& s, const Eigen::VectorXd& u) {
-  const int n = s.tangent_size();
-  Eigen::MatrixXd dG_dp(n, params.size());
-  EnergyDerivatives plus, minus;
-  for (int k = 0; k < params.size(); ++k) {
-    Eigen::VectorXd pk = p;
-    pk[k] = p[k] + kGradientStep;
-    const Model model_plus = ApplyParameters(model, params, pk);
-    pk[k] = p[k] - kGradientStep;
-    const Model model_minus = ApplyParameters(model, params, pk);
-    ConstraintSet(model_plus).EvaluateDerivatives(s, u, &plus);
-    ConstraintSet(model_minus).EvaluateDerivatives(s, u, &minus);
-    dG_dp.col(k) = (plus.G - minus.G) / (2 * kGradientStep);
-  }
-  return dG_dp;
-}
-
-bool SolveStateParameterSensitivity(const ConstraintSet& constraints, const State& s, const Eigen::VectorXd& u,
-                                    const Eigen::MatrixXd& dG_dp, Eigen::MatrixXd* ds_dp, double* rcond) {
-  EnergyDerivatives d;
-  constraints.EvaluateDerivatives(s, u, &d);
-  HessianSolver solver(constraints);
-  *rcond = solver.Factorize(d.H) ? solver.pivot_ratio() : 0;
-  if (!(*rcond > kSingularRcond)) return false;
-  *ds_dp = -solver.Solve(dG_dp);
-  return ds_dp->allFinite();
-}
-
-bool ComputeParameterSensitivity(const Model& model, const DesignParameters& params, const Eigen::VectorXd& p,
-                                 const State& s, const Eigen::VectorXd& u, ParameterSensitivity* out) {
-  const Model at_p = ApplyParameters(model, params, p);
-  const ConstraintSet constraints(at_p);
-  out->dG_dp = EnergyGradientParameterJacobian(model, params, p, s, u);
-  out->singular = !SolveStateParameterSensitivity(constraints, s, u, out->dG_dp, &out->ds_dp, &out->rcond);
-  if (out->singular) return false;
-  // The end-effector point is on its body and does not depend on p.
-  out->dX_dp = EndEffectorJacobian(at_p, s) * out->ds_dp;
-  return true;
-}
-
-std::string PatchModelText(const std::string& text, const Model& original, const Model& designed,
-                           const DesignParameters& params) {
-  struct Edit {
-    std::size_t begin, end;
-    std::string value;
-  };
-  std::vector<Edit> edits;
-  const YAML::Node root = YAML::Load(text);
-  const YAML::Node joints = root["joints"];
-  for (int j = 0; j < static_cast<int>(designed.joints.size()); ++j) {
-    if (!IsVaried(params, j)) continue;
-    const std::string where = "joint '" + designed.joints[j].name + "' (line " +
-                              std::to_string(designed.joints[j].line) + ")";
-    if (!joints.IsSequence() || j >= static_cast<int>(joints.size())) {
-      throw std::runtime_error("cannot find " + where + " in the model text");
-    }
-    const YAML::Node point = joints[j]["point"];
-    if (!point.IsSequence() || point.size() != 3) {
-      throw std::runtime_error("cannot patch the point of " + where + ": not a list of 3 numbers");
-    }
-    const Eigen::Vector3d old_W = JointPointWorld(original, j), new_W = JointPointWorld(designed, j);
-    for (int i = 0; i < 3; ++i) {
-      if (old_W[i] == new_W[i]) continue;  // only what moved
-      const std::size_t begin = static_cast<std::size_t>(point[i].Mark().pos);
-      std::size_t end = begin;
-      while (end < text.size() && std::string(",]} \t\r\n#").find(text[end]) == std::string::npos) ++end;
-      if (begin >= text.size() || end == begin) {
-        throw std::runtime_error("cannot patch the point of " + where + ": no number at its mark");
-      }
-      char buffer[40];
-      std::snprintf(buffer, sizeof buffer, "%.12g", new_W[i]);
-      edits.push_back({begin, end, buffer});
-    }
-  }
-  std::sort(edits.begin(), edits.end(), [](const Edit& a, const Edit& b) { return a.begin > b.begin; });
-  std::string out = text;
-  for (const Edit& e : edits) out.replace(e.begin, e.end - e.begin, e.value);
-  // The written model must be the designed one.
-  const Model reloaded = LoadModelFromString(out, original.source.empty() ? "designed model" : original.source);
-  for (int j = 0; j < static_cast<int>(designed.joints.size()); ++j) {
-    const double moved = (JointPointWorld(reloaded, j) - JointPointWorld(designed, j)).norm();
-    if (!(moved < 1e-9)) {
-      throw std::runtime_error("the patched model text does not reproduce joint '" + designed.joints[j].name +
-                               "' (off by " + std::to_string(moved) + " m)");
-    }
-  }
-  return out;
-}
-
-// ---- The design loop ----------------------------------------------------
 
 bool DesignOptions::IsValid(std::string* why) const {
   auto fail = [why](const std::string& m) {
@@ -285,6 +29,11 @@ bool DesignOptions::IsValid(std::string* why) const {
 }
 
 namespace {
+
+// Step of the central difference of sigma_min in p [m] (margin phase).
+constexpr double kSigmaStep = 1e-4;
+// Joint-limit violation still counted as respecting the limits [rad or m].
+constexpr double kLimitSlack = 1e-9;
 
 // One target solved on one design, with what the p step needs.
 struct SolvedTarget {
@@ -384,143 +133,172 @@ std::vector<DesignTargetResult> EvaluateTargets(const Model& model, const std::v
   return r;
 }
 
+namespace {
+
+// What the two phases of Design share: the problem, the current design p
+// and its solved targets.
+struct DesignLoop {
+  const Model& model;
+  const DesignParameters& params;
+  const std::vector<PoseTarget>& targets;
+  const DesignOptions& options;
+  Eigen::VectorXd p0, p;
+  std::vector<SolvedTarget> solved;
+  double f = 0;    // summed squared error of `solved`
+  double mu = -1;  // LM damping, set from the first linearisation
+};
+
+// The stacked errors r of all targets and J = [blockdiag(de_t/du_t) | de_t/dp]
+// over (u_1..u_T, p). False when dG/ds is singular at a target.
+bool StackErrors(const DesignLoop& loop, Eigen::MatrixXd* J, Eigen::VectorXd* r) {
+  const int P = loop.params.size();
+  int rows = 0, cols = P;
+  for (const SolvedTarget& t : loop.solved) {
+    rows += static_cast<int>(t.e.size());
+    cols += static_cast<int>(t.de_du.cols());
+  }
+  *J = Eigen::MatrixXd::Zero(rows, cols);
+  r->resize(rows);
+  int row = 0, col = 0;
+  for (const SolvedTarget& t : loop.solved) {
+    ParameterSensitivity sens;
+    if (!ComputeParameterSensitivity(loop.model, loop.params, loop.p, t.s, t.u, &sens)) return false;
+    const int m = static_cast<int>(t.e.size()), k = static_cast<int>(t.de_du.cols());
+    J->block(row, col, m, k) = t.de_du;
+    J->block(row, cols - P, m, P) = t.de_ds * sens.ds_dp;
+    r->segment(row, m) = t.e;
+    row += m;
+    col += k;
+  }
+  return true;
+}
+
+// Levenberg-Marquardt on (J, r): raises the damping until a clipped step on
+// p, with every target re-solved, lowers the summed squared error (then
+// accepts it and returns true) or the damping runs out.
+bool DampedStep(DesignLoop* loop, const Eigen::MatrixXd& J, const Eigen::VectorXd& r) {
+  const int P = loop->params.size();
+  const Eigen::MatrixXd JtJ = J.transpose() * J;
+  const Eigen::VectorXd Jtr = J.transpose() * r;
+  if (loop->mu < 0) loop->mu = 1e-3 * std::max(JtJ.diagonal().maxCoeff(), 1e-12);
+  while (loop->mu < 1e12) {
+    Eigen::MatrixXd A = JtJ;
+    A.diagonal().array() += loop->mu;
+    const Eigen::VectorXd step = A.ldlt().solve(-Jtr);
+    const Eigen::VectorXd p_trial = Clip(loop->params, loop->p0, loop->p + step.tail(P), loop->options);
+    if ((p_trial - loop->p).norm() < 1e-14) {
+      loop->mu *= 10;
+      continue;
+    }
+    std::vector<SolvedTarget> trial =
+        SolveAll(loop->model, loop->params, p_trial, loop->targets, loop->options, true);
+    const double f_trial = SumSquaredError(trial);
+    if (f_trial < loop->f) {
+      loop->p = p_trial;
+      loop->solved = std::move(trial);
+      loop->f = f_trial;
+      loop->mu = std::max(loop->mu / 3, 1e-12);
+      return true;
+    }
+    loop->mu *= 10;
+  }
+  return false;
+}
+
+// Phase 1, one iteration: "" after an accepted step, else why it stopped.
+std::string ReachStep(DesignLoop* loop) {
+  for (const SolvedTarget& t : loop->solved) {
+    if (!t.usable) return "a target could not be solved on the current design";
+  }
+  Eigen::MatrixXd J;
+  Eigen::VectorXd r;
+  if (!StackErrors(*loop, &J, &r)) return "dG/ds is singular at a target on the current design";
+  if (!DampedStep(loop, J, r)) return "no design step reduces the target errors further (bounds or a local minimum)";
+  return "";
+}
+
+// The gradient in p of the worst target's sigma_min, by central differences
+// of the target re-solved on the perturbed designs.
+Eigen::VectorXd SigmaGradient(const DesignLoop& loop, int worst) {
+  const int P = loop.params.size();
+  Eigen::VectorXd g(P);
+  for (int k = 0; k < P; ++k) {
+    Eigen::VectorXd pk = loop.p;
+    pk[k] += kSigmaStep;
+    const Model plus = ApplyParameters(loop.model, loop.params, pk);
+    pk[k] -= 2 * kSigmaStep;
+    const Model minus = ApplyParameters(loop.model, loop.params, pk);
+    g[k] = (SolveTarget(plus, loop.targets[worst], loop.options, false).result.min_singular_value -
+            SolveTarget(minus, loop.targets[worst], loop.options, false).result.min_singular_value) /
+           (2 * kSigmaStep);
+  }
+  return g;
+}
+
+// Phase 2, one iteration: a Newton step on the smallest sigma_min toward 1.5
+// times the threshold (at most 0.05 m, halved up to 6 times), accepted when
+// every target stays reached and sigma_min rises. "" or why it stopped.
+std::string MarginStep(DesignLoop* loop) {
+  int worst = 0;
+  for (int t = 1; t < static_cast<int>(loop->solved.size()); ++t) {
+    if (loop->solved[t].result.min_singular_value < loop->solved[worst].result.min_singular_value) worst = t;
+  }
+  const Eigen::VectorXd g = SigmaGradient(*loop, worst);
+  if (!(g.squaredNorm() > 0) || !g.allFinite()) {
+    return "the margin cannot be raised (sigma_min does not change with the parameters)";
+  }
+  const double sigma = MinSigma(loop->solved);
+  Eigen::VectorXd step = (1.5 * loop->options.min_singular_value - sigma) * g / g.squaredNorm();
+  if (step.norm() > 0.05) step *= 0.05 / step.norm();
+  for (int halving = 0; halving < 6; ++halving, step /= 2) {
+    const Eigen::VectorXd p_trial = Clip(loop->params, loop->p0, loop->p + step, loop->options);
+    std::vector<SolvedTarget> trial =
+        SolveAll(loop->model, loop->params, p_trial, loop->targets, loop->options, true);
+    if (AllReached(trial) && MinSigma(trial) > sigma) {
+      loop->p = p_trial;
+      loop->solved = std::move(trial);
+      return "";
+    }
+  }
+  return "no design step raises the smallest sigma_min while keeping every target reached";
+}
+
+}  // namespace
+
 DesignResult Design(const Model& model, const DesignParameters& params, const std::vector<PoseTarget>& targets,
                     const DesignOptions& options) {
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument("design options: " + why);
   if (params.size() == 0) throw std::invalid_argument("design: no parameters to vary");
   if (targets.empty()) throw std::invalid_argument("design: no targets");
+  DesignLoop loop{model, params, targets, options, {}, {}, {}};
+  loop.p0 = ParameterValues(model, params);
+  loop.p = loop.p0;
+  loop.solved = SolveAll(model, params, loop.p, targets, options, true);
+  loop.f = SumSquaredError(loop.solved);
   DesignResult result;
-  result.p0 = ParameterValues(model, params);
-  Eigen::VectorXd p = result.p0;
-  std::vector<SolvedTarget> solved = SolveAll(model, params, p, targets, options, true);
-  result.initial = Results(solved);
-  double f = SumSquaredError(solved);
-  const int P = params.size();
-  double mu = -1;  // LM damping, set from the first linearisation
-
-  // Phase 1: reach every target (LM over the stacked errors).
+  result.p0 = loop.p0;
+  result.initial = Results(loop.solved);
   int it = 0;
-  for (; it < options.max_iterations && !AllReached(solved); ++it) {
-    int rows = 0, cols = P;
-    for (const SolvedTarget& t : solved) {
-      if (!t.usable) {
-        result.message = "a target could not be solved on the current design";
-        result.p = p;
-        result.iterations = it;
-        result.final = Results(solved);
-        return result;
-      }
-      rows += static_cast<int>(t.e.size());
-      cols += static_cast<int>(t.de_du.cols());
-    }
-    // J = [blockdiag(de_t/du_t) | de_t/dp], r = e.
-    Eigen::MatrixXd J = Eigen::MatrixXd::Zero(rows, cols);
-    Eigen::VectorXd r(rows);
-    const Model at_p = ApplyParameters(model, params, p);
-    int row = 0, col = 0;
-    bool ok = true;
-    for (SolvedTarget& t : solved) {
-      ParameterSensitivity sens;
-      if (!ComputeParameterSensitivity(model, params, p, t.s, t.u, &sens)) {
-        ok = false;
-        break;
-      }
-      const int m = static_cast<int>(t.e.size()), k = static_cast<int>(t.de_du.cols());
-      J.block(row, col, m, k) = t.de_du;
-      J.block(row, cols - P, m, P) = t.de_ds * sens.ds_dp;
-      r.segment(row, m) = t.e;
-      row += m;
-      col += k;
-    }
-    if (!ok) {
-      result.message = "dG/ds is singular at a target on the current design";
-      break;
-    }
-    const Eigen::MatrixXd JtJ = J.transpose() * J;
-    const Eigen::VectorXd Jtr = J.transpose() * r;
-    if (mu < 0) mu = 1e-3 * std::max(JtJ.diagonal().maxCoeff(), 1e-12);
-    bool accepted = false;
-    while (mu < 1e12) {
-      Eigen::MatrixXd A = JtJ;
-      A.diagonal().array() += mu;
-      const Eigen::VectorXd step = A.ldlt().solve(-Jtr);
-      const Eigen::VectorXd p_trial = Clip(params, result.p0, p + step.tail(P), options);
-      if ((p_trial - p).norm() < 1e-14) {
-        mu *= 10;
-        continue;
-      }
-      std::vector<SolvedTarget> trial = SolveAll(model, params, p_trial, targets, options, true);
-      const double f_trial = SumSquaredError(trial);
-      if (f_trial < f) {
-        p = p_trial;
-        solved = std::move(trial);
-        f = f_trial;
-        mu = std::max(mu / 3, 1e-12);
-        accepted = true;
-        break;
-      }
-      mu *= 10;
-    }
-    if (!accepted) {
-      result.message = "no design step reduces the target errors further (bounds or a local minimum)";
-      break;
-    }
+  for (; it < options.max_iterations && !AllReached(loop.solved); ++it) {  // phase 1: reach every target
+    result.message = ReachStep(&loop);
+    if (!result.message.empty()) break;
   }
-
-  // Phase 2: margin. Raise the smallest sigma_min while every target stays
-  // reached (sigma of the worst target, its gradient in p by re-solved
-  // central differences).
-  for (; it < options.max_iterations && AllReached(solved) && MinSigma(solved) < options.min_singular_value;
+  for (; it < options.max_iterations && AllReached(loop.solved) &&  // phase 2: margin
+         MinSigma(loop.solved) < options.min_singular_value;
        ++it) {
-    int worst = 0;
-    for (int t = 1; t < static_cast<int>(solved.size()); ++t) {
-      if (solved[t].result.min_singular_value < solved[worst].result.min_singular_value) worst = t;
-    }
-    Eigen::VectorXd g(P);
-    for (int k = 0; k < P; ++k) {
-      Eigen::VectorXd pk = p;
-      pk[k] += kSigmaStep;
-      const Model plus = ApplyParameters(model, params, pk);
-      pk[k] -= 2 * kSigmaStep;
-      const Model minus = ApplyParameters(model, params, pk);
-      g[k] = (SolveTarget(plus, targets[worst], options, false).result.min_singular_value -
-              SolveTarget(minus, targets[worst], options, false).result.min_singular_value) /
-             (2 * kSigmaStep);
-    }
-    if (!(g.squaredNorm() > 0) || !g.allFinite()) {
-      result.message = "the margin cannot be raised (sigma_min does not change with the parameters)";
-      break;
-    }
-    const double sigma = MinSigma(solved);
-    // Newton step on sigma toward 1.5 times the threshold, at most 0.05 m.
-    Eigen::VectorXd step = (1.5 * options.min_singular_value - sigma) * g / g.squaredNorm();
-    if (step.norm() > 0.05) step *= 0.05 / step.norm();
-    bool accepted = false;
-    for (int halving = 0; halving < 6 && !accepted; ++halving, step /= 2) {
-      const Eigen::VectorXd p_trial = Clip(params, result.p0, p + step, options);
-      std::vector<SolvedTarget> trial = SolveAll(model, params, p_trial, targets, options, true);
-      if (AllReached(trial) && MinSigma(trial) > sigma) {
-        p = p_trial;
-        solved = std::move(trial);
-        accepted = true;
-      }
-    }
-    if (!accepted) {
-      result.message = "no design step raises the smallest sigma_min while keeping every target reached";
-      break;
-    }
+    result.message = MarginStep(&loop);
+    if (!result.message.empty()) break;
   }
-
-  result.p = p;
+  result.p = loop.p;
   result.iterations = it;
-  result.final = Results(solved);
-  result.converged = AllReached(solved) && MinSigma(solved) >= options.min_singular_value;
+  result.final = Results(loop.solved);
+  result.converged = AllReached(loop.solved) && MinSigma(loop.solved) >= options.min_singular_value;
   if (result.converged) {
     result.message.clear();
   } else if (result.message.empty()) {
-    result.message = AllReached(solved) ? "every target reached but sigma_min stays below the threshold"
-                                        : "iteration limit reached before every target was reachable";
+    result.message = AllReached(loop.solved) ? "every target reached but sigma_min stays below the threshold"
+                                             : "iteration limit reached before every target was reachable";
   }
   return result;
 }

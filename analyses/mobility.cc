@@ -1,5 +1,6 @@
 #include "analyses/mobility.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <Eigen/SVD>
@@ -14,6 +15,83 @@ int Rank(const Eigen::VectorXd& singular_values, double threshold) {
   int rank = 0;
   for (int i = 0; i < singular_values.size(); ++i) rank += singular_values[i] > threshold;
   return rank;
+}
+
+// The bodies whose components of the direction ds exceed
+// kMovingBodyTolerance times its largest component.
+std::vector<int> MovingBodies(const Eigen::VectorXd& ds) {
+  const double threshold = kMovingBodyTolerance * ds.cwiseAbs().maxCoeff();
+  std::vector<int> bodies;
+  for (int b = 0; b < ds.size() / kPoseTangentSize; ++b) {
+    if (ds.segment(kPoseTangentSize * b, kPoseTangentSize).cwiseAbs().maxCoeff() > threshold) bodies.push_back(b);
+  }
+  return bodies;
+}
+
+// The null space of J_s (its last n - rank right singular vectors), split
+// body by body as MobilityReport::free_motions describes. The directions
+// stay orthonormal: each split is a rotation within the unassigned span.
+std::vector<FreeMotion> FreeMotions(const Eigen::MatrixXd& J_s, int rank) {
+  const int n = static_cast<int>(J_s.cols());
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(J_s, Eigen::ComputeFullV);
+  Eigen::MatrixXd unassigned = svd.matrixV().rightCols(n - rank);
+  std::vector<FreeMotion> motions;
+  for (int b = 0; b < n / kPoseTangentSize && unassigned.cols() > 0; ++b) {
+    // Right singular vectors of this body's rows: the first `moving` mix the
+    // directions into ones that move the body, the others leave it still.
+    const Eigen::JacobiSVD<Eigen::MatrixXd> block(unassigned.middleRows(kPoseTangentSize * b, kPoseTangentSize),
+                                                  Eigen::ComputeFullV);
+    const int moving = Rank(block.singularValues(), kMovingBodyTolerance);
+    if (moving == 0) continue;
+    const Eigen::MatrixXd rotated = unassigned * block.matrixV();
+    for (int k = 0; k < moving; ++k) motions.push_back({rotated.col(k), MovingBodies(rotated.col(k))});
+    unassigned = rotated.rightCols(rotated.cols() - moving);
+  }
+  return motions;
+}
+
+// The end-effector DOF over the null space of A = [J_s, J_u_eff, ...] (its
+// first n columns act on the state): rank of dX/ds over the null space's
+// state parts. `free_dof` receives the null space's dimension.
+int EndEffectorDof(const Model& model, const State& s, const Eigen::MatrixXd& A, double threshold,
+                   double rank_tolerance, int* free_dof) {
+  const int n = model.state_size();
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
+  const int rank = Rank(svd.singularValues(), threshold);
+  *free_dof = static_cast<int>(A.cols()) - rank;
+  const Eigen::MatrixXd X = EndEffectorJacobian(model, s) * svd.matrixV().rightCols(*free_dof).topRows(n);
+  return X.cols() > 0 ? Rank(Eigen::JacobiSVD<Eigen::MatrixXd>(X).singularValues(), rank_tolerance) : 0;
+}
+
+// One row over (ds, du_effective) per differential base that constrains the
+// motion: no lateral velocity, -sin(theta) dx + cos(theta) dy = 0. A
+// differential base whose heading turns without moving the end-effector (it
+// turns on the spot under a revolute post) can face any direction first: it
+// constrains nothing. Test: adding its heading column to [J_s; dX/ds] does
+// not raise the rank.
+Eigen::MatrixXd LateralRows(const Model& model, const State& s, const Eigen::VectorXd& u, const Eigen::MatrixXd& J_s,
+                            const Eigen::MatrixXd& J_u, const std::vector<int>& effective, double threshold) {
+  const int n = model.state_size(), k = static_cast<int>(effective.size());
+  Eigen::MatrixXd L = Eigen::MatrixXd::Zero(model.num_bases(), n + k);
+  int rows = 0;
+  const Eigen::MatrixXd X_s = EndEffectorJacobian(model, s);
+  Eigen::MatrixXd held(J_s.rows() + X_s.rows(), n + 1);
+  held.setZero();
+  held.topLeftCorner(J_s.rows(), n) = J_s;
+  held.bottomLeftCorner(X_s.rows(), n) = X_s;
+  const int held_rank = Rank(Eigen::JacobiSVD<Eigen::MatrixXd>(held.leftCols(n)).singularValues(), threshold);
+  for (int b = 0; b < model.num_bases(); ++b) {
+    if (model.mobile_bases[b].type != BaseType::kDifferential) continue;
+    held.col(n).head(J_s.rows()) = J_u.col(kBaseControlSize * b + 2);
+    if (Rank(Eigen::JacobiSVD<Eigen::MatrixXd>(held).singularValues(), threshold) == held_rank) continue;
+    const double theta = u[kBaseControlSize * b + 2];
+    for (int c = 0; c < k; ++c) {
+      if (effective[c] == kBaseControlSize * b) L(rows, n + c) = -std::sin(theta);
+      if (effective[c] == kBaseControlSize * b + 1) L(rows, n + c) = std::cos(theta);
+    }
+    ++rows;
+  }
+  return L.topRows(rows);
 }
 
 }  // namespace
@@ -37,6 +115,7 @@ MobilityReport AnalyzeMobility(const Model& model, const State& s, const Eigen::
   report.rigid_with_controls_fixed = report.dof_with_controls_fixed == 0;
   report.smallest_singular_value =
       sigma.size() >= n ? sigma[n - 1] : 0.0;  // fewer rows than columns: singular
+  if (!report.rigid_with_controls_fixed) report.free_motions = FreeMotions(J_s, report.constraint_rank);
 
   // Motions with the effective controls free: null space of [J_s, J_u_eff],
   // and of the same with no lateral velocity of the differential bases.
@@ -45,45 +124,16 @@ MobilityReport AnalyzeMobility(const Model& model, const State& s, const Eigen::
   Eigen::MatrixXd J(J_s.rows(), n + k);
   J.leftCols(n) = J_s;
   for (int c = 0; c < k; ++c) J.col(n + c) = J_u.col(effective[c]);
-  auto end_effector_dof = [&](const Eigen::MatrixXd& A, int* free_dof) {
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
-    const int rank = Rank(svd.singularValues(), rank_tolerance * scale);
-    *free_dof = static_cast<int>(A.cols()) - rank;
-    const Eigen::MatrixXd X = EndEffectorJacobian(model, s) * svd.matrixV().rightCols(*free_dof).topRows(n);
-    return X.cols() > 0 ? Rank(Eigen::JacobiSVD<Eigen::MatrixXd>(X).singularValues(), rank_tolerance) : 0;
-  };
-  report.end_effector_dof = end_effector_dof(J, &report.dof_with_controls_free);
-  std::vector<int> lateral_rows;
-  Eigen::MatrixXd L = Eigen::MatrixXd::Zero(model.num_bases(), n + k);
-  int rows = 0;
-  // A differential base whose heading turns without moving the end-effector
-  // (it turns on the spot under a revolute post) can face any direction
-  // first: it constrains nothing. Test: adding its heading column to
-  // [J_s; dX/ds] does not raise the rank.
-  const Eigen::MatrixXd X_s = EndEffectorJacobian(model, s);
-  Eigen::MatrixXd held(J_s.rows() + X_s.rows(), n + 1);
-  held.setZero();
-  held.topLeftCorner(J_s.rows(), n) = J_s;
-  held.bottomLeftCorner(X_s.rows(), n) = X_s;
-  const int held_rank = Rank(Eigen::JacobiSVD<Eigen::MatrixXd>(held.leftCols(n)).singularValues(), rank_tolerance * scale);
-  for (int b = 0; b < model.num_bases(); ++b) {
-    if (model.mobile_bases[b].type != BaseType::kDifferential) continue;
-    held.col(n).head(J_s.rows()) = J_u.col(kBaseControlSize * b + 2);
-    if (Rank(Eigen::JacobiSVD<Eigen::MatrixXd>(held).singularValues(), rank_tolerance * scale) == held_rank) continue;
-    const double theta = u[kBaseControlSize * b + 2];
-    for (int c = 0; c < k; ++c) {
-      if (effective[c] == kBaseControlSize * b) L(rows, n + c) = -std::sin(theta);
-      if (effective[c] == kBaseControlSize * b + 1) L(rows, n + c) = std::cos(theta);
-    }
-    ++rows;
-  }
-  if (rows == 0) {
+  report.end_effector_dof =
+      EndEffectorDof(model, s, J, rank_tolerance * scale, rank_tolerance, &report.dof_with_controls_free);
+  const Eigen::MatrixXd L = LateralRows(model, s, u, J_s, J_u, effective, rank_tolerance * scale);
+  if (L.rows() == 0) {
     report.end_effector_dof_nonholonomic = report.end_effector_dof;
   } else {
-    Eigen::MatrixXd JL(J.rows() + rows, n + k);
-    JL << J, L.topRows(rows);
+    Eigen::MatrixXd JL(J.rows() + L.rows(), n + k);
+    JL << J, L;
     int free_dof = 0;
-    report.end_effector_dof_nonholonomic = end_effector_dof(JL, &free_dof);
+    report.end_effector_dof_nonholonomic = EndEffectorDof(model, s, JL, rank_tolerance * scale, rank_tolerance, &free_dof);
   }
   return report;
 }

@@ -2,12 +2,28 @@
 #ifndef CCMA_MOBILITY_H_
 #define CCMA_MOBILITY_H_
 
+#include <vector>
+
 #include <Eigen/Core>
 
 #include "ccma/model.h"
 #include "ccma/state.h"
 
 namespace ccma {
+
+// A body counts as moving in a free motion when one of its six state
+// components (rad, m) exceeds this fraction of the motion's largest
+// component: far above the rounding left in a null-space direction
+// (~1e-13 relative), far below any motion a joint allows.
+constexpr double kMovingBodyTolerance = 1e-6;
+
+// One free motion with the controls fixed: a direction ds of the state
+// (state.h: 6 per body, rotation increment [rad] then translation [m], unit
+// norm) with dC/ds ds = 0.
+struct FreeMotion {
+  Eigen::VectorXd direction;  // ds, size state_size
+  std::vector<int> bodies;    // indices into Model::bodies of the bodies it moves, ascending
+};
 
 struct MobilityReport {
   int constraint_rows = 0;  // rows of C (cost_functions/: sizes stated there)
@@ -28,6 +44,13 @@ struct MobilityReport {
   int end_effector_dof_nonholonomic = 0;
   double smallest_singular_value = 0;  // of dC/ds; ~0 means singular
   double energy = 0;                   // E(s, u)
+  // A basis of the null space of dC/ds (dof_with_controls_fixed motions;
+  // empty when rigid), chosen to name few bodies: body by body in file
+  // order, the directions not yet assigned are rotated so that as few as
+  // possible move that body; those become motions, the rest leave it still.
+  // A leg whose post spins (carrying its link) and whose link also swings
+  // alone gives the motions [post, link] and [link].
+  std::vector<FreeMotion> free_motions;
 };
 
 // The mobility of `model` at state s and controls u (model.h). Ranks use

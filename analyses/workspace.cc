@@ -218,30 +218,32 @@ std::vector<WorkspaceSample> EvaluateWorkspacePoses(const Model& model, const Wo
   return samples;
 }
 
-WorkspaceResult ComputeWorkspace(const Model& model, const WorkspaceOptions& options,
-                                 const WorkspaceProgress& progress, const WorkspaceBatchEvaluator& evaluate_batch) {
-  const auto clock_start = std::chrono::steady_clock::now();
-  const std::vector<PoseTarget> poses = WorkspacePoses(model, options);  // validates
+namespace {
+
+// The index nearest the seed cell (the value nearest home) of range d.
+int SeedIndex(const WorkspaceOptions& options, const WorkspaceRange& r, double home) {
+  int best = 0;
+  double best_distance = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < options.resolution; ++k) {
+    const double value = options.resolution == 1 ? 0.5 * (r.lo + r.hi)
+                                                 : r.lo + (r.hi - r.lo) * k / static_cast<double>(options.resolution - 1);
+    if (std::abs(value - home) < best_distance) best_distance = std::abs(value - home), best = k;
+  }
+  return best;
+}
+
+// Each sample's wave (file comment). Grid: Chebyshev distance in cells from
+// the seed cell. Random: rank by distance from home, wave_size per wave.
+std::vector<int> Waves(const WorkspaceOptions& options, const std::vector<PoseTarget>& poses,
+                       const PoseTarget& home_pose) {
   const long long n = static_cast<long long>(poses.size());
   const int dims = static_cast<int>(options.ranges.size());
-  const PoseTarget home_pose = HomePose(model);
-  const bool grid = options.random_samples == 0;
-
-  // Waves (file comment).
   std::vector<int> wave(static_cast<size_t>(n), 0);
-  std::vector<int> seed_cell(static_cast<size_t>(dims), 0);
-  if (grid) {
+  if (options.random_samples == 0) {
+    std::vector<int> seed_cell(static_cast<size_t>(dims), 0);
     for (int d = 0; d < dims; ++d) {
       const WorkspaceRange& r = options.ranges[static_cast<size_t>(d)];
-      const double h = Component(home_pose, r.component);
-      int best = 0;
-      double best_distance = std::numeric_limits<double>::infinity();
-      for (int k = 0; k < options.resolution; ++k) {
-        const double value = options.resolution == 1 ? 0.5 * (r.lo + r.hi)
-                                                     : r.lo + (r.hi - r.lo) * k / static_cast<double>(options.resolution - 1);
-        if (std::abs(value - h) < best_distance) best_distance = std::abs(value - h), best = k;
-      }
-      seed_cell[static_cast<size_t>(d)] = best;
+      seed_cell[static_cast<size_t>(d)] = SeedIndex(options, r, Component(home_pose, r.component));
     }
     for (long long i = 0; i < n; ++i) {
       const std::vector<int> cell = Cell(i, dims, options.resolution);
@@ -249,120 +251,163 @@ WorkspaceResult ComputeWorkspace(const Model& model, const WorkspaceOptions& opt
       for (int d = 0; d < dims; ++d) w = std::max(w, std::abs(cell[static_cast<size_t>(d)] - seed_cell[static_cast<size_t>(d)]));
       wave[static_cast<size_t>(i)] = w;
     }
-  } else {
-    std::vector<long long> order(static_cast<size_t>(n));
-    std::iota(order.begin(), order.end(), 0);
-    std::vector<double> d2(static_cast<size_t>(n));
-    for (long long i = 0; i < n; ++i) d2[static_cast<size_t>(i)] = Distance2(options, poses[static_cast<size_t>(i)], home_pose);
-    std::stable_sort(order.begin(), order.end(),
-                     [&](long long a, long long b) { return d2[static_cast<size_t>(a)] < d2[static_cast<size_t>(b)]; });
-    for (long long k = 0; k < n; ++k) wave[static_cast<size_t>(order[static_cast<size_t>(k)])] = static_cast<int>(k / options.wave_size);
+    return wave;
   }
-  const int waves = n == 0 ? 0 : *std::max_element(wave.begin(), wave.end()) + 1;
-  std::vector<std::vector<long long>> members(static_cast<size_t>(waves));
-  for (long long i = 0; i < n; ++i) members[static_cast<size_t>(wave[static_cast<size_t>(i)])].push_back(i);
+  std::vector<long long> order(static_cast<size_t>(n));
+  std::iota(order.begin(), order.end(), 0);
+  std::vector<double> d2(static_cast<size_t>(n));
+  for (long long i = 0; i < n; ++i) d2[static_cast<size_t>(i)] = Distance2(options, poses[static_cast<size_t>(i)], home_pose);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](long long a, long long b) { return d2[static_cast<size_t>(a)] < d2[static_cast<size_t>(b)]; });
+  for (long long k = 0; k < n; ++k) wave[static_cast<size_t>(order[static_cast<size_t>(k)])] = static_cast<int>(k / options.wave_size);
+  return wave;
+}
 
+// A map computed wave by wave: what the starts and the solves share.
+struct WaveRun {
+  const Model& model;
+  const WorkspaceOptions& options;
+  const std::vector<PoseTarget>& poses;
+  const WorkspaceProgress& progress;
+  PoseTarget home_pose;
+  WorkspaceStart home;
+  std::vector<int> wave;
   WorkspaceResult result;
-  for (const WorkspaceRange& r : options.ranges) result.components.push_back(r.component);
-  result.samples.resize(static_cast<size_t>(n));
-  std::vector<long long> reached;  // indices of reached samples of finished waves, ascending per wave
-  const WorkspaceStart home{State::Home(model), model.home_controls()};
+  std::vector<long long> reached;  // reached samples of finished waves, ascending per wave
+  long long done = 0;              // samples finished (progress)
   std::mutex progress_mutex;
-  long long done = 0;
+};
 
-  // The start of sample i: nearest reached sample of an earlier wave (grid:
-  // adjacent cells first), or home when nearer or nothing qualifies.
-  auto start_of = [&](long long i) -> long long {
-    const PoseTarget& pose = poses[static_cast<size_t>(i)];
-    long long best = -1;
-    double best_d2 = Distance2(options, pose, home_pose);
-    auto consider = [&](long long j) {
-      const double d = Distance2(options, pose, poses[static_cast<size_t>(j)]);
-      if (d < best_d2 || (d == best_d2 && best >= 0 && j < best)) best_d2 = d, best = j;
-    };
-    if (grid && wave[static_cast<size_t>(i)] > 0) {
-      const std::vector<int> cell = Cell(i, dims, options.resolution);
-      bool any = false;
-      // Adjacent cells (3^dims - 1 offsets) one wave closer to the seed.
-      long long offsets = 1;
-      for (int d = 0; d < dims; ++d) offsets *= 3;
-      for (long long o = 0; o < offsets; ++o) {
-        std::vector<int> neighbour = cell;
-        long long rest = o;
-        bool inside = true;
-        for (int d = 0; d < dims; ++d) {
-          neighbour[static_cast<size_t>(d)] += static_cast<int>(rest % 3) - 1;
-          rest /= 3;
-          if (neighbour[static_cast<size_t>(d)] < 0 || neighbour[static_cast<size_t>(d)] >= options.resolution) inside = false;
-        }
-        if (!inside) continue;
-        const long long j = Index(neighbour, options.resolution);
-        if (wave[static_cast<size_t>(j)] >= wave[static_cast<size_t>(i)] || !result.samples[static_cast<size_t>(j)].reachable) continue;
-        consider(j);
-        any = true;
-      }
-      if (any) return best;
+// The nearest start found so far: home (-1) or a sample; ties go to the
+// lower index.
+struct Nearest {
+  long long best;
+  double best_d2;
+  void Consider(long long j, double d) {
+    if (d < best_d2 || (d == best_d2 && best >= 0 && j < best)) best_d2 = d, best = j;
+  }
+};
+
+// Grid: considers the adjacent cells (3^dims - 1 offsets) of earlier waves
+// that were reached. False when none qualifies.
+bool ConsiderNeighbours(const WaveRun& run, long long i, Nearest* nearest) {
+  const int dims = static_cast<int>(run.options.ranges.size()), resolution = run.options.resolution;
+  const std::vector<int> cell = Cell(i, dims, resolution);
+  bool any = false;
+  long long offsets = 1;
+  for (int d = 0; d < dims; ++d) offsets *= 3;
+  for (long long o = 0; o < offsets; ++o) {
+    std::vector<int> neighbour = cell;
+    long long rest = o;
+    bool inside = true;
+    for (int d = 0; d < dims; ++d) {
+      neighbour[static_cast<size_t>(d)] += static_cast<int>(rest % 3) - 1;
+      rest /= 3;
+      if (neighbour[static_cast<size_t>(d)] < 0 || neighbour[static_cast<size_t>(d)] >= resolution) inside = false;
     }
-    for (long long j : reached) consider(j);
-    return best;
-  };
+    if (!inside) continue;
+    const long long j = Index(neighbour, resolution);
+    if (run.wave[static_cast<size_t>(j)] >= run.wave[static_cast<size_t>(i)] ||
+        !run.result.samples[static_cast<size_t>(j)].reachable) {
+      continue;
+    }
+    nearest->Consider(j, Distance2(run.options, run.poses[static_cast<size_t>(i)], run.poses[static_cast<size_t>(j)]));
+    any = true;
+  }
+  return any;
+}
 
+// The start of sample i: nearest reached sample of an earlier wave (grid:
+// adjacent cells first), or home (-1) when nearer or nothing qualifies.
+long long StartOf(const WaveRun& run, long long i) {
+  const PoseTarget& pose = run.poses[static_cast<size_t>(i)];
+  Nearest nearest{-1, Distance2(run.options, pose, run.home_pose)};
+  const bool grid = run.options.random_samples == 0;
+  if (grid && run.wave[static_cast<size_t>(i)] > 0 && ConsiderNeighbours(run, i, &nearest)) return nearest.best;
+  for (long long j : run.reached) nearest.Consider(j, Distance2(run.options, pose, run.poses[static_cast<size_t>(j)]));
+  return nearest.best;
+}
+
+// The state and controls a walk from sample s (-1: home) begins with.
+WorkspaceStart StartFrom(const WaveRun& run, long long s) {
+  if (s < 0) return run.home;
+  return {run.result.samples[static_cast<size_t>(s)].state, run.result.samples[static_cast<size_t>(s)].controls};
+}
+
+// Wave w's samples solved by `evaluate_batch`, checked and stored.
+void SolveWaveElsewhere(WaveRun* run, int w, const std::vector<long long>& batch, const std::vector<long long>& starts,
+                        const WorkspaceBatchEvaluator& evaluate_batch) {
+  std::vector<PoseTarget> batch_poses;
+  std::vector<WorkspaceStart> batch_starts;
+  for (size_t k = 0; k < batch.size(); ++k) {
+    batch_poses.push_back(run->poses[static_cast<size_t>(batch[k])]);
+    batch_starts.push_back(StartFrom(*run, starts[k]));
+  }
+  std::vector<WorkspaceSample> solved = evaluate_batch(batch_poses, batch_starts);
+  if (solved.size() != batch.size()) {
+    throw std::runtime_error("ComputeWorkspace: the batch evaluator returned " + std::to_string(solved.size()) +
+                             " samples for " + std::to_string(batch.size()));
+  }
+  for (size_t k = 0; k < batch.size(); ++k) {
+    if (solved[k].state.num_bodies() != run->model.num_bodies() ||
+        solved[k].controls.size() != run->model.num_controls()) {
+      throw std::runtime_error("ComputeWorkspace: the batch evaluator returned a sample of another model");
+    }
+    solved[k].pose = batch_poses[k];
+    solved[k].wave = w;
+    solved[k].start = starts[k];
+    run->result.samples[static_cast<size_t>(batch[k])] = std::move(solved[k]);
+  }
+  run->done += static_cast<long long>(batch.size());
+  if (run->progress) run->progress(run->done, static_cast<long long>(run->poses.size()));
+}
+
+// Wave w's samples solved on the local threads.
+void SolveWaveHere(WaveRun* run, int w, const std::vector<long long>& batch, const std::vector<long long>& starts) {
+  const long long n = static_cast<long long>(run->poses.size());
+  ParallelFor(run->model, run->options, static_cast<long long>(batch.size()), [&](ControlProblem& control, long long k) {
+    const long long i = batch[static_cast<size_t>(k)];
+    const long long s = starts[static_cast<size_t>(k)];
+    WorkspaceSample sample = Reach(control, StartFrom(*run, s), run->poses[static_cast<size_t>(i)]);
+    sample.wave = w;
+    sample.start = s;
+    run->result.samples[static_cast<size_t>(i)] = std::move(sample);
+    if (run->progress) {
+      const std::lock_guard<std::mutex> lock(run->progress_mutex);
+      run->progress(++run->done, n);
+    }
+  });
+}
+
+}  // namespace
+
+WorkspaceResult ComputeWorkspace(const Model& model, const WorkspaceOptions& options,
+                                 const WorkspaceProgress& progress, const WorkspaceBatchEvaluator& evaluate_batch) {
+  const auto clock_start = std::chrono::steady_clock::now();
+  const std::vector<PoseTarget> poses = WorkspacePoses(model, options);  // validates
+  WaveRun run{model, options, poses, progress, HomePose(model), {State::Home(model), model.home_controls()}};
+  run.wave = Waves(options, poses, run.home_pose);
+  const int waves = poses.empty() ? 0 : *std::max_element(run.wave.begin(), run.wave.end()) + 1;
+  std::vector<std::vector<long long>> members(static_cast<size_t>(waves));
+  for (size_t i = 0; i < poses.size(); ++i) members[static_cast<size_t>(run.wave[i])].push_back(static_cast<long long>(i));
+  for (const WorkspaceRange& r : options.ranges) run.result.components.push_back(r.component);
+  run.result.samples.resize(poses.size());
   for (int w = 0; w < waves; ++w) {
     const std::vector<long long>& batch = members[static_cast<size_t>(w)];
     std::vector<long long> starts(batch.size());
-    for (size_t k = 0; k < batch.size(); ++k) starts[k] = start_of(batch[k]);
+    for (size_t k = 0; k < batch.size(); ++k) starts[k] = StartOf(run, batch[k]);
     if (evaluate_batch) {
-      std::vector<PoseTarget> batch_poses;
-      std::vector<WorkspaceStart> batch_starts;
-      for (size_t k = 0; k < batch.size(); ++k) {
-        batch_poses.push_back(poses[static_cast<size_t>(batch[k])]);
-        const long long s = starts[k];
-        batch_starts.push_back(s < 0 ? home
-                                     : WorkspaceStart{result.samples[static_cast<size_t>(s)].state,
-                                                      result.samples[static_cast<size_t>(s)].controls});
-      }
-      std::vector<WorkspaceSample> solved = evaluate_batch(batch_poses, batch_starts);
-      if (solved.size() != batch.size()) {
-        throw std::runtime_error("ComputeWorkspace: the batch evaluator returned " + std::to_string(solved.size()) +
-                                 " samples for " + std::to_string(batch.size()));
-      }
-      for (size_t k = 0; k < batch.size(); ++k) {
-        if (solved[k].state.num_bodies() != model.num_bodies() || solved[k].controls.size() != model.num_controls()) {
-          throw std::runtime_error("ComputeWorkspace: the batch evaluator returned a sample of another model");
-        }
-        solved[k].pose = batch_poses[k];
-        solved[k].wave = w;
-        solved[k].start = starts[k];
-        result.samples[static_cast<size_t>(batch[k])] = std::move(solved[k]);
-      }
-      done += static_cast<long long>(batch.size());
-      if (progress) progress(done, n);
-      for (long long i : batch) {
-        if (result.samples[static_cast<size_t>(i)].reachable) reached.push_back(i);
-      }
-      continue;
+      SolveWaveElsewhere(&run, w, batch, starts, evaluate_batch);
+    } else {
+      SolveWaveHere(&run, w, batch, starts);
     }
-    ParallelFor(model, options, static_cast<long long>(batch.size()), [&](ControlProblem& control, long long k) {
-      const long long i = batch[static_cast<size_t>(k)];
-      const long long s = starts[static_cast<size_t>(k)];
-      WorkspaceStart start = home;
-      if (s >= 0) start = {result.samples[static_cast<size_t>(s)].state, result.samples[static_cast<size_t>(s)].controls};
-      WorkspaceSample sample = Reach(control, start, poses[static_cast<size_t>(i)]);
-      sample.wave = w;
-      sample.start = s;
-      result.samples[static_cast<size_t>(i)] = std::move(sample);
-      if (progress) {
-        const std::lock_guard<std::mutex> lock(progress_mutex);
-        progress(++done, n);
-      }
-    });
     for (long long i : batch) {
-      if (result.samples[static_cast<size_t>(i)].reachable) reached.push_back(i);
+      if (run.result.samples[static_cast<size_t>(i)].reachable) run.reached.push_back(i);
     }
   }
-  for (const WorkspaceSample& s : result.samples) result.reachable += s.reachable;
-  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
-  return result;
+  for (const WorkspaceSample& s : run.result.samples) run.result.reachable += s.reachable;
+  run.result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+  return std::move(run.result);
 }
 
 }  // namespace ccma

@@ -8,15 +8,10 @@
 #include "ccma/internal/format.h"
 
 namespace ccma::cli {
+namespace {
 
-int RunCheck(const std::vector<std::string>& args) {
-  ParseCommandFlags(args, "check");
-  const Model model = LoadModelOrThrow(RequireFlag(FLAGS_model, "model", "check"));
-  const State home = State::Home(model);
-  const MobilityReport mobility = AnalyzeMobility(model, home, model.home_controls());
-  const ForwardOptions defaults;
-  const bool assembled = mobility.energy < defaults.assembly_tolerance;
-
+// The counts and the mobility at home (docs/cli.md, `ccma check`).
+nlohmann::json CheckJson(const Model& model, const MobilityReport& mobility, bool assembled) {
   nlohmann::json out;
   out["model"] = model.name;
   out["bodies"] = model.num_bodies();
@@ -36,21 +31,43 @@ int RunCheck(const std::vector<std::string>& args) {
   out["smallest_singular_value"] = mobility.smallest_singular_value;
   out["energy_at_home"] = mobility.energy;
   nlohmann::json controlled = nlohmann::json::array();
-  int controlled_count = 0;
   for (int c = 0; c < 6; ++c) {
-    if (model.end_effector.controlled[c]) {
-      controlled.push_back(kEndEffectorComponentNames[c]);
-      ++controlled_count;
-    }
+    if (model.end_effector.controlled[c]) controlled.push_back(kEndEffectorComponentNames[c]);
   }
   out["controlled"] = controlled;
+  nlohmann::json motions = nlohmann::json::array();
+  for (const FreeMotion& motion : mobility.free_motions) {
+    nlohmann::json bodies = nlohmann::json::array();
+    for (const int b : motion.bodies) bodies.push_back(model.bodies[b].name);
+    motions.push_back({{"bodies", bodies}});
+  }
+  out["free_motions"] = motions;
+  return out;
+}
 
-  // A mechanism that is not what a user expects is said so on stderr too.
+// "motion 1 moves post2, link2; motion 2 moves link2".
+std::string FreeMotionText(const Model& model, const std::vector<FreeMotion>& motions) {
+  std::string text;
+  for (size_t m = 0; m < motions.size(); ++m) {
+    text += (m ? "; motion " : "motion ") + std::to_string(m + 1) + " moves ";
+    for (size_t i = 0; i < motions[m].bodies.size(); ++i) {
+      text += (i ? ", " : "") + model.bodies[motions[m].bodies[i]].name;
+    }
+  }
+  return text;
+}
+
+// What a user would not expect of the mechanism, one sentence each.
+nlohmann::json CheckWarnings(const Model& model, const MobilityReport& mobility, bool assembled) {
+  const ForwardOptions defaults;
+  int controlled_count = 0;
+  for (int c = 0; c < 6; ++c) controlled_count += model.end_effector.controlled[c] ? 1 : 0;
   nlohmann::json warnings = nlohmann::json::array();
   if (!mobility.rigid_with_controls_fixed) {
     warnings.push_back("not rigid with its controls fixed: " + std::to_string(mobility.dof_with_controls_fixed) +
                        " free motion(s) remain (smallest singular value of dC/ds " +
-                       FormatG(mobility.smallest_singular_value) + "); simulation and control are ill-posed");
+                       FormatG(mobility.smallest_singular_value) + "): " +
+                       FreeMotionText(model, mobility.free_motions) + "; simulation and control are ill-posed");
   }
   if (!assembled) {
     warnings.push_back("not assembled at home: E = " + FormatG(mobility.energy) + " m^2 (above " +
@@ -66,6 +83,20 @@ int RunCheck(const std::vector<std::string>& args) {
                        std::to_string(mobility.end_effector_dof_nonholonomic) + " instantaneous DOF at home, fewer than the " +
                        std::to_string(controlled_count) + " controlled components: most paths are infeasible");
   }
+  return warnings;
+}
+
+}  // namespace
+
+int RunCheck(const std::vector<std::string>& args) {
+  ParseCommandFlags(args, "check");
+  const Model model = LoadModelOrThrow(RequireFlag(FLAGS_model, "model", "check"));
+  const State home = State::Home(model);
+  const MobilityReport mobility = AnalyzeMobility(model, home, model.home_controls());
+  const bool assembled = mobility.energy < ForwardOptions().assembly_tolerance;
+  nlohmann::json out = CheckJson(model, mobility, assembled);
+  // A mechanism that is not what a user expects is said so on stderr too.
+  const nlohmann::json warnings = CheckWarnings(model, mobility, assembled);
   if (!warnings.empty()) {
     out["warnings"] = warnings;
     for (const auto& w : warnings) std::cerr << "ccma check: warning: " << w.get<std::string>() << "\n";

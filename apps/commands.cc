@@ -1,5 +1,6 @@
 #include "apps/commands.h"
 
+#include <algorithm>
 #include <iostream>
 #include <sstream>
 #include <stdexcept>
@@ -21,112 +22,157 @@ std::vector<std::string> Concat(std::vector<std::string> a, const std::vector<st
   return a;
 }
 
+// One function per command (the registry entry), in help order.
+Command CheckCommand() {
+  return {"check", "validate a model: counts, mobility (which bodies move freely), assembly at home",
+          "ccma check --model=FILE",
+          "Validates the model and analyses it at home: counts, constraint rows, the numerical mobility\n"
+          "(rank of dC/ds with the controls fixed, end-effector DOF when the controls move) and whether\n"
+          "the home configuration is assembled. Warns on stderr when the mechanism is not rigid with its\n"
+          "controls fixed (naming the bodies each free motion moves) or not assembled at home.",
+          {"model"}, RunCheck};
+}
+
+Command SimulateCommand() {
+  return {"simulate", "forward problem: assemble the mechanism at given controls",
+          "ccma simulate --model=FILE [--controls=u0,u1,...] [--from=RESULT.json]",
+          "Forward problem: assembles the mechanism for the controls, walking them from the start in\n"
+          "sub-steps (2 cm / 0.02 rad) so that it stays on the assembly branch it starts on. The start is\n"
+          "home, or the configuration and controls in a JSON document printed by `ccma simulate` or\n"
+          "`ccma control` (--from; then --controls defaults to that document's controls, so the result is\n"
+          "reproduced exactly). Warns on stderr when not assembled, not converged or a branch jump.",
+          {"model", "controls", "from"}, RunSimulate};
+}
+
+Command ControlCommand() {
+  return {"control", "find the controls that bring the end-effector to a target pose",
+          "ccma control --model=FILE --target=x,y,z,roll,pitch,yaw [--controls=...] [--method=lm|bfgs]\n"
+          "             [--max_step_m=0.01] [--max_step_rad=0.005] [--lambda=0.5]\n"
+          "             [--singularity_weight=0] [--singularity_threshold=0.1] [--pivot_weight=0]\n"
+          "             [--pivot_threshold=0.001] [--secondary=none|spread|sigma|travel] [--secondary_weight=1]\n"
+          "             [--clearance_m=0.5]",
+          "Kinematic control: finds controls that put the end-effector at the target, walking there in\n"
+          "small end-effector steps from the start controls (home, or --controls). --target takes all six\n"
+          "components, or only the model's controlled ones in the order x y z roll pitch yaw. Warns on\n"
+          "stderr when the target is not reached, and when the returned controls, simulated from home\n"
+          "(`ccma simulate --controls=...`), land on another assembly branch (reproduce the result with\n"
+          "`ccma simulate --from=<this JSON>`). Redundant systems (more effective controls than\n"
+          "controlled components) can keep the smallest singular value of dX/du (--singularity_weight)\n"
+          "and the pivot ratio of dG/ds (--pivot_weight) away from zero, or keep bases apart / travel\n"
+          "little (--secondary), in the null space of the end-effector task: the end-effector error is\n"
+          "unchanged (docs/cli.md).",
+          Concat(Concat({"model", "target", "controls"}, SecondaryFlagNames()), kControlFlags),
+          RunControl};
+}
+
+Command TrajectoryCommand() {
+  return {"trajectory", "follow end-effector waypoints; one CSV row per control step",
+          "ccma trajectory --model=FILE --waypoints=FILE.csv --out=FILE.csv [--controls=...] [control flags]\n"
+          "                [singularity and secondary flags, as ccma control]",
+          "Follows end-effector waypoints (docs/waypoints.md) in small control steps and writes one CSV row\n"
+          "per step (header names carry units). Stops at the first waypoint it cannot reach and warns.\n"
+          "Prints the conditioning along the path (smallest singular value of dX/du, pivot ratio of\n"
+          "dG/ds); the singularity barriers and secondary objectives act at every step as in ccma control.",
+          Concat(Concat({"model", "waypoints", "out", "controls"}, SecondaryFlagNames()), kControlFlags), RunTrajectory};
+}
+
+Command GenerateCommand() {
+  return {"generate", "write a generated model (N-base CCMA or Stewart-Gough platform)",
+          "ccma generate --agents=N [--kind=ccma|stewart_gough] --out=FILE.yaml",
+          "Writes a generated model, validated before it is written: a Stewart-like CCMA with N mobile\n"
+          "bases (the family of 6dof_six_agents), or with --kind=stewart_gough an N-leg UPS platform on\n"
+          "the ground with actuated prismatic legs and no mobile base.",
+          {"agents", "kind", "out"}, RunGenerate};
+}
+
+Command BenchCommand() {
+  return {"bench", "time forward solves and control steps (LM, BFGS) on models",
+          "ccma bench --model=FILE | --all [--models_dir=DIR] | --scaling  [--steps=N] [--seed=1] [--out=DIR]",
+          "The paper's convergence study: seeded paper-size control steps (10 mm + 0.005 rad) solved by LM\n"
+          "and BFGS with implicit-function and finite-difference gradients, the warm forward solve and the\n"
+          "Jacobians, all in one run; medians and p95. --out writes per-step CSVs, tables and plots.",
+          {"model", "all", "models_dir", "scaling", "steps", "seed", "out"}, RunBench};
+}
+
+Command ReplayCommand() {
+  return {"replay", "simulate the closed loop: bases tracking the plan from motion capture",
+          "ccma replay --model=FILE --waypoints=FILE.csv --out=DIR [--noise=default|none] [--seed=1]\n"
+          "            [noise, tracking and control flags]",
+          "The paper's closed loop, simulated: the control solution of every path step is fed to the bases,\n"
+          "each base tracks it with a PI controller from simulated motion capture, and the chain follows\n"
+          "by forward simulation. Writes CSVs, an RMSE table and plots into DIR (SIMULATION, not hardware).\n"
+          "Warns on stderr when the plan did not converge or the chain was torn.",
+          Concat({"model", "waypoints", "out", "noise", "seed", "mocap_noise_m", "mocap_noise_rad", "latency_s",
+                  "slip", "kp", "ki", "controller_hz", "max_wheel_speed"},
+                 kControlFlags),
+          RunReplay};
+}
+
+Command ViewCommand() {
+  return {"view", "write a self-contained 3D HTML view (animated for a trajectory or replay)",
+          "ccma view --model=FILE [--trajectory=FILE.csv | --replay=DIR | --workspace=MAP.csv] --out=FILE.html",
+          "Writes one self-contained HTML page (three.js inlined; it fetches nothing) that shows the\n"
+          "mechanism in 3D: links as capsules between joint points, bases as discs with a heading arrow,\n"
+          "joint markers by type, the end-effector's frame, the ground grid, orbit controls. With a\n"
+          "trajectory CSV (`ccma trajectory`) or a replay directory (`ccma replay`) it is animated (play,\n"
+          "pause, time slider) with the end-effector's commanded and tracked paths and the bases' paths.\n"
+          "Each frame is re-assembled from its controls; frames that are flagged, not assembled or reached\n"
+          "by a branch jump are marked red (and counted on stderr and in the JSON). With a workspace map\n"
+          "(`ccma workspace`, alone) the model at home under the map's end-effector positions as a point\n"
+          "cloud: reachable points coloured by sigma_min [m or rad per control unit], the others grey.",
+          {"model", "trajectory", "replay", "workspace", "out"}, RunView};
+}
+
+Command WorkspaceCommand() {
+  return {"workspace", "map the reachable end-effector poses and their conditioning",
+          "ccma workspace --model=FILE --out=FILE.csv [--x=lo:hi] [--y=..] [--z=..] [--roll=..] [--pitch=..] [--yaw=..]\n"
+          "               [--resolution=11 | --samples=N --seed=1] [--threads=1] [--plot=DIR] [control flags]",
+          "Workspace map: samples end-effector poses over the given ranges of controlled components (a grid\n"
+          "with --resolution points per range, or --samples seeded uniform draws; components not sampled keep\n"
+          "their home value) and reaches each by continuation from the nearest already reached sample (or\n"
+          "home) in small control steps. Writes one CSV row per sample: the controlled components, reachable\n"
+          "(1/0), residual_energy [m^2], sigma_min (smallest singular value of dX/du, 0 when unreachable),\n"
+          "error [m or rad], rcond (pivot ratio of dG/ds), joint limits, u0, u1, ... (empty when unreachable).\n"
+          "Results do not depend on --threads. --plot writes reachability and sigma_min maps over the first\n"
+          "two ranges. Prints {samples, reachable, seconds, ...}; a percentage bar on stderr at a terminal.",
+          Concat({"model", "out", "x", "y", "z", "roll", "pitch", "yaw", "resolution", "samples", "seed", "threads",
+                  "plot"},
+                 kControlFlags),
+          RunWorkspace};
+}
+
+Command DesignCommand() {
+  return {"design", "move joint points or link lengths until every target pose is reachable",
+          "ccma design --model=FILE --targets=FILE.csv --out=NEW.yaml [--vary=JOINT.x|.y|.z|.point,...]\n"
+          "            [--vary_length=ANCHOR:JOINT,...] [--max_change=0.5] [--min_length=0.02]\n"
+          "            [--min_singular_value=0.02] [--target_tolerance=1e-6] [--design_iterations=30] [control flags]",
+          "Adjusts the named geometry (joint points in world home coordinates [m], link lengths [m]) so that\n"
+          "every target pose of the waypoint CSV (docs/waypoints.md; times ignored) is reachable with margin:\n"
+          "control error below --target_tolerance, assembled, joint limits held, smallest singular value of\n"
+          "dX/du at least --min_singular_value (docs/design.md). Writes the model file with only the named\n"
+          "joints' point numbers changed (comments and layout kept) and prints {converged, reached (one\n"
+          "boolean per target, in the written model), reached_before, changed (parameter, old, new [m]),\n"
+          "changed_points, targets, iterations}; a warning on stderr when not converged.",
+          Concat({"model", "targets", "out", "vary", "vary_length", "max_change", "min_length", "min_singular_value",
+                  "target_tolerance", "design_iterations"},
+                 kControlFlags),
+          RunDesign};
+}
+
 }  // namespace
 
 const std::vector<Command>& Commands() {
   static const std::vector<Command> commands = {
-      {"check", "ccma check --model=FILE",
-       "Validates the model and analyses it at home: counts, constraint rows, the numerical mobility\n"
-       "(rank of dC/ds with the controls fixed, end-effector DOF when the controls move) and whether\n"
-       "the home configuration is assembled. Warns on stderr when the mechanism is not rigid with its\n"
-       "controls fixed or not assembled at home.",
-       {"model"}, RunCheck},
-      {"simulate", "ccma simulate --model=FILE [--controls=u0,u1,...] [--from=RESULT.json]",
-       "Forward problem: assembles the mechanism for the controls, walking them from the start in\n"
-       "sub-steps (2 cm / 0.02 rad) so that it stays on the assembly branch it starts on. The start is\n"
-       "home, or the configuration and controls in a JSON document printed by `ccma simulate` or\n"
-       "`ccma control` (--from; then --controls defaults to that document's controls, so the result is\n"
-       "reproduced exactly). Warns on stderr when not assembled, not converged or a branch jump.",
-       {"model", "controls", "from"}, RunSimulate},
-      {"control",
-       "ccma control --model=FILE --target=x,y,z,roll,pitch,yaw [--controls=...] [--method=lm|bfgs]\n"
-       "             [--max_step_m=0.01] [--max_step_rad=0.005] [--lambda=0.5]\n"
-       "             [--singularity_weight=0] [--singularity_threshold=0.1] [--pivot_weight=0]\n"
-       "             [--pivot_threshold=0.001] [--secondary=none|spread|sigma|travel] [--secondary_weight=1]\n"
-       "             [--clearance_m=0.5]",
-       "Kinematic control: finds controls that put the end-effector at the target, walking there in\n"
-       "small end-effector steps from the start controls (home, or --controls). --target takes all six\n"
-       "components, or only the model's controlled ones in the order x y z roll pitch yaw. Warns on\n"
-       "stderr when the target is not reached, and when the returned controls, simulated from home\n"
-       "(`ccma simulate --controls=...`), land on another assembly branch (reproduce the result with\n"
-       "`ccma simulate --from=<this JSON>`). Redundant systems (more effective controls than\n"
-       "controlled components) can keep the smallest singular value of dX/du (--singularity_weight)\n"
-       "and the pivot ratio of dG/ds (--pivot_weight) away from zero, or keep bases apart / travel\n"
-       "little (--secondary), in the null space of the end-effector task: the end-effector error is\n"
-       "unchanged (docs/cli.md).",
-       Concat(Concat({"model", "target", "controls"}, SecondaryFlagNames()), kControlFlags),
-       RunControl},
-      {"trajectory",
-       "ccma trajectory --model=FILE --waypoints=FILE.csv --out=FILE.csv [--controls=...] [control flags]\n"
-       "                [singularity and secondary flags, as ccma control]",
-       "Follows end-effector waypoints (docs/waypoints.md) in small control steps and writes one CSV row\n"
-       "per step (header names carry units). Stops at the first waypoint it cannot reach and warns.\n"
-       "Prints the conditioning along the path (smallest singular value of dX/du, pivot ratio of\n"
-       "dG/ds); the singularity barriers and secondary objectives act at every step as in ccma control.",
-       Concat(Concat({"model", "waypoints", "out", "controls"}, SecondaryFlagNames()), kControlFlags), RunTrajectory},
-      {"generate", "ccma generate --agents=N [--kind=ccma|stewart_gough] --out=FILE.yaml",
-       "Writes a generated model, validated before it is written: a Stewart-like CCMA with N mobile\n"
-       "bases (the family of 6dof_six_agents), or with --kind=stewart_gough an N-leg UPS platform on\n"
-       "the ground with actuated prismatic legs and no mobile base.",
-       {"agents", "kind", "out"}, RunGenerate},
-      {"bench", "ccma bench --model=FILE | --all [--models_dir=DIR] | --scaling  [--steps=N] [--seed=1] [--out=DIR]",
-       "The paper's convergence study: seeded paper-size control steps (10 mm + 0.005 rad) solved by LM\n"
-       "and BFGS with implicit-function and finite-difference gradients, the warm forward solve and the\n"
-       "Jacobians, all in one run; medians and p95. --out writes per-step CSVs, tables and plots.",
-       {"model", "all", "models_dir", "scaling", "steps", "seed", "out"}, RunBench},
-      {"replay",
-       "ccma replay --model=FILE --waypoints=FILE.csv --out=DIR [--noise=default|none] [--seed=1]\n"
-       "            [noise, tracking and control flags]",
-       "The paper's closed loop, simulated: the control solution of every path step is fed to the bases,\n"
-       "each base tracks it with a PI controller from simulated motion capture, and the chain follows\n"
-       "by forward simulation. Writes CSVs, an RMSE table and plots into DIR (SIMULATION, not hardware).\n"
-       "Warns on stderr when the plan did not converge or the chain was torn.",
-       Concat({"model", "waypoints", "out", "noise", "seed", "mocap_noise_m", "mocap_noise_rad",
-               "latency_s", "slip", "kp", "ki", "controller_hz", "max_wheel_speed"},
-              kControlFlags),
-       RunReplay},
-      {"view", "ccma view --model=FILE [--trajectory=FILE.csv | --replay=DIR | --workspace=MAP.csv] --out=FILE.html",
-       "Writes one self-contained HTML page (three.js inlined; it fetches nothing) that shows the\n"
-       "mechanism in 3D: links as capsules between joint points, bases as discs with a heading arrow,\n"
-       "joint markers by type, the end-effector's frame, the ground grid, orbit controls. With a\n"
-       "trajectory CSV (`ccma trajectory`) or a replay directory (`ccma replay`) it is animated (play,\n"
-       "pause, time slider) with the end-effector's commanded and tracked paths and the bases' paths.\n"
-       "Each frame is re-assembled from its controls; frames that are flagged, not assembled or reached\n"
-       "by a branch jump are marked red (and counted on stderr and in the JSON). With a workspace map\n"
-       "(`ccma workspace`, alone) the model at home under the map's end-effector positions as a point\n"
-       "cloud: reachable points coloured by sigma_min [m or rad per control unit], the others grey.",
-       {"model", "trajectory", "replay", "workspace", "out"}, RunView},
-      {"workspace",
-       "ccma workspace --model=FILE --out=FILE.csv [--x=lo:hi] [--y=..] [--z=..] [--roll=..] [--pitch=..] [--yaw=..]\n"
-       "               [--resolution=11 | --samples=N --seed=1] [--threads=1] [--plot=DIR] [control flags]",
-       "Workspace map: samples end-effector poses over the given ranges of controlled components (a grid\n"
-       "with --resolution points per range, or --samples seeded uniform draws; components not sampled keep\n"
-       "their home value) and reaches each by continuation from the nearest already reached sample (or\n"
-       "home) in small control steps. Writes one CSV row per sample: the controlled components, reachable\n"
-       "(1/0), residual_energy [m^2], sigma_min (smallest singular value of dX/du, 0 when unreachable),\n"
-       "error [m or rad], rcond (pivot ratio of dG/ds), joint limits, u0, u1, ... (empty when unreachable).\n"
-       "Results do not depend on --threads. --plot writes reachability and sigma_min maps over the first\n"
-       "two ranges. Prints {samples, reachable, seconds, ...}; a percentage bar on stderr at a terminal.",
-       Concat({"model", "out", "x", "y", "z", "roll", "pitch", "yaw", "resolution", "samples", "seed", "threads",
-               "plot"},
-              kControlFlags),
-       RunWorkspace},
-      {"design",
-       "ccma design --model=FILE --targets=FILE.csv --out=NEW.yaml [--vary=JOINT.x|.y|.z|.point,...]\n"
-       "            [--vary_length=ANCHOR:JOINT,...] [--max_change=0.5] [--min_length=0.02]\n"
-       "            [--min_singular_value=0.02] [--target_tolerance=1e-6] [--design_iterations=30] [control flags]",
-       "Adjusts the named geometry (joint points in world home coordinates [m], link lengths [m]) so that\n"
-       "every target pose of the waypoint CSV (docs/waypoints.md; times ignored) is reachable with margin:\n"
-       "control error below --target_tolerance, assembled, joint limits held, smallest singular value of\n"
-       "dX/du at least --min_singular_value (docs/design.md). Writes the model file with only the named\n"
-       "joints' point numbers changed (comments and layout kept) and prints {converged, reached (one\n"
-       "boolean per target, in the written model), reached_before, changed (parameter, old, new [m]),\n"
-       "changed_points, targets, iterations}; a warning on stderr when not converged.",
-       Concat({"model", "targets", "out", "vary", "vary_length", "max_change", "min_length", "min_singular_value",
-               "target_tolerance", "design_iterations"},
-              kControlFlags),
-       RunDesign},
-  };
+      CheckCommand(),
+      SimulateCommand(),
+      ControlCommand(),
+      TrajectoryCommand(),
+      GenerateCommand(),
+      BenchCommand(),
+      ReplayCommand(),
+      ViewCommand(),
+      WorkspaceCommand(),
+      DesignCommand()};
   return commands;
 }
 
@@ -166,8 +212,13 @@ std::string CommandHelp(const Command& command) {
 
 std::string GlobalHelp() {
   std::ostringstream os;
-  os << "ccma: simulation and kinematic control of Constrained Collaborative Mobile Agents\n\ncommands:\n";
-  for (const Command& command : Commands()) os << "  " << command.synopsis << "\n";
+  size_t width = 0;  // names padded to one column
+  for (const Command& command : Commands()) width = std::max(width, command.name.size());
+  os << "ccma: simulation and kinematic control of Constrained Collaborative Mobile Agents\n\n"
+        "usage: ccma COMMAND --NAME=VALUE ...\n\ncommands:\n";
+  for (const Command& command : Commands()) {
+    os << "  ccma " << command.name << std::string(width + 2 - command.name.size(), ' ') << command.summary << "\n";
+  }
   os << "\n`ccma COMMAND --help` describes a command and its flags (with units and defaults);\n"
         "`ccma --version` prints the version. Results are one JSON document on stdout; diagnostics\n"
         "go to stderr. Exit status: 0 ok, 1 failure, 2 bad usage or bad input. Reference: docs/cli.md.\n";

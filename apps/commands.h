@@ -19,6 +19,7 @@ namespace ccma::cli {
 
 struct Command {
   std::string name;
+  std::string summary;      // what it does, one line of `ccma --help`
   std::string synopsis;     // the usage line(s)
   std::string description;  // what it does and prints
   std::vector<std::string> flags;  // accepted flags, in help order
@@ -31,7 +32,8 @@ const std::vector<Command>& Commands();
 const Command& CommandNamed(const std::string& name);
 // `ccma SUB --help`: synopsis, description and every flag with its unit and default.
 std::string CommandHelp(const Command& command);
-// `ccma --help`: the list of commands.
+// `ccma --help`: one line per command ("  ccma NAME  summary"), then how to
+// get a command's own help.
 std::string GlobalHelp();
 // "ccma 0.1.0 (Release; Ceres 2.1.0, Eigen 3.4.0)".
 std::string VersionLine();

@@ -68,12 +68,8 @@ nlohmann::json TargetsJson(const std::vector<DesignTargetResult>& results, bool 
   return out;
 }
 
-}  // namespace
-
-int RunDesign(const std::vector<std::string>& args) {
-  ParseCommandFlags(args, "design");
-  const std::string model_path = RequireFlag(FLAGS_model, "model", "design");
-  const Model model = LoadModelOrThrow(model_path);
+// The --targets poses (times ignored); UsageError for a bad file or count.
+std::vector<PoseTarget> TargetsFlag() {
   std::vector<Waypoint> waypoints;
   try {
     waypoints = LoadWaypoints(RequireFlag(FLAGS_targets, "targets", "design"));
@@ -84,8 +80,13 @@ int RunDesign(const std::vector<std::string>& args) {
     throw UsageError("ccma design: --targets: between 1 and " + std::to_string(kMaxTargets) + " targets needed, got " +
                      std::to_string(waypoints.size()));
   }
-  const std::string out_path = RequireFlag(FLAGS_out, "out", "design");
+  std::vector<PoseTarget> targets;
+  for (const Waypoint& w : waypoints) targets.push_back({w.position, w.rpy});
+  return targets;
+}
 
+// What --vary and --vary_length name; UsageError when nothing or a bad item.
+DesignParameters ParametersFromFlags(const Model& model) {
   DesignParameters params;
   std::string why;
   for (const std::string& item : SplitList(FLAGS_vary)) {
@@ -95,7 +96,10 @@ int RunDesign(const std::vector<std::string>& args) {
     if (!AddLinkLength(model, item, &params, &why)) throw UsageError("--vary_length: " + why);
   }
   if (params.size() == 0) throw UsageError("ccma design: name what to vary with --vary and/or --vary_length");
+  return params;
+}
 
+DesignOptions DesignOptionsFromFlags() {
   DesignOptions options;
   options.control = ControlOptionsFromFlags();
   options.max_change = FLAGS_max_change;
@@ -103,10 +107,49 @@ int RunDesign(const std::vector<std::string>& args) {
   options.min_singular_value = FLAGS_min_singular_value;
   options.target_tolerance = FLAGS_target_tolerance;
   options.max_iterations = FLAGS_design_iterations;
+  std::string why;
   if (!options.IsValid(&why)) throw UsageError("ccma design: " + why);
+  return options;
+}
 
-  std::vector<PoseTarget> targets;
-  for (const Waypoint& w : waypoints) targets.push_back({w.position, w.rpy});
+// Every target reached in `check`, with sigma_min at least the threshold.
+bool ConvergedIn(const std::vector<DesignTargetResult>& check, const DesignOptions& options) {
+  bool all_reached = true;
+  double min_sigma = std::numeric_limits<double>::infinity();
+  for (const DesignTargetResult& r : check) {
+    all_reached = all_reached && r.reached;
+    min_sigma = std::min(min_sigma, r.min_singular_value);
+  }
+  return all_reached && min_sigma >= options.min_singular_value;
+}
+
+// "changed" (parameter, old, new) and "changed_points" (joint, old and new world point).
+void AddChanges(const Model& model, const Model& designed, const DesignParameters& params,
+                const DesignResult& result, nlohmann::json* out) {
+  nlohmann::json changed = nlohmann::json::array();
+  for (int k = 0; k < params.size(); ++k) {
+    changed.push_back({{"parameter", params.list[k].label}, {"old", result.p0[k]}, {"new", result.p[k]}, {"unit", "m"}});
+  }
+  (*out)["changed"] = changed;
+  nlohmann::json points = nlohmann::json::array();
+  for (int j = 0; j < static_cast<int>(model.joints.size()); ++j) {
+    const Eigen::Vector3d a = JointPointWorld(model, j), b = JointPointWorld(designed, j);
+    if (a != b) points.push_back({{"joint", model.joints[j].name}, {"old_point", ToJson(Eigen::VectorXd(a))},
+                                  {"new_point", ToJson(Eigen::VectorXd(b))}});
+  }
+  (*out)["changed_points"] = points;
+}
+
+}  // namespace
+
+int RunDesign(const std::vector<std::string>& args) {
+  ParseCommandFlags(args, "design");
+  const std::string model_path = RequireFlag(FLAGS_model, "model", "design");
+  const Model model = LoadModelOrThrow(model_path);
+  const std::vector<PoseTarget> targets = TargetsFlag();
+  const std::string out_path = RequireFlag(FLAGS_out, "out", "design");
+  const DesignParameters params = ParametersFromFlags(model);
+  const DesignOptions options = DesignOptionsFromFlags();
 
   const DesignResult result = Design(model, params, targets, options);
   const Model designed = ApplyParameters(model, params, result.p);
@@ -114,13 +157,7 @@ int RunDesign(const std::vector<std::string>& args) {
   // Reachability in the model as written (loaded back from the new text).
   const Model written = LoadModelFromString(text, out_path);
   const std::vector<DesignTargetResult> final_check = EvaluateTargets(written, targets, options);
-  bool all_reached = true;
-  double min_sigma = std::numeric_limits<double>::infinity();
-  for (const DesignTargetResult& r : final_check) {
-    all_reached = all_reached && r.reached;
-    min_sigma = std::min(min_sigma, r.min_singular_value);
-  }
-  const bool converged = all_reached && min_sigma >= options.min_singular_value;
+  const bool converged = ConvergedIn(final_check, options);
 
   OutputFile file(out_path, "out");
   file.stream() << text;
@@ -134,18 +171,7 @@ int RunDesign(const std::vector<std::string>& args) {
   out["reached_before"] = TargetsJson(result.initial, true);
   out["targets"] = TargetsJson(final_check, false);
   out["iterations"] = result.iterations;
-  nlohmann::json changed = nlohmann::json::array();
-  for (int k = 0; k < params.size(); ++k) {
-    changed.push_back({{"parameter", params.list[k].label}, {"old", result.p0[k]}, {"new", result.p[k]}, {"unit", "m"}});
-  }
-  out["changed"] = changed;
-  nlohmann::json points = nlohmann::json::array();
-  for (int j = 0; j < static_cast<int>(model.joints.size()); ++j) {
-    const Eigen::Vector3d a = JointPointWorld(model, j), b = JointPointWorld(designed, j);
-    if (a != b) points.push_back({{"joint", model.joints[j].name}, {"old_point", ToJson(Eigen::VectorXd(a))},
-                                  {"new_point", ToJson(Eigen::VectorXd(b))}});
-  }
-  out["changed_points"] = points;
+  AddChanges(model, designed, params, result, &out);
   if (!converged) {
     const std::string message = result.message.empty() ? "not every target is reached with margin" : result.message;
     out["warning"] = message;

@@ -96,96 +96,8 @@ void WriteCsv(const Model& model, const WorkspaceResult& result, std::ostream& c
   }
 }
 
-// DIR/workspace_slice.dat (first two sampled components, reachable,
-// sigma_min; a grid's other sampled components at the value nearest home)
-// and reachability.png, sigma_min.png. Returns the files written.
-std::vector<std::string> WritePlots(const Model& model, const WorkspaceOptions& options,
-                                    const WorkspaceResult& result, const std::string& dir, std::string* warning) {
-  std::vector<std::string> files;
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (!std::filesystem::is_directory(dir)) throw UsageError("--plot: cannot create folder '" + dir + "'");
-  const int a = options.ranges[0].component;
-  const int b = options.ranges.size() > 1 ? options.ranges[1].component : -1;
-  const EndEffectorPose home = ComputeEndEffectorPose(model, State::Home(model));
-  auto value = [](const PoseTarget& p, int c) { return c < 3 ? p.position[c] : p.rpy[c - 3]; };
-  // Other sampled components: keep the samples whose value is the one nearest home.
-  std::vector<double> keep(options.ranges.size(), 0);
-  for (size_t d = 2; d < options.ranges.size(); ++d) {
-    const int c = options.ranges[d].component;
-    const double h = c < 3 ? home.position[c] : home.rpy[c - 3];
-    double best = std::numeric_limits<double>::infinity();
-    for (const WorkspaceSample& s : result.samples) {
-      if (std::abs(value(s.pose, c) - h) < std::abs(best - h)) best = value(s.pose, c);
-    }
-    keep[d] = best;
-  }
-  {
-    std::ofstream dat(dir + "/workspace_slice.dat");
-    dat << std::setprecision(17);
-    for (const WorkspaceSample& s : result.samples) {
-      bool in_slice = true;
-      for (size_t d = 2; d < options.ranges.size(); ++d) {
-        in_slice = in_slice && value(s.pose, options.ranges[d].component) == keep[d];
-      }
-      if (!in_slice && options.random_samples == 0) continue;
-      dat << value(s.pose, a) << " " << (b >= 0 ? value(s.pose, b) : 0.0) << " " << (s.reachable ? 1 : 0) << " "
-          << (s.reachable ? s.sigma_min : 0.0) << "\n";
-    }
-    if (!dat) throw std::runtime_error("--plot: cannot write " + dir + "/workspace_slice.dat");
-  }
-  files.push_back(dir + "/workspace_slice.dat");
-  if (FindGnuplot().empty()) {
-    *warning = "gnuplot not found: wrote the data of the maps only";
-    return files;
-  }
-  auto unit = [](int c) { return c < 3 ? " [m]" : " [rad]"; };
-  const std::string xl = std::string(kEndEffectorComponentNames[static_cast<size_t>(a)]) + unit(a);
-  const std::string yl = b >= 0 ? std::string(kEndEffectorComponentNames[static_cast<size_t>(b)]) + unit(b) : "-";
-  const std::string title = "workspace of " + model.name;
-  // Unreachable samples are never drawn as a colour of the scale: on the
-  // sigma_min map a 0 would read as "reachable but singular". Grey crosses
-  // and the red-to-blue ramp, as in the 3D viewer (viewer/js/src/workspace.js).
-  const std::string unreachable =
-      "'' using 1:($3 > 0.5 ? 1/0 : $2) with points pt 2 ps 1.2 lc rgb '#8b929c' title 'unreachable'";
-  for (const std::string& what : {std::string("reachability"), std::string("sigma_min")}) {
-    std::ostringstream script;
-    script << TerminalCommand("png", 900, 700) << "\nset output '" << what << ".png'\n"
-           << "set title " << GnuplotQuote(title + ": " + (what == "sigma_min"
-                                                               ? "smallest singular value of dX/du"
-                                                               : "reachable or not"))
-           << "\nset xlabel " << GnuplotQuote(xl) << "\nset ylabel " << GnuplotQuote(yl) << "\n"
-           << "set size ratio -1\nset key below center horizontal\n";
-    if (what == "reachability") {
-      script << "plot 'workspace_slice.dat' using 1:($3 > 0.5 ? $2 : 1/0) with points pt 5 ps 1.5 "
-                "lc rgb '#43a047' title 'reachable', "
-             << unreachable << "\n";
-    } else {
-      script << "set palette defined (0 '#c62828', 1 '#ef6c00', 2 '#d4a20a', 3 '#43a047', 4 '#1e88e5')\n"
-                "set cbrange [0:*]\n"
-                "set cblabel 'sigma_min [m or rad per control unit] (0: singular)'\n"
-                "plot 'workspace_slice.dat' using 1:2:($3 > 0.5 ? $4 : 1/0) with points pt 5 ps 1.5 palette "
-                "notitle, "
-             << unreachable << "\n";
-    }
-    const std::string error = RunGnuplot(script.str(), dir);
-    if (!error.empty()) {
-      *warning = error;
-      return files;
-    }
-    files.push_back(dir + "/" + what + ".png");
-  }
-  return files;
-}
-
-}  // namespace
-
-int RunWorkspace(const std::vector<std::string>& args) {
-  ParseCommandFlags(args, "workspace");
-  const std::string model_path = RequireFlag(FLAGS_model, "model", "workspace");
-  const std::string out_path = RequireFlag(FLAGS_out, "out", "workspace");
-  const Model model = LoadModelOrThrow(model_path);
-
+// The sampling options from the flags, checked against the model.
+WorkspaceOptions OptionsFromFlags(const Model& model) {
   WorkspaceOptions options;
   for (int c = 0; c < 6; ++c) {
     const std::string& text = *RangeFlag(c);
@@ -217,17 +129,13 @@ int RunWorkspace(const std::vector<std::string>& args) {
   options.control = ControlOptionsFromFlags();
   std::string why;
   if (!options.IsValid(model, &why)) throw UsageError("ccma workspace: " + why);
+  return options;
+}
 
-  if (!FLAGS_plot.empty()) {
-    std::error_code ec;
-    std::filesystem::create_directories(FLAGS_plot, ec);
-    if (!std::filesystem::is_directory(FLAGS_plot)) throw UsageError("--plot: cannot create folder '" + FLAGS_plot + "'");
-  }
-  OutputFile file(out_path, "out");  // checked before the long run
-  // Progress on stderr only for a person watching (a terminal).
+// A percentage bar on stderr, only for a person watching (a terminal).
+WorkspaceProgress TerminalProgress() {
   const bool show = isatty(STDERR_FILENO) != 0;
-  int last_percent = -1;
-  const WorkspaceResult result = ComputeWorkspace(model, options, [&](long long done, long long total) {
+  return [show, last_percent = -1](long long done, long long total) mutable {
     if (!show) return;
     const int percent = static_cast<int>(100 * done / std::max<long long>(total, 1));
     if (percent == last_percent) return;
@@ -235,10 +143,11 @@ int RunWorkspace(const std::vector<std::string>& args) {
     const int bar = percent / 4;
     std::cerr << "\r[" << std::string(static_cast<size_t>(bar), '#') << std::string(static_cast<size_t>(25 - bar), ' ')
               << "] " << percent << "% (" << done << "/" << total << ")" << (done == total ? "\n" : "") << std::flush;
-  });
-  WriteCsv(model, result, file.stream());
-  file.Commit();
+  };
+}
 
+nlohmann::json SummaryJson(const Model& model, const WorkspaceOptions& options, const WorkspaceResult& result,
+                           const std::string& out_path) {
   nlohmann::json out;
   out["model"] = model.name;
   out["out"] = out_path;
@@ -250,9 +159,31 @@ int RunWorkspace(const std::vector<std::string>& args) {
   nlohmann::json components = nlohmann::json::array();
   for (int c : result.components) components.push_back(kEndEffectorComponentNames[static_cast<size_t>(c)]);
   out["components"] = components;
+  return out;
+}
+
+}  // namespace
+
+int RunWorkspace(const std::vector<std::string>& args) {
+  ParseCommandFlags(args, "workspace");
+  const std::string model_path = RequireFlag(FLAGS_model, "model", "workspace");
+  const std::string out_path = RequireFlag(FLAGS_out, "out", "workspace");
+  const Model model = LoadModelOrThrow(model_path);
+  const WorkspaceOptions options = OptionsFromFlags(model);
+  if (!FLAGS_plot.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(FLAGS_plot, ec);
+    if (!std::filesystem::is_directory(FLAGS_plot)) throw UsageError("--plot: cannot create folder '" + FLAGS_plot + "'");
+  }
+  OutputFile file(out_path, "out");  // checked before the long run
+  const WorkspaceResult result = ComputeWorkspace(model, options, TerminalProgress());
+  WriteCsv(model, result, file.stream());
+  file.Commit();
+
+  nlohmann::json out = SummaryJson(model, options, result, out_path);
   if (!FLAGS_plot.empty()) {
     std::string warning;
-    out["plots"] = WritePlots(model, options, result, FLAGS_plot, &warning);
+    out["plots"] = PlotWorkspaceMaps(model, options, result, FLAGS_plot, &warning);
     if (!warning.empty()) {
       out["plot_warning"] = warning;
       std::cerr << "ccma workspace: warning: " << warning << "\n";

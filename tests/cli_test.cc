@@ -64,6 +64,30 @@ TEST(Cli, CheckPrintsTheContractKeys) {
   EXPECT_EQ(j["assembled_at_home"], true);
 }
 
+// `check` names the bodies each free motion moves (JSON and stderr). Leg 2
+// of 4dof_reduced without its joint to ee hangs from its base: its post
+// spins carrying its link, and the link swings alone.
+TEST(Cli, CheckNamesTheBodiesOfEachFreeMotion) {
+  std::string text = Slurp(std::string(CCMA_MODELS_DIR) + "/4dof_reduced.yaml");
+  const size_t at = text.find("  - {type: revolute, between: [link2, ee]");
+  ASSERT_NE(at, std::string::npos);
+  text.erase(at, text.find('\n', at) + 1 - at);
+  const ToolRun r = Ccma("check --model=" + WriteFile("loose_leg.yaml", text));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["rigid_with_controls_fixed"], false);
+  EXPECT_EQ(j["dof_with_controls_fixed"], 2);
+  EXPECT_EQ(j["free_motions"], nlohmann::json::parse(R"([{"bodies": ["post2", "link2"]}, {"bodies": ["link2"]}])"));
+  EXPECT_NE(r.err.find("ccma check: warning: not rigid with its controls fixed: 2 free motion(s) remain"),
+            std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("): motion 1 moves post2, link2; motion 2 moves link2; simulation and control are ill-posed"),
+            std::string::npos) << r.err;
+  // A rigid mechanism: the field is there, empty.
+  const ToolRun rigid = Ccma("check " + Model("4dof_reduced"));
+  ASSERT_EQ(rigid.status, 0) << rigid.err;
+  EXPECT_EQ(nlohmann::json::parse(rigid.out)["free_motions"], nlohmann::json::array());
+}
+
 TEST(Cli, SimulatePrintsTheContractKeys) {
   const ToolRun r = Ccma("simulate " + Model("6dof_six_agents"));
   ASSERT_EQ(r.status, 0) << r.err;
@@ -290,6 +314,35 @@ TEST(Cli, BinaryGarbageIsABadModel) {
   EXPECT_EQ(r.status, 2);
   EXPECT_EQ(r.out, "");
   EXPECT_NE(r.err.find("garbage.yaml"), std::string::npos) << r.err;
+}
+
+// `ccma --help`: one line per command, "  ccma NAME  what it does", every
+// command of the tool exactly once, each a real command.
+TEST(Cli, GlobalHelpHasOneLinePerCommand) {
+  const ToolRun r = Ccma("--help");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::vector<std::string> listed;
+  std::istringstream lines(r.out);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("  ccma ", 0) != 0) continue;
+    std::istringstream words(line.substr(7));
+    std::string name, first_word;
+    words >> name >> first_word;
+    EXPECT_FALSE(first_word.empty()) << "no description: " << line;
+    EXPECT_LE(line.size(), 100u) << line;
+    listed.push_back(name);
+  }
+  EXPECT_EQ(listed, (std::vector<std::string>{"check", "simulate", "control", "trajectory", "generate", "bench",
+                                              "replay", "view", "workspace", "design"}))
+      << r.out;
+  for (const std::string& name : listed) {
+    const ToolRun help = Ccma(name + " --help");
+    EXPECT_EQ(help.status, 0) << name;
+    EXPECT_EQ(help.out.rfind("usage: ccma " + name, 0), 0u) << name;
+  }
+  const size_t check = r.out.find("\n  ccma check ");
+  ASSERT_NE(check, std::string::npos);
+  EXPECT_NE(r.out.substr(check, r.out.find('\n', check + 1) - check).find("validate a model"), std::string::npos);
 }
 
 TEST(Cli, HelpGoesToStdout) {

@@ -248,6 +248,77 @@ TEST(ReplayPlots, TheScriptMarksFailuresAndShowsControlledComponentsOnly) {
             std::string::npos);
 }
 
+// Bases starting at `starts` (x, y [m]), each moving straight by `travel`
+// over 101 samples; tracked = set.
+ReplayResult StraightPaths(const std::vector<Eigen::Vector2d>& starts, const Eigen::Vector2d& travel) {
+  ReplayResult r;
+  for (int i = 0; i <= 100; ++i) {
+    ReplaySample s;
+    s.time = 0.05 * i;
+    s.commanded = s.tracked = Eigen::VectorXd::Zero(6);
+    s.set_controls.resize(3 * static_cast<int>(starts.size()));
+    for (size_t k = 0; k < starts.size(); ++k) {
+      const Eigen::Vector2d p = starts[k] + travel * (i / 100.0);
+      s.set_controls.segment<3>(3 * static_cast<int>(k)) << p.x(), p.y(), 0;
+    }
+    s.true_controls = s.set_controls;
+    s.residual_energy = 1e-20;
+    r.samples.push_back(s);
+  }
+  r.duration_s = 5;
+  return r;
+}
+
+Model NamedBases(int n) {
+  Model m;
+  m.name = "m";
+  for (int k = 0; k < n; ++k) m.mobile_bases.push_back(MobileBase{});
+  for (int k = 0; k < n; ++k) m.mobile_bases[k].name = "b" + std::to_string(k);
+  m.end_effector.controlled = {true, true, true, false, false, true};
+  return m;
+}
+
+// The script of bases_xy.png in a replay's script.
+std::string BasesPng(const std::string& script) {
+  const size_t begin = script.find("set output 'bases_xy.png'");
+  return begin == std::string::npos ? "" : script.substr(begin, script.find("set output\n", begin) - begin);
+}
+
+// The bases' plot fits its ranges to the paths (equal axes, a margin); a few
+// bases far apart get one window each at one scale, so centimetre paths show.
+TEST(ReplayPlots, TheBasesPlotFitsThePaths) {
+  // One base, 1 cm along x at y = 0.5: the path and 5 mm (kMinWindow / 2) around it.
+  const std::string one = BasesPng(ReplayPlotScript(NamedBases(1), StraightPaths({{0, 0.5}}, {0.01, 0}), "p.csv"));
+  EXPECT_NE(one.find("set size ratio -1\n"), std::string::npos);
+  EXPECT_NE(one.find("set xrange [-0.005:0.015]\nset yrange [0.495:0.505]\n"), std::string::npos) << one;
+  EXPECT_EQ(one.find("set multiplot"), std::string::npos);
+  // Three bases 1 m apart, each 2 cm along x: the layout (margin 5 % of its
+  // 2.02 m; the height widened to a third of the width, no sliver), then a 3 cm window (2 cm + 20 %, rounded up) around each path.
+  const std::string three =
+      BasesPng(ReplayPlotScript(NamedBases(3), StraightPaths({{0, 0}, {1, 0}, {2, 0}}, {0.02, 0}), "p.csv"));
+  EXPECT_NE(three.find("set multiplot layout 2,2"), std::string::npos) << three;
+  EXPECT_NE(three.find("the 3 cm windows of the panels"), std::string::npos);
+  EXPECT_NE(three.find("set xrange [-0.101:2.121]\nset yrange [-0.37033333"), std::string::npos) << three;
+  for (const char* window : {"set title 'b0'\nset xrange [-0.005:0.025]\nset yrange [-0.015:0.015]\n",
+                             "set title 'b1'\nset xrange [0.995:1.025]\nset yrange [-0.015:0.015]\n",
+                             "set title 'b2'\nset xrange [1.995:2.025]\nset yrange [-0.015:0.015]\n"}) {
+    EXPECT_NE(three.find(window), std::string::npos) << window;
+  }
+  // Paths as large as the layout: one frame.
+  const std::string large =
+      BasesPng(ReplayPlotScript(NamedBases(3), StraightPaths({{0, 0}, {1, 0}, {2, 0}}, {0, 0.8}), "p.csv"));
+  EXPECT_NE(large.find("set size ratio -1\n"), std::string::npos);
+  EXPECT_EQ(large.find("set multiplot"), std::string::npos);
+  SKIP_WITHOUT_GNUPLOT();
+  const fs::path dir = FreshDir("zoomed");
+  const ReplayResult r = StraightPaths({{0, 0}, {1, 0}, {2, 0}}, {0.02, 0});
+  WriteReplayCsv(dir.string(), NamedBases(3), r);
+  std::string warning;
+  EXPECT_EQ(PlotReplay(dir.string(), NamedBases(3), r, "p.csv", &warning).size(), 4u);
+  EXPECT_EQ(warning, "");
+  EXPECT_GT(fs::file_size(dir / "bases_xy.png"), 1000u);
+}
+
 TEST(ReplayReport, ComponentsFollowTheModel) {
   EXPECT_EQ(ReportedComponents(HostileModel(3, true)), (std::vector<int>{kY, kZ, kX, kYaw}));
   EXPECT_EQ(ReportedComponents(HostileModel(3, false)), (std::vector<int>{kX, kY, kZ, kRoll, kPitch, kYaw}));

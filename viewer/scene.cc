@@ -151,6 +151,21 @@ json Poses(const State& s) {
   return poses;
 }
 
+// The scene as JSON text safe inside <script>: no "</script>", "<!--" or
+// entity can form (<, > and & written as JSON unicode escapes, read back unchanged).
+std::string ScriptSafeJson(const json& scene) {
+  const std::string text = scene.dump(-1, ' ', false, json::error_handler_t::replace);
+  std::string out;
+  out.reserve(text.size());
+  for (char c : text) {
+    if (c == '<') out += "\\u003c";
+    else if (c == '>') out += "\\u003e";
+    else if (c == '&') out += "\\u0026";
+    else out += c;
+  }
+  return out;
+}
+
 }  // namespace
 
 double FlagEnergyFor(const std::string& source) {
@@ -208,17 +223,7 @@ std::string BuildScene(const Model& model, const std::vector<ViewFrame>& frames,
     s.workspace_reachable = workspace->reachable_count;
   }
   if (summary != nullptr) *summary = s;
-  // Safe inside <script>: no "</script>", "<!--" or entity can form.
-  std::string text = scene.dump(-1, ' ', false, json::error_handler_t::replace);
-  std::string out;
-  out.reserve(text.size());
-  for (char c : text) {
-    if (c == '<') out += "\\u003c";
-    else if (c == '>') out += "\\u003e";
-    else if (c == '&') out += "\\u0026";
-    else out += c;
-  }
-  return out;
+  return ScriptSafeJson(scene);
 }
 
 }  // namespace ccma::viewer

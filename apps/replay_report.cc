@@ -1,0 +1,143 @@
+// What `ccma replay` reports besides its plots (apps/replay_report.h): the
+// components shown, the RMSE table and the CSV files.
+#include "apps/replay_report.h"
+
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+#include "apps/gnuplot.h"
+#include "ccma/internal/format.h"
+#include "ccma/rotation.h"
+
+namespace ccma::cli {
+namespace {
+
+std::string G(double v) { return FormatG(v); }  // %g, for every number in a message or script
+
+std::string Fixed(double v, int digits) {
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(digits) << v;
+  return os.str();
+}
+
+}  // namespace
+
+std::vector<int> ReportedComponents(const Model& model) {
+  const auto& c = model.end_effector.controlled;
+  if (c[kX] && c[kY] && c[kZ] && c[kYaw] && !c[kRoll] && !c[kPitch]) return {kY, kZ, kX, kYaw};
+  std::vector<int> out;
+  for (int k = 0; k < 6; ++k) {
+    if (c[k]) out.push_back(k);
+  }
+  return out;
+}
+
+std::string ComponentName(int component) {
+  static const char* kNames[] = {"x", "y", "z", "roll", "pitch", "yaw"};
+  return kNames[component];
+}
+
+bool IsAngle(int component) { return component >= 3; }
+
+bool IsPaperModel(const Model& model) { return model.name == "4dof_reduced" || model.name == "4dof_complete"; }
+
+const std::vector<PaperRow>& PaperHardwareRmse() {
+  static const std::vector<PaperRow> kRows = {{"reduced scheme, sequential (Fig. 7)", 18, 12, 17, 0.09},
+                                              {"reduced scheme, combined (Fig. 10)", 18, 22, 24, 0.13},
+                                              {"complete scheme, combined", 10, 17, 13, 0.10}};
+  return kRows;
+}
+
+std::vector<std::string> ReplayFailures(const ReplayResult& r) {
+  std::vector<std::string> out;
+  if (!r.converged) {
+    out.push_back("not converged: the control solution did not reach every waypoint (the replay stops at t = " +
+                  G(r.failed_step_time) + " s): " + OneLine(r.warning));
+  }
+  if (r.torn) {
+    out.push_back("chain torn: the chain could not follow the bases in " + std::to_string(r.torn_samples) + " of " +
+                  std::to_string(r.samples.size()) + " samples (residual energy above " +
+                  G(r.torn_residual_energy) + " m^2), first at t = " + G(r.first_torn_time) +
+                  " s, worst E = " + G(r.max_residual_energy) + " m^2");
+  }
+  if (r.samples.empty()) out.push_back("no samples: nothing was simulated");
+  return out;
+}
+
+std::string ReplayRmseTable(const Model& model, const ReplayResult& r, const std::string& setting) {
+  std::ostringstream table;
+  if (!r.trustworthy()) {
+    std::string reasons;
+    auto add = [&](const std::string& reason) { reasons += (reasons.empty() ? "" : "; ") + reason; };
+    if (!r.converged) add("the control solution did not reach every waypoint (stops at t = " + G(r.failed_step_time) + " s)");
+    if (r.torn) add("the chain was torn in " + std::to_string(r.torn_samples) + " samples");
+    if (r.samples.empty()) add("no samples");
+    table << "WARNING: NOT TRUSTWORTHY, " << reasons << ": the RMSE below does not measure tracking.\n\n";
+  }
+  const std::vector<int> components = ReportedComponents(model);
+  table << "RMSE of the end-effector, tracked against commanded. ccma: SIMULATION of " << setting << "."
+        << (IsPaperModel(model) ? " Paper: hardware prototypes." : "") << "\n\n| source |";
+  for (const int c : components) table << " " << ComponentName(c) << (IsAngle(c) ? " [rad] |" : " [mm] |");
+  table << "\n|---|";
+  for (size_t i = 0; i < components.size(); ++i) table << "---|";
+  table << "\n| ccma simulation" << (r.trustworthy() ? "" : " (FAILED)") << " |";
+  for (const int c : components) table << " " << (IsAngle(c) ? Fixed(r.rmse[c], 5) : Fixed(1000 * r.rmse[c], 3)) << " |";
+  table << "\n";
+  if (IsPaperModel(model)) {
+    for (const PaperRow& row : PaperHardwareRmse()) {
+      table << "| paper, " << row.experiment << " |";
+      for (const int c : components) {
+        table << " "
+              << (c == kX ? G(row.x_mm) : c == kY ? G(row.y_mm) : c == kZ ? G(row.z_mm) : c == kYaw ? G(row.yaw_rad) : "-")
+              << " |";
+      }
+      table << "\n";
+    }
+  }
+  return table.str();
+}
+
+void WriteReplayCsv(const std::string& dir, const Model& model, const ReplayResult& r) {
+  static const char* kUnits[] = {"m", "m", "m", "rad", "rad", "rad"};
+  std::ofstream ee(dir + "/end_effector.csv");
+  ee << "# SIMULATION (ccma replay): commanded = control solution, tracked = chain on the driven bases; "
+        "err = tracked - commanded; torn = 1 where the chain could not follow the bases\ntime_s";
+  for (int c = 0; c < 6; ++c) ee << ",cmd_" << ComponentName(c) << "_" << kUnits[c];
+  for (int c = 0; c < 6; ++c) ee << "," << ComponentName(c) << "_" << kUnits[c];
+  for (int c = 0; c < 6; ++c) ee << ",err_" << ComponentName(c) << (IsAngle(c) ? "_rad" : "_mm");
+  ee << ",residual_energy_m2,torn\n" << std::setprecision(12);
+  std::ofstream bases(dir + "/bases.csv");
+  bases << "# SIMULATION (ccma replay): set and true poses of every base (k = index in the model:";
+  for (int k = 0; k < model.num_bases(); ++k) bases << " " << k << " = " << OneLine(model.mobile_bases[k].name);
+  bases << ")\ntime_s";
+  for (int k = 0; k < model.num_bases(); ++k) {
+    bases << ",set" << k << "_x_m,set" << k << "_y_m,set" << k << "_theta_rad,base" << k << "_x_m,base" << k
+          << "_y_m,base" << k << "_theta_rad";
+  }
+  // Actuated joints hold their set-points (execution/replay.h): one column each.
+  for (const Joint& joint : model.joints) {
+    if (joint.actuated) bases << ",u_" << joint.name << (joint.type == JointType::kRevolute ? "_rad" : "_m");
+  }
+  bases << ",torn\n" << std::setprecision(12);
+  for (const ReplaySample& s : r.samples) {
+    ee << s.time;
+    for (int c = 0; c < 6; ++c) ee << "," << s.commanded[c];
+    for (int c = 0; c < 6; ++c) ee << "," << s.tracked[c];
+    for (int c = 0; c < 6; ++c) {
+      ee << "," << (IsAngle(c) ? WrapAngle(s.tracked[c] - s.commanded[c]) : 1000 * (s.tracked[c] - s.commanded[c]));
+    }
+    ee << "," << s.residual_energy << "," << (s.torn ? 1 : 0) << "\n";
+    bases << s.time;
+    for (int k = 0; k < model.num_bases(); ++k) {
+      for (int c = 0; c < 3; ++c) bases << "," << s.set_controls[3 * k + c];
+      for (int c = 0; c < 3; ++c) bases << "," << s.true_controls[3 * k + c];
+    }
+    for (const Joint& joint : model.joints) {
+      if (joint.actuated) bases << "," << s.true_controls[joint.control];
+    }
+    bases << "," << (s.torn ? 1 : 0) << "\n";
+  }
+}
+
+}  // namespace ccma::cli

@@ -1,0 +1,48 @@
+// What `ccma replay --out=DIR` reports besides its plots: the end-effector
+// components it shows, the RMSE table (with the paper's hardware rows) and
+// the CSV files the plots read.
+#ifndef CCMA_APPS_REPLAY_REPORT_H_
+#define CCMA_APPS_REPLAY_REPORT_H_
+
+#include <string>
+#include <vector>
+
+#include "ccma/model.h"
+#include "execution/replay.h"
+
+namespace ccma::cli {
+
+// The end-effector components a replay reports, in display order: the
+// paper's y, z, x, yaw for a model controlling exactly x, y, z and yaw;
+// otherwise x, y, z, roll, pitch, yaw, those the model controls.
+std::vector<int> ReportedComponents(const Model& model);
+// "x", "y", ..., and their display units: positions in mm, angles in rad.
+std::string ComponentName(int component);
+bool IsAngle(int component);
+// The paper's hardware RMSE rows apply: the model is 4dof_reduced or 4dof_complete.
+bool IsPaperModel(const Model& model);
+
+struct PaperRow {
+  const char* experiment;
+  double y_mm, z_mm, x_mm, yaw_rad;
+};
+// The paper's hardware RMSE (Section IV).
+const std::vector<PaperRow>& PaperHardwareRmse();
+
+// One line per way the replay failed (plan not converged, chain torn, no
+// samples), each starting with what failed; empty when trustworthy.
+std::vector<std::string> ReplayFailures(const ReplayResult& result);
+
+// The RMSE table (markdown): "WARNING: ..." lines at its top when the result
+// is not trustworthy, then the reported components of the simulation, and the
+// paper's hardware rows for the paper's models only. `setting` describes the
+// run (model, path, noise) in one sentence.
+std::string ReplayRmseTable(const Model& model, const ReplayResult& result, const std::string& setting);
+
+// The CSV files the plots read (in DIR): end_effector.csv and bases.csv,
+// labelled SIMULATION, with units in the header and a torn 0/1 column.
+void WriteReplayCsv(const std::string& dir, const Model& model, const ReplayResult& result);
+
+}  // namespace ccma::cli
+
+#endif  // CCMA_APPS_REPLAY_REPORT_H_
