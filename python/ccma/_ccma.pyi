@@ -756,6 +756,16 @@ def load_waypoints(path: str) -> list[Waypoint]:
 
 # ---------------------------------------------------------------- analysis ----
 
+class FreeMotion:
+    """One free motion with the controls fixed (analyses/mobility.h). Read-only."""
+
+    @property
+    def direction(self) -> NDArray[np.float64]:
+        """ds (state_size): 6 per body, rotation increment [rad] then translation [m]; unit norm."""
+    @property
+    def bodies(self) -> list[int]:
+        """Indices into model.bodies of the bodies it moves, ascending."""
+
 class MobilityReport:
     """Numerical mobility at a configuration (analyses/mobility.h, `ccma check`). Read-only."""
 
@@ -786,6 +796,9 @@ class MobilityReport:
     @property
     def energy(self) -> float:
         """E(s, u) [m^2]."""
+    @property
+    def free_motions(self) -> list[FreeMotion]:
+        """A basis of the free motions with the controls fixed, each naming few bodies; empty when rigid."""
 
 def analyze_mobility(
     model: Model,

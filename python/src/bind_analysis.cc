@@ -13,6 +13,10 @@ namespace py = pybind11;
 namespace ccma::python {
 
 void BindAnalysis(py::module_& m) {
+  py::class_<FreeMotion>(m, "FreeMotion", "One free motion with the controls fixed (analyses/mobility.h).")
+      .def_readonly("direction", &FreeMotion::direction,
+                    "ds (state_size): 6 per body, rotation increment [rad] then translation [m], unit norm")
+      .def_readonly("bodies", &FreeMotion::bodies, "indices into model.bodies of the bodies it moves, ascending");
   py::class_<MobilityReport>(m, "MobilityReport", "Numerical mobility at a configuration (analyses/mobility.h).")
       .def_readonly("constraint_rows", &MobilityReport::constraint_rows)
       .def_readonly("constraint_rank", &MobilityReport::constraint_rank)
@@ -22,7 +26,9 @@ void BindAnalysis(py::module_& m) {
       .def_readonly("end_effector_dof", &MobilityReport::end_effector_dof)
       .def_readonly("end_effector_dof_nonholonomic", &MobilityReport::end_effector_dof_nonholonomic)
       .def_readonly("smallest_singular_value", &MobilityReport::smallest_singular_value, "of dC/ds")
-      .def_readonly("energy", &MobilityReport::energy, "E [m^2]");
+      .def_readonly("energy", &MobilityReport::energy, "E [m^2]")
+      .def_readonly("free_motions", &MobilityReport::free_motions,
+                    "a basis of the free motions with the controls fixed, each naming few bodies (empty when rigid)");
   m.def(
       "analyze_mobility",
       [](const Model& model, std::optional<StateArray> state, std::optional<Eigen::VectorXd> controls,

@@ -4,7 +4,9 @@ import numpy as np
 import pytest
 
 import ccma
-from conftest import csv_numbers, run_tool
+from conftest import ROOT, csv_numbers, run_tool
+
+MODELS_DIR = ROOT / "models"
 
 TOL = 1e-12
 
@@ -84,3 +86,22 @@ def test_move_to_matches_control(model_path):
     np.testing.assert_allclose(r.controls, cli["controls"], rtol=0, atol=TOL)
     np.testing.assert_allclose(r.end_effector.position, cli["end_effector"]["position"], rtol=0, atol=TOL)
     assert abs(r.residual_energy - cli["residual_energy"]) <= TOL
+
+
+def test_free_motions_match_check(tmp_path):
+    """A joint taken out of 4dof_reduced leaves leg 2 hanging: Python names the
+    same moving bodies as `ccma check` ([post2, link2] and [link2]), along
+    unit, orthogonal directions in the null space."""
+    text = (MODELS_DIR / "4dof_reduced.yaml").read_text()
+    line = next(l for l in text.splitlines(keepends=True) if l.startswith("  - {type: revolute, between: [link2, ee]"))
+    path = tmp_path / "without_joint.yaml"
+    path.write_text(text.replace(line, ""))
+    model = ccma.load_model(str(path))
+    mobility = ccma.analyze_mobility(model)
+    names = [[model.bodies[i].name for i in motion.bodies] for motion in mobility.free_motions]
+    assert names == [["post2", "link2"], ["link2"]]
+    check = run_tool("check", "--model=" + str(path))
+    assert names == [motion["bodies"] for motion in check["free_motions"]]
+    d = np.array([motion.direction for motion in mobility.free_motions])
+    assert np.allclose(d @ d.T, np.eye(2), atol=1e-12)
+    assert ccma.analyze_mobility(ccma.load_model(str(MODELS_DIR / "4dof_reduced.yaml"))).free_motions == []
