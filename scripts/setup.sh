@@ -77,8 +77,12 @@ build_pid=$!
 start=$SECONDS last_print=$SECONDS next=0
 while kill -0 "$build_pid" 2> /dev/null; do
   sleep 2
-  line=$(grep -E '^\[ *[0-9]+%\]' build.log | tail -n 1 || true)
+  # make prints "[ 42%] ...", ninja (a build/ configured with -G Ninja) "[42/180] ...".
+  line=$(grep -E '^\[ *[0-9]+(%|/[0-9]+)\]' build.log | tail -n 1 || true)
   p=$(sed -nE 's/^\[ *([0-9]+)%\].*/\1/p' <<< "$line")
+  if [[ -z "$p" && "$line" =~ ^\[([0-9]+)/([0-9]+)\] ]]; then
+    p=$(( 100 * BASH_REMATCH[1] / BASH_REMATCH[2] ))
+  fi
   if [[ -n "$p" ]] && (( p >= next )); then
     printf 'setup: building %3d%% (%d s)\n' "$p" $((SECONDS - start))
     next=$(( p - p % 10 + 10 ))

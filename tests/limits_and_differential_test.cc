@@ -20,24 +20,11 @@
 #include "formats/waypoints.h"
 #include "problems/control_problem.h"
 #include "problems/trajectory.h"
+#include "tests/hinge_model.h"
 
 namespace ccma {
 namespace {
 
-// One omni base carrying a post, and an arm on an actuated, limited hinge
-// about x: the end-effector point 0.2 m along y swings up as q grows, so
-// z = 0.3 + 0.2 sin(q) needs q = asin((z - 0.3) / 0.2).
-const char kHinge[] = R"(name: limited_hinge
-bodies:
-  - {name: post, position: [0, 0, 0.1]}
-  - {name: arm, position: [0, 0, 0.3]}
-mobile_bases:
-  - {name: base0, type: omni, actuation: complete, pose: [0, 0, 0]}
-joints:
-  - {type: fixed, between: [base0, post], point: [0, 0, 0.1]}
-  - {name: hinge, type: revolute, actuated: true, limits: [-0.2, 0.3], between: [post, arm], point: [0, 0, 0.3], axis: [1, 0, 0]}
-end_effector: {body: arm, point: [0, 0.2, 0.3], controlled: [x, y, z]}
-)";
 
 std::string Slurp(const std::string& path) {
   std::ifstream in(path);

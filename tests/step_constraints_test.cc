@@ -16,22 +16,12 @@
 #include "problems/forward_problem.h"
 #include "problems/internal/sensitivity.h"
 #include "problems/internal/step_constraints.h"
+#include "tests/hinge_model.h"
 
 namespace ccma {
 namespace {
 
-// An omni base carrying a post and an arm on an actuated, limited hinge.
-const char kHinge[] = R"(name: limited_hinge
-bodies:
-  - {name: post, position: [0, 0, 0.1]}
-  - {name: arm, position: [0, 0, 0.3]}
-mobile_bases:
-  - {name: base0, type: omni, actuation: complete, pose: [0, 0, 0]}
-joints:
-  - {type: fixed, between: [base0, post], point: [0, 0, 0.1]}
-  - {name: hinge, type: revolute, actuated: true, limits: [-0.2, 0.3], between: [post, arm], point: [0, 0, 0.3], axis: [1, 0, 0]}
-end_effector: {body: arm, point: [0, 0.2, 0.3], controlled: [x, y, z]}
-)";
+// kHinge: tests/hinge_model.h.
 
 Model Load(const std::string& file) { return LoadModel(std::string(CCMA_MODELS_DIR) + "/" + file); }
 
