@@ -142,6 +142,11 @@ TEXT
     echo
     cat "$out/workspace.md"
   fi
+  # Build and test times of the first hour, measured by hand (build_times.md).
+  if [[ -f "$out/build_times.md" ]]; then
+    echo
+    cat "$out/build_times.md"
+  fi
   # Measurements made by hand (Google Benchmark, repeated runs), kept in by_hand.md.
   if [[ -f "$out/by_hand.md" ]]; then
     echo

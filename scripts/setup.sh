@@ -88,7 +88,8 @@ while kill -0 "$build_pid" 2> /dev/null; do
     next=$(( p - p % 10 + 10 ))
     last_print=$SECONDS
   elif (( SECONDS - last_print >= 20 )); then
-    echo "setup: building ${p:-0}% ($((SECONDS - start)) s): ${line##*object }"
+    what_now=${line#*] }
+    echo "setup: building ${p:-0}% ($((SECONDS - start)) s): ${what_now#Building CXX object }"
     last_print=$SECONDS
   fi
 done
