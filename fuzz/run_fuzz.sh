@@ -32,9 +32,9 @@ source_dir="${CCMA_SOURCE_DIR:-$(dirname "$fuzz_dir")}"
 build_dir="${CCMA_FUZZ_BUILD_DIR:-$source_dir/build-fuzz}"
 jobs="${CCMA_FUZZ_JOBS:-2}"
 # Seconds one library file takes to compile with clang and the sanitizers on
-# one core (Eigen- and Ceres-heavy files take 20-80 s; the loader's layers,
-# core and formats, some 22 files).
-seconds_per_file=40
+# one core (measured: the loader's layers, core and formats, 23 files, took
+# 80 s on 2 cores).
+seconds_per_file=10
 
 if ! grep -q "CCMA_FUZZ" "$source_dir/CMakeLists.txt"; then
   echo "fuzz/run_fuzz.sh: $source_dir/CMakeLists.txt has no CCMA_FUZZ option (see fuzz/CMakeLists.txt)" >&2

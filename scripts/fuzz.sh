@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Fuzzes the model loader live with libFuzzer (clang, AddressSanitizer and
 # UndefinedBehaviorSanitizer) for a while: a separate clang build of the
-# loader's layers (core and formats) into build-fuzz/ (about 8 minutes on 2
+# loader's layers (core and formats) into build-fuzz/ (about 2 minutes on 2
 # cores the first time), then the fuzzer, with a progress line at least every
 # 20 s. The corpus itself is
 # replayed by the ordinary tests (scripts/test.sh, test fuzz_corpus_replay).
