@@ -38,12 +38,19 @@ def blank(text):
 def functions(text):
     """(name, first line, line count) of each function body at namespace or class level."""
     code = blank(text)
-    found, stack, start = [], [], 0  # stack: 'scope' or ('function', name, line)
+    found, stack, start = [], [], 0  # stack: 'scope', 'init' or ('function', name, line)
     for i, c in enumerate(code):
         if c in ";{}":
             head = code[start:i]
+            in_function = any(isinstance(s, tuple) for s in stack)
+            if c == "{" and not in_function and re.search(r"[\w>]$", head) and ")" in head:
+                # x_{...} in a constructor's initialiser list: part of the head.
+                stack.append("init")
+                continue
+            if c == "}" and stack and stack[-1] == "init":
+                stack.pop()
+                continue
             if c == "{":
-                in_function = any(isinstance(s, tuple) for s in stack)
                 if (not in_function and ")" in head and not re.search(
                         r"\b(namespace|class|struct|enum|union)\b[^()]*$", head)
                         and not re.search(r"=\s*$", head)):
@@ -96,6 +103,8 @@ def self_test():
     assert functions(lambda_inside) == [("G", 1, 4)], functions(lambda_inside)
     assert functions('const char* s = "}{";\nvoid H() {\n}\n') == [("H", 2, 2)]
     assert functions("namespace a {\nstruct S {\n  int f() const {\n    return 1;\n  }\n};\n}\n") == [("f", 3, 3)]
+    ctor = "A::A(int x) : a_{x}, b_(x) {\n" + body + "}\n"  # 60 lines of body + 2
+    assert functions(ctor) == [("A::A", 1, 60)], functions(ctor)
     assert not check_text("problems/a.cc", ok)
     assert len(check_text("problems/a.cc", long)) == 1
     assert len(check_text("problems/a.cc", "x\n" * 501)) == 1
