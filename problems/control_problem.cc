@@ -23,6 +23,7 @@
 #include "problems/internal/differential_turning.h"
 #include "problems/internal/finite_differences.h"
 #include "problems/internal/lm_loop.h"
+#include "problems/internal/path_tally.h"
 #include "problems/internal/pivot_ratio.h"
 #include "problems/internal/secondary_objective.h"
 #include "problems/internal/sensitivity.h"
@@ -310,66 +311,6 @@ void ControlProblem::Finish(const PoseTarget& target, ControlStepResult* result)
                     result->max_limit_violation <= 1e-9 && result->max_lateral_displacement <= 1e-9;
 }
 
-namespace {
-
-// Sums the steps of a path into a ControlResult (MoveTo).
-struct PathTally {
-  ControlResult result;
-  ControlStepResult last;
-  const std::function<void(const PoseTarget&, const ControlStepResult&)>& on_step;
-
-  explicit PathTally(const std::function<void(const PoseTarget&, const ControlStepResult&)>& callback)
-      : on_step(callback) {
-    result.min_rcond = std::numeric_limits<double>::infinity();
-    result.min_singular_value_dX_du_on_path = std::numeric_limits<double>::infinity();
-  }
-  void Add(const PoseTarget& step_target, const ControlStepResult& step, bool turn_on_the_spot = false) {
-    ++result.steps;
-    result.iterations += step.iterations;
-    result.forward_solves += step.forward_solves;
-    result.branch_jumps_rejected += step.branch_jumps_rejected;
-    result.max_step_residual_energy = std::max(result.max_step_residual_energy, step.residual_energy);
-    result.max_limit_violation = std::max(result.max_limit_violation, step.max_limit_violation);
-    result.max_lateral_displacement = std::max(result.max_lateral_displacement, step.max_lateral_displacement);
-    result.limited_by = step.limited_by;
-    result.min_rcond = std::min(result.min_rcond, step.rcond);
-    if (!turn_on_the_spot) {  // (a turn does not linearise)
-      result.min_singular_value_dX_du_on_path =
-          std::min(result.min_singular_value_dX_du_on_path, step.min_singular_value_dX_du);
-    }
-    result.null_space_steps += step.null_space_steps;
-    if (on_step) on_step(step_target, step);
-    last = step;
-  }
-  // The path's result: the last step's measures.
-  ControlResult Close(double solve_time_ms) {
-    result.converged = last.reached && result.warning.empty();
-    result.assembled = last.assembled;
-    result.objective = last.objective;
-    result.error = last.error;
-    result.residual_energy = last.residual_energy;
-    result.rcond = last.rcond;
-    result.min_singular_value_dX_du = last.min_singular_value_dX_du;
-    if (!std::isfinite(result.min_singular_value_dX_du_on_path)) result.min_singular_value_dX_du_on_path = 0;
-    result.secondary_objective = last.secondary_objective;
-    result.solve_time_ms = solve_time_ms;
-    return result;
-  }
-};
-
-// Why path step i of n was not reached, for ControlResult::warning.
-std::string StepNotReached(int i, int n, const ControlStepResult& step) {
-  return "path step " + std::to_string(i) + " of " + std::to_string(n) + " not reached (error " +
-         FormatG(step.error) + ", residual energy " + FormatG(step.residual_energy) +
-         (step.singular ? ", dG/ds singular" : "") +
-         (step.branch_jumps_rejected > 0 ? ", trial steps landed on another assembly branch" : "") +
-         (step.limited_by.empty() ? "" : ", stopped by " + step.limited_by) +
-         (step.limited_by.empty() ? "): the target may be outside the workspace or past a singularity"
-                                  : "): the target would need a joint beyond its limits");
-}
-
-}  // namespace
-
 ControlResult ControlProblem::MoveTo(
     const PoseTarget& target,
     const std::function<void(const PoseTarget&, const ControlStepResult&)>& on_step) {
@@ -378,6 +319,8 @@ ControlResult ControlProblem::MoveTo(
   const PosePath path(forward_.model(), CurrentPose(), target, options_.max_step_m, options_.max_step_rad);
   travel_origin_ = forward_.controls();
   PathTally tally(on_step);
+  tally.KeepIfAssembled(forward_.Energy() < forward_.options().assembly_tolerance, forward_.state(),
+                        forward_.controls(), 0);
   for (int i = 1; i <= path.steps(); ++i) {
     const PoseTarget step_target = path.At(i);
     ControlStepResult turn;
@@ -389,9 +332,26 @@ ControlResult ControlProblem::MoveTo(
       if (i < path.steps()) tally.Add(target, SolveStep(target));  // best controls for the real target
       break;
     }
+    tally.KeepIfAssembled(step.assembled, forward_.state(), forward_.controls(), i);
   }
+  if (!tally.last.assembled && tally.have_assembled) ReturnToLastAssembled(target, &tally);
   return tally.Close(
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+}
+
+void ControlProblem::ReturnToLastAssembled(const PoseTarget& target, PathTally* tally) {
+  // A stop never leaves the mechanism torn: its controls and poses must be
+  // usable. The last assembled configuration is restored and measured
+  // against the final target (not reached: the warning says why).
+  forward_.Restore(tally->assembled_state, tally->assembled_controls);
+  ControlStepResult restored = tally->last;
+  Finish(target, &restored);
+  restored.reached = false;
+  tally->last = restored;
+  tally->result.warning += "; returned the last assembled configuration (" +
+                           (tally->assembled_step == 0 ? std::string("the start")
+                                                        : "path step " + std::to_string(tally->assembled_step)) +
+                           ")";
 }
 
 }  // namespace ccma

@@ -41,6 +41,7 @@
 namespace ccma {
 
 struct ControlLinearization;  // problems/internal/control_linearization.h
+struct PathTally;             // problems/internal/path_tally.h
 
 enum class ControlMethod { kLevenbergMarquardt, kBfgs };
 // kFiniteDifference: central differences of re-solved forward problems,
@@ -240,6 +241,10 @@ class ControlProblem {
   Eigen::VectorXd PredictedStateChange(const ControlLinearization& lin, const Eigen::VectorXd& du) const;
   // Error, energy, step-constraint measures and `reached` of a step's result.
   void Finish(const PoseTarget& target, ControlStepResult* result);
+  // After a stop that left the mechanism unassembled: restores the last
+  // assembled configuration of the path (problems/internal/path_tally.h) and
+  // measures it against `target`.
+  void ReturnToLastAssembled(const PoseTarget& target, PathTally* tally);
   void CheckTarget(const PoseTarget& target) const;
 
   const ControlOptions options_;

@@ -91,6 +91,36 @@ TEST(JointLimits, ATargetBeyondALimitIsNeverReportedReached) {
   EXPECT_NEAR(again.controls()[3], q_target, 1e-9);  // the actuated joint's control is its q
 }
 
+// hybrid_ccma (reduced bases plus an actuated shoulder) with leg 0's passive
+// base yaw limited to +-0.05 rad: a yaw target of 0.3 rad needs that joint
+// beyond its limit. The stop must return an assembled configuration (the
+// last reached path step's), not the failed step's torn LM iterate (which
+// had E ~ 1e-3 m^2 and joints apart by millimetres).
+TEST(JointLimits, AStopReturnsTheLastAssembledConfiguration) {
+  std::string text = Slurp(std::string(CCMA_MODELS_DIR) + "/hybrid_ccma.yaml");
+  const std::string joint = "  - {type: revolute, between: [base0, post0]";
+  const size_t at = text.find(joint);
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, joint.size(), "  - {name: yaw0, limits: [-0.05, 0.05], type: revolute, between: [base0, post0]");
+  const Model model = LoadModelFromString(text, "hybrid_yaw_limited.yaml");
+  ControlProblem control(model);
+  ASSERT_TRUE(control.SetControls(model.home_controls()).assembled);
+  PoseTarget target = control.CurrentPose();
+  target.rpy.z() += 0.3;
+  const ControlResult r = control.MoveTo(target);
+  EXPECT_FALSE(r.converged);
+  EXPECT_TRUE(r.assembled);
+  EXPECT_LT(r.residual_energy, 1e-20);
+  EXPECT_LT(control.forward().Energy(), 1e-20);  // the poses returned close every joint
+  EXPECT_NE(r.limited_by.find("yaw0"), std::string::npos) << r.limited_by;
+  EXPECT_NE(r.warning.find("returned the last assembled configuration (path step "), std::string::npos) << r.warning;
+  // The yaw stops at its limit: 0.25 rad of the 0.3 are missing, and the limit holds.
+  EXPECT_NEAR(r.error, 0.25, 0.01);
+  const Joint& yaw0 = model.joints[0];
+  ASSERT_EQ(yaw0.name, "yaw0");
+  EXPECT_LE(JointCoordinate(yaw0, control.forward().state()), 0.05 + 1e-9);
+}
+
 TEST(JointLimits, EveryTrajectoryRowKeepsTheLimits) {
   const Model model = LoadModelFromString(kHinge, "hinge.yaml");
   const std::string waypoints = ::testing::TempDir() + "/hinge_path_" + std::to_string(::getpid()) + ".csv";
