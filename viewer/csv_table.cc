@@ -23,6 +23,11 @@ std::vector<std::string> SplitCommas(const std::string& line) {
   return cells;
 }
 
+// Cells of a line: one more than its commas.
+std::size_t CountCells(const std::string& line) {
+  return static_cast<std::size_t>(std::count(line.begin(), line.end(), ',')) + 1;
+}
+
 std::string LineWhere(const std::string& path, int line) { return path + ":" + std::to_string(line); }
 
 double ParseNumber(const CsvTable& t, int line, const std::string& text, int col) {
@@ -69,6 +74,17 @@ CsvTable ReadCsvTable(const std::string& path, const CsvLimits& limits) {
     ++number;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty() || line[0] == '#') continue;
+    // Counted before anything is split: a line of commas would otherwise
+    // become one string per cell (tens of bytes each, for one byte of input).
+    const std::size_t count = CountCells(line);
+    if (count > kMaxCsvColumns) {
+      throw ViewInputError(LineWhere(path, number) + ": " + std::to_string(count) + " cells, more than the " +
+                           std::to_string(kMaxCsvColumns) + " columns a table may have");
+    }
+    if (!t.header.empty() && count != t.header.size()) {
+      throw ViewInputError(LineWhere(path, number) + ": " + std::to_string(count) + " cells, the header has " +
+                           std::to_string(t.header.size()));
+    }
     const std::vector<std::string> cells = SplitCommas(line);
     if (t.header.empty()) {
       t.header = cells;

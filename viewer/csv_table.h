@@ -13,6 +13,11 @@
 
 namespace ccma::viewer {
 
+// Columns a table may have. With it a table's memory is bounded by its file:
+// at most one cell per byte (8 bytes each as a number) and, while a line is
+// split, at most this many cell strings.
+constexpr std::size_t kMaxCsvColumns = 100000;
+
 // What a file may be: at most `max_bytes` [bytes] and `max_rows` rows;
 // `text_columns` are not parsed (e.g. a workspace map's `limited_by`).
 struct CsvLimits {
@@ -38,6 +43,7 @@ struct CsvTable {
 
 // Reads and checks the whole file. Throws ViewInputError (view_frames.h)
 // when it is not a regular file within max_bytes, has no header or no rows,
+// a line with more than kMaxCsvColumns cells,
 // a row with another number of cells than the header, more than max_rows
 // rows, or a cell that is neither empty nor a finite number within
 // [-1e6, 1e6] (outside a text column); the message names file, line and
