@@ -13,9 +13,9 @@
 
 namespace ccma::viewer {
 
-// Columns a table may have. With it a table's memory is bounded by its file:
-// at most one cell per byte (8 bytes each as a number) and, while a line is
-// split, at most this many cell strings.
+// Columns a table may have. With it a table's memory grows with its file
+// alone (at most one cell per byte, 8 bytes each, and ~50 bytes per row) and,
+// while a line is split, at most this many cell strings exist.
 constexpr std::size_t kMaxCsvColumns = 100000;
 
 // What a file may be: at most `max_bytes` [bytes] and `max_rows` rows;
