@@ -35,7 +35,7 @@ void BindAnalysis(py::module_& m) {
          double rank_tolerance) {
         const State s = state ? StateFromArray(model, *state) : State::Home(model);
         const Eigen::VectorXd u = controls ? *controls : model.home_controls();
-        if (u.size() != model.num_controls()) throw py::value_error("controls: wrong size");
+        CheckControls(model, u);
         py::gil_scoped_release release;
         return AnalyzeMobility(model, s, u, rank_tolerance);
       },

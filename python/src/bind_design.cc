@@ -8,6 +8,7 @@
 #include <pybind11/stl.h>
 
 #include "analyses/design.h"
+#include "ccma/limits.h"
 #include "python/src/bindings.h"
 #include "python/src/pose_types.h"
 
@@ -66,7 +67,7 @@ py::dict ParameterSensitivityDict(const Model& model, const StateArray& state, c
                                   const std::vector<std::string>& vary, const std::vector<std::string>& vary_length) {
   const DesignParameters params = ParametersFrom(model, vary, vary_length);
   const State s = StateFromArray(model, state);
-  if (controls.size() != model.num_controls()) throw py::value_error("controls: wrong size");
+  CheckControls(model, controls);
   ParameterSensitivity sens;
   bool ok = false;
   {
@@ -87,8 +88,9 @@ py::list EvaluateDesign(const Model& model, const TargetArray& targets, const Ei
                         const std::vector<std::string>& vary, const std::vector<std::string>& vary_length,
                         double target_tolerance) {
   const DesignParameters params = ParametersFrom(model, vary, vary_length);
-  if (values.size() != params.size() || !values.allFinite()) {
-    throw py::value_error("values: one finite number per parameter (" + std::to_string(params.size()) + ")");
+  if (values.size() != params.size() || !(values.size() == 0 || values.cwiseAbs().maxCoeff() <= kMaxMagnitude)) {
+    throw py::value_error("values: one finite number within [-1e4, 1e4] (m) per parameter (" +
+                          std::to_string(params.size()) + ")");
   }
   DesignOptions options;
   options.target_tolerance = target_tolerance;

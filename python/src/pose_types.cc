@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "ccma/internal/format.h"
+#include "ccma/limits.h"
 #include "ccma/rotation.h"
 
 namespace ccma::python {
@@ -32,7 +34,12 @@ State StateFromArray(const Model& model, const Eigen::Ref<const StateArray>& a) 
     throw std::invalid_argument("state: expected " + std::to_string(model.num_bodies()) +
                                 " rows (one per body), got " + std::to_string(a.rows()));
   }
-  if (!a.allFinite()) throw std::invalid_argument("state: every entry must be finite");
+  // Finite and bounded: a quaternion of 1e308 entries would overflow its norm
+  // and be stored as zero.
+  if (!(a.cwiseAbs().maxCoeff() <= kMaxMagnitude)) {
+    throw std::invalid_argument("state: every entry must be a finite number in [-" + FormatG(kMaxMagnitude) + ", " +
+                                FormatG(kMaxMagnitude) + "]");
+  }
   State s(model.num_bodies());
   for (int b = 0; b < model.num_bodies(); ++b) {
     Eigen::Quaterniond q(a(b, 0), a(b, 1), a(b, 2), a(b, 3));  // (w, x, y, z)
@@ -41,6 +48,21 @@ State StateFromArray(const Model& model, const Eigen::Ref<const StateArray>& a) 
     s.SetPose(b, q, Eigen::Vector3d(a(b, 4), a(b, 5), a(b, 6)));
   }
   return s;
+}
+
+void CheckControls(const Model& model, const Eigen::VectorXd& u) {
+  if (u.size() != model.num_controls()) {
+    throw std::invalid_argument("controls: expected " + std::to_string(model.num_controls()) +
+                                " values (3 per mobile base, then 1 per actuated joint), got " +
+                                std::to_string(u.size()));
+  }
+  for (Eigen::Index i = 0; i < u.size(); ++i) {
+    if (!(std::abs(u[i]) <= kMaxMagnitude)) {
+      throw std::invalid_argument("controls: entry " + std::to_string(i) + " (" + FormatG(u[i]) +
+                                  ") must be a finite number in [-" + FormatG(kMaxMagnitude) + ", " +
+                                  FormatG(kMaxMagnitude) + "] (m or rad)");
+    }
+  }
 }
 
 }  // namespace ccma::python

@@ -41,6 +41,10 @@ using StateArray = Eigen::Matrix<double, Eigen::Dynamic, 7, Eigen::RowMajor>;
 // throws std::invalid_argument on a wrong shape or a non-finite entry).
 StateArray StateToArray(const State& s);
 State StateFromArray(const Model& model, const Eigen::Ref<const StateArray>& a);
+// Throws std::invalid_argument (ValueError) unless u holds one finite number
+// within [-kMaxMagnitude, kMaxMagnitude] per control of `model`, with the
+// message ForwardProblem gives.
+void CheckControls(const Model& model, const Eigen::VectorXd& u);
 
 }  // namespace ccma::python
 

@@ -54,6 +54,28 @@ def test_bad_controls_raise_value_error():
         forward.set_state(np.zeros((model.num_bodies, 7)))  # zero quaternions
 
 
+def test_python_refuses_what_the_cli_refuses():
+    """NaN or huge controls, states and design values are refused as the CLI refuses
+    them, instead of answering NaN, "not rigid" or a negative singular value."""
+    model = ccma.load_model(MODEL)
+    u = model.home_controls.copy()
+    u[1] = math.nan
+    with pytest.raises(ValueError, match=r"controls: entry 1 \(nan\) must be a finite number"):
+        ccma.analyze_mobility(model, controls=u)
+    with pytest.raises(ValueError, match="controls: expected"):
+        ccma.analyze_mobility(model, controls=model.home_controls[:-1])
+    forward = ccma.ForwardProblem(model)
+    huge = forward.state.copy()
+    huge[0, :4] = 1e308  # would overflow the norm and store a zero quaternion
+    with pytest.raises(ValueError, match="state: every entry must be a finite number"):
+        forward.set_state(huge)
+    assert np.isclose(np.linalg.norm(forward.state[0, :4]), 1.0)  # unchanged
+    # Design parameters are lengths [m]: 1e300 is refused.
+    targets = np.array([[0.0, 0.0, 0.6, 0.0, 0.0, 0.0]])
+    with pytest.raises(ValueError, match="values: one finite number within"):
+        ccma.evaluate_design(model, targets, [1e300], vary=["joint1.z"])
+
+
 def test_bad_options_raise_value_error():
     model = ccma.load_model(MODEL)
     with pytest.raises(ValueError, match="lambda"):
