@@ -130,9 +130,10 @@ Command WorkspaceCommand() {
           "Workspace map: samples end-effector poses over the given ranges of controlled components (a grid\n"
           "with --resolution points per range, or --samples seeded uniform draws; components not sampled keep\n"
           "their home value) and reaches each by continuation from the nearest already reached sample (or\n"
-          "home) in small control steps. Writes one CSV row per sample: the controlled components, reachable\n"
-          "(1/0), residual_energy [m^2], sigma_min (smallest singular value of dX/du, 0 when unreachable),\n"
-          "error [m or rad], rcond (pivot ratio of dG/ds), joint limits, u0, u1, ... (empty when unreachable).\n"
+          "home) in small control steps (a sample more than 100000 steps away is unreachable, not walked).\n"
+          "Writes one CSV row per sample: the controlled components, reachable (1/0), residual_energy [m^2],\n"
+          "sigma_min (smallest singular value of dX/du, 0 when unreachable), error [m or rad], rcond (pivot\n"
+          "ratio of dG/ds), joint limits, u0, u1, ... (empty when unreachable).\n"
           "Results do not depend on --threads. --plot writes reachability and sigma_min maps over the first\n"
           "two ranges. Prints {samples, reachable, seconds, ...}; a percentage bar on stderr at a terminal.",
           Concat({"model", "out", "x", "y", "z", "roll", "pitch", "yaw", "resolution", "samples", "seed", "threads",
