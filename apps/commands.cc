@@ -117,9 +117,12 @@ Command ViewCommand() {
           "trajectory CSV (`ccma trajectory`) or a replay directory (`ccma replay`) it is animated (play,\n"
           "pause, time slider) with the end-effector's commanded and tracked paths and the bases' paths.\n"
           "Each frame is re-assembled from its controls; frames that are flagged, not assembled or reached\n"
-          "by a branch jump are marked red (and counted on stderr and in the JSON). With a workspace map\n"
-          "(`ccma workspace`, alone) the model at home under the map's end-effector positions as a point\n"
-          "cloud: reachable points coloured by sigma_min [m or rad per control unit], the others grey.",
+          "by a branch jump are marked red (and counted on stderr and in the JSON). Work bound: a frame more\n"
+          "than 1000 assembly sub-steps (20 m or rad of control change) from the last frame assembled, or\n"
+          "past 200000 sub-steps in all, is not attempted (flagged, drawn as the last frame assembled;\n"
+          "JSON beyond_work_bound_frames). With a workspace map (`ccma workspace`, alone) the model at home\n"
+          "under the map's end-effector positions as a point cloud: reachable points coloured by sigma_min\n"
+          "[m or rad per control unit], the others grey.",
           {"model", "trajectory", "replay", "workspace", "out"}, RunView};
 }
 
