@@ -183,6 +183,28 @@ TEST(Scene, FramesBeyondTheWorkBoundAreNotAttempted) {
   EXPECT_NEAR(poses[4][0][0].get<double>() - poses[2][0][0].get<double>(), 1.0, 1e-6);
 }
 
+// The page's total: frames 19.97 m apart (999 sub-steps each) use up the
+// 200,000 sub-steps after 200 moves; the 201st is not attempted, and the next,
+// back at the last frame assembled (1 sub-step), still fits.
+TEST(Scene, FramesPastTheTotalWorkBoundAreNotAttempted) {
+  const Model model = LoadModel(ModelPath("4dof_reduced"));
+  std::vector<ViewFrame> frames(203);
+  for (size_t i = 0; i < frames.size(); ++i) {
+    frames[i].time = static_cast<double>(i);
+    frames[i].controls = model.home_controls();
+    for (int k = 0; k < model.num_bases(); ++k) frames[i].controls[3 * k] += i % 2 == 1 ? 19.97 : 0.0;
+  }
+  SceneSummary summary;
+  const nlohmann::json scene = nlohmann::json::parse(BuildScene(model, frames, "trajectory", &summary));
+  EXPECT_EQ(summary.beyond_work_bound, 1);
+  EXPECT_EQ(summary.not_assembled, 1);
+  const auto& flags = scene["frames"]["flags"];
+  ASSERT_EQ(flags.size(), 203u);
+  EXPECT_EQ(flags[201], 1);
+  EXPECT_EQ(flags[200], 0);
+  EXPECT_EQ(flags[202], 0);
+}
+
 TEST(Html, PageIsSelfContained) {
   ASSERT_TRUE(HasBundle()) << "built without the viewer's JavaScript (npm missing at build time)";
   const std::string html = ViewerHtml("{\"format\":\"ccma-scene-1\"}", "m<x>");
