@@ -69,9 +69,13 @@ WorkspaceSample TooFar(ControlProblem& control, const PoseTarget& pose, const st
 // One sample: restore the start, walk to the pose, record.
 WorkspaceSample Reach(ControlProblem& control, const WorkspaceStart& start, const PoseTarget& pose) {
   control.forward().Restore(start.state, start.controls);
-  try {  // the path MoveTo would walk; too many steps throw (problems/path.h)
+  // The path MoveTo would walk; too many steps throw (problems/path.h). A pose
+  // out of range is left to MoveTo, which refuses it as before.
+  const bool in_range =
+      (pose.position.array().abs() <= kMaxMagnitude).all() && (pose.rpy.array().abs() <= kMaxMagnitude).all();
+  try {
     const ControlOptions& o = control.options();
-    PosePath(control.forward().model(), control.CurrentPose(), pose, o.max_step_m, o.max_step_rad);
+    if (in_range) PosePath(control.forward().model(), control.CurrentPose(), pose, o.max_step_m, o.max_step_rad);
   } catch (const std::invalid_argument& e) {
     return TooFar(control, pose, e.what());
   }

@@ -197,6 +197,10 @@ TEST(Workspace, SampleTooManyPathStepsAwayIsUnreachable) {
     EXPECT_EQ(s.controls.size(), model.num_controls());
     EXPECT_EQ(s.state.num_bodies(), model.num_bodies());
   }
+  // A pose out of range is still refused, not taken for a far one.
+  PoseTarget bad = result.samples[0].pose;
+  bad.position.x() = std::nan("");
+  EXPECT_THROW(EvaluateWorkspacePoses(model, options, {bad}), std::invalid_argument);
 }
 
 TEST(Workspace, OptionsAreBounded) {
