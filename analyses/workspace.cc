@@ -14,6 +14,8 @@
 
 #include "ccma/internal/format.h"
 #include "ccma/limits.h"
+#include "ccma/rotation.h"
+#include "problems/path.h"
 
 namespace ccma {
 namespace {
@@ -45,9 +47,38 @@ void CheckOptions(const Model& model, const WorkspaceOptions& options) {
   if (!options.IsValid(model, &why)) throw std::invalid_argument("WorkspaceOptions: " + why);
 }
 
+// A sample whose walk would take more than kMaxPathSteps path steps: not
+// reached, with the path's reason, so that one far sample does not abort the
+// whole map. Nothing was walked: the start's controls and state are kept.
+WorkspaceSample TooFar(ControlProblem& control, const PoseTarget& pose, const std::string& why) {
+  WorkspaceSample sample;
+  sample.pose = pose;
+  sample.controls = control.controls();
+  sample.residual_energy = control.forward().Energy();
+  const PoseTarget here = control.CurrentPose();
+  for (int c = 0; c < 6; ++c) {  // the start's error: largest controlled component [m or rad]
+    if (!control.forward().model().end_effector.controlled[c]) continue;
+    const double d = c < 3 ? here.position[c] - pose.position[c] : WrapAngle(here.rpy[c - 3] - pose.rpy[c - 3]);
+    sample.error = std::max(sample.error, std::abs(d));
+  }
+  sample.warning = why;
+  sample.state = control.forward().state();
+  return sample;
+}
+
 // One sample: restore the start, walk to the pose, record.
 WorkspaceSample Reach(ControlProblem& control, const WorkspaceStart& start, const PoseTarget& pose) {
   control.forward().Restore(start.state, start.controls);
+  // The path MoveTo would walk; too many steps throw (problems/path.h). A pose
+  // out of range is left to MoveTo, which refuses it as before.
+  const bool in_range =
+      (pose.position.array().abs() <= kMaxMagnitude).all() && (pose.rpy.array().abs() <= kMaxMagnitude).all();
+  try {
+    const ControlOptions& o = control.options();
+    if (in_range) PosePath(control.forward().model(), control.CurrentPose(), pose, o.max_step_m, o.max_step_rad);
+  } catch (const std::invalid_argument& e) {
+    return TooFar(control, pose, e.what());
+  }
   WorkspaceSample sample;
   sample.pose = pose;
   const ControlResult r = control.MoveTo(pose);

@@ -7,6 +7,9 @@
 // ControlProblem is put at the final configuration of an already reached
 // sample (or at home) and walks the end-effector to the sample along a
 // PosePath (ControlProblem::MoveTo, steps of max_step_m / max_step_rad).
+// A sample whose path would take more than kMaxPathSteps steps is not walked:
+// it is unreachable, with the path's reason as its warning, and the rest of
+// the map is computed as usual.
 //
 // Determinism: samples are processed in "waves". A grid sample's wave is its
 // Chebyshev distance (in cells) from the cell nearest the home pose; seeded

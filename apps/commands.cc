@@ -117,9 +117,12 @@ Command ViewCommand() {
           "trajectory CSV (`ccma trajectory`) or a replay directory (`ccma replay`) it is animated (play,\n"
           "pause, time slider) with the end-effector's commanded and tracked paths and the bases' paths.\n"
           "Each frame is re-assembled from its controls; frames that are flagged, not assembled or reached\n"
-          "by a branch jump are marked red (and counted on stderr and in the JSON). With a workspace map\n"
-          "(`ccma workspace`, alone) the model at home under the map's end-effector positions as a point\n"
-          "cloud: reachable points coloured by sigma_min [m or rad per control unit], the others grey.",
+          "by a branch jump are marked red (and counted on stderr and in the JSON). Work bound: a frame more\n"
+          "than 1000 assembly sub-steps (20 m or rad of control change) from the last frame assembled, or\n"
+          "past 200000 sub-steps in all, is not attempted (flagged, drawn as the last frame assembled;\n"
+          "JSON beyond_work_bound_frames). With a workspace map (`ccma workspace`, alone) the model at home\n"
+          "under the map's end-effector positions as a point cloud: reachable points coloured by sigma_min\n"
+          "[m or rad per control unit], the others grey.",
           {"model", "trajectory", "replay", "workspace", "out"}, RunView};
 }
 
@@ -130,9 +133,10 @@ Command WorkspaceCommand() {
           "Workspace map: samples end-effector poses over the given ranges of controlled components (a grid\n"
           "with --resolution points per range, or --samples seeded uniform draws; components not sampled keep\n"
           "their home value) and reaches each by continuation from the nearest already reached sample (or\n"
-          "home) in small control steps. Writes one CSV row per sample: the controlled components, reachable\n"
-          "(1/0), residual_energy [m^2], sigma_min (smallest singular value of dX/du, 0 when unreachable),\n"
-          "error [m or rad], rcond (pivot ratio of dG/ds), joint limits, u0, u1, ... (empty when unreachable).\n"
+          "home) in small control steps (a sample more than 100000 steps away is unreachable, not walked).\n"
+          "Writes one CSV row per sample: the controlled components, reachable (1/0), residual_energy [m^2],\n"
+          "sigma_min (smallest singular value of dX/du, 0 when unreachable), error [m or rad], rcond (pivot\n"
+          "ratio of dG/ds), joint limits, u0, u1, ... (empty when unreachable).\n"
           "Results do not depend on --threads. --plot writes reachability and sigma_min maps over the first\n"
           "two ranges. Prints {samples, reachable, seconds, ...}; a percentage bar on stderr at a terminal.",
           Concat({"model", "out", "x", "y", "z", "roll", "pitch", "yaw", "resolution", "samples", "seed", "threads",

@@ -25,6 +25,25 @@ DEFINE_string(workspace, "",
 
 namespace ccma::cli {
 
+namespace {
+
+// The stderr warning about frames not assembled, branch jumps and frames
+// beyond the work bound (viewer/scene.h).
+void WarnAboutFrames(const viewer::SceneSummary& summary, const std::string& source) {
+  if (summary.not_assembled > 0 || summary.branch_jumps > 0) {
+    std::cerr << "ccma view: warning: " << summary.not_assembled << " frame(s) not assembled and "
+              << summary.branch_jumps << " branch jump(s) while re-assembling the " << source
+              << " (marked red in the page)\n";
+  }
+  if (summary.beyond_work_bound > 0) {
+    std::cerr << "ccma view: warning: " << summary.beyond_work_bound << " of them not attempted: more than "
+              << viewer::kMaxViewFrameSubsteps << " assembly sub-steps from the last frame assembled, or past "
+              << viewer::kMaxViewSubsteps << " in all\n";
+  }
+}
+
+}  // namespace
+
 int RunView(const std::vector<std::string>& args) {
   ParseCommandFlags(args, "view");
   const std::string model_path = RequireFlag(FLAGS_model, "model", "view");
@@ -65,11 +84,7 @@ int RunView(const std::vector<std::string>& args) {
   OutputFile out(out_path, "out");
   out.stream() << html;
   out.Commit();
-  if (summary.not_assembled > 0 || summary.branch_jumps > 0) {
-    std::cerr << "ccma view: warning: " << summary.not_assembled << " frame(s) not assembled and "
-              << summary.branch_jumps << " branch jump(s) while re-assembling the " << source
-              << " (marked red in the page)\n";
-  }
+  WarnAboutFrames(summary, source);
   nlohmann::json result = {{"out", out_path},
                            {"bytes", html.size()},
                            {"frames", summary.frames},
@@ -77,6 +92,7 @@ int RunView(const std::vector<std::string>& args) {
                            {"flagged_frames", summary.flagged_frames},
                            {"not_assembled_frames", summary.not_assembled},
                            {"branch_jumps", summary.branch_jumps}};
+  if (summary.beyond_work_bound > 0) result["beyond_work_bound_frames"] = summary.beyond_work_bound;
   if (workspace) {
     result["workspace_points"] = summary.workspace_points;
     result["workspace_reachable"] = summary.workspace_reachable;

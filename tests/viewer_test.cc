@@ -140,6 +140,71 @@ TEST(Scene, UnreachableFramesAreFlagged) {
   EXPECT_EQ(summary.flagged_frames, 1);
 }
 
+// A trajectory CSV of 4dof_reduced whose bases all sit at home shifted by
+// shift_x[i] [m] in frame i (the chain translates rigidly with them).
+std::string JumpingTrajectory(const Model& model, const std::vector<double>& shift_x) {
+  const std::string csv = Scratch("jumping.csv");
+  std::ofstream out(csv);
+  out.precision(17);
+  out << "time_s";
+  for (int k = 0; k < model.num_bases(); ++k) out << ",u" << k << "_x_m,u" << k << "_y_m,u" << k << "_theta_rad";
+  out << ",target_x_m,target_y_m,target_z_m,x_m,y_m,z_m,reached\n";
+  const Eigen::VectorXd home = model.home_controls();
+  for (size_t i = 0; i < shift_x.size(); ++i) {
+    out << i;
+    for (int k = 0; k < model.num_bases(); ++k) {
+      out << "," << home[3 * k] + shift_x[i] << "," << home[3 * k + 1] << "," << home[3 * k + 2];
+    }
+    out << "," << shift_x[i] << ",0,0.6," << shift_x[i] << ",0,0.6,1\n";
+  }
+  return csv;
+}
+
+// Bases jumping 2 km (100,000 sub-steps of 0.02) between frames: those frames
+// are not attempted (the work bound, scene.h) and the mechanism stays at the
+// last frame assembled; before the bound each took 100,000 forward solves.
+// CTest runs viewer_test with a 60 s TIMEOUT (tests/CMakeLists.txt).
+TEST(Scene, FramesBeyondTheWorkBoundAreNotAttempted) {
+  const Model model = LoadModel(ModelPath("4dof_reduced"));
+  const std::vector<ViewFrame> frames = FramesFromTrajectory(model, JumpingTrajectory(model, {0, 2000, 0, 2000, 1}));
+  ASSERT_EQ(frames.size(), 5u);
+  SceneSummary summary;
+  const nlohmann::json scene = nlohmann::json::parse(BuildScene(model, frames, "trajectory", &summary));
+  EXPECT_EQ(summary.frames, 5);
+  EXPECT_EQ(summary.beyond_work_bound, 2);
+  EXPECT_EQ(summary.not_assembled, 2);
+  EXPECT_EQ(summary.flagged_frames, 2);
+  EXPECT_EQ(scene["frames"]["flags"], nlohmann::json({0, 1, 0, 1, 0}));
+  const auto& poses = scene["frames"]["poses"];
+  ASSERT_EQ(poses.size(), 5u);
+  EXPECT_EQ(poses[1], poses[0]);  // stayed at the last frame assembled
+  EXPECT_EQ(poses[3], poses[2]);
+  // The last frame, 1 m (50 sub-steps) from frame 2, is assembled: moved 1 m in x.
+  EXPECT_NEAR(poses[4][0][0].get<double>() - poses[2][0][0].get<double>(), 1.0, 1e-6);
+}
+
+// The page's total: frames 19.97 m apart (999 sub-steps each) use up the
+// 200,000 sub-steps after 200 moves; the 201st is not attempted, and the next,
+// back at the last frame assembled (1 sub-step), still fits.
+TEST(Scene, FramesPastTheTotalWorkBoundAreNotAttempted) {
+  const Model model = LoadModel(ModelPath("4dof_reduced"));
+  std::vector<ViewFrame> frames(203);
+  for (size_t i = 0; i < frames.size(); ++i) {
+    frames[i].time = static_cast<double>(i);
+    frames[i].controls = model.home_controls();
+    for (int k = 0; k < model.num_bases(); ++k) frames[i].controls[3 * k] += i % 2 == 1 ? 19.97 : 0.0;
+  }
+  SceneSummary summary;
+  const nlohmann::json scene = nlohmann::json::parse(BuildScene(model, frames, "trajectory", &summary));
+  EXPECT_EQ(summary.beyond_work_bound, 1);
+  EXPECT_EQ(summary.not_assembled, 1);
+  const auto& flags = scene["frames"]["flags"];
+  ASSERT_EQ(flags.size(), 203u);
+  EXPECT_EQ(flags[201], 1);
+  EXPECT_EQ(flags[200], 0);
+  EXPECT_EQ(flags[202], 0);
+}
+
 TEST(Html, PageIsSelfContained) {
   ASSERT_TRUE(HasBundle()) << "built without the viewer's JavaScript (npm missing at build time)";
   const std::string html = ViewerHtml("{\"format\":\"ccma-scene-1\"}", "m<x>");
@@ -163,6 +228,20 @@ TEST(ViewCli, WritesThePageAndSummarises) {
   EXPECT_EQ(j["out"], out);
   EXPECT_EQ(j["bytes"].get<size_t>(), fs::file_size(out));
   EXPECT_EQ(j["source"], "model");
+}
+
+TEST(ViewCli, FramesBeyondTheWorkBoundAreCounted) {
+  const Model model = LoadModel(ModelPath("4dof_reduced"));
+  const std::string out = Scratch("jumping.html");
+  const ToolRun r = RunTool({"view", "--model=" + ModelPath("4dof_reduced"),
+                             "--trajectory=" + JumpingTrajectory(model, {0, 2000, 4000, 2000, 0}), "--out=" + out});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["frames"], 5);
+  EXPECT_EQ(j["beyond_work_bound_frames"], 3);
+  EXPECT_EQ(j["not_assembled_frames"], 3);
+  EXPECT_EQ(j["flagged_frames"], 3);
+  EXPECT_NE(r.err.find("3 of them not attempted"), std::string::npos) << r.err;
 }
 
 TEST(ViewCli, BadInputExitsTwoWithNothingOnStdout) {

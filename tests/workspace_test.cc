@@ -175,6 +175,34 @@ TEST(Workspace, ExplicitPosesFromHomeAndFromAGivenStart) {
                std::invalid_argument);
 }
 
+// A sample whose walk needs more than kMaxPathSteps path steps (2 km in steps
+// of 10 mm) is unreachable with the path's reason; the near ones are still
+// mapped (the whole map used to be aborted with std::invalid_argument).
+TEST(Workspace, SampleTooManyPathStepsAwayIsUnreachable) {
+  const Model model = LoadModel(ModelFile("4dof_reduced"));
+  WorkspaceOptions options;
+  options.ranges = {{kX, 0.0, 2000.0}, {kZ, 0.5, 0.75}};
+  options.resolution = 2;
+  const WorkspaceResult result = ComputeWorkspace(model, options);
+  ASSERT_EQ(result.samples.size(), 4u);
+  EXPECT_EQ(result.reachable, 2);
+  for (const WorkspaceSample& s : result.samples) {
+    const bool near = s.pose.position.x() == 0.0;
+    EXPECT_EQ(s.reachable, near) << "x " << s.pose.position.x() << " z " << s.pose.position.z() << ": " << s.warning;
+    if (near) continue;
+    EXPECT_NE(s.warning.find("100000 steps"), std::string::npos) << s.warning;
+    EXPECT_EQ(s.steps, 0);
+    EXPECT_EQ(s.sigma_min, 0);
+    EXPECT_NEAR(s.error, 2000.0, 1e-6);  // still at its start, 2 km short
+    EXPECT_EQ(s.controls.size(), model.num_controls());
+    EXPECT_EQ(s.state.num_bodies(), model.num_bodies());
+  }
+  // A pose out of range is still refused, not taken for a far one.
+  PoseTarget bad = result.samples[0].pose;
+  bad.position.x() = std::nan("");
+  EXPECT_THROW(EvaluateWorkspacePoses(model, options, {bad}), std::invalid_argument);
+}
+
 TEST(Workspace, OptionsAreBounded) {
   const Model model = LoadModel(ModelFile("4dof_reduced"));
   std::string why;
@@ -254,6 +282,26 @@ TEST(WorkspaceCli, CsvColumnsAndJsonSummary) {
   EXPECT_TRUE(rows[2][13].empty());        // no controls when unreachable
   EXPECT_TRUE(rows[2][21].empty());
   EXPECT_EQ(r.out.find("nan"), std::string::npos);
+}
+
+TEST(WorkspaceCli, FarSamplesUnreachableNotAnAbort) {
+  const std::string out = ::testing::TempDir() + "/workspace_far.csv";
+  const testing::ToolRun r = Ccma({"workspace", "--model=" + ModelFile("4dof_reduced"), "--out=" + out,
+                                   "--x=0:2000", "--z=0.5:0.75", "--resolution=2"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["samples"], 4);
+  EXPECT_EQ(j["reachable"], 2);
+  std::ifstream csv(out);
+  std::string line;
+  std::getline(csv, line);  // header
+  std::vector<std::vector<std::string>> rows;
+  while (std::getline(csv, line)) rows.push_back(Split(line));
+  ASSERT_EQ(rows.size(), 4u);
+  for (const auto& row : rows) {
+    ASSERT_GE(row.size(), 5u);
+    EXPECT_EQ(row[4], std::stod(row[0]) == 0.0 ? "1" : "0") << "x " << row[0] << " z " << row[2];
+  }
 }
 
 TEST(WorkspaceCli, HostileFlagsExitTwoWithNothingOnStdout) {

@@ -6,6 +6,7 @@
 #include <Eigen/Eigenvalues>
 #include <nlohmann/json.hpp>
 
+#include "ccma/rotation.h"
 #include "problems/forward_problem.h"
 #include "execution/replay.h"
 
@@ -166,6 +167,43 @@ std::string ScriptSafeJson(const json& scene) {
   return out;
 }
 
+// Re-assembles frame after frame within the work bound (scene.h).
+class FrameAssembler {
+ public:
+  FrameAssembler(const Model& model, double flag_energy) : forward_(model), flag_energy_(flag_energy) {}
+
+  // Moves to controls u from the last frame assembled. True if assembled (E
+  // at most the flag level); *jump: reached by a branch jump; *beyond: not
+  // attempted, beyond the bound (the state is left as it was).
+  bool Assemble(const Eigen::VectorXd& u, bool* jump, bool* beyond) {
+    const double needed = SubstepsTo(u);
+    *jump = false;
+    *beyond = !(needed <= kMaxViewFrameSubsteps && used_ + needed <= kMaxViewSubsteps);
+    if (*beyond) return false;
+    const ForwardResult r = forward_.Assemble(u);
+    used_ += r.substeps;
+    *jump = r.branch_jump;
+    return r.residual_energy <= flag_energy_;
+  }
+  const ForwardProblem& forward() const { return forward_; }
+
+ private:
+  // The sub-steps ForwardProblem::Assemble would take to u (the largest
+  // control change, headings the short way, over max_control_step), counted
+  // in double so that any distance compares without overflow.
+  double SubstepsTo(const Eigen::VectorXd& u) const {
+    Eigen::VectorXd change = u - forward_.controls();
+    for (int k = 0; k < forward_.model().num_bases(); ++k) {
+      change[kBaseControlSize * k + 2] = WrapAngle(change[kBaseControlSize * k + 2]);
+    }
+    return std::max(1.0, std::ceil(change.lpNorm<Eigen::Infinity>() / forward_.options().max_control_step));
+  }
+
+  ForwardProblem forward_;
+  const double flag_energy_;
+  long used_ = 0;  // sub-steps solved so far
+};
+
 }  // namespace
 
 double FlagEnergyFor(const std::string& source) {
@@ -184,8 +222,8 @@ std::string BuildScene(const Model& model, const std::vector<ViewFrame>& frames,
   json bases = json::array();
   for (int k = 0; k < model.num_bases(); ++k) bases.push_back(json::array());
   SceneSummary s;
-  const double flag_energy = FlagEnergyFor(source);
-  ForwardProblem forward(model);
+  FrameAssembler assembler(model, FlagEnergyFor(source));
+  const ForwardProblem& forward = assembler.forward();
   if (frames.empty()) {
     time.push_back(0);
     poses.push_back(Poses(forward.state()));
@@ -193,11 +231,12 @@ std::string BuildScene(const Model& model, const std::vector<ViewFrame>& frames,
   }
   bool any_commanded = false;
   for (const ViewFrame& f : frames) {
-    const ForwardResult r = forward.Assemble(f.controls);
-    const bool assembled = r.residual_energy <= flag_energy;
-    const bool flagged = f.flagged || !assembled || r.branch_jump;
+    bool jump = false, beyond = false;
+    const bool assembled = assembler.Assemble(f.controls, &jump, &beyond);
+    const bool flagged = f.flagged || !assembled || jump;
     s.not_assembled += assembled ? 0 : 1;
-    s.branch_jumps += r.branch_jump ? 1 : 0;
+    s.beyond_work_bound += beyond ? 1 : 0;
+    s.branch_jumps += jump ? 1 : 0;
     s.flagged_frames += flagged ? 1 : 0;
     time.push_back(Round(f.time));
     poses.push_back(Poses(forward.state()));

@@ -12,10 +12,20 @@
 
 namespace ccma::viewer {
 
+// The work bound of re-assembling the frames (forward solves, one per
+// sub-step of ForwardProblem::Assemble): at most kMaxViewFrameSubsteps for one
+// frame (20 m or rad of control change at the default max_control_step of
+// 0.02) and kMaxViewSubsteps for the whole scene. A frame beyond either is not
+// attempted: it counts as not assembled, and the mechanism stays at the last
+// frame assembled (the next frame starts from there).
+constexpr long kMaxViewFrameSubsteps = 1000;
+constexpr long kMaxViewSubsteps = 200000;
+
 struct SceneSummary {
   int frames = 0;
   int flagged_frames = 0;      // marked by the source or not assembled here
-  int not_assembled = 0;       // frames whose E stayed above FlagEnergyFor(source)
+  int not_assembled = 0;       // frames whose E stayed above FlagEnergyFor(source), or beyond the bound
+  int beyond_work_bound = 0;   // of which not attempted: beyond kMaxViewFrameSubsteps or kMaxViewSubsteps
   int branch_jumps = 0;        // frames reached by a jump to another branch
   long workspace_points = 0;     // points of the workspace cloud (0 without one)
   long workspace_reachable = 0;  // of which reachable
@@ -29,8 +39,9 @@ double FlagEnergyFor(const std::string& source);
 
 // The scene for `frames` (empty: the model at home, one frame). Each frame
 // is assembled from the previous one (ForwardProblem::Assemble, following
-// the branch); frames whose E stays above FlagEnergyFor(source), or reached
-// by a branch jump, are flagged. `source` is "model", "trajectory",
+// the branch), within the work bound above; frames whose E stays above
+// FlagEnergyFor(source), beyond the bound, or reached by a branch jump, are
+// flagged. `source` is "model", "trajectory",
 // "replay" or "workspace". With `workspace`, the scene's "workspace" object
 // holds its cloud and the scale covers it. Returns the JSON text (numbers
 // rounded to 1e-7: display precision, a tenth of a micrometre; never NaN).

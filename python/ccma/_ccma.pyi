@@ -973,6 +973,7 @@ class _ViewInfo(TypedDict):
     not_assembled_frames: int
     branch_jumps: int
     source: Literal["model", "trajectory", "replay", "workspace"]
+    beyond_work_bound_frames: NotRequired[int]  # only when some: frames not attempted (the work bound)
     workspace_points: NotRequired[int]     # only with workspace=: rows drawn
     workspace_reachable: NotRequired[int]  # of which reachable
 

@@ -56,6 +56,7 @@ void BindView(py::module_& m) {
         info["not_assembled_frames"] = summary.not_assembled;
         info["branch_jumps"] = summary.branch_jumps;
         info["source"] = source;
+        if (summary.beyond_work_bound > 0) info["beyond_work_bound_frames"] = summary.beyond_work_bound;
         if (workspace) {
           info["workspace_points"] = summary.workspace_points;
           info["workspace_reachable"] = summary.workspace_reachable;

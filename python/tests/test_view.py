@@ -84,3 +84,23 @@ def test_view_draws_a_workspace_map_like_the_cli(tmp_path):
     assert 0 < reachable < 25
     with pytest.raises(ValueError, match="one of"):
         ccma.view(MODEL, trajectory=csv, workspace=csv)
+
+
+def test_view_bounds_the_work_of_far_jumps(tmp_path):
+    # Bases 2 km (100,000 assembly sub-steps) away from the last frame assembled:
+    # not attempted, flagged and counted (docs/viewer.md, "Work bound").
+    model = ccma.load_model(MODEL)
+    home = model.home_controls
+    csv = tmp_path / "jumping.csv"
+    header = ["time_s"] + [f"u{k}_{c}" for k in range(3) for c in ("x_m", "y_m", "theta_rad")]
+    header += ["target_x_m", "target_y_m", "target_z_m", "x_m", "y_m", "z_m", "reached"]
+    rows = [",".join(header)]
+    for i, shift in enumerate([0.0, 2000.0, 0.0]):
+        u = [home[j] + (shift if j % 3 == 0 else 0.0) for j in range(9)]
+        rows.append(",".join(repr(float(v)) for v in [i] + u + [shift, 0, 0.6, shift, 0, 0.6, 1]))
+    csv.write_text("\n".join(rows) + "\n")
+    _, info = ccma.view_html(model, str(csv))
+    assert info["frames"] == 3
+    assert info["beyond_work_bound_frames"] == 1
+    assert info["not_assembled_frames"] == 1 and info["flagged_frames"] == 1
+    assert "beyond_work_bound_frames" not in ccma.view_html(model)[1]

@@ -69,3 +69,11 @@ def test_dask_local_cluster_gives_the_local_results():
     for key in ("reachable", "controls", "residual_energy", "sigma_min", "rcond", "start", "wave", "poses"):
         np.testing.assert_array_equal(local[key], remote[key], err_msg=key)
     assert local["warning"] == remote["warning"]
+
+
+def test_samples_too_many_path_steps_away_are_unreachable_not_an_error():
+    # 2 km in steps of 10 mm is more than the 100,000 path steps of one walk.
+    m = ccma.workspace(MODEL, {"x": (0.0, 2000.0), "z": (0.5, 0.75)}, resolution=2)
+    np.testing.assert_array_equal(m["reachable"], [True, True, False, False])
+    assert all("100000 steps" in w for w in m["warning"][2:])
+    np.testing.assert_array_equal(m["steps"][2:], [0, 0])
