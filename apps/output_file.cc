@@ -1,6 +1,7 @@
 #include "apps/output_file.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -54,8 +55,25 @@ class FdBuffer : public std::streambuf {
   std::vector<char> data_;
 };
 
+// Whether the process whose id starts `rest` ("<pid>-XXXXXX", as Unique()
+// names it) still runs; false when `rest` names no process.
+bool WriterRuns(const std::string& rest) {
+  char* end = nullptr;
+  const long pid = std::strtol(rest.c_str(), &end, 10);
+  if (end == rest.c_str() || *end != '-' || pid <= 0) return false;
+  return ::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM;
+}
+
+// The template of a fresh name in `dir`: PREFIX<pid>-XXXXXX. The pid lets a
+// later run tell a killed writer's leftover from a running one's; the
+// random suffix keeps the name unpredictable.
+std::string Unique(const fs::path& dir, const std::string& prefix) {
+  return (dir / (prefix + std::to_string(::getpid()) + "-XXXXXX")).string();
+}
+
 // Removes the entries of `dir` whose names start with `prefix`, owned by us
-// and not modified for kStaleTemporarySeconds: what a killed run left.
+// not modified for kStaleTemporarySeconds and whose writer is gone: what a
+// killed run left.
 // Links and files are unlinked (never followed), folders removed with their
 // content.
 void RemoveStale(const fs::path& dir, const std::string& prefix) {
@@ -66,6 +84,7 @@ void RemoveStale(const fs::path& dir, const std::string& prefix) {
     struct stat info;
     if (name.compare(0, prefix.size(), prefix) != 0 || ::lstat(it->path().c_str(), &info) != 0) continue;
     if (info.st_uid != ::getuid() || now - info.st_mtime < kStaleTemporarySeconds) continue;
+    if (WriterRuns(name.substr(prefix.size()))) continue;  // a long run writes at its end
     std::error_code ignored;
     fs::remove_all(it->path(), ignored);
   }
@@ -118,7 +137,7 @@ OutputFile::OutputFile(const std::string& path, const std::string& flag) : path_
     const fs::path target(target_);
     const std::string prefix = "." + target.filename().string() + ".ccma-tmp-";
     RemoveStale(target.parent_path(), prefix);
-    std::string name = (target.parent_path() / (prefix + "XXXXXX")).string();
+    std::string name = Unique(target.parent_path(), prefix);
     // mkostemp opens with O_CREAT | O_EXCL (mode 0600), retrying names.
     fd_ = ::mkostemp(name.data(), O_CLOEXEC | O_NOFOLLOW);
     if (fd_ >= 0) temporary_ = name;
@@ -154,7 +173,7 @@ void OutputFile::Commit() {
 
 std::string MakeScratchFolder(const std::string& dir, const std::string& flag) {
   RemoveStale(dir, ".ccma-plot-");
-  std::string name = (fs::path(dir) / ".ccma-plot-XXXXXX").string();
+  std::string name = Unique(dir, ".ccma-plot-");
   if (::mkdtemp(name.data()) == nullptr) throw UsageError("--" + flag + ": cannot write into '" + dir + "'");
   return name;
 }

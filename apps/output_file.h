@@ -1,12 +1,12 @@
 // Writing an output file the user named, without ever destroying what the
 // name points at, and without writing through a name someone else planted:
 //  * a regular file (or a new name): written to a fresh temporary file in
-//    the same folder, `.NAME.ccma-tmp-XXXXXX` (unpredictable, created with
-//    O_CREAT | O_EXCL | O_NOFOLLOW, so a planted link there is never
-//    followed), given the mode of the file it replaces (else 0666 less the
+//    the same folder, `.NAME.ccma-tmp-<pid>-XXXXXX` (unpredictable, made by
+//    mkostemp with O_CREAT | O_EXCL | O_NOFOLLOW, so a planted link there
+//    is never followed), given the mode of the file it replaces (else 0666 less the
 //    umask), fsync'ed and renamed over NAME on Commit(), so nothing is
-//    half-written. Temporaries of a killed run older than
-//    kStaleTemporarySeconds are removed by the next write to the same NAME;
+//    half-written. Temporaries of a killed run (their pid gone, unmodified
+//    for kStaleTemporarySeconds) are removed by the next write to NAME;
 //  * a symbolic link: the same, at the link's final target, so the link
 //    stays a link (its target's type is never replaced);
 //  * a device, FIFO or socket (/dev/null, /dev/stdout): written in place,
@@ -26,7 +26,8 @@
 namespace ccma::cli {
 
 // Age (seconds, by modification time) after which a leftover temporary of
-// ours (`.NAME.ccma-tmp-*`, `.ccma-plot-*`) counts as a killed run's.
+// ours (`.NAME.ccma-tmp-*`, `.ccma-plot-*`) whose writing process no
+// longer runs counts as a killed run's.
 constexpr long kStaleTemporarySeconds = 600;
 
 class OutputFile {
@@ -53,7 +54,7 @@ class OutputFile {
   bool committed_ = false;
 };
 
-// A fresh private folder `DIR/.ccma-plot-XXXXXX` (mode 0700) for files that
+// A fresh private folder `DIR/.ccma-plot-<pid>-XXXXXX` (mode 0700) for files that
 // are then moved into DIR with MoveIntoFolder (plots drawn by gnuplot,
 // which opens its outputs itself). Stale ones of killed runs are removed
 // first. Throws UsageError (naming `flag`) when DIR is not writable.

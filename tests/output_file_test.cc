@@ -124,12 +124,16 @@ TEST(OutputFileWriter, StaleTemporariesOfAKilledRunAreRemoved) {
   const std::string dir = Folder("stale"), out = dir + "/g.yaml";
   const std::string stale = dir + "/.g.yaml.ccma-tmp-AbC123", recent = dir + "/.g.yaml.ccma-tmp-XyZ789";
   const std::string other = dir + "/.h.yaml.ccma-tmp-AbC123";
-  for (const std::string& f : {stale, recent, other}) std::ofstream(f) << "half\n";
+  // An old one whose writer (this test) still runs: a long run writes at its end.
+  const std::string running = dir + "/.g.yaml.ccma-tmp-" + std::to_string(getpid()) + "-QwE456";
+  const std::string dead = dir + "/.g.yaml.ccma-tmp-999999999-QwE456";  // above any pid_max
+  for (const std::string& f : {stale, recent, other, running, dead}) std::ofstream(f) << "half\n";
   const timeval hour_ago[2] = {{time(nullptr) - 3600, 0}, {time(nullptr) - 3600, 0}};
-  ASSERT_EQ(utimes(stale.c_str(), hour_ago), 0);
-  ASSERT_EQ(utimes(other.c_str(), hour_ago), 0);
+  for (const std::string& f : {stale, other, running, dead}) ASSERT_EQ(utimes(f.c_str(), hour_ago), 0);
   ASSERT_EQ(testing::RunTool({"generate", "--agents=6", "--out=" + out}).status, 0);
   EXPECT_FALSE(fs::exists(stale));
+  EXPECT_FALSE(fs::exists(dead));
+  EXPECT_TRUE(fs::exists(running));
   EXPECT_TRUE(fs::exists(recent));  // may belong to a run still going
   EXPECT_TRUE(fs::exists(other));   // another name's
 }

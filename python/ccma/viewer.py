@@ -30,7 +30,7 @@ def _final_target(path):
 def _write_replacing(path, data):
     """Writes `data` to `path` as the `ccma` tool writes its outputs
     (apps/output_file.h): a device or FIFO in place; otherwise a fresh
-    temporary `.NAME.ccma-tmp-XXXXXX` beside it (tempfile.mkstemp: O_CREAT |
+    temporary `.NAME.ccma-tmp-<pid>-XXXXXXXX` beside it (tempfile.mkstemp: O_CREAT |
     O_EXCL, so a link planted there is never followed), given the replaced
     file's mode (else 0666 less the umask), fsync'ed and renamed over it, so
     nothing is half-written. On failure the temporary is removed."""
@@ -52,7 +52,7 @@ def _write_replacing(path, data):
         _os.umask(mask)
         mode = 0o666 & ~mask
     folder, name = _os.path.split(target)
-    fd, temporary = _tempfile.mkstemp(prefix="." + name + ".ccma-tmp-", dir=folder or ".")
+    fd, temporary = _tempfile.mkstemp(prefix=".%s.ccma-tmp-%d-" % (name, _os.getpid()), dir=folder or ".")
     try:
         with _os.fdopen(fd, "wb") as f:
             _os.fchmod(f.fileno(), mode)
