@@ -1,20 +1,34 @@
 // Writing an output file the user named, without ever destroying what the
-// name points at:
-//  * a regular file (or a new name): written to a temporary file beside it
-//    and renamed over it on Commit(), so nothing is half-written;
+// name points at, and without writing through a name someone else planted:
+//  * a regular file (or a new name): written to a fresh temporary file in
+//    the same folder, `.NAME.ccma-tmp-<pid>-XXXXXX` (unpredictable, made by
+//    mkostemp with O_CREAT | O_EXCL | O_NOFOLLOW, so a planted link there
+//    is never followed), given the mode of the file it replaces (else 0666 less the
+//    umask), fsync'ed and renamed over NAME on Commit(), so nothing is
+//    half-written. Temporaries of a killed run (their pid gone, unmodified
+//    for kStaleTemporarySeconds) are removed by the next write to NAME;
 //  * a symbolic link: the same, at the link's final target, so the link
 //    stays a link (its target's type is never replaced);
 //  * a device, FIFO or socket (/dev/null, /dev/stdout): written in place,
 //    never replaced by a plain file;
 //  * a directory: refused (UsageError, exit 2).
 // Without Commit() (an exception on the way), the temporary file is removed.
+// Replacing NAME gives it a new inode: other hard links to the old file keep
+// the old content.
 #ifndef CCMA_APPS_OUTPUT_FILE_H_
 #define CCMA_APPS_OUTPUT_FILE_H_
 
-#include <fstream>
+#include <memory>
+#include <ostream>
+#include <streambuf>
 #include <string>
 
 namespace ccma::cli {
+
+// Age (seconds, by modification time) after which a leftover temporary of
+// ours (`.NAME.ccma-tmp-*`, `.ccma-plot-*`) whose writing process no
+// longer runs counts as a killed run's.
+constexpr long kStaleTemporarySeconds = 600;
 
 class OutputFile {
  public:
@@ -26,16 +40,32 @@ class OutputFile {
   OutputFile& operator=(const OutputFile&) = delete;
 
   std::ostream& stream() { return stream_; }
-  // Flushes and moves the file into place; throws std::runtime_error on failure.
+  // Flushes, fsyncs and moves the file into place; throws
+  // std::runtime_error on failure.
   void Commit();
 
  private:
   std::string path_;       // as given
   std::string target_;     // where the content ends up
   std::string temporary_;  // empty when writing in place
-  std::ofstream stream_;
+  int fd_ = -1;
+  std::unique_ptr<std::streambuf> buffer_;
+  std::ostream stream_{nullptr};
   bool committed_ = false;
 };
+
+// A fresh private folder `DIR/.ccma-plot-<pid>-XXXXXX` (mode 0700) for files that
+// are then moved into DIR with MoveIntoFolder (plots drawn by gnuplot,
+// which opens its outputs itself). Stale ones of killed runs are removed
+// first. Throws UsageError (naming `flag`) when DIR is not writable.
+std::string MakeScratchFolder(const std::string& dir, const std::string& flag);
+
+// Renames scratch/name to dir/name: whatever entry dir/name was (a planted
+// symbolic link included) is replaced, never followed. False on failure.
+bool MoveIntoFolder(const std::string& scratch, const std::string& name, const std::string& dir);
+
+// Removes `scratch` and whatever is left in it (links are removed, not followed).
+void RemoveScratchFolder(const std::string& scratch);
 
 }  // namespace ccma::cli
 

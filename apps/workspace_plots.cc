@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "apps/cli.h"
+#include "apps/output_file.h"
 #include "apps/plots.h"
 
 namespace ccma::cli {
@@ -87,8 +88,33 @@ std::string MapScript(const std::string& what, const Model& model, int a, int b)
   return script.str();
 }
 
+// Draws reachability.png and sigma_min.png in `scratch` (which holds the
+// data); returns the names drawn. A failure is a warning, as a missing gnuplot.
+std::vector<std::string> DrawMaps(const Model& model, const WorkspaceOptions& options, const std::string& scratch,
+                                  std::string* warning) {
+  std::vector<std::string> drawn;
+  if (FindGnuplot().empty()) {
+    *warning = "gnuplot not found: wrote the data of the maps only";
+    return drawn;
+  }
+  const int a = options.ranges[0].component;
+  const int b = options.ranges.size() > 1 ? options.ranges[1].component : -1;
+  for (const std::string& what : {std::string("reachability"), std::string("sigma_min")}) {
+    const std::string error = RunGnuplot(MapScript(what, model, a, b), scratch);
+    if (!error.empty()) {
+      *warning = error;
+      break;
+    }
+    drawn.push_back(what + ".png");
+  }
+  return drawn;
+}
+
 }  // namespace
 
+// Everything is written in a fresh private folder inside DIR (gnuplot opens
+// its pictures itself) and then renamed into DIR: a link planted in DIR
+// under one of the fixed names is replaced, never written through.
 std::vector<std::string> PlotWorkspaceMaps(const Model& model, const WorkspaceOptions& options,
                                            const WorkspaceResult& result, const std::string& dir,
                                            std::string* warning) {
@@ -96,22 +122,20 @@ std::vector<std::string> PlotWorkspaceMaps(const Model& model, const WorkspaceOp
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (!std::filesystem::is_directory(dir)) throw UsageError("--plot: cannot create folder '" + dir + "'");
-  WriteSliceData(dir, options, result, SliceValues(model, options, result));
-  files.push_back(dir + "/workspace_slice.dat");
-  if (FindGnuplot().empty()) {
-    *warning = "gnuplot not found: wrote the data of the maps only";
-    return files;
-  }
-  const int a = options.ranges[0].component;
-  const int b = options.ranges.size() > 1 ? options.ranges[1].component : -1;
-  for (const std::string& what : {std::string("reachability"), std::string("sigma_min")}) {
-    const std::string error = RunGnuplot(MapScript(what, model, a, b), dir);
-    if (!error.empty()) {
-      *warning = error;
-      return files;
+  const std::string scratch = MakeScratchFolder(dir, "plot");
+  try {
+    WriteSliceData(scratch, options, result, SliceValues(model, options, result));
+    std::vector<std::string> names = DrawMaps(model, options, scratch, warning);
+    names.insert(names.begin(), "workspace_slice.dat");
+    for (const std::string& name : names) {
+      if (!MoveIntoFolder(scratch, name, dir)) throw std::runtime_error("--plot: cannot write " + dir + "/" + name);
+      files.push_back(dir + "/" + name);
     }
-    files.push_back(dir + "/" + what + ".png");
+  } catch (...) {
+    RemoveScratchFolder(scratch);
+    throw;
   }
+  RemoveScratchFolder(scratch);
   return files;
 }
 

@@ -1,6 +1,8 @@
 """ccma.view: the 3D viewer of `ccma view` from Python (and inline in Jupyter)."""
 import html as _html
 import os as _os
+import stat as _stat
+import tempfile as _tempfile
 
 from . import _ccma
 
@@ -12,6 +14,58 @@ def _in_notebook():
         return False
     shell = get_ipython()
     return shell is not None and hasattr(shell, "kernel")
+
+
+def _final_target(path):
+    """`path` with its symbolic links followed (the file they name may not
+    exist yet): a link stays a link and its target gets the content."""
+    for _ in range(40):
+        if not _os.path.islink(path):
+            return path
+        link = _os.readlink(path)
+        path = link if _os.path.isabs(link) else _os.path.join(_os.path.dirname(path), link)
+    raise OSError("too many levels of symbolic links in %r" % path)
+
+
+def _write_replacing(path, data):
+    """Writes `data` to `path` as the `ccma` tool writes its outputs
+    (apps/output_file.h): a device or FIFO in place; otherwise a fresh
+    temporary `.NAME.ccma-tmp-<pid>-XXXXXXXX` beside it (tempfile.mkstemp: O_CREAT |
+    O_EXCL, so a link planted there is never followed), given the replaced
+    file's mode (else 0666 less the umask), fsync'ed and renamed over it, so
+    nothing is half-written. On failure the temporary is removed."""
+    target = _final_target(path)
+    try:
+        info = _os.stat(target)
+    except FileNotFoundError:
+        info = None
+    if info is not None and _stat.S_ISDIR(info.st_mode):
+        raise IsADirectoryError("%r is a directory" % path)
+    if info is not None and not _stat.S_ISREG(info.st_mode):
+        with open(target, "wb") as f:
+            f.write(data)
+        return
+    if info is not None:
+        mode = _stat.S_IMODE(info.st_mode)
+    else:
+        mask = _os.umask(0)
+        _os.umask(mask)
+        mode = 0o666 & ~mask
+    folder, name = _os.path.split(target)
+    fd, temporary = _tempfile.mkstemp(prefix=".%s.ccma-tmp-%d-" % (name, _os.getpid()), dir=folder or ".")
+    try:
+        with _os.fdopen(fd, "wb") as f:
+            _os.fchmod(f.fileno(), mode)
+            f.write(data)
+            f.flush()
+            _os.fsync(f.fileno())
+        _os.replace(temporary, target)
+    except BaseException:
+        try:
+            _os.unlink(temporary)
+        except FileNotFoundError:
+            pass
+        raise
 
 
 def view(model, trajectory=None, replay=None, out=None, height=600, workspace=None):
@@ -35,8 +89,7 @@ def view(model, trajectory=None, replay=None, out=None, height=600, workspace=No
                                   None if workspace is None else _os.fspath(workspace))
     if out is not None:
         out = _os.fspath(out)
-        with open(out, "w", encoding="utf-8") as f:
-            f.write(page)
+        _write_replacing(out, page.encode("utf-8"))
         return out
     if _in_notebook():
         from IPython.display import HTML, display  # type: ignore

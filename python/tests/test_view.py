@@ -1,5 +1,8 @@
 """ccma.view writes the page `ccma view` writes (same bytes), returns the HTML
 outside Jupyter, and refuses bad input with ccma.ViewInputError."""
+import os
+import stat
+
 import pytest
 
 import ccma
@@ -104,3 +107,28 @@ def test_view_bounds_the_work_of_far_jumps(tmp_path):
     assert info["beyond_work_bound_frames"] == 1
     assert info["not_assembled_frames"] == 1 and info["flagged_frames"] == 1
     assert "beyond_work_bound_frames" not in ccma.view_html(model)[1]
+
+
+def test_view_out_replaces_the_file_safely(tmp_path):
+    """out= keeps the replaced file's mode, follows a link to its target (the
+    link stays a link), never writes through a link planted beside it, and
+    leaves no temporary behind."""
+    out = tmp_path / "page.html"
+    out.write_text("old")
+    os.chmod(out, 0o600)
+    victim = tmp_path / "victim"
+    victim.write_text("secret")
+    # A link at the name an in-place or predictable writer would open.
+    (tmp_path / ("page.html.partial.%d" % os.getpid())).symlink_to(victim)
+    before = os.stat(out).st_ino
+    assert ccma.view(MODEL, out=out) == str(out)
+    assert os.stat(out).st_ino != before  # replaced, never rewritten in place
+    assert stat.S_IMODE(os.stat(out).st_mode) == 0o600
+    assert out.read_text(encoding="utf-8") == ccma.view(ccma.load_model(MODEL))
+    assert victim.read_text() == "secret"
+    link = tmp_path / "link.html"
+    link.symlink_to(out)
+    ccma.view(MODEL, out=link)
+    assert link.is_symlink() and out.read_text(encoding="utf-8").startswith("<!DOCTYPE html>")
+    assert not [p.name for p in tmp_path.iterdir() if "ccma-tmp" in p.name]
+    assert stat.S_IMODE(os.stat(out).st_mode) == 0o600
