@@ -100,7 +100,8 @@ bool ComputeParameterSensitivity(const Model& model, const DesignParameters& par
 // loaded from) with only the `point:` numbers of the joints the parameters
 // move replaced by their values in `designed` (world home points, 12
 // significant digits); everything else (comments, layout, other numbers)
-// is kept byte for byte. The numbers are patched where yaml-cpp marks them.
+// is kept byte for byte, a leading UTF-8 byte-order mark included. The
+// numbers are patched where yaml-cpp marks them (after such a mark).
 // The result is reloaded and checked against `designed`; throws
 // std::runtime_error naming the joint when a point cannot be patched.
 std::string PatchModelText(const std::string& text, const Model& original, const Model& designed,

@@ -217,6 +217,13 @@ bool ComputeParameterSensitivity(const Model& model, const DesignParameters& par
 
 std::string PatchModelText(const std::string& text, const Model& original, const Model& designed,
                            const DesignParameters& params) {
+  // yaml-cpp skips a UTF-8 byte-order mark and counts its marks from the
+  // first character after it: patch the text after the mark and keep the
+  // mark, so that a file saved with one is patched where its numbers are.
+  static const std::string kUtf8Bom = "\xEF\xBB\xBF";
+  if (text.compare(0, kUtf8Bom.size(), kUtf8Bom) == 0) {
+    return kUtf8Bom + PatchModelText(text.substr(kUtf8Bom.size()), original, designed, params);
+  }
   struct Edit {
     std::size_t begin, end;
     std::string value;
