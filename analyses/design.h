@@ -59,7 +59,8 @@ struct DesignParameters {
 // Adds the parameters of one `--vary` item, "JOINT.x", "JOINT.y", "JOINT.z"
 // or "JOINT.point" (all three), JOINT a joint name (model.h). Returns false
 // and sets `why` (naming the item) for an unknown joint or component, or a
-// joint point already varied.
+// joint already varied by another item (a joint is varied once: `.point`
+// names all three coordinates) or anchoring a length.
 bool AddJointCoordinates(const Model& model, const std::string& item, DesignParameters* params, std::string* why);
 // Adds one `--vary-length` item "A:B": the length from joint A to joint B,
 // which must share a body, differ, and have distinct home points; B moves, A

@@ -74,14 +74,14 @@ bool AddJointCoordinates(const Model& model, const std::string& item, DesignPara
     *why = "'" + item + "': expected JOINT.x, JOINT.y, JOINT.z or JOINT.point";
     return false;
   }
+  // A joint is varied by one item (docs/design.md): `.point` names all three
+  // coordinates, so `J.x` and `J.z` together are refused like `J.z` twice.
+  if (IsVaried(*params, joint) || IsAnchor(*params, joint)) {
+    *why = "'" + item + "': the point of joint '" + name +
+           "' is already varied or anchors a length (vary a joint once; JOINT.point varies x, y and z)";
+    return false;
+  }
   for (int axis : axes) {
-    for (const DesignParameter& q : params->list) {
-      const bool same = q.joint == joint && (q.kind == DesignParameterKind::kLinkLength || q.axis == axis);
-      if (same || q.anchor == joint) {
-        *why = "'" + item + "': the point of joint '" + name + "' is already varied or anchors a length";
-        return false;
-      }
-    }
     DesignParameter q;
     q.kind = DesignParameterKind::kJointCoordinate;
     q.joint = joint;

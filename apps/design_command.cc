@@ -20,7 +20,7 @@
 DEFINE_string(targets, "", "design: target poses, waypoint CSV (docs/waypoints.md; time is ignored) [path]");
 DEFINE_string(vary, "",
               "design: joint points to vary, comma-separated JOINT.x|JOINT.y|JOINT.z|JOINT.point "
-              "(world home coordinates) [list]");
+              "(world home coordinates; one item per joint) [list]");
 DEFINE_string(vary_length, "",
               "design: link lengths to vary, comma-separated ANCHOR:JOINT (JOINT moves along the line from "
               "ANCHOR; both on one body) [list]");

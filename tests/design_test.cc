@@ -217,6 +217,17 @@ TEST(DesignParameters, ApplyRoundTripsAndMovesOnlyTheNamedJoints) {
   EXPECT_FALSE(AddLinkLength(model, "joint0:joint8", &bad, &why));  // no shared body
   EXPECT_FALSE(AddLinkLength(model, "joint1-joint2", &bad, &why));
   EXPECT_FALSE(AddJointCoordinates(model, "joint2.z", &params, &why));  // already varied
+  // A joint is varied once (docs/design.md): another coordinate of a joint
+  // already varied, or of a length's anchor, is refused and nothing added.
+  DesignParameters one;
+  ASSERT_TRUE(AddJointCoordinates(model, "joint4.x", &one, &why)) << why;
+  for (const char* item : {"joint4.z", "joint4.point", "joint4.x"}) {
+    EXPECT_FALSE(AddJointCoordinates(model, item, &one, &why)) << item;
+    EXPECT_NE(why.find("joint4"), std::string::npos) << why;
+  }
+  EXPECT_EQ(one.size(), 1);
+  EXPECT_FALSE(AddJointCoordinates(model, "joint1.y", &params, &why));  // anchors length:joint1:joint2
+  EXPECT_EQ(params.size(), 4);
 }
 
 // Reaches `target` from home on `model` with a fresh ControlProblem.
@@ -297,6 +308,7 @@ TEST(DesignCommand, RejectsBadInputNamingTheFlag) {
   const std::vector<Case> cases = {
       {{"design", model, targets, out, "--vary=nosuch.z"}, "nosuch"},
       {{"design", model, targets, out, "--vary=joint1.w"}, "--vary"},
+      {{"design", model, targets, out, "--vary=joint1.x,joint1.z"}, "'joint1.z': the point of joint 'joint1'"},
       {{"design", model, targets, out, "--vary_length=joint0:joint8"}, "--vary_length"},
       {{"design", model, targets, out}, "--vary"},
       {{"design", model, targets, out, "--vary=joint1.z", "--max_change=0"}, "max_change"},
