@@ -59,7 +59,8 @@ struct DesignParameters {
 // Adds the parameters of one `--vary` item, "JOINT.x", "JOINT.y", "JOINT.z"
 // or "JOINT.point" (all three), JOINT a joint name (model.h). Returns false
 // and sets `why` (naming the item) for an unknown joint or component, or a
-// joint point already varied.
+// joint already varied by another item (a joint is varied once: `.point`
+// names all three coordinates) or anchoring a length.
 bool AddJointCoordinates(const Model& model, const std::string& item, DesignParameters* params, std::string* why);
 // Adds one `--vary-length` item "A:B": the length from joint A to joint B,
 // which must share a body, differ, and have distinct home points; B moves, A
@@ -100,7 +101,8 @@ bool ComputeParameterSensitivity(const Model& model, const DesignParameters& par
 // loaded from) with only the `point:` numbers of the joints the parameters
 // move replaced by their values in `designed` (world home points, 12
 // significant digits); everything else (comments, layout, other numbers)
-// is kept byte for byte. The numbers are patched where yaml-cpp marks them.
+// is kept byte for byte, a leading UTF-8 byte-order mark included. The
+// numbers are patched where yaml-cpp marks them (after such a mark).
 // The result is reloaded and checked against `designed`; throws
 // std::runtime_error naming the joint when a point cannot be patched.
 std::string PatchModelText(const std::string& text, const Model& original, const Model& designed,

@@ -74,14 +74,14 @@ bool AddJointCoordinates(const Model& model, const std::string& item, DesignPara
     *why = "'" + item + "': expected JOINT.x, JOINT.y, JOINT.z or JOINT.point";
     return false;
   }
+  // A joint is varied by one item (docs/design.md): `.point` names all three
+  // coordinates, so `J.x` and `J.z` together are refused like `J.z` twice.
+  if (IsVaried(*params, joint) || IsAnchor(*params, joint)) {
+    *why = "'" + item + "': the point of joint '" + name +
+           "' is already varied or anchors a length (vary a joint once; JOINT.point varies x, y and z)";
+    return false;
+  }
   for (int axis : axes) {
-    for (const DesignParameter& q : params->list) {
-      const bool same = q.joint == joint && (q.kind == DesignParameterKind::kLinkLength || q.axis == axis);
-      if (same || q.anchor == joint) {
-        *why = "'" + item + "': the point of joint '" + name + "' is already varied or anchors a length";
-        return false;
-      }
-    }
     DesignParameter q;
     q.kind = DesignParameterKind::kJointCoordinate;
     q.joint = joint;
@@ -217,6 +217,13 @@ bool ComputeParameterSensitivity(const Model& model, const DesignParameters& par
 
 std::string PatchModelText(const std::string& text, const Model& original, const Model& designed,
                            const DesignParameters& params) {
+  // yaml-cpp skips a UTF-8 byte-order mark and counts its marks from the
+  // first character after it: patch the text after the mark and keep the
+  // mark, so that a file saved with one is patched where its numbers are.
+  static const std::string kUtf8Bom = "\xEF\xBB\xBF";
+  if (text.compare(0, kUtf8Bom.size(), kUtf8Bom) == 0) {
+    return kUtf8Bom + PatchModelText(text.substr(kUtf8Bom.size()), original, designed, params);
+  }
   struct Edit {
     std::size_t begin, end;
     std::string value;

@@ -3,7 +3,6 @@
 // reachable with margin; writes the model file with only those numbers
 // changed and prints {reached, changed, converged, ...}.
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <iostream>
 #include <sstream>
@@ -13,6 +12,7 @@
 #include "apps/flags.h"
 #include "apps/json_output.h"
 #include "apps/output_file.h"
+#include "ccma/limits.h"
 #include "formats/model_loader.h"
 #include "formats/waypoints.h"
 #include "analyses/design.h"
@@ -20,7 +20,7 @@
 DEFINE_string(targets, "", "design: target poses, waypoint CSV (docs/waypoints.md; time is ignored) [path]");
 DEFINE_string(vary, "",
               "design: joint points to vary, comma-separated JOINT.x|JOINT.y|JOINT.z|JOINT.point "
-              "(world home coordinates) [list]");
+              "(world home coordinates; one item per joint) [list]");
 DEFINE_string(vary_length, "",
               "design: link lengths to vary, comma-separated ANCHOR:JOINT (JOINT moves along the line from "
               "ANCHOR; both on one body) [list]");
@@ -46,11 +46,16 @@ std::vector<std::string> SplitList(const std::string& list) {
   return items;
 }
 
-std::string ReadText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+// Loads the model at `path` and keeps its text in `text`: the numbers are
+// later patched into the very text that was loaded (read once, with the
+// loader's bounds). Throws ModelError like LoadModel; warnings go to stderr.
+Model LoadModelKeepingText(const std::string& path, std::string* text) {
+  std::string error;
+  if (!internal::ReadRegularFile(path, kMaxModelFileBytes, "model file", text, &error)) throw ModelError(error);
+  std::vector<std::string> warnings;
+  Model model = LoadModelFromString(*text, path, &warnings);
+  for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
+  return model;
 }
 
 nlohmann::json TargetsJson(const std::vector<DesignTargetResult>& results, bool reached_only) {
@@ -145,21 +150,22 @@ void AddChanges(const Model& model, const Model& designed, const DesignParameter
 int RunDesign(const std::vector<std::string>& args) {
   ParseCommandFlags(args, "design");
   const std::string model_path = RequireFlag(FLAGS_model, "model", "design");
-  const Model model = LoadModelOrThrow(model_path);
+  std::string model_text;
+  const Model model = LoadModelKeepingText(model_path, &model_text);
   const std::vector<PoseTarget> targets = TargetsFlag();
   const std::string out_path = RequireFlag(FLAGS_out, "out", "design");
   const DesignParameters params = ParametersFromFlags(model);
   const DesignOptions options = DesignOptionsFromFlags();
+  OutputFile file(out_path, "out");  // checked before the long run
 
   const DesignResult result = Design(model, params, targets, options);
   const Model designed = ApplyParameters(model, params, result.p);
-  const std::string text = PatchModelText(ReadText(model_path), model, designed, params);
+  const std::string text = PatchModelText(model_text, model, designed, params);
   // Reachability in the model as written (loaded back from the new text).
   const Model written = LoadModelFromString(text, out_path);
   const std::vector<DesignTargetResult> final_check = EvaluateTargets(written, targets, options);
   const bool converged = ConvergedIn(final_check, options);
 
-  OutputFile file(out_path, "out");
   file.stream() << text;
   file.Commit();
 

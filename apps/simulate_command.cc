@@ -12,27 +12,53 @@
 
 DEFINE_string(from, "",
               "start from the configuration and controls of a JSON document printed by `ccma simulate` or "
-              "`ccma control` instead of home [path]");
+              "`ccma control` instead of home (at most 4 MiB, nested at most 64 levels) [path]");
 
 namespace ccma::cli {
 namespace {
 
-// The --from document, read with the same bounds as a model file.
+// How deeply a --from document may nest. A printed result nests 4 levels; the
+// bound keeps hostile nesting (100,000 levels in 200 KB) out of the parsed tree,
+// whose recursive printing or comparison would overflow the stack.
+constexpr int kMaxFromDepth = 64;
+
+// The --from document, read with the same bounds as a model file and at most
+// kMaxFromDepth levels of arrays and objects.
 nlohmann::json ReadResultDocument(const std::string& path) {
   std::string text, error;
   if (!internal::ReadRegularFile(path, kMaxModelFileBytes, "result document", &text, &error)) {
     throw UsageError("--from: " + error);
   }
-  const nlohmann::json document = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+  bool too_deep = false;
+  // depth counts the containers around the one that starts; deeper ones are dropped.
+  const nlohmann::json::parser_callback_t bound = [&too_deep](int depth, nlohmann::json::parse_event_t event,
+                                                              nlohmann::json&) {
+    const bool opens = event == nlohmann::json::parse_event_t::object_start ||
+                       event == nlohmann::json::parse_event_t::array_start;
+    if (opens && depth >= kMaxFromDepth) too_deep = true;
+    return !too_deep;
+  };
+  const nlohmann::json document = nlohmann::json::parse(text, bound, /*allow_exceptions=*/false);
+  if (too_deep) {
+    throw UsageError("--from: " + path + ": nested more than " + std::to_string(kMaxFromDepth) +
+                     " levels deep (not a document printed by ccma)");
+  }
   if (document.is_discarded()) throw UsageError("--from: " + path + ": not a JSON document");
   return document;
+}
+
+// A value from an untrusted document, for a message: a string in double
+// quotes, cut and escaped by Printable (format.h), else its JSON type.
+std::string ShortQuote(const nlohmann::json& value) {
+  if (!value.is_string()) return std::string("(a JSON ") + value.type_name() + ")";
+  return "\"" + Printable(value.get_ref<const std::string&>()) + "\"";
 }
 
 // Starts `forward` from the --from document; returns its controls.
 Eigen::VectorXd StartFrom(const Model& model, const std::string& path, ForwardProblem* forward) {
   const nlohmann::json document = ReadResultDocument(path);
   if (document.contains("model") && document["model"] != model.name) {
-    std::cerr << "ccma simulate: warning: --from was printed for model " << document["model"].dump()
+    std::cerr << "ccma simulate: warning: --from was printed for model " << ShortQuote(document["model"])
               << ", not '" << model.name << "'\n";
   }
   if (!document.contains("controls") || !document["controls"].is_array() ||

@@ -6,6 +6,8 @@
 // z-range, verified on the written model by a separate ControlProblem.
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <random>
 #include <sstream>
 #include <string>
@@ -215,6 +217,17 @@ TEST(DesignParameters, ApplyRoundTripsAndMovesOnlyTheNamedJoints) {
   EXPECT_FALSE(AddLinkLength(model, "joint0:joint8", &bad, &why));  // no shared body
   EXPECT_FALSE(AddLinkLength(model, "joint1-joint2", &bad, &why));
   EXPECT_FALSE(AddJointCoordinates(model, "joint2.z", &params, &why));  // already varied
+  // A joint is varied once (docs/design.md): another coordinate of a joint
+  // already varied, or of a length's anchor, is refused and nothing added.
+  DesignParameters one;
+  ASSERT_TRUE(AddJointCoordinates(model, "joint4.x", &one, &why)) << why;
+  for (const char* item : {"joint4.z", "joint4.point", "joint4.x"}) {
+    EXPECT_FALSE(AddJointCoordinates(model, item, &one, &why)) << item;
+    EXPECT_NE(why.find("joint4"), std::string::npos) << why;
+  }
+  EXPECT_EQ(one.size(), 1);
+  EXPECT_FALSE(AddJointCoordinates(model, "joint1.y", &params, &why));  // anchors length:joint1:joint2
+  EXPECT_EQ(params.size(), 4);
 }
 
 // Reaches `target` from home on `model` with a fresh ControlProblem.
@@ -295,6 +308,7 @@ TEST(DesignCommand, RejectsBadInputNamingTheFlag) {
   const std::vector<Case> cases = {
       {{"design", model, targets, out, "--vary=nosuch.z"}, "nosuch"},
       {{"design", model, targets, out, "--vary=joint1.w"}, "--vary"},
+      {{"design", model, targets, out, "--vary=joint1.x,joint1.z"}, "'joint1.z': the point of joint 'joint1'"},
       {{"design", model, targets, out, "--vary_length=joint0:joint8"}, "--vary_length"},
       {{"design", model, targets, out}, "--vary"},
       {{"design", model, targets, out, "--vary=joint1.z", "--max_change=0"}, "max_change"},
@@ -307,6 +321,59 @@ TEST(DesignCommand, RejectsBadInputNamingTheFlag) {
     EXPECT_TRUE(r.out.empty()) << r.out;
     EXPECT_NE(r.err.find(c.expected), std::string::npos) << r.err;
   }
+}
+
+// A model saved with a UTF-8 byte-order mark is designed and patched exactly
+// as without it (the numbers used to be patched 3 bytes early and the result
+// refused); the written file keeps its mark.
+TEST(DesignCommand, AByteOrderMarkChangesNothing) {
+  const std::string models = CCMA_MODELS_DIR;
+  const std::string plain_model = models + "/4dof_reduced.yaml";
+  const std::string bom_model = ::testing::TempDir() + "/design_bom.yaml";
+  const std::string bom = "\xEF\xBB\xBF";
+  std::ofstream(bom_model, std::ios::binary) << bom << Slurp(plain_model);
+  const std::string plain_out = ::testing::TempDir() + "/design_plain_out.yaml";
+  const std::string bom_out = ::testing::TempDir() + "/design_bom_out.yaml";
+  const std::string targets = "--targets=" + models + "/targets/4dof_high_z.csv";
+  const std::string vary = "--vary=joint1.z,joint4.z,joint7.z";
+  const ToolRun plain = RunTool({"design", "--model=" + plain_model, targets, "--out=" + plain_out, vary});
+  const ToolRun marked = RunTool({"design", "--model=" + bom_model, targets, "--out=" + bom_out, vary});
+  ASSERT_EQ(plain.status, 0) << plain.err;
+  ASSERT_EQ(marked.status, 0) << marked.err;
+  const nlohmann::json a = nlohmann::json::parse(plain.out), b = nlohmann::json::parse(marked.out);
+  EXPECT_TRUE(b["converged"].get<bool>()) << marked.out;
+  EXPECT_EQ(a["changed"], b["changed"]);
+  EXPECT_EQ(a["reached"], b["reached"]);
+  EXPECT_EQ(a["iterations"], b["iterations"]);
+  const std::string plain_text = Slurp(plain_out);
+  EXPECT_NE(plain_text, Slurp(plain_model));  // something was patched
+  EXPECT_EQ(Slurp(bom_out), bom + plain_text);
+}
+
+// --out is checked before the design runs: 150 targets take the loop about a
+// minute, a directory or a missing folder as --out is refused at once.
+TEST(DesignCommand, ABadOutIsRefusedBeforeTheRun) {
+  const std::string models = CCMA_MODELS_DIR;
+  const std::string targets = ::testing::TempDir() + "/design_many_targets.csv";
+  {
+    std::ofstream csv(targets);
+    csv << "time,x,y,z,roll,pitch,yaw\n";
+    for (int i = 0; i < 150; ++i) csv << i << ",0," << 0.0002 * i << ",0.95,0,0,0\n";
+  }
+  const std::string dir = ::testing::TempDir() + "/design_out_dir";
+  std::filesystem::create_directories(dir);
+  for (const auto& [out, expected] : std::vector<std::pair<std::string, std::string>>{
+           {dir, "is a directory"}, {dir + "/missing/new.yaml", "cannot write"}}) {
+    const ToolRun r = RunTool({"design", "--model=" + models + "/4dof_reduced.yaml", "--targets=" + targets,
+                               "--out=" + out, "--vary=joint1.z,joint4.z,joint7.z"});
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+    EXPECT_NE(r.err.find("--out"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("'" + out + "'"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(expected), std::string::npos) << r.err;
+    EXPECT_LT(r.seconds, 5) << "the design ran before --out was checked";
+  }
+  EXPECT_TRUE(std::filesystem::is_empty(dir));  // no temporary file left behind
 }
 
 }  // namespace

@@ -292,4 +292,40 @@ TEST(Targets, OnlyTheControlledComponentsMayBeGiven) {
   ExpectRefused(Ccma({"control", ModelFlag("4dof_reduced"), "--target=0.01,0.61,0.02"}), "x,y,z,yaw");
 }
 
+// A --from document nested 100,000 levels deep (200 KB) used to overflow the
+// stack when its "model" was printed in the warning; it is refused, naming the file.
+TEST(HostileFiles, DeeplyNestedFromIsRefusedWithoutACrash) {
+  const std::string path = Scratch("deep.json");
+  const int depth = 100000;
+  std::ofstream(path) << "{\"model\": " << std::string(depth, '[') << std::string(depth, ']')
+                      << ", \"controls\": [0,0,0,0,0,0,0,0,0], \"bodies\": []}";
+  ASSERT_GT(fs::file_size(path), 200000u);
+  const ToolRun r = Ccma({"simulate", ModelFlag("4dof_reduced"), "--from=" + path});
+  ExpectRefused(r, path);
+  EXPECT_NE(r.err.find("nested more than 64 levels"), std::string::npos) << r.err;
+  EXPECT_LT(r.err.size(), 1000u);
+  // 64 levels are still read (the model name is then not a string, only its type is shown).
+  std::ofstream(path) << "{\"model\": " << std::string(63, '[') << std::string(63, ']') << "}";
+  const ToolRun ok = Ccma({"simulate", ModelFlag("4dof_reduced"), "--from=" + path});
+  ExpectRefused(ok, path + ": controls: expected 9 numbers");
+  EXPECT_NE(ok.err.find("printed for model (a JSON array)"), std::string::npos) << ok.err;
+}
+
+// A --from document's model name is quoted, never dumped whole: at most 40
+// characters, control characters escaped as \xNN.
+TEST(HostileFiles, AFromModelNameIsQuotedShort) {
+  const ToolRun home = Ccma({"simulate", ModelFlag("4dof_reduced")});
+  ASSERT_EQ(home.status, 0) << home.err;
+  nlohmann::json document = nlohmann::json::parse(home.out);
+  document["model"] = "evil\x1b[2J" + std::string(100000, 'x');
+  const std::string path = Scratch("long_name.json");
+  std::ofstream(path) << document.dump();
+  const ToolRun r = Ccma({"simulate", ModelFlag("4dof_reduced"), "--from=" + path});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["assembled"], true);
+  const std::string expected = "printed for model \"evil\\x1b[2J" + std::string(32, 'x') + "...\", not '4dof_reduced'";
+  EXPECT_NE(r.err.find(expected), std::string::npos) << r.err.substr(0, 300);
+  EXPECT_LT(r.err.size(), 300u);
+}
+
 }  // namespace

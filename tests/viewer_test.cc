@@ -81,6 +81,52 @@ TEST(ViewFrames, BadFilesNameFileLineAndColumn) {
   EXPECT_THROW(FramesFromReplay(model, Scratch("no_such_dir")), ViewInputError);
 }
 
+// A control cell between 1e4 and 1e6 passes the CSV's bound (times may reach
+// 1e6) but not the controls' [-1e4, 1e4]: refused when the frame is read,
+// naming file, line and column, for a trajectory and for a replay's bases,
+// and by `ccma view` with status 2 (it used to fail later without them).
+TEST(ViewFrames, ControlsBeyondTheirBoundNameFileLineAndColumn) {
+  const Model model = LoadModel(ModelPath("4dof_reduced"));
+  std::ifstream in(Trajectory("4dof_reduced"));
+  std::string header, row;
+  std::getline(in, header);
+  std::getline(in, row);
+  const std::string bad = Scratch("big_control.csv");
+  // u0_x_m is column 14 (after time_s, 6 target and 6 reached components).
+  std::string big = row;
+  size_t at = 0;
+  for (int c = 0; c < 13; ++c) at = big.find(',', at) + 1;
+  big.replace(at, big.find(',', at) - at, "50000");
+  std::ofstream(bad) << header << "\n" << row << "\n" << big << "\n";
+  try {
+    FramesFromTrajectory(model, bad);
+    FAIL() << "accepted a control of 5e4";
+  } catch (const ViewInputError& e) {
+    EXPECT_NE(std::string(e.what()).find(bad + ":3: column 'u0_x_m': a control of 50000 is outside [-1e4, 1e4]"),
+              std::string::npos)
+        << e.what();
+  }
+  const ToolRun r = RunTool({"view", "--model=" + ModelPath("4dof_reduced"), "--trajectory=" + bad,
+                             "--out=" + Scratch("big_control.html")});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(r.out, "");
+  EXPECT_NE(r.err.find(bad + ":3: column 'u0_x_m'"), std::string::npos) << r.err;
+
+  const std::string dir = Scratch("big_replay");
+  fs::create_directories(dir);
+  std::ofstream(dir + "/end_effector.csv") << "time_s,cmd_x_m,cmd_y_m,cmd_z_m,x_m,y_m,z_m\n0,0,0,0.6,0,0,0.6\n";
+  std::ofstream(dir + "/bases.csv") << "time_s,base0_x_m,base0_y_m,base0_theta_rad,base1_x_m,base1_y_m,"
+                                       "base1_theta_rad,base2_x_m,base2_y_m,base2_theta_rad\n0,0,0,0,0,0,-1e4,0,0,-10001\n";
+  try {
+    FramesFromReplay(model, dir);
+    FAIL() << "accepted a control of -10001";
+  } catch (const ViewInputError& e) {
+    EXPECT_NE(std::string(e.what()).find(dir + "/bases.csv:2: column 'base2_theta_rad': a control of -10001"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(Scene, HomeFrameShapesAndEscaping) {
   Model model = LoadModel(ModelPath("4dof_reduced"));
   model.description = "</script><script>alert(1)</script> & more";

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 
+#include "ccma/internal/format.h"
 #include "ccma/limits.h"
 #include "viewer/csv_table.h"
 
@@ -47,10 +48,18 @@ std::vector<int> ControlColumns(const Model& model, const Table& t, const std::s
   return cols;
 }
 
+// A row's controls. Cells may hold up to 1e6 (times), but a control must lie
+// within kMaxMagnitude as everywhere else: refused here, naming the cell,
+// rather than later by the solver without file or line.
 Eigen::VectorXd Controls(const Model& model, const Table& t, size_t row, const std::vector<int>& cols) {
   Eigen::VectorXd u = model.home_controls();
   for (size_t i = 0; i < cols.size(); ++i) {
-    if (cols[i] >= 0) u[i] = Required(t, row, cols[i]);
+    if (cols[i] < 0) continue;
+    u[i] = Required(t, row, cols[i]);
+    if (!(std::abs(u[i]) <= kMaxMagnitude)) {
+      throw ViewInputError(t.Where(row, cols[i]) + ": a control of " + FormatG(u[i]) +
+                           " is outside [-1e4, 1e4] (m or rad)");
+    }
   }
   return u;
 }

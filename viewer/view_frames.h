@@ -46,13 +46,14 @@ int MaxViewFrames(const Model& model);
 
 // Rows of a `ccma trajectory` CSV: controls from u<k>_x_m, u<k>_y_m,
 // u<k>_theta_rad and u_<joint>_rad|_m; commanded = target_x_m.., tracked =
-// x_m..; flagged where reached is 0. Throws ViewInputError.
+// x_m..; flagged where reached is 0. Throws ViewInputError (naming file,
+// line and column) for a bad cell, including a control outside [-1e4, 1e4].
 std::vector<ViewFrame> FramesFromTrajectory(const Model& model, const std::string& csv_path);
 
 // Samples of a `ccma replay` directory: controls from bases.csv (true poses
 // base<k>_x_m.., actuated joints u_<joint>_.. when present, else home),
 // commanded cmd_x_m.. and tracked x_m.. from end_effector.csv; flagged where
-// torn. Throws ViewInputError.
+// torn. Throws ViewInputError as FramesFromTrajectory does.
 std::vector<ViewFrame> FramesFromReplay(const Model& model, const std::string& dir);
 
 // Keeps at most `max_frames` frames, evenly spread, first and last included.
