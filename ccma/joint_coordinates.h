@@ -1,8 +1,8 @@
 // Joint coordinates q of revolute and prismatic joints (docs/model_format.md,
-// "Joint coordinates"), zero at home:
+// "Joint coordinates"): q_home (model.h, default 0) plus the motion since home:
 //  * revolute between A and B with axis a: the angle [rad] by which B has
 //    turned relative to A about a since home, right-handed about a as written
-//    in the file, in (-pi, pi];
+//    in the file; q_home plus that angle is reported in (-pi, pi];
 //  * prismatic between A and B with axis a (fixed in A): the displacement
 //    [m] of B's copy of the joint point relative to A's copy along a.
 #ifndef CCMA_JOINT_COORDINATES_H_
@@ -18,6 +18,14 @@ namespace ccma {
 
 // q of `joint` at state s; 0 for joints without a coordinate.
 double JointCoordinate(const Joint& joint, const State& s);
+
+// q_home + motion, with a revolute joint's value wrapped into (-pi, pi].
+double WrapJointCoordinate(const Joint& joint, double q);
+
+// The coordinate q as limits compare it: a limited revolute joint's angle is
+// taken within pi of the middle of its limits, so limits that straddle +-pi
+// (possible once q_home moves them) stay one interval. Unchanged otherwise.
+double LimitCoordinate(const Joint& joint, double q);
 
 struct JointCoordinateReport {
   int joint = -1;    // index into Model::joints

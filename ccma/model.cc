@@ -86,6 +86,9 @@ Eigen::VectorXd Model::home_controls() const {
   for (int k = 0; k < num_bases(); ++k) {
     u.segment<kBaseControlSize>(kBaseControlSize * k) = mobile_bases[k].home_pose;
   }
+  for (const Joint& joint : joints) {
+    if (joint.actuated) u[joint.control] = joint.q_home;
+  }
   return u;
 }
 

@@ -44,9 +44,20 @@ struct Joint;
 // Constraint rows of a joint's motor (0 unless actuated).
 int ActuatorResidualCount(const Joint& joint);
 
+// A visual mesh fixed in a body (the `meshes:` key of bodies and bases),
+// drawn by `ccma view --meshes`; no other tool reads it.
+struct BodyMesh {
+  std::string file;  // as written in the model file: absolute, or relative to its folder
+  Eigen::Matrix3d R_BM = Eigen::Matrix3d::Identity();  // mesh frame in the body frame
+  Eigen::Vector3d p_BM = Eigen::Vector3d::Zero();      // m
+  Eigen::Vector3d scale = Eigen::Vector3d::Ones();     // per mesh axis (STL units to m)
+  int line = 0;  // source line (for messages)
+};
+
 // A rigid body; mobile bases are bodies too (is_mobile_base).
 struct Body {
   std::string name;
+  std::vector<BodyMesh> meshes;  // visual only; empty unless the file names some
   Eigen::Matrix3d R_WB_home = Eigen::Matrix3d::Identity();
   Eigen::Vector3d p_WB_home = Eigen::Vector3d::Zero();
   int base_index = -1;  // index into Model::mobile_bases, or -1
@@ -94,11 +105,15 @@ struct Joint {
   // (w_B); the joint coordinate q = atan2(e2 . w, e1 . w) (joint_coordinates.h).
   Eigen::Vector3d e1_A = Eigen::Vector3d::UnitX(), e2_A = Eigen::Vector3d::UnitY();
   Eigen::Vector3d w_B = Eigen::Vector3d::UnitX();
+  // revolute, prismatic: the value of q at home [rad or m] (`q_home`,
+  // default 0). Every reported q is q_home plus the motion since home.
+  double q_home = 0.0;
   // revolute, prismatic: the joint coordinate q is a control (its motor
-  // holds it at u[control]); home value 0.
+  // holds it at u[control]); home value q_home.
   bool actuated = false;
   int control = -1;  // index into u when actuated
-  // revolute, prismatic: lower <= q <= upper (rad or m) when `limited`.
+  // revolute, prismatic: lower <= q <= upper (rad or m, the same coordinate
+  // as q, so lower <= q_home <= upper) when `limited`.
   bool limited = false;
   double lower = 0, upper = 0;
   int line = 0;  // source line in the model file (for messages)
@@ -142,7 +157,7 @@ struct Model {
   int FindJoint(const std::string& name) const;
   // Total number of constraint rows (joints + 9 per base).
   int num_constraints() const;
-  // The controls at home: the bases' poses in file order, then 0 per
+  // The controls at home: the bases' poses in file order, then q_home per
   // actuated joint.
   Eigen::VectorXd home_controls() const;
   // Index of the body with this name, or -1.

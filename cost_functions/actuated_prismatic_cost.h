@@ -1,6 +1,7 @@
 // The motor of an actuated prismatic joint between A and B: holds the joint
-// coordinate q = a . (p_B(r_B) - p_A(r_A)) at its control u,
-//   r = a . d - u,   a = R_A a_A (unit, fixed in A),  d = p_B(r_B) - p_A(r_A)
+// coordinate q = q_home + a . (p_B(r_B) - p_A(r_A)) at its control u,
+//   r = a . d - (u - q_home),   a = R_A a_A (unit, fixed in A),  d = p_B(r_B) - p_A(r_A)
+// q_home [m]: the coordinate's value at home (model.h).
 // 1 row. Parameters: pose of A, pose of B (7 each, state.h), control u (1, m).
 #ifndef CCMA_COST_FUNCTIONS_ACTUATED_PRISMATIC_COST_H_
 #define CCMA_COST_FUNCTIONS_ACTUATED_PRISMATIC_COST_H_
@@ -11,8 +12,9 @@ namespace ccma {
 
 class ActuatedPrismaticCost final : public SizedCost<1, kPoseAmbientSize, kPoseAmbientSize, 1> {
  public:
-  ActuatedPrismaticCost(const Eigen::Vector3d& r_A, const Eigen::Vector3d& r_B, const Eigen::Vector3d& a_A)
-      : r_A_(r_A), r_B_(r_B), a_A_(a_A) {}
+  ActuatedPrismaticCost(const Eigen::Vector3d& r_A, const Eigen::Vector3d& r_B, const Eigen::Vector3d& a_A,
+                        double q_home = 0.0)
+      : r_A_(r_A), r_B_(r_B), a_A_(a_A), q_home_(q_home) {}
 
   void EvaluateInFrames(const BodyFrame* const* frames, double const* const* parameters, double* residuals,
                         double** jacobians) const override {
@@ -20,7 +22,7 @@ class ActuatedPrismaticCost final : public SizedCost<1, kPoseAmbientSize, kPoseA
     const Eigen::Vector3d l_A = A.Rotate(r_A_), l_B = B.Rotate(r_B_);
     const Eigen::Vector3d d = (l_B + B.p_WB) - (l_A + A.p_WB);
     const Eigen::Vector3d a = A.Rotate(a_A_);
-    residuals[0] = a.dot(d) - parameters[2][0];
+    residuals[0] = a.dot(d) - (parameters[2][0] - q_home_);
     double* J_A = JacobianOrNull(jacobians, 0);
     double* J_B = JacobianOrNull(jacobians, 1);
     double* J_u = JacobianOrNull(jacobians, 2);
@@ -62,22 +64,24 @@ class ActuatedPrismaticCost final : public SizedCost<1, kPoseAmbientSize, kPoseA
 
  private:
   const Eigen::Vector3d r_A_, r_B_, a_A_;
+  const double q_home_;
 };
 
 // ---- Autodiff twin (tests and the Jacobian benchmark) ----
 struct ActuatedPrismaticResidual {
   Eigen::Vector3d r_A, r_B, a_A;
+  double q_home = 0.0;
   template <typename T>
   bool operator()(const T* pose_A, const T* pose_B, const T* u, T* r) const {
     const BodyFrameT<T> A(pose_A), B(pose_B);
-    r[0] = A.Rotate(a_A).dot(B.Point(r_B) - A.Point(r_A)) - u[0];
+    r[0] = A.Rotate(a_A).dot(B.Point(r_B) - A.Point(r_A)) - (u[0] - q_home);
     return true;
   }
 };
 
 inline ceres::CostFunction* MakeActuatedPrismaticAutoDiff(const Eigen::Vector3d& r_A, const Eigen::Vector3d& r_B,
-                                                          const Eigen::Vector3d& a_A) {
-  return MakeAutoDiffTwin<ActuatedPrismaticCost>(new ActuatedPrismaticResidual{r_A, r_B, a_A});
+                                                          const Eigen::Vector3d& a_A, double q_home = 0.0) {
+  return MakeAutoDiffTwin<ActuatedPrismaticCost>(new ActuatedPrismaticResidual{r_A, r_B, a_A, q_home});
 }
 
 }  // namespace ccma

@@ -1,10 +1,11 @@
 // The motor of an actuated revolute joint between A and B: holds the joint
-// coordinate q (joint_coordinates.h) at its control u, in the cos/sin form of
-// the bases' heading rows (smooth, no angle wrap):
-//   r = [ (R_A e1_A) . (R_B w_B) - cos u ;  (R_A e2_A) . (R_B w_B) - sin u ]
+// coordinate q = q_home + (motion since home) (joint_coordinates.h) at its
+// control u, in the cos/sin form of the bases' heading rows (smooth, no wrap):
+//   r = [ (R_A e1_A) . (R_B w_B) - cos(u - q_home) ;  (R_A e2_A) . (R_B w_B) - sin(u - q_home) ]
 // 2 rows. e1_A, e2_A = a_A x e1_A: directions perpendicular to the axis,
 // fixed in A; w_B: B's copy of e1 at home, fixed in B. When the revolute
-// joint itself holds, the two dot products are cos q and sin q.
+// joint itself holds, the two dot products are the cosine and sine of the
+// motion since home. q_home [rad]: the coordinate's value at home (model.h).
 // Parameters: pose of A, pose of B (7 each, state.h), control u (1, rad).
 #ifndef CCMA_COST_FUNCTIONS_ACTUATED_REVOLUTE_COST_H_
 #define CCMA_COST_FUNCTIONS_ACTUATED_REVOLUTE_COST_H_
@@ -17,13 +18,14 @@ namespace ccma {
 
 class ActuatedRevoluteCost final : public SizedCost<2, kPoseAmbientSize, kPoseAmbientSize, 1> {
  public:
-  ActuatedRevoluteCost(const Eigen::Vector3d& e1_A, const Eigen::Vector3d& e2_A, const Eigen::Vector3d& w_B)
-      : e_A_{e1_A, e2_A}, w_B_(w_B) {}
+  ActuatedRevoluteCost(const Eigen::Vector3d& e1_A, const Eigen::Vector3d& e2_A, const Eigen::Vector3d& w_B,
+                       double q_home = 0.0)
+      : e_A_{e1_A, e2_A}, w_B_(w_B), q_home_(q_home) {}
 
   void EvaluateInFrames(const BodyFrame* const* frames, double const* const* parameters, double* residuals,
                         double** jacobians) const override {
     const BodyFrame &A = *frames[0], &B = *frames[1];
-    const double u = parameters[2][0];
+    const double u = parameters[2][0] - q_home_;  // the motion since home the motor asks for
     const Eigen::Vector3d w = B.Rotate(w_B_);
     const double target[2] = {std::cos(u), std::sin(u)};
     double* J_A = JacobianOrNull(jacobians, 0);
@@ -64,26 +66,28 @@ class ActuatedRevoluteCost final : public SizedCost<2, kPoseAmbientSize, kPoseAm
  private:
   const Eigen::Vector3d e_A_[2];
   const Eigen::Vector3d w_B_;
+  const double q_home_;
 };
 
 // ---- Autodiff twin (tests and the Jacobian benchmark) ----
 struct ActuatedRevoluteResidual {
   Eigen::Vector3d e1_A, e2_A, w_B;
+  double q_home = 0.0;
   template <typename T>
   bool operator()(const T* pose_A, const T* pose_B, const T* u, T* r) const {
     using std::cos;
     using std::sin;
     const BodyFrameT<T> A(pose_A), B(pose_B);
     const Eigen::Matrix<T, 3, 1> w = B.Rotate(w_B);
-    r[0] = A.Rotate(e1_A).dot(w) - cos(u[0]);
-    r[1] = A.Rotate(e2_A).dot(w) - sin(u[0]);
+    r[0] = A.Rotate(e1_A).dot(w) - cos(u[0] - q_home);
+    r[1] = A.Rotate(e2_A).dot(w) - sin(u[0] - q_home);
     return true;
   }
 };
 
 inline ceres::CostFunction* MakeActuatedRevoluteAutoDiff(const Eigen::Vector3d& e1_A, const Eigen::Vector3d& e2_A,
-                                                         const Eigen::Vector3d& w_B) {
-  return MakeAutoDiffTwin<ActuatedRevoluteCost>(new ActuatedRevoluteResidual{e1_A, e2_A, w_B});
+                                                         const Eigen::Vector3d& w_B, double q_home = 0.0) {
+  return MakeAutoDiffTwin<ActuatedRevoluteCost>(new ActuatedRevoluteResidual{e1_A, e2_A, w_B, q_home});
 }
 
 }  // namespace ccma

@@ -54,15 +54,15 @@ std::unique_ptr<ceres::CostFunction> MakeJointTwin(const Joint& j) {
 }
 
 std::unique_ptr<ceres::CostFunction> MakeActuatorCost(const Joint& j) {
-  if (j.type == JointType::kRevolute) return std::make_unique<ActuatedRevoluteCost>(j.e1_A, j.e2_A, j.w_B);
-  return std::make_unique<ActuatedPrismaticCost>(j.p_A, j.p_B, j.a_A);
+  if (j.type == JointType::kRevolute) return std::make_unique<ActuatedRevoluteCost>(j.e1_A, j.e2_A, j.w_B, j.q_home);
+  return std::make_unique<ActuatedPrismaticCost>(j.p_A, j.p_B, j.a_A, j.q_home);
 }
 
 std::unique_ptr<ceres::CostFunction> MakeActuatorTwin(const Joint& j) {
   if (j.type == JointType::kRevolute) {
-    return std::unique_ptr<ceres::CostFunction>(MakeActuatedRevoluteAutoDiff(j.e1_A, j.e2_A, j.w_B));
+    return std::unique_ptr<ceres::CostFunction>(MakeActuatedRevoluteAutoDiff(j.e1_A, j.e2_A, j.w_B, j.q_home));
   }
-  return std::unique_ptr<ceres::CostFunction>(MakeActuatedPrismaticAutoDiff(j.p_A, j.p_B, j.a_A));
+  return std::unique_ptr<ceres::CostFunction>(MakeActuatedPrismaticAutoDiff(j.p_A, j.p_B, j.a_A, j.q_home));
 }
 
 }  // namespace

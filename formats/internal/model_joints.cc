@@ -19,7 +19,7 @@ void ModelParser::ParseJoints(const YAML::Node& joints) {
   for (std::size_t j = 0; j < joints.size(); ++j) {
     const std::string path = Indexed("joints", j);
     const YAML::Node node = r_.Map(joints[j], path);
-    r_.CheckKeys(node, {"type", "between", "point", "axis", "axes", "name", "actuated", "limits"}, path);
+    r_.CheckKeys(node, {"type", "between", "point", "axis", "axes", "name", "actuated", "limits", "q_home"}, path);
     if (YamlReader::Has(node, "name")) {
       const std::string name = r_.Name(node["name"], path + ".name");
       const auto it = names.find(name);

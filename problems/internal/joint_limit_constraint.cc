@@ -29,7 +29,7 @@ double JointCoordinateGradient(const Model& model, const Joint& joint, const Sta
     cost.Evaluate(poses, residuals, jacobians);
     const double x = residuals[0] + 1.0, y = residuals[1];  // cos q, sin q (up to scale)
     const double norm2 = x * x + y * y;
-    q = std::atan2(y, x);
+    q = LimitCoordinate(joint, joint.q_home + std::atan2(y, x));
     for (int c = 0; c < 6; ++c) {
       g_A[c] = (x * J_A[kPoseAmbientSize + c] - y * J_A[c]) / norm2;
       g_B[c] = (x * J_B[kPoseAmbientSize + c] - y * J_B[c]) / norm2;
@@ -37,7 +37,7 @@ double JointCoordinateGradient(const Model& model, const Joint& joint, const Sta
   } else {
     const ActuatedPrismaticCost cost(joint.p_A, joint.p_B, joint.a_A);
     cost.Evaluate(poses, residuals, jacobians);
-    q = residuals[0];
+    q = joint.q_home + residuals[0];
     for (int c = 0; c < 6; ++c) {
       g_A[c] = J_A[c];
       g_B[c] = J_B[c];
@@ -55,7 +55,7 @@ double JointLimitConstraint::MaxViolation(const Eigen::VectorXd& /*u*/, const St
   double worst = 0;
   for (int j : joints_) {
     const Joint& joint = model_.joints[j];
-    const double q = JointCoordinate(joint, s);
+    const double q = LimitCoordinate(joint, JointCoordinate(joint, s));
     worst = std::max({worst, joint.lower - q, q - joint.upper});
   }
   return worst;
@@ -65,7 +65,7 @@ std::vector<int> JointLimitConstraint::AtOrBeyond(const State& s, double toleran
   std::vector<int> out;
   for (int j : joints_) {
     const Joint& joint = model_.joints[j];
-    const double q = JointCoordinate(joint, s);
+    const double q = LimitCoordinate(joint, JointCoordinate(joint, s));
     if (q <= joint.lower + tolerance || q >= joint.upper - tolerance) out.push_back(j);
   }
   return out;
@@ -105,7 +105,7 @@ std::string JointLimitConstraint::Report(const Eigen::VectorXd& u, const State& 
   std::string text;
   for (int j : active) {
     const Joint& joint = model_.joints[j];
-    const double q = JointCoordinate(joint, s);
+    const double q = LimitCoordinate(joint, JointCoordinate(joint, s));
     const bool upper = std::abs(q - joint.upper) < std::abs(q - joint.lower);
     text += std::string(text.empty() ? "" : ", ") + "joint '" + joint.name + "' at its " +
             (upper ? "upper" : "lower") + " limit " + FormatG(upper ? joint.upper : joint.lower) +

@@ -13,8 +13,8 @@
 
 namespace ccma {
 
-// q of a revolute [rad] or prismatic [m] joint at s, and dq/ds (a row over
-// the state tangent).
+// q of a revolute [rad] or prismatic [m] joint at s as limits compare it
+// (LimitCoordinate, q_home included), and dq/ds (a row over the state tangent).
 double JointCoordinateGradient(const Model& model, const Joint& joint, const State& s, Eigen::RowVectorXd* dq_ds);
 
 class JointLimitConstraint final : public StepConstraint {
