@@ -85,6 +85,19 @@ Command GenerateCommand() {
           {"agents", "kind", "out"}, RunGenerate};
 }
 
+Command ImportCommand() {
+  return {"import", "convert a URDF (with a closure file) or SDFormat robot into a model file",
+          "ccma import --from=FILE.urdf|FILE.sdf [--closures=FILE.yaml] [--actuated=J,...]\n"
+          "            --end_effector=LINK[:px,py,pz] [--controlled=x,y,z,roll,pitch,yaw] --out=MODEL.yaml",
+          "Converts a robot described elsewhere into a model file (docs/import.md): every link a body, every\n"
+          "joint kept, each loop closure (URDF: the closure file's closed_loop pairs; SDFormat: its own\n"
+          "loops) a fixed (6d) or spherical (3d) joint. The written model is assembled at home (the source's\n"
+          "zero configuration, solved with the motors held) and every revolute and prismatic joint carries\n"
+          "q_home, so every q ccma reports is the source's joint position. Exit 2 naming the file, the\n"
+          "element and the name for a malformed source, an unknown name or a closure that cannot be assembled.",
+          {"from", "closures", "actuated", "end_effector", "controlled", "out"}, RunImport};
+}
+
 Command BenchCommand() {
   return {"bench", "time forward solves and control steps (LM, BFGS) on models",
           "ccma bench --model=FILE | --all [--models_dir=DIR] | --scaling  [--steps=N] [--seed=1] [--out=DIR]",
@@ -172,6 +185,7 @@ const std::vector<Command>& Commands() {
       ControlCommand(),
       TrajectoryCommand(),
       GenerateCommand(),
+      ImportCommand(),
       BenchCommand(),
       ReplayCommand(),
       ViewCommand(),

@@ -121,6 +121,9 @@ class Joint:
     def upper(self) -> float:
         """Upper limit [rad or m] when limited."""
     @property
+    def q_home(self) -> float:
+        """The coordinate's value at home [rad or m] (0 unless the file gives q_home)."""
+    @property
     def line(self) -> int:
         """Line in the model file."""
     @property
