@@ -92,7 +92,8 @@ Command BenchCommand() {
           "ccma bench --model=FILE | --all [--models_dir=DIR] | --scaling  [--steps=N] [--seed=1] [--out=DIR]",
           "The paper's convergence study: seeded paper-size control steps (10 mm + 0.005 rad) solved by LM\n"
           "and BFGS with implicit-function and finite-difference gradients, the warm forward solve and the\n"
-          "Jacobians, all in one run; medians and p95. --out writes per-step CSVs, tables and plots.",
+          "Jacobians, all in one run; medians and p95. --out writes per-step CSVs, tables and plots (moved\n"
+          "into DIR at the end: a link planted at one of their names is replaced, never followed).",
           {"model", "all", "models_dir", "scaling", "steps", "seed", "out"}, RunBench};
 }
 
@@ -102,7 +103,8 @@ Command ReplayCommand() {
           "            [noise, tracking and control flags]",
           "The paper's closed loop, simulated: the control solution of every path step is fed to the bases,\n"
           "each base tracks it with a PI controller from simulated motion capture, and the chain follows\n"
-          "by forward simulation. Writes CSVs, an RMSE table and plots into DIR (SIMULATION, not hardware).\n"
+          "by forward simulation. Writes CSVs, an RMSE table and plots into DIR (SIMULATION, not hardware;\n"
+          "moved into DIR at the end: a link planted at one of their names is replaced, never followed).\n"
           "Warns on stderr when the plan did not converge or the chain was torn.",
           Concat({"model", "waypoints", "out", "noise", "seed", "mocap_noise_m", "mocap_noise_rad", "latency_s",
                   "slip", "kp", "ki", "controller_hz", "max_wheel_speed"},
