@@ -4,6 +4,7 @@
 // agents against their closed form.
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -284,6 +285,42 @@ TEST(SparseMobility, NamesTheFreeMotionsOfALargeMechanism) {
   EXPECT_EQ(BodyNames(m, r), (Names{{"post37", "link37"}, {"link37"}}));
   ASSERT_EQ(r.free_motions.size(), 2u);
   EXPECT_NEAR(r.free_motions[0].direction.dot(r.free_motions[1].direction), 0, 1e-12);
+}
+
+// 300 agents with 220 legs hanging (their spherical joints taken out): 440
+// free motions, state size 5406; 5406 x 440^2 is above kMaxFreeMotionWork,
+// so they are counted but not listed.
+TEST(SparseMobility, CountsButDoesNotListTooManyFreeMotions) {
+  StewartOptions options;
+  options.agents = 300;
+  std::string text = GenerateStewartModel(options);
+  for (int leg = 0; leg < 220; ++leg) {
+    const size_t at = text.find("  - {type: spherical, between: [link" + std::to_string(leg) + ", ee]");
+    ASSERT_NE(at, std::string::npos) << leg;
+    text.erase(at, text.find('\n', at) + 1 - at);
+  }
+  const Model m = LoadModelFromString(text, "generated.yaml");
+  const MobilityReport r = AnalyzeMobility(m, State::Home(m), m.home_controls());
+  EXPECT_EQ(r.dof_with_controls_fixed, 440);
+  EXPECT_GT(static_cast<double>(m.state_size()) * 440 * 440, kMaxFreeMotionWork);
+  EXPECT_FALSE(r.free_motions_listed);
+  EXPECT_TRUE(r.free_motions.empty());
+  EXPECT_FALSE(r.rigid_with_controls_fixed);
+}
+
+// The work bound: above kMaxMobilityStateSize (20,000 bodies) the analysis
+// refuses before any work (the bodies need no joints for that).
+TEST(SparseMobility, RefusesAboveTheStateSizeBound) {
+  Model m;
+  m.name = "many_bodies";
+  m.bodies.resize(kMaxMobilityStateSize / 6 + 1);
+  try {
+    AnalyzeMobility(m, State::Home(m), Eigen::VectorXd());
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "mobility analysis: state size 120006 (20001 bodies) is above the bound of 120000 (20000 bodies)");
+  }
 }
 
 }  // namespace
