@@ -29,7 +29,9 @@ Command CheckCommand() {
           "Validates the model and analyses it at home: counts, constraint rows, the numerical mobility\n"
           "(rank of dC/ds with the controls fixed, end-effector DOF when the controls move) and whether\n"
           "the home configuration is assembled. Warns on stderr when the mechanism is not rigid with its\n"
-          "controls fixed (naming the bodies each free motion moves) or not assembled at home.",
+          "controls fixed (naming the bodies each free motion moves) or not assembled at home.\n"
+          "Beyond 100 bodies the ranks come from a sparse QR (SuiteSparseQR), in time and memory\n"
+          "proportional to the model; above 20,000 bodies the analysis is refused (exit 2).",
           {"model"}, RunCheck};
 }
 
@@ -103,7 +105,8 @@ Command BenchCommand() {
           "ccma bench --model=FILE | --all [--models_dir=DIR] | --scaling  [--steps=N] [--seed=1] [--out=DIR]",
           "The paper's convergence study: seeded paper-size control steps (10 mm + 0.005 rad) solved by LM\n"
           "and BFGS with implicit-function and finite-difference gradients, the warm forward solve and the\n"
-          "Jacobians, all in one run; medians and p95. --out writes per-step CSVs, tables and plots.",
+          "Jacobians, all in one run; medians and p95. --out writes per-step CSVs, tables and plots (moved\n"
+          "into DIR at the end: a link planted at one of their names is replaced, never followed).",
           {"model", "all", "models_dir", "scaling", "steps", "seed", "out"}, RunBench};
 }
 
@@ -113,7 +116,8 @@ Command ReplayCommand() {
           "            [noise, tracking and control flags]",
           "The paper's closed loop, simulated: the control solution of every path step is fed to the bases,\n"
           "each base tracks it with a PI controller from simulated motion capture, and the chain follows\n"
-          "by forward simulation. Writes CSVs, an RMSE table and plots into DIR (SIMULATION, not hardware).\n"
+          "by forward simulation. Writes CSVs, an RMSE table and plots into DIR (SIMULATION, not hardware;\n"
+          "moved into DIR at the end: a link planted at one of their names is replaced, never followed).\n"
           "Warns on stderr when the plan did not converge or the chain was torn.",
           Concat({"model", "waypoints", "out", "noise", "seed", "mocap_noise_m", "mocap_noise_rad", "latency_s",
                   "slip", "kp", "ki", "controller_hz", "max_wheel_speed"},
