@@ -66,7 +66,7 @@ TEST(ModelMeshes, PoseGivenInWorldIsStoredInTheBodyFrame) {
   ASSERT_EQ(arm.meshes.size(), 2u);
   const BodyMesh& mesh = arm.meshes[0];
   EXPECT_EQ(mesh.file, "meshes/arm.stl");
-  EXPECT_EQ(mesh.line, 7);
+  EXPECT_EQ(mesh.line, 8);
   // Composed back with the body's home pose, the mesh frame is where the file says.
   const Eigen::Matrix3d R_WM = arm.R_WB_home * mesh.R_BM;
   const Eigen::Vector3d p_WM = arm.p_WB_home + arm.R_WB_home * mesh.p_BM;
@@ -113,36 +113,36 @@ TEST(ModelMeshes, MobileBasesCarryMeshesInTheirFrame) {
 TEST(ModelMeshes, BadEntriesNameFileLineAndKey) {
   const std::string long_name(kMaxMeshPathLength + 1, 'a');
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {"meshes: a.stl", "bad.yaml:7: bodies[1].meshes: must be a list"},
-      {"meshes: [a.stl]", "bad.yaml:7: bodies[1].meshes[0]: must be a mapping"},
-      {"meshes: [{position: [0, 0, 0]}]", "bad.yaml:7: bodies[1].meshes[0].file: missing required key"},
-      {"meshes: [{file: ''}]", "bad.yaml:7: bodies[1].meshes[0].file: must be a non-empty string"},
-      {"meshes: [{file: [a.stl]}]", "bad.yaml:7: bodies[1].meshes[0].file: must be a non-empty string"},
-      {"meshes: [{file: " + long_name + "}]", "bad.yaml:7: bodies[1].meshes[0].file: longer than 4096 bytes"},
-      {"meshes: [{file: \"a\\0b.stl\"}]", "bad.yaml:7: bodies[1].meshes[0].file: contains a NUL character"},
-      {"meshes: [{file: a.stl, position: [0, 0]}]", "bad.yaml:7: bodies[1].meshes[0].position: must be a list of 3 numbers"},
-      {"meshes: [{file: a.stl, rpy: [0, x, 0]}]", "bad.yaml:7: bodies[1].meshes[0].rpy[1]: must be a number, got 'x'"},
-      {"meshes: [{file: a.stl, position: [0, 0, 2e4]}]", "bad.yaml:7: bodies[1].meshes[0].position[2]: '2e4' must lie in"},
-      {"meshes: [{file: a.stl, scale: [1, 0, 1]}]", "bad.yaml:7: bodies[1].meshes[0].scale[1]: must be positive"},
-      {"meshes: [{file: a.stl, scale: [1, 1, -2]}]", "bad.yaml:7: bodies[1].meshes[0].scale[2]: must be positive"},
-      {"meshes: [{file: a.stl, scale: [1, .nan, 1]}]", "bad.yaml:7: bodies[1].meshes[0].scale[1]: must be a finite number"},
-      {"meshes: [{file: a.stl, scale: [1, 1]}]", "bad.yaml:7: bodies[1].meshes[0].scale: must be a list of 3 numbers"},
-      {"meshes: [{file: a.stl, scael: [1, 1, 1]}]", "bad.yaml:7: bodies[1].meshes[0]: unknown key 'scael' (did you mean 'scale'?)"},
-      {"meshs: [{file: a.stl}]", "bad.yaml:7: bodies[1]: unknown key 'meshs' (did you mean 'meshes'?)"},
+      {"meshes: a.stl", "bad.yaml:8: bodies[1].meshes: must be a list"},
+      {"meshes: [a.stl]", "bad.yaml:8: bodies[1].meshes[0]: must be a mapping"},
+      {"meshes: [{position: [0, 0, 0]}]", "bad.yaml:8: bodies[1].meshes[0].file: missing required key"},
+      {"meshes: [{file: ''}]", "bad.yaml:8: bodies[1].meshes[0].file: must be a non-empty string"},
+      {"meshes: [{file: [a.stl]}]", "bad.yaml:8: bodies[1].meshes[0].file: must be a non-empty string"},
+      {"meshes: [{file: " + long_name + "}]", "bad.yaml:8: bodies[1].meshes[0].file: longer than 4096 bytes"},
+      {"meshes: [{file: \"a\\0b.stl\"}]", "bad.yaml:8: bodies[1].meshes[0].file: contains a NUL character"},
+      {"meshes: [{file: a.stl, position: [0, 0]}]", "bad.yaml:8: bodies[1].meshes[0].position: must be a list of 3 numbers"},
+      {"meshes: [{file: a.stl, rpy: [0, x, 0]}]", "bad.yaml:8: bodies[1].meshes[0].rpy[1]: must be a number, got 'x'"},
+      {"meshes: [{file: a.stl, position: [0, 0, 2e4]}]", "bad.yaml:8: bodies[1].meshes[0].position[2]: '2e4' must lie in"},
+      {"meshes: [{file: a.stl, scale: [1, 0, 1]}]", "bad.yaml:8: bodies[1].meshes[0].scale[1]: must be positive"},
+      {"meshes: [{file: a.stl, scale: [1, 1, -2]}]", "bad.yaml:8: bodies[1].meshes[0].scale[2]: must be positive"},
+      {"meshes: [{file: a.stl, scale: [1, .nan, 1]}]", "bad.yaml:8: bodies[1].meshes[0].scale[1]: must be a finite number"},
+      {"meshes: [{file: a.stl, scale: [1, 1]}]", "bad.yaml:8: bodies[1].meshes[0].scale: must be a list of 3 numbers"},
+      {"meshes: [{file: a.stl, scael: [1, 1, 1]}]", "bad.yaml:8: bodies[1].meshes[0]: unknown key 'scael' (did you mean 'scale'?)"},
+      {"meshs: [{file: a.stl}]", "bad.yaml:8: bodies[1]: unknown key 'meshs' (did you mean 'meshes'?)"},
   };
   for (const auto& [line, expected] : cases) {
     const std::string error = ErrorOf(With(line));
     EXPECT_EQ(error.rfind(expected, 0), 0u) << line << "\n  gave: " << error << "\n  want: " << expected;
   }
   const std::string base_error = ErrorOf(With("", "meshes: [{file: a.stl, scale: [0, 1, 1]}]"));
-  EXPECT_EQ(base_error.rfind("bad.yaml:11: mobile_bases[0].meshes[0].scale[0]: must be positive", 0), 0u) << base_error;
+  EXPECT_EQ(base_error.rfind("bad.yaml:13: mobile_bases[0].meshes[0].scale[0]: must be positive", 0), 0u) << base_error;
 }
 
 TEST(ModelMeshes, UnknownKeyFarFromAnyIsAWarning) {
   std::vector<std::string> warnings;
   const Model m = LoadModelFromString(With("meshes: [{file: a.stl, colour: red}]"), "m.yaml", &warnings);
   ASSERT_EQ(warnings.size(), 1u);
-  EXPECT_EQ(warnings[0], "m.yaml:7: bodies[1].meshes[0].colour: unknown key, ignored");
+  EXPECT_EQ(warnings[0], "m.yaml:8: bodies[1].meshes[0].colour: unknown key, ignored");
   EXPECT_EQ(Named(m, "arm").meshes.size(), 1u);
 }
 
@@ -156,7 +156,7 @@ TEST(ModelMeshes, CountsAreBoundedPerBodyAndPerModel) {
   EXPECT_EQ(Named(LoadModelFromString(With(ManyMeshes(kMaxMeshesPerBody)), "m.yaml"), "arm").meshes.size(),
             static_cast<size_t>(kMaxMeshesPerBody));
   const std::string per_body = ErrorOf(With(ManyMeshes(kMaxMeshesPerBody + 1)));
-  EXPECT_EQ(per_body.rfind("bad.yaml:7: bodies[1].meshes: 65 meshes; at most 64", 0), 0u) << per_body;
+  EXPECT_EQ(per_body.rfind("bad.yaml:8: bodies[1].meshes: 65 meshes; at most 64", 0), 0u) << per_body;
   // kMaxMeshes / 64 + 1 bodies of 64 meshes each: the body past the total names itself.
   const int bodies = kMaxMeshes / kMaxMeshesPerBody + 1;
   std::string text = "name: many\nbodies:\n";
