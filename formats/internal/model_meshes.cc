@@ -3,8 +3,8 @@
 // everything else in the format, and stored relative to the body's frame.
 // The loader never opens the mesh files: only the viewer reads them.
 #include <string>
+#include <vector>
 
-#include "ccma/internal/format.h"
 #include "ccma/limits.h"
 #include "ccma/rotation.h"
 #include "formats/internal/model_parser.h"
