@@ -1,8 +1,8 @@
 #include "formats/sdformat_reader.h"
 
 #include <algorithm>
-#include <cmath>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include <tinyxml.h>
 #include <sdf/Console.hh>
 #include <sdf/Element.hh>
 #include <sdf/Error.hh>
@@ -24,7 +25,6 @@
 #include <sdf/Root.hh>
 #include <sdf/Visual.hh>
 #include <sdf/World.hh>
-#include <tinyxml.h>
 
 #include "ccma/limits.h"
 #include "formats/model_loader.h"
@@ -36,8 +36,8 @@ namespace fs = std::filesystem;
 
 // Everything a part of the reader needs to know about the file.
 struct Context {
-  std::string source;               // the file, for messages
-  std::string folder;               // its absolute folder, for mesh uris
+  std::string source;                                      // the file, for messages
+  std::string folder;                                      // its absolute folder, for mesh uris
   Eigen::Isometry3d X_WM = Eigen::Isometry3d::Identity();  // the model frame in W
 };
 
@@ -69,7 +69,8 @@ int LineOf(const sdf::ElementPtr& element) {
   for (std::size_t i = 0; i < shown; ++i) {
     if (i > 0) message += "; ";
     message += Quote(errors[i].Message());
-    if (errors[i].LineNumber()) message += " [line " + std::to_string(*errors[i].LineNumber()) + "]";
+    if (errors[i].LineNumber())
+      message += " [line " + std::to_string(*errors[i].LineNumber()) + "]";
   }
   if (errors.size() > shown) message += "; and " + std::to_string(errors.size() - shown) + " more";
   throw ModelError(message);
@@ -107,14 +108,19 @@ void CheckNesting(const std::string& text, const std::string& source) {
     if (text[i] != '<') continue;
     const char next = i + 1 < text.size() ? text[i + 1] : '\0';
     if (next == '!' || next == '?') {  // comment, CDATA, declaration: skip to its end
-      const char* end = text.compare(i, 4, "<!--") == 0 ? "-->" : text.compare(i, 9, "<![CDATA[") == 0 ? "]]>" : ">";
+      const char* end = text.compare(i, 4, "<!--") == 0        ? "-->"
+                        : text.compare(i, 9, "<![CDATA[") == 0 ? "]]>"
+                                                               : ">";
       const std::size_t stop = text.find(end, i + 1);
       const std::size_t last = stop == std::string::npos ? text.size() : stop;
       line += static_cast<int>(std::count(text.begin() + i, text.begin() + last, '\n'));
       i = last;
       continue;
     }
-    if (next == '/') { --depth; continue; }
+    if (next == '/') {
+      --depth;
+      continue;
+    }
     // An opening tag; self-closing when it ends in "/>" (quotes may hold '>').
     char quote = 0;
     std::size_t j = i + 1;
@@ -134,8 +140,9 @@ void CheckNesting(const std::string& text, const std::string& source) {
 void RejectIncludes(const TiXmlElement* element, const std::string& source) {
   for (const TiXmlElement* e = element->FirstChildElement(); e; e = e->NextSiblingElement()) {
     if (e->ValueStr() == "include") {
-      throw ModelError(source + ":" + std::to_string(e->Row()) +
-                       ": <include> is not supported: put the included model's links and joints in the file");
+      throw ModelError(
+          source + ":" + std::to_string(e->Row()) +
+          ": <include> is not supported: put the included model's links and joints in the file");
     }
     RejectIncludes(e, source);
   }
@@ -148,8 +155,8 @@ void CheckXml(const std::string& text, const std::string& source) {
   TiXmlDocument document;
   document.Parse(text.c_str(), nullptr, TIXML_ENCODING_UTF8);
   if (document.Error()) {
-    throw ModelError(source + ":" + std::to_string(document.ErrorRow()) + ": not valid XML: " +
-                     document.ErrorDesc());
+    throw ModelError(source + ":" + std::to_string(document.ErrorRow()) +
+                     ": not valid XML: " + document.ErrorDesc());
   }
   const TiXmlElement* root = document.RootElement();
   if (root == nullptr || root->ValueStr() != "sdf") {
@@ -157,8 +164,8 @@ void CheckXml(const std::string& text, const std::string& source) {
   }
   const char* version = root->Attribute("version");
   int major = 0, minor = 0;
-  if (version == nullptr || std::sscanf(version, "%d.%d", &major, &minor) != 2 ||
-      major < 1 || (major == 1 && minor < 7)) {
+  if (version == nullptr || std::sscanf(version, "%d.%d", &major, &minor) != 2 || major < 1 ||
+      (major == 1 && minor < 7)) {
     throw ModelError(source + ":" + std::to_string(root->Row()) + ": sdf version '" +
                      Quote(version ? version : "") + "': SDFormat 1.7 or later is needed");
   }
@@ -214,7 +221,8 @@ void ReadMeshes(const sdf::Link& link, const Context& context, RobotLink* out) {
     result.file = ResolveMeshUri(mesh.Uri(), context.folder);
     result.X_WM = PoseInWorld(context, pose, where);
     result.scale << mesh.Scale().X(), mesh.Scale().Y(), mesh.Scale().Z();
-    if (!result.scale.allFinite() || result.scale.minCoeff() <= 0 || result.scale.maxCoeff() > kMaxMagnitude) {
+    if (!result.scale.allFinite() || result.scale.minCoeff() <= 0 ||
+        result.scale.maxCoeff() > kMaxMagnitude) {
       throw ModelError(where + ": mesh scale must be positive, finite and at most 1e4");
     }
     out->meshes.push_back(result);
@@ -239,12 +247,18 @@ RobotLink ReadLink(const sdf::Link& link, const Context& context) {
 RobotJointType JointTypeOf(const sdf::Joint& joint, const std::string& where) {
   switch (joint.Type()) {
     case sdf::JointType::REVOLUTE:
-    case sdf::JointType::CONTINUOUS: return RobotJointType::kRevolute;
-    case sdf::JointType::PRISMATIC: return RobotJointType::kPrismatic;
-    case sdf::JointType::FIXED: return RobotJointType::kFixed;
-    case sdf::JointType::BALL: return RobotJointType::kSpherical;
-    case sdf::JointType::UNIVERSAL: return RobotJointType::kUniversal;
-    default: break;
+    case sdf::JointType::CONTINUOUS:
+      return RobotJointType::kRevolute;
+    case sdf::JointType::PRISMATIC:
+      return RobotJointType::kPrismatic;
+    case sdf::JointType::FIXED:
+      return RobotJointType::kFixed;
+    case sdf::JointType::BALL:
+      return RobotJointType::kSpherical;
+    case sdf::JointType::UNIVERSAL:
+      return RobotJointType::kUniversal;
+    default:
+      break;
   }
   const std::string type = joint.Element() ? joint.Element()->Get<std::string>("type") : "";
   if (type == "planar") return RobotJointType::kPlanar;
@@ -263,7 +277,8 @@ Eigen::Vector3d AxisInWorld(const sdf::Joint& joint, unsigned index, const Conte
   const sdf::Errors errors = axis->ResolveXyz(xyz, "__model__");
   if (!errors.empty()) ThrowSdfErrors(errors, where + ": " + name);
   const Eigen::Vector3d v = context.X_WM.linear() * Eigen::Vector3d(xyz.X(), xyz.Y(), xyz.Z());
-  if (!v.allFinite() || v.norm() < 1e-12) throw ModelError(where + ": " + name + " must be a finite, non-zero vector");
+  if (!v.allFinite() || v.norm() < 1e-12)
+    throw ModelError(where + ": " + name + " must be a finite, non-zero vector");
   return v.normalized();
 }
 
@@ -289,7 +304,9 @@ void ReadPositionAndLimits(const sdf::Joint& joint, const std::string& where, Ro
   const sdf::ElementPtr limit = axis->GetElement("limit");
   const std::optional<double> lower = Written(limit, "lower"), upper = Written(limit, "upper");
   // SDFormat writes "no limit" as +-1e16 (its defaults) or an infinity.
-  const auto bounded = [](const std::optional<double>& v) { return v && std::isfinite(*v) && std::abs(*v) < 1e16; };
+  const auto bounded = [](const std::optional<double>& v) {
+    return v && std::isfinite(*v) && std::abs(*v) < 1e16;
+  };
   if (!bounded(lower) || !bounded(upper)) return;
   if (std::abs(*lower) > kMaxMagnitude || std::abs(*upper) > kMaxMagnitude || *lower > *upper) {
     throw ModelError(where + ": limit lower and upper must be within 1e4, lower <= upper");
@@ -311,7 +328,8 @@ RobotJoint ReadJoint(const sdf::Joint& joint, const Context& context) {
   RobotJoint out;
   out.name = joint.Name();
   out.line = LineOf(joint.Element());
-  const std::string where = Where(context, joint.Element()) + ": joint '" + Quote(joint.Name()) + "'";
+  const std::string where =
+      Where(context, joint.Element()) + ": joint '" + Quote(joint.Name()) + "'";
   out.type = JointTypeOf(joint, where);
   out.parent = AttachedLink(joint, true, where);
   out.child = AttachedLink(joint, false, where);
@@ -331,11 +349,13 @@ RobotJoint ReadJoint(const sdf::Joint& joint, const Context& context) {
       break;
     case RobotJointType::kPlanar:
       if (out.parent != kRobotWorld) {
-        throw ModelError(where + ": a planar joint must connect the ground ('world') to a mobile base");
+        throw ModelError(where +
+                         ": a planar joint must connect the ground ('world') to a mobile base");
       }
       out.axis_W = out.X_WJ.linear().col(2);
       break;
-    default: break;
+    default:
+      break;
   }
   return out;
 }
@@ -352,8 +372,8 @@ std::vector<double> Numbers(const std::string& text, const std::string& where, s
   if (!clean || values.size() != count || !std::all_of(values.begin(), values.end(), [](double v) {
         return std::isfinite(v) && std::abs(v) <= kMaxMagnitude;
       })) {
-    throw ModelError(where + ": expected " + std::to_string(count) + " finite numbers within 1e4, got '" +
-                     Quote(text) + "'");
+    throw ModelError(where + ": expected " + std::to_string(count) +
+                     " finite numbers within 1e4, got '" + Quote(text) + "'");
   }
   return values;
 }
@@ -369,7 +389,8 @@ void ReadEndEffector(const sdf::Model& model, const Context& context, RobotDescr
   };
   out->end_effector.link = attribute("link");
   if (out->end_effector.link != kRobotWorld && out->FindLink(out->end_effector.link) < 0) {
-    throw ModelError(where + ": link '" + Quote(out->end_effector.link) + "' is not a link of the model");
+    throw ModelError(where + ": link '" + Quote(out->end_effector.link) +
+                     "' is not a link of the model");
   }
   if (element->HasAttribute("point")) {
     const std::vector<double> p = Numbers(attribute("point"), where + " point", 3);
@@ -378,10 +399,12 @@ void ReadEndEffector(const sdf::Model& model, const Context& context, RobotDescr
   std::istringstream controlled(attribute("controlled"));
   const std::set<std::string> known = {"x", "y", "z", "roll", "pitch", "yaw"};
   for (std::string name; controlled >> name;) {
-    const bool repeated = std::find(out->end_effector.controlled.begin(), out->end_effector.controlled.end(),
-                                    name) != out->end_effector.controlled.end();
+    const bool repeated =
+        std::find(out->end_effector.controlled.begin(), out->end_effector.controlled.end(), name) !=
+        out->end_effector.controlled.end();
     if (!known.count(name) || repeated) {
-      throw ModelError(where + " controlled: '" + Quote(name) + "' is not one of x y z roll pitch yaw (each once)");
+      throw ModelError(where + " controlled: '" + Quote(name) +
+                       "' is not one of x y z roll pitch yaw (each once)");
     }
     out->end_effector.controlled.push_back(name);
   }
@@ -394,10 +417,12 @@ const sdf::Model& TheModel(const sdf::Root& root, const std::string& source) {
   if (model == nullptr && root.WorldCount() == 1 && root.WorldByIndex(0)->ModelCount() == 1) {
     model = root.WorldByIndex(0)->ModelByIndex(0);
   }
-  if (model == nullptr) throw ModelError(source + ": the file must hold one <model> (or one <world> with one model)");
+  if (model == nullptr)
+    throw ModelError(source + ": the file must hold one <model> (or one <world> with one model)");
   if (model->ModelCount() > 0) {
-    throw ModelError(Where(Context{source, "", {}}, model->ModelByIndex(0)->Element()) + ": model '" +
-                     Quote(model->ModelByIndex(0)->Name()) + "': nested models are not supported");
+    throw ModelError(Where(Context{source, "", {}}, model->ModelByIndex(0)->Element()) +
+                     ": model '" + Quote(model->ModelByIndex(0)->Name()) +
+                     "': nested models are not supported");
   }
   if (model->LinkCount() > static_cast<uint64_t>(kMaxBodies) ||
       model->JointCount() > static_cast<uint64_t>(kMaxJoints)) {
@@ -410,7 +435,8 @@ const sdf::Model& TheModel(const sdf::Root& root, const std::string& source) {
 // [A-Za-z0-9_-] only, at most kMaxNameLength characters, never empty.
 std::string CleanName(const std::string& name) {
   std::string out;
-  for (char c : name.substr(0, kMaxNameLength)) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-') ? c : '_';
+  for (char c : name.substr(0, kMaxNameLength))
+    out += (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-') ? c : '_';
   return out.empty() ? "robot" : out;
 }
 
@@ -450,8 +476,10 @@ RobotDescription ReadSdformatFromString(const std::string& text, const std::stri
   RobotDescription robot;
   robot.name = CleanName(model.Name());
   robot.source = path;
-  for (uint64_t i = 0; i < model.LinkCount(); ++i) robot.links.push_back(ReadLink(*model.LinkByIndex(i), context));
-  for (uint64_t i = 0; i < model.JointCount(); ++i) robot.joints.push_back(ReadJoint(*model.JointByIndex(i), context));
+  for (uint64_t i = 0; i < model.LinkCount(); ++i)
+    robot.links.push_back(ReadLink(*model.LinkByIndex(i), context));
+  for (uint64_t i = 0; i < model.JointCount(); ++i)
+    robot.joints.push_back(ReadJoint(*model.JointByIndex(i), context));
   CheckActuated(robot, actuated);
   robot.actuated = actuated;
   ReadEndEffector(model, context, &robot);

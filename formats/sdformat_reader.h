@@ -53,8 +53,7 @@ constexpr std::size_t kMaxSdformatFileBytes = std::size_t{16} << 20;
 // Reads the SDFormat file at `path`. `actuated` names the actuated joints in
 // control order (revolute or prismatic joints of the file; each once); it is
 // copied to RobotDescription::actuated. Throws ModelError.
-RobotDescription ReadSdformat(const std::string& path,
-                              const std::vector<std::string>& actuated);
+RobotDescription ReadSdformat(const std::string& path, const std::vector<std::string>& actuated);
 
 // The same for SDFormat text held in memory; `path` names it in messages and
 // its folder resolves relative mesh uris (the file itself is not read).

@@ -32,7 +32,8 @@ std::string Slurp(const std::string& path) {
 // An SDFormat 1.7 file holding `body` inside <model name="m">.
 std::string Sdf(const std::string& body, const std::string& version = "1.7") {
   return "<?xml version=\"1.0\"?>\n<sdf version=\"" + version +
-         "\" xmlns:ccma=\"https://ccma.dev/sdf\">\n<model name=\"m\">\n" + body + "</model>\n</sdf>\n";
+         "\" xmlns:ccma=\"https://ccma.dev/sdf\">\n<model name=\"m\">\n" + body +
+         "</model>\n</sdf>\n";
 }
 
 // The message of the ModelError that reading `text` throws ("" if none).
@@ -50,7 +51,8 @@ Eigen::Vector3d Point(const RobotDescription& robot, const std::string& joint) {
 }
 
 Eigen::Vector3d InLink(const RobotDescription& robot, const std::string& link, double x) {
-  return robot.links[static_cast<std::size_t>(robot.FindLink(link))].X_WL * Eigen::Vector3d(x, 0, 0);
+  return robot.links[static_cast<std::size_t>(robot.FindLink(link))].X_WL *
+         Eigen::Vector3d(x, 0, 0);
 }
 
 TEST(SdformatReaderTest, FourBarLoopReadsWithItsWorldGeometry) {
@@ -114,55 +116,72 @@ TEST(SdformatReaderTest, TruncatedFileNamesFileAndLine) {
     EXPECT_EQ(message.rfind(path + ":", 0), 0u) << message;
     EXPECT_NE(message.find("not valid XML"), std::string::npos) << message;
   }
-  EXPECT_NE(Rejection("<sdf version=\"1.7\"><model name=\"m\"><link name=\"a\"></model></sdf>").find("/tmp/robot.sdf:1: not valid XML"),
+  EXPECT_NE(Rejection("<sdf version=\"1.7\"><model name=\"m\"><link name=\"a\"></model></sdf>")
+                .find("/tmp/robot.sdf:1: not valid XML"),
             std::string::npos);
 }
 
 TEST(SdformatReaderTest, LibsdformatsOwnErrorsAreQuoted) {
-  const std::string message = Rejection(Sdf(
-      "<link name=\"a\"/>\n<joint name=\"j\" type=\"revolute\"><parent>world</parent><child>nowhere</child>"
-      "<axis><xyz>0 0 1</xyz></axis></joint>\n"));
+  const std::string message =
+      Rejection(Sdf("<link name=\"a\"/>\n<joint name=\"j\" "
+                    "type=\"revolute\"><parent>world</parent><child>nowhere</child>"
+                    "<axis><xyz>0 0 1</xyz></axis></joint>\n"));
   EXPECT_EQ(message.rfind("/tmp/robot.sdf: libsdformat: ", 0), 0u) << message;
-  EXPECT_NE(message.find("Child frame with name[nowhere] specified by joint with name[j] not found"), std::string::npos)
+  EXPECT_NE(
+      message.find("Child frame with name[nowhere] specified by joint with name[j] not found"),
+      std::string::npos)
       << message;
-  EXPECT_NE(message.find("more"), std::string::npos) << message;  // libsdformat reported 8 errors; 3 shown
+  EXPECT_NE(message.find("more"), std::string::npos)
+      << message;  // libsdformat reported 8 errors; 3 shown
   const std::string duplicate = Rejection(Sdf("<link name=\"a\"/><link name=\"a\"/>"));
   EXPECT_NE(duplicate.find("libsdformat: "), std::string::npos) << duplicate;
   EXPECT_NE(duplicate.find("[a]"), std::string::npos) << duplicate;
-  const std::string invalid = Rejection(Sdf("<link name=\"a\"/><joint name=\"j\" type=\"hinge\"><parent>world</parent>"
-                                            "<child>a</child></joint>"));
-  EXPECT_NE(invalid.find("libsdformat: Joint type of hinge is invalid"), std::string::npos) << invalid;
+  const std::string invalid =
+      Rejection(Sdf("<link name=\"a\"/><joint name=\"j\" type=\"hinge\"><parent>world</parent>"
+                    "<child>a</child></joint>"));
+  EXPECT_NE(invalid.find("libsdformat: Joint type of hinge is invalid"), std::string::npos)
+      << invalid;
 }
 
 TEST(SdformatReaderTest, UnsupportedJointTypeNamesTheJoint) {
   for (const std::string type : {"screw", "gearbox", "revolute2"}) {
-    const std::string message = Rejection(Sdf(
-        "<link name=\"a\"/>\n<link name=\"b\"/>\n<joint name=\"twist\" type=\"" + type +
-        "\"><parent>world</parent><child>a</child><axis><xyz>0 0 1</xyz></axis><axis2><xyz>1 0 0</xyz></axis2>"
-        "</joint>\n"));
-    EXPECT_NE(message.find("/tmp/robot.sdf:6: joint 'twist': type '" + type + "' is not supported"), std::string::npos)
+    const std::string message = Rejection(
+        Sdf("<link name=\"a\"/>\n<link name=\"b\"/>\n<joint name=\"twist\" type=\"" + type +
+            "\"><parent>world</parent><child>a</child><axis><xyz>0 0 1</xyz></axis><axis2><xyz>1 0 "
+            "0</xyz></axis2>"
+            "</joint>\n"));
+    EXPECT_NE(message.find("/tmp/robot.sdf:6: joint 'twist': type '" + type + "' is not supported"),
+              std::string::npos)
         << message;
   }
 }
 
 TEST(SdformatReaderTest, OtherBadInputIsRejected) {
-  EXPECT_NE(Rejection(Sdf("<link name=\"a\"/>", "1.6")).find("/tmp/robot.sdf:2: sdf version '1.6': SDFormat 1.7"),
+  EXPECT_NE(Rejection(Sdf("<link name=\"a\"/>", "1.6"))
+                .find("/tmp/robot.sdf:2: sdf version '1.6': SDFormat 1.7"),
             std::string::npos);
   EXPECT_NE(Rejection("<robot name=\"r\"/>").find("not an SDFormat file"), std::string::npos);
-  EXPECT_NE(Rejection(Sdf("<include><uri>/dev/zero</uri></include>")).find(":4: <include> is not supported"),
+  EXPECT_NE(Rejection(Sdf("<include><uri>/dev/zero</uri></include>"))
+                .find(":4: <include> is not supported"),
             std::string::npos);
   std::string deep;
   for (int i = 0; i < 200; ++i) deep += "<a>";
   EXPECT_NE(Rejection(Sdf(deep)).find("nested more than 100 deep"), std::string::npos);
-  const std::string joint = "<link name=\"a\"/><joint name=\"j\" type=\"revolute\"><parent>world</parent>"
-                            "<child>a</child><axis><xyz>0 0 1</xyz></axis></joint>";
-  EXPECT_NE(Rejection(Sdf(joint), {"k"}).find("/tmp/robot.sdf: actuated joint 'k': no joint of that name"),
+  const std::string joint =
+      "<link name=\"a\"/><joint name=\"j\" type=\"revolute\"><parent>world</parent>"
+      "<child>a</child><axis><xyz>0 0 1</xyz></axis></joint>";
+  EXPECT_NE(Rejection(Sdf(joint), {"k"})
+                .find("/tmp/robot.sdf: actuated joint 'k': no joint of that name"),
             std::string::npos);
-  EXPECT_NE(Rejection(Sdf(joint), {"j", "j"}).find("actuated joint 'j': named twice"), std::string::npos);
-  EXPECT_NE(Rejection(Sdf("<link name=\"a\"><pose>1e5 0 0 0 0 0</pose></link>")).find("link 'a': pose must be"),
+  EXPECT_NE(Rejection(Sdf(joint), {"j", "j"}).find("actuated joint 'j': named twice"),
             std::string::npos);
-  EXPECT_NE(Rejection(Sdf("<link name=\"a\"/><link name=\"b\"/><joint name=\"p\" type=\"planar\"><parent>a</parent>"
-                          "<child>b</child></joint>")).find("joint 'p': a planar joint must connect the ground"),
+  EXPECT_NE(Rejection(Sdf("<link name=\"a\"><pose>1e5 0 0 0 0 0</pose></link>"))
+                .find("link 'a': pose must be"),
+            std::string::npos);
+  EXPECT_NE(Rejection(Sdf("<link name=\"a\"/><link name=\"b\"/><joint name=\"p\" "
+                          "type=\"planar\"><parent>a</parent>"
+                          "<child>b</child></joint>"))
+                .find("joint 'p': a planar joint must connect the ground"),
             std::string::npos);
   const std::string dir = testing::ScratchPath("sdformat_reader", "a_folder.sdf");
   fs::create_directories(dir);
@@ -190,7 +209,8 @@ TEST(SdformatReaderTest, JointKindsPositionsAndLimits) {
       <axis><xyz>1 0 0</xyz></axis><axis2><xyz>0 1 0</xyz></axis2></joint>
     <joint name="huge" type="revolute"><parent>world</parent><child>e</child>
       <axis><xyz>0 0 1</xyz><limit><lower>-1e16</lower><upper>1e16</upper></limit></axis></joint>
-  )"), "/tmp/robot.sdf", {"hinge", "slide"});
+  )"),
+                                                        "/tmp/robot.sdf", {"hinge", "slide"});
   ASSERT_EQ(robot.joints.size(), 6u);
   // The model is turned 90 degrees about z and lifted 1 m: x -> y.
   EXPECT_NEAR((robot.links[0].X_WL.translation() - Eigen::Vector3d(0, 1, 1)).norm(), 0, 1e-15);
@@ -218,8 +238,11 @@ TEST(SdformatReaderTest, JointKindsPositionsAndLimits) {
   EXPECT_NEAR((cross.axis2_W - Eigen::Vector3d(-1, 0, 0)).norm(), 0, 1e-15);
   EXPECT_FALSE(robot.joints[5].limited);  // +-1e16: SDFormat's "unlimited"
   EXPECT_EQ(robot.actuated, (std::vector<std::string>{"hinge", "slide"}));
-  EXPECT_NE(Rejection(Sdf("<link name=\"a\"/><joint name=\"j\" type=\"ball\"><parent>world</parent><child>a</child>"
-                          "</joint>"), {"j"}).find("only a revolute, continuous or prismatic joint can be actuated"),
+  EXPECT_NE(Rejection(Sdf("<link name=\"a\"/><joint name=\"j\" "
+                          "type=\"ball\"><parent>world</parent><child>a</child>"
+                          "</joint>"),
+                      {"j"})
+                .find("only a revolute, continuous or prismatic joint can be actuated"),
             std::string::npos);
 }
 
@@ -228,7 +251,8 @@ TEST(SdformatReaderTest, PlanarBaseAndEndEffectorElement) {
     <ccma:end_effector link="base" point="0.5 0 0.25" controlled="x y yaw"/>
     <link name="base"><pose>1 2 0 0 0 0</pose></link>
     <joint name="floor" type="planar"><parent>world</parent><child>base</child></joint>
-  )"), "/tmp/robot.sdf", {});
+  )"),
+                                                        "/tmp/robot.sdf", {});
   ASSERT_EQ(robot.joints.size(), 1u);
   EXPECT_EQ(robot.joints[0].type, RobotJointType::kPlanar);
   EXPECT_NEAR((robot.joints[0].axis_W - Eigen::Vector3d::UnitZ()).norm(), 0, 1e-15);
@@ -237,16 +261,21 @@ TEST(SdformatReaderTest, PlanarBaseAndEndEffectorElement) {
   EXPECT_EQ(robot.end_effector.link, "base");
   EXPECT_EQ(robot.end_effector.point_L, Eigen::Vector3d(0.5, 0, 0.25));
   EXPECT_EQ(robot.end_effector.controlled, (std::vector<std::string>{"x", "y", "yaw"}));
-  const std::string bad_link = Rejection(Sdf("<ccma:end_effector link=\"arm\"/><link name=\"a\"/>"));
-  EXPECT_NE(bad_link.find("<ccma:end_effector>: link 'arm' is not a link"), std::string::npos) << bad_link;
-  const std::string bad_point = Rejection(Sdf("<ccma:end_effector link=\"a\" point=\"1 2\"/><link name=\"a\"/>"));
+  const std::string bad_link =
+      Rejection(Sdf("<ccma:end_effector link=\"arm\"/><link name=\"a\"/>"));
+  EXPECT_NE(bad_link.find("<ccma:end_effector>: link 'arm' is not a link"), std::string::npos)
+      << bad_link;
+  const std::string bad_point =
+      Rejection(Sdf("<ccma:end_effector link=\"a\" point=\"1 2\"/><link name=\"a\"/>"));
   EXPECT_NE(bad_point.find("point: expected 3 finite numbers"), std::string::npos) << bad_point;
-  const std::string bad_name = Rejection(Sdf("<ccma:end_effector link=\"a\" controlled=\"x yaw x\"/><link name=\"a\"/>"));
+  const std::string bad_name =
+      Rejection(Sdf("<ccma:end_effector link=\"a\" controlled=\"x yaw x\"/><link name=\"a\"/>"));
   EXPECT_NE(bad_name.find("controlled: 'x' is not one of"), std::string::npos) << bad_name;
 }
 
 TEST(SdformatReaderTest, MeshUrisResolveAgainstTheFilesFolder) {
-  const fs::path root = fs::path(testing::ScratchPath("sdformat_reader", "meshes")).lexically_normal();
+  const fs::path root =
+      fs::path(testing::ScratchPath("sdformat_reader", "meshes")).lexically_normal();
   fs::remove_all(root);
   fs::create_directories(root / "robots" / "arm");
   fs::create_directories(root / "gripper" / "meshes");
@@ -271,7 +300,8 @@ TEST(SdformatReaderTest, MeshUrisResolveAgainstTheFilesFolder) {
   EXPECT_EQ(meshes[1].file, (root / "robots" / "arm" / "meshes" / "a.stl").string());
   EXPECT_EQ(meshes[1].scale, Eigen::Vector3d::Ones());
   EXPECT_EQ(meshes[2].file, "/opt/m/b.stl");
-  EXPECT_EQ(meshes[3].file, (root / "robots" / "arm" / "c.stl").string());  // not found: the viewer says so
+  EXPECT_EQ(meshes[3].file,
+            (root / "robots" / "arm" / "c.stl").string());  // not found: the viewer says so
 }
 
 TEST(SdformatReaderTest, ModelInsideAWorld) {
