@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -27,12 +26,12 @@
 #include <sdf/World.hh>
 
 #include "ccma/limits.h"
+#include "formats/internal/mesh_paths.h"
+#include "formats/internal/xml_nesting.h"
 #include "formats/model_loader.h"
 
 namespace ccma {
 namespace {
-
-namespace fs = std::filesystem;
 
 // Everything a part of the reader needs to know about the file.
 struct Context {
@@ -97,45 +96,6 @@ Eigen::Isometry3d PoseInWorld(const Context& context, const ignition::math::Pose
 
 // ------------------------------------------------------------- the XML ------
 
-// TinyXML and libsdformat's TinyXML-2 parse recursively: a small file nested
-// 100,000 deep would overflow the stack. Robot files nest about 8 deep.
-constexpr int kMaxXmlNesting = 100;
-
-void CheckNesting(const std::string& text, const std::string& source) {
-  int depth = 0, line = 1;
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    if (text[i] == '\n') ++line;
-    if (text[i] != '<') continue;
-    const char next = i + 1 < text.size() ? text[i + 1] : '\0';
-    if (next == '!' || next == '?') {  // comment, CDATA, declaration: skip to its end
-      const char* end = text.compare(i, 4, "<!--") == 0        ? "-->"
-                        : text.compare(i, 9, "<![CDATA[") == 0 ? "]]>"
-                                                               : ">";
-      const std::size_t stop = text.find(end, i + 1);
-      const std::size_t last = stop == std::string::npos ? text.size() : stop;
-      line += static_cast<int>(std::count(text.begin() + i, text.begin() + last, '\n'));
-      i = last;
-      continue;
-    }
-    if (next == '/') {
-      --depth;
-      continue;
-    }
-    // An opening tag; self-closing when it ends in "/>" (quotes may hold '>').
-    char quote = 0;
-    std::size_t j = i + 1;
-    for (; j < text.size() && (quote || text[j] != '>'); ++j) {
-      if (text[j] == '\n') ++line;
-      if (text[j] == '"' || text[j] == '\'') quote = quote == text[j] ? 0 : quote ? quote : text[j];
-    }
-    if (j < text.size() && text[j - 1] != '/' && ++depth > kMaxXmlNesting) {
-      throw ModelError(source + ":" + std::to_string(line) + ": XML elements nested more than " +
-                       std::to_string(kMaxXmlNesting) + " deep");
-    }
-    i = j;
-  }
-}
-
 // <include> makes libsdformat open other files named by the input: refused.
 void RejectIncludes(const TiXmlElement* element, const std::string& source) {
   for (const TiXmlElement* e = element->FirstChildElement(); e; e = e->NextSiblingElement()) {
@@ -151,7 +111,7 @@ void RejectIncludes(const TiXmlElement* element, const std::string& source) {
 // Well-formed XML with an <sdf version="1.7 or later"> root, before
 // libsdformat (which reports malformed XML without a line) sees it.
 void CheckXml(const std::string& text, const std::string& source) {
-  CheckNesting(text, source);
+  internal::CheckXmlNesting(text, source);  // TinyXML parses recursively
   TiXmlDocument document;
   document.Parse(text.c_str(), nullptr, TIXML_ENCODING_UTF8);
   if (document.Error()) {
@@ -186,26 +146,6 @@ sdf::Errors Unforgiven(const sdf::Errors& errors) {
 
 // ------------------------------------------------------------- meshes -------
 
-// See the header: file://, relative, model:// and package:// uris.
-std::string ResolveMeshUri(const std::string& uri, const std::string& folder) {
-  for (const char* scheme : {"model://", "package://"}) {
-    const std::string prefix(scheme);
-    if (uri.compare(0, prefix.size(), prefix) != 0) continue;
-    const std::string rest = uri.substr(prefix.size());
-    const std::size_t slash = rest.find('/');
-    const std::string name = rest.substr(0, slash);
-    const std::string tail = slash == std::string::npos ? "" : rest.substr(slash + 1);
-    std::error_code ec;
-    for (fs::path dir = folder; !name.empty(); dir = dir.parent_path()) {
-      if (fs::is_directory(dir / name, ec)) return (dir / name / tail).lexically_normal().string();
-      if (dir == dir.parent_path()) break;
-    }
-    return (fs::path(folder) / tail).lexically_normal().string();
-  }
-  if (uri.compare(0, 7, "file://") == 0) return fs::path(uri.substr(7)).lexically_normal().string();
-  return (fs::path(folder) / uri).lexically_normal().string();
-}
-
 void ReadMeshes(const sdf::Link& link, const Context& context, RobotLink* out) {
   for (uint64_t v = 0; v < link.VisualCount(); ++v) {
     const sdf::Visual* visual = link.VisualByIndex(v);
@@ -218,7 +158,7 @@ void ReadMeshes(const sdf::Link& link, const Context& context, RobotLink* out) {
     const sdf::Errors errors = visual->SemanticPose().Resolve(pose, "__model__");
     if (!errors.empty()) ThrowSdfErrors(errors, where);
     RobotMesh result;
-    result.file = ResolveMeshUri(mesh.Uri(), context.folder);
+    result.file = internal::ResolveMeshPath(mesh.Uri(), context.folder);
     result.X_WM = PoseInWorld(context, pose, where);
     result.scale << mesh.Scale().X(), mesh.Scale().Y(), mesh.Scale().Z();
     if (!result.scale.allFinite() || result.scale.minCoeff() <= 0 ||
@@ -440,22 +380,6 @@ std::string CleanName(const std::string& name) {
   return out.empty() ? "robot" : out;
 }
 
-void CheckActuated(const RobotDescription& robot, const std::vector<std::string>& actuated) {
-  for (std::size_t i = 0; i < actuated.size(); ++i) {
-    const int j = robot.FindJoint(actuated[i]);
-    const std::string where = robot.source + ": actuated joint '" + Quote(actuated[i]) + "'";
-    if (j < 0) throw ModelError(where + ": no joint of that name in the model");
-    const RobotJointType type = robot.joints[static_cast<std::size_t>(j)].type;
-    if (type != RobotJointType::kRevolute && type != RobotJointType::kPrismatic) {
-      throw ModelError(where + ": only a revolute, continuous or prismatic joint can be actuated");
-    }
-    if (std::find(actuated.begin(), actuated.begin() + static_cast<long>(i), actuated[i]) !=
-        actuated.begin() + static_cast<long>(i)) {
-      throw ModelError(where + ": named twice");
-    }
-  }
-}
-
 }  // namespace
 
 RobotDescription ReadSdformatFromString(const std::string& text, const std::string& path,
@@ -469,7 +393,7 @@ RobotDescription ReadSdformatFromString(const std::string& text, const std::stri
   const sdf::Errors errors = Unforgiven(root.LoadSdfString(text));
   if (!errors.empty()) ThrowSdfErrors(errors, path);
   const sdf::Model& model = TheModel(root, path);
-  Context context{path, fs::absolute(fs::path(path)).parent_path().lexically_normal().string(), {}};
+  Context context{path, internal::AbsoluteFolderOf(path), {}};
   ignition::math::Pose3d model_pose;
   if (!model.SemanticPose().Resolve(model_pose).empty()) model_pose = model.RawPose();
   context.X_WM = ToIsometry(model_pose);
@@ -480,7 +404,6 @@ RobotDescription ReadSdformatFromString(const std::string& text, const std::stri
     robot.links.push_back(ReadLink(*model.LinkByIndex(i), context));
   for (uint64_t i = 0; i < model.JointCount(); ++i)
     robot.joints.push_back(ReadJoint(*model.JointByIndex(i), context));
-  CheckActuated(robot, actuated);
   robot.actuated = actuated;
   ReadEndEffector(model, context, &robot);
   return robot;

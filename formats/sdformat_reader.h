@@ -26,10 +26,10 @@
 //  - ccma's own optional element, inside <model>:
 //      <ccma:end_effector link="L" point="x y z" controlled="x y z yaw"/>
 //    (point in the link frame, m; controlled from x y z roll pitch yaw).
-// Mesh uris: file:///abs -> /abs; a relative path -> against the file's
-// folder; model://NAME/rest and package://NAME/rest -> FOLDER/NAME/rest for
-// the first folder, from the file's folder upwards, that holds a folder
-// NAME; none -> the file's folder/rest (the viewer reports it missing).
+// Mesh uris are resolved against the file's folder as URDF ones are
+// (formats/internal/mesh_paths.h: file://, relative, model://NAME/rest and
+// package://NAME/rest searched from the file's folder upwards; not found ->
+// the file's folder/rest, which the viewer reports missing).
 //
 // Errors: ModelError. libsdformat's rejections are quoted (its first three),
 //   FILE: libsdformat: <message> [line N]; ...
@@ -50,9 +50,9 @@ namespace ccma {
 // SDFormat files are read up to this many bytes and must be regular files.
 constexpr std::size_t kMaxSdformatFileBytes = std::size_t{16} << 20;
 
-// Reads the SDFormat file at `path`. `actuated` names the actuated joints in
-// control order (revolute or prismatic joints of the file; each once); it is
-// copied to RobotDescription::actuated. Throws ModelError.
+// Reads the SDFormat file at `path`. `actuated` (joint names, in control
+// order) is copied to RobotDescription::actuated; ImportRobot checks it.
+// Throws ModelError.
 RobotDescription ReadSdformat(const std::string& path, const std::vector<std::string>& actuated);
 
 // The same for SDFormat text held in memory; `path` names it in messages and
