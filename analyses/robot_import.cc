@@ -119,7 +119,10 @@ ImportedRobot ImportRobot(const RobotDescription& robot, const ImportOptions& op
   ForwardProblem check(out.model);
   out.residual_energy = check.Energy();
   out.actuated = built.actuated;
-  for (const bool closure : built.closure) out.closures += closure;
+  // Independent loops of the joint graph (bodies and the ground; a base is
+  // an edge to the ground): the closure file's pairs for a URDF, the loops an
+  // SDFormat file closes itself.
+  out.closures = static_cast<int>(home.joints.size()) + home.num_bases() - home.num_bodies();
   return out;
 }
 

@@ -40,7 +40,7 @@ struct ImportedRobot {
   Model model;          // as loaded back from `yaml` (validated by the loader)
   std::string yaml;     // the model file text
   double residual_energy = 0;  // E at home of `model` [m^2]
-  int closures = 0;
+  int closures = 0;  // independent loops (joints + bases - bodies)
   std::vector<std::string> actuated;  // ccma names, in control order (bases first)
 };
 
