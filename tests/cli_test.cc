@@ -333,7 +333,7 @@ TEST(Cli, GlobalHelpHasOneLinePerCommand) {
     listed.push_back(name);
   }
   EXPECT_EQ(listed, (std::vector<std::string>{"check", "simulate", "control", "trajectory", "generate", "bench",
-                                              "replay", "view", "workspace", "design"}))
+                                              "replay", "view", "workspace", "design", "export"}))
       << r.out;
   for (const std::string& name : listed) {
     const ToolRun help = Ccma(name + " --help");
@@ -380,7 +380,8 @@ TEST(Cli, EachCommandHasItsOwnHelpWithUnits) {
       {"workspace", {"model", "out", "x", "y", "z", "roll", "pitch", "yaw", "resolution", "samples", "seed",
                      "threads", "plot", "method", "max_step_m", "max_step_rad", "lambda"}},
       {"design", {"model", "targets", "out", "vary", "vary_length", "max_change", "min_length", "min_singular_value",
-                  "target_tolerance", "design_iterations", "method", "max_step_m", "max_step_rad", "lambda"}}};
+                  "target_tolerance", "design_iterations", "method", "max_step_m", "max_step_rad", "lambda"}},
+      {"export", {"model", "format", "out"}}};
   for (const auto& [command, expected] : flags) {
     const ToolRun r = Ccma(command + " --help");
     ASSERT_EQ(r.status, 0) << command;
