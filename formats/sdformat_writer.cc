@@ -74,35 +74,19 @@ class SdfBuilder {
     return body_names_.count(name) > 0 ? names_.Claim(name + "_joint") : name;
   }
 
+  // SDFormat has no planar joint type; ccma (and its reader) use `planar`
+  // from world anyway (header).
   void AddBase(const MobileBase& base) {
-    const std::string& name = model_.bodies[base.body].name;
-    const Eigen::Vector3d& pose = base.home_pose;
-    Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-    const std::string slide_x = names_.Claim(name + "_slide_x"), slide_y = names_.Claim(name + "_slide_y");
-    X.translation() = Eigen::Vector3d(pose.x(), 0, 0);
-    links_.push_back({slide_x, X});
-    X.translation() = Eigen::Vector3d(pose.x(), pose.y(), 0);
-    links_.push_back({slide_y, X});
-    const Eigen::Vector3d origin(pose.x(), pose.y(), 0);
-    AddBaseJoint(names_.Claim(name + "_x"), "prismatic", "world", slide_x, {pose.x(), 0, 0}, Eigen::Vector3d::UnitX(),
-                 pose.x());
-    AddBaseJoint(names_.Claim(name + "_y"), "prismatic", slide_x, slide_y, origin, Eigen::Vector3d::UnitY(), pose.y());
-    AddBaseJoint(names_.Claim(name + "_theta"), "continuous", slide_y, name, origin, Eigen::Vector3d::UnitZ(), pose.z());
-  }
-
-  void AddBaseJoint(const std::string& name, const std::string& type, const std::string& parent,
-                    const std::string& child, const Eigen::Vector3d& point, const Eigen::Vector3d& axis, double q0) {
+    const Body& body = model_.bodies[base.body];
     SdfJoint s;
-    s.name = name;
-    s.type = type;
-    s.parent = parent;
-    s.child = child;
-    s.point = point;
-    s.axis = axis;
-    s.has_axis = true;
-    s.initial_position = q0;
+    s.name = names_.Claim(body.name + "_planar");
+    s.type = "planar";
+    s.parent = "world";
+    s.child = body.name;
+    s.point = body.p_WB_home;
+    s.has_axis = true;  // the plane's normal
     joints_.push_back(s);
-    actuated_.push_back(name);
+    actuated_.push_back(s.name);
   }
 
   void AddJoint(const Joint& joint) {

@@ -14,15 +14,14 @@
 //    so axes read the same in the joint frame and in the world;
 //  * a joint with q_home != 0 has <initial_position> q_home: the links are
 //    posed at home, where every joint reads q_home;
-//  * SDFormat has no planar joint, so a mobile base B hangs from world by a
-//    chain of two massless slider links, B_slide_x and B_slide_y, and three
-//    joints B_x (prismatic along world x), B_y (prismatic along y) and
-//    B_theta (revolute about z at the base frame's origin), with initial
-//    positions x, y, theta of its home pose: their coordinates are the
-//    base's controls;
+//  * a mobile base B hangs from world by a joint `B_planar` of type `planar`
+//    (normal z, frame at the base frame's origin), as in URDF. SDFormat has
+//    no such type: libsdformat reports "Joint type of planar is invalid" for
+//    each of them and loads the rest; ccma's SDFormat reader accepts it from
+//    world;
 //  * ccma's extension elements in <model> (namespace https://ccma.dev/sdf):
 //    <ccma:actuated joints="..."/> names the joints that carry the controls,
-//    in the model's control order (each base's three joints, then the
+//    in the model's control order (the bases' planar joints, then the
 //    actuated joints), and <ccma:end_effector link=".." point="x y z"
 //    controlled=".."/> the end-effector (point in the link frame, m).
 // Numbers have 17 significant digits, so they read back to the same doubles.
@@ -37,7 +36,7 @@ namespace ccma {
 
 struct SdformatExport {
   std::string sdf;  // the SDFormat document
-  int links = 0;    // <link> elements (world is not one)
+  int links = 0;    // <link> elements (world is not one): one per body
   int joints = 0;   // <joint> elements
   int loops = 0;    // independent loops of the joint graph: joints - links
 };
