@@ -30,15 +30,18 @@ namespace {
 
 constexpr double kTolerance = 1e-9;
 
-// A four-bar on the ground with a slider and a piston: q_home on revolute and
-// prismatic joints (tree and cut), limits, joints whose `between` runs against
-// the tree (coupler_crank, piston, ground_slider), a universal tree joint.
+// A four-bar on the ground driven at its crank, a U-P-S leg from the ground to
+// its coupler and an actuated piston on the crank: q_home on revolute and
+// prismatic joints (in the tree and cut), limits, joints whose `between` runs
+// against the tree (coupler_crank, ground_leg: a universal, piston), a cut
+// revolute (rocker_ground) and a cut spherical joint (leg_coupler).
 const char* kLoopModel = R"(name: qhome_loop
 bodies:
   - {name: crank, position: [0, 0, 0]}
   - {name: coupler, position: [0, 1, 0], rpy: [0.1, 0.2, 0.3]}
   - {name: rocker, position: [4, 2, 0]}
-  - {name: slider, position: [4, 3, 0]}
+  - {name: leg_lower, position: [1, 1, 2]}
+  - {name: leg_upper, position: [2, 1.5, 0], rpy: [0, 0.4, 0]}
   - {name: piston, position: [0, 0.5, 0.5]}
 joints:
   - {name: crank_joint, type: revolute, actuated: true, q_home: 0.3, limits: [-1, 1], between: [world, crank],
@@ -47,10 +50,10 @@ joints:
   - {name: coupler_rocker, type: revolute, limits: [-0.5, 0.7], between: [coupler, rocker], point: [4, 2, 0],
      axis: [0, 0, 1]}
   - {name: rocker_ground, type: revolute, q_home: 0.1, between: [rocker, world], point: [4, 0, 0], axis: [0, 0, 1]}
-  - {name: ground_slider, type: universal, between: [slider, world], point: [4, 3, 0],
-     axes: [[1, 0, 0], [0, 1, 1]]}
-  - {name: slide, type: prismatic, q_home: 0.05, limits: [-0.1, 0.2], between: [rocker, slider], point: [4, 2.5, 0],
-     axis: [0, 1, 0]}
+  - {name: ground_leg, type: universal, between: [leg_lower, world], point: [1, 1, 2], axes: [[1, 0, 0], [0, 1, 0]]}
+  - {name: slide, type: prismatic, q_home: 0.05, limits: [-0.1, 0.2], between: [leg_lower, leg_upper],
+     point: [1.5, 1.25, 1], axis: [1, 0.5, -2]}
+  - {name: leg_coupler, type: spherical, between: [leg_upper, coupler], point: [2, 1.5, 0]}
   - {name: piston, type: prismatic, actuated: true, q_home: -0.02, between: [piston, crank], point: [0, 0.5, 0.5],
      axis: [0, 0, 1]}
 end_effector:
@@ -285,11 +288,13 @@ TEST(UrdfExport, QHomeLimitsAndReversedJoints) {
   CheckUrdf(model, "qhome_loop");
   const ParsedUrdf p = ParseExport(model);
   ASSERT_TRUE(p.urdf);
-  // The tree keeps the first three revolutes, the universal and the piston; the
-  // fourth revolute and the slide close the loops.
+  // The tree keeps the first three revolutes, the universal, the slide and the
+  // piston; the fourth revolute and the spherical joint close the loops.
   EXPECT_EQ(p.text.loops, 2);
   EXPECT_EQ(p.urdf->getJoint("coupler_crank")->parent_link_name, "crank");  // reversed
-  EXPECT_EQ(p.urdf->getJoint("ground_slider")->parent_link_name, "world");  // reversed universal
+  EXPECT_EQ(p.urdf->getJoint("ground_leg")->parent_link_name, "world");     // reversed universal
+  EXPECT_EQ(p.urdf->getJoint("piston")->parent_link_name, "crank");         // reversed prismatic
+  EXPECT_EQ(p.urdf->getLink("leg_coupler_A")->parent_joint->parent_link_name, "leg_upper");  // cut spherical
   EXPECT_EQ(p.urdf->getJoint("rocker_ground")->child_link_name, "rocker_ground_A");  // cut, dummy link
   // At URDF's zero (every q = 0) the crank is turned back by q_home: the loop is open there.
   const std::map<std::string, Eigen::Isometry3d> zero = UrdfPoses(*p.urdf, {});
