@@ -86,7 +86,6 @@ class SdfBuilder {
     s.point = body.p_WB_home;
     s.has_axis = true;  // the plane's normal
     joints_.push_back(s);
-    actuated_.push_back(s.name);
   }
 
   void AddJoint(const Joint& joint) {
@@ -126,7 +125,6 @@ class SdfBuilder {
   std::set<std::string> body_names_;
   std::vector<SdfLink> links_;
   std::vector<SdfJoint> joints_;
-  std::vector<std::string> actuated_;         // the bases' joints, base order
   std::vector<std::string> actuated_joints_;  // the actuated model joints, file order
 };
 
@@ -157,7 +155,7 @@ std::string SdfBuilder::Text() const {
   std::ostringstream os;
   os << "<?xml version=\"1.0\"?>\n"
      << "<!-- " << model_.name << ", written by `ccma export`: links posed at home; ccma:actuated lists the\n"
-     << "     joints that carry the controls, in control order; ccma:end_effector the end-effector. -->\n"
+     << "     actuated joints (their controls follow the bases'); ccma:end_effector the end-effector. -->\n"
      << "<sdf version=\"1.7\" xmlns:ccma=\"https://ccma.dev/sdf\">\n"
      << "  <model name=\"" << model_.name << "\">\n";
   for (const SdfLink& link : links_) {
@@ -165,13 +163,12 @@ std::string SdfBuilder::Text() const {
   }
   for (const SdfJoint& s : joints_) WriteJoint(os, s);
   std::string actuated;
-  for (const std::string& name : actuated_) actuated += (actuated.empty() ? "" : " ") + name;
   for (const std::string& name : actuated_joints_) actuated += (actuated.empty() ? "" : " ") + name;
   const EndEffector& ee = model_.end_effector;
   std::string controlled;
   for (const std::string& c : internal::ControlledNames(model_)) controlled += (controlled.empty() ? "" : " ") + c;
-  os << "    <ccma:actuated joints=\"" << actuated << "\"/>\n"
-     << "    <ccma:end_effector link=\"" << internal::BodyName(model_, ee.body) << "\" point=\""
+  if (!actuated.empty()) os << "    <ccma:actuated joints=\"" << actuated << "\"/>\n";
+  os << "    <ccma:end_effector link=\"" << internal::BodyName(model_, ee.body) << "\" point=\""
      << Triple(ee.p_B) << "\" controlled=\"" << controlled << "\"/>\n"
      << "  </model>\n</sdf>\n";
   return os.str();

@@ -20,9 +20,9 @@
 //    each of them and loads the rest; ccma's SDFormat reader accepts it from
 //    world;
 //  * ccma's extension elements in <model> (namespace https://ccma.dev/sdf):
-//    <ccma:actuated joints="..."/> names the joints that carry the controls,
-//    in the model's control order (the bases' planar joints, then the
-//    actuated joints), and <ccma:end_effector link=".." point="x y z"
+//    <ccma:actuated joints="..."/> (when there are any) names the actuated joints in file order
+//    (the controls after the bases', whose planar joints come first in the
+//    file, in base order), and <ccma:end_effector link=".." point="x y z"
 //    controlled=".."/> the end-effector (point in the link frame, m).
 // Numbers have 17 significant digits, so they read back to the same doubles.
 #ifndef CCMA_FORMATS_SDFORMAT_WRITER_H_
