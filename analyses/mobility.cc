@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include <Eigen/SVD>
 
+#include "analyses/internal/sparse_mobility.h"
 #include "ccma/end_effector.h"
 #include "ccma/internal/constraint_set.h"
 
@@ -15,17 +18,6 @@ int Rank(const Eigen::VectorXd& singular_values, double threshold) {
   int rank = 0;
   for (int i = 0; i < singular_values.size(); ++i) rank += singular_values[i] > threshold;
   return rank;
-}
-
-// The bodies whose components of the direction ds exceed
-// kMovingBodyTolerance times its largest component.
-std::vector<int> MovingBodies(const Eigen::VectorXd& ds) {
-  const double threshold = kMovingBodyTolerance * ds.cwiseAbs().maxCoeff();
-  std::vector<int> bodies;
-  for (int b = 0; b < ds.size() / kPoseTangentSize; ++b) {
-    if (ds.segment(kPoseTangentSize * b, kPoseTangentSize).cwiseAbs().maxCoeff() > threshold) bodies.push_back(b);
-  }
-  return bodies;
 }
 
 // The null space of J_s (its last n - rank right singular vectors), split
@@ -44,7 +36,7 @@ std::vector<FreeMotion> FreeMotions(const Eigen::MatrixXd& J_s, int rank) {
     const int moving = Rank(block.singularValues(), kMovingBodyTolerance);
     if (moving == 0) continue;
     const Eigen::MatrixXd rotated = unassigned * block.matrixV();
-    for (int k = 0; k < moving; ++k) motions.push_back({rotated.col(k), MovingBodies(rotated.col(k))});
+    for (int k = 0; k < moving; ++k) motions.push_back({rotated.col(k), FreeMotionBodies(rotated.col(k))});
     unassigned = rotated.rightCols(rotated.cols() - moving);
   }
   return motions;
@@ -98,14 +90,27 @@ Eigen::MatrixXd LateralRows(const Model& model, const State& s, const Eigen::Vec
 
 MobilityReport AnalyzeMobility(const Model& model, const State& s, const Eigen::VectorXd& u,
                                double rank_tolerance) {
+  const int n = model.state_size();
+  if (n > kMaxMobilityStateSize) {
+    throw std::invalid_argument("mobility analysis: state size " + std::to_string(n) + " (" +
+                                std::to_string(model.num_bodies()) + " bodies) is above the bound of " +
+                                std::to_string(kMaxMobilityStateSize) + " (" +
+                                std::to_string(kMaxMobilityStateSize / kPoseTangentSize) + " bodies)");
+  }
   const ConstraintSet constraints(model);
   MobilityReport report;
   report.constraint_rows = constraints.num_rows();
+  if (n > kDenseMobilityStateSize) {
+    Eigen::VectorXd C;
+    constraints.Evaluate(s, u, &C);
+    report.energy = 0.5 * C.squaredNorm();
+    AnalyzeMobilitySparse(model, s, u, rank_tolerance, &report);
+    return report;
+  }
   Eigen::VectorXd C;
   Eigen::MatrixXd J_s, J_u;
   constraints.Evaluate(s, u, &C, &J_s, &J_u);
   report.energy = 0.5 * C.squaredNorm();
-  const int n = model.state_size();
 
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd_s(J_s);
   const Eigen::VectorXd sigma = svd_s.singularValues();

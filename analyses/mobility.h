@@ -17,6 +17,20 @@ namespace ccma {
 // (~1e-13 relative), far below any motion a joint allows.
 constexpr double kMovingBodyTolerance = 1e-6;
 
+// Up to this state size (100 bodies) the analysis uses dense SVDs of the
+// Jacobians (exact singular values; time ~ rows x columns^2); beyond it,
+// sparse rank-revealing QR (SuiteSparseQR; time and memory ~ the
+// Jacobians' nonzeros and the factor's fill: 1000 agents in seconds).
+constexpr int kDenseMobilityStateSize = 600;
+// The largest state size analysed (20,000 bodies): beyond it AnalyzeMobility
+// refuses, as a work bound.
+constexpr int kMaxMobilityStateSize = 120000;
+// Beyond the dense size, the free motions with the controls fixed are listed
+// only when state_size * dof_with_controls_fixed^2 stays below this (their
+// basis is a dense state_size x dof matrix, rotated once per body that
+// moves): e.g. up to 288 free motions at 1000 agents.
+constexpr double kMaxFreeMotionWork = 1e9;
+
 // One free motion with the controls fixed: a direction ds of the state
 // (state.h: 6 per body, rotation increment [rad] then translation [m], unit
 // norm) with dC/ds ds = 0.
@@ -51,11 +65,17 @@ struct MobilityReport {
   // A leg whose post spins (carrying its link) and whose link also swings
   // alone gives the motions [post, link] and [link].
   std::vector<FreeMotion> free_motions;
+  // False when free motions exist but were too many to list (above
+  // kMaxFreeMotionWork): free_motions is then empty.
+  bool free_motions_listed = true;
 };
 
 // The mobility of `model` at state s and controls u (model.h). Ranks use
-// singular values above rank_tolerance * (largest singular value), with
-// dense SVDs: meant for analysis (`ccma check`), not for a control loop.
+// singular values above rank_tolerance * max(1, largest singular value of
+// dC/ds): dense SVDs up to kDenseMobilityStateSize, sparse QR beyond (then
+// smallest_singular_value is found by inverse iteration, and is 0 when not
+// rigid). Meant for analysis (`ccma check`), not for a control loop.
+// Throws std::invalid_argument above kMaxMobilityStateSize.
 MobilityReport AnalyzeMobility(const Model& model, const State& s, const Eigen::VectorXd& u,
                                double rank_tolerance = 1e-8);
 

@@ -15,6 +15,7 @@
 #include <numeric>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <random>
 #include <sstream>
 #include <thread>
@@ -25,6 +26,7 @@
 #include "apps/flags.h"
 #include "apps/commands.h"
 #include "apps/json_output.h"
+#include "apps/output_file.h"
 #include "apps/plots.h"
 #include "ccma/internal/constraint_set.h"
 
@@ -342,6 +344,28 @@ void WriteScalingTable(const std::string& path, const nlohmann::json& scaling) {
      << Fixed(scaling["control_exponent"], 2) << ".\n";
 }
 
+// The models to bench: --model, or with --all every .yaml in --models_dir.
+std::vector<Model> BenchModels() {
+  std::vector<Model> models;
+  if (!FLAGS_all) {
+    models.push_back(LoadModelOrThrow(FLAGS_model));
+    return models;
+  }
+  const std::string dir = ModelsDir();
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec)) {
+    throw UsageError("ccma bench --all: --models_dir: '" + dir + "' is not a directory");
+  }
+  std::vector<std::string> files;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    if (entry.path().extension() == ".yaml") files.push_back(entry.path().string());
+  }
+  std::sort(files.begin(), files.end());
+  if (files.empty()) throw UsageError("ccma bench --all: no .yaml models in '" + dir + "'");
+  for (const auto& f : files) models.push_back(LoadModelOrThrow(f));
+  return models;
+}
+
 }  // namespace
 
 int RunBench(const std::vector<std::string>& args) {
@@ -360,40 +384,37 @@ int RunBench(const std::vector<std::string>& args) {
   }
   if (FLAGS_scaling) {
     const nlohmann::json scaling = Scaling(steps);
-    if (!FLAGS_out.empty()) WriteScalingTable(FLAGS_out + "/scaling.md", scaling);
+    if (!FLAGS_out.empty()) {
+      FolderOutput folder(FLAGS_out, "out");
+      WriteScalingTable(folder.scratch() + "/scaling.md", scaling);
+      folder.Commit();
+    }
     PrintJson(scaling);
     return 0;
   }
-  std::vector<Model> models;
-  if (FLAGS_all) {
-    const std::string dir = ModelsDir();
-    std::error_code ec;
-    if (!std::filesystem::is_directory(dir, ec)) {
-      throw UsageError("ccma bench --all: --models_dir: '" + dir + "' is not a directory");
-    }
-    std::vector<std::string> files;
-    for (const auto& entry : std::filesystem::directory_iterator(dir)) {
-      if (entry.path().extension() == ".yaml") files.push_back(entry.path().string());
-    }
-    std::sort(files.begin(), files.end());
-    if (files.empty()) throw UsageError("ccma bench --all: no .yaml models in '" + dir + "'");
-    for (const auto& f : files) models.push_back(LoadModelOrThrow(f));
-  } else {
-    models.push_back(LoadModelOrThrow(FLAGS_model));
-  }
+  const std::vector<Model> models = BenchModels();
   nlohmann::json results = nlohmann::json::array();
   std::vector<std::string> names;
+  // The files are written in a private scratch folder and moved into --out
+  // at the end (apps/output_file.h): a link planted in --out is replaced,
+  // never written through.
+  std::unique_ptr<FolderOutput> folder;
+  if (!FLAGS_out.empty()) folder = std::make_unique<FolderOutput>(FLAGS_out, "out");
   for (const Model& model : models) {
     std::cerr << "ccma bench: " << model.name << " ..." << std::endl;
-    results.push_back(BenchModel(model, steps, FLAGS_out));
+    results.push_back(BenchModel(model, steps, folder ? folder->scratch() : ""));
     names.push_back(model.name);
   }
-  if (!FLAGS_out.empty()) {
+  if (folder) {
     std::string warning;
-    const nlohmann::json plots = PlotConvergence(FLAGS_out, names, &warning);
+    nlohmann::json plots = nlohmann::json::array();
+    for (const std::string& file : PlotConvergence(folder->scratch(), names, &warning)) {
+      plots.push_back(folder->Final(file));
+    }
     if (!warning.empty()) std::cerr << "ccma bench: " << warning << "\n";
     for (auto& r : results) r["plots"] = plots;
-    WriteModelTable(FLAGS_out + "/models.md", results);
+    WriteModelTable(folder->scratch() + "/models.md", results);
+    folder->Commit();
   }
   PrintJson(FLAGS_all ? results : results[0]);
   return 0;

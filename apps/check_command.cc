@@ -67,7 +67,9 @@ nlohmann::json CheckWarnings(const Model& model, const MobilityReport& mobility,
     warnings.push_back("not rigid with its controls fixed: " + std::to_string(mobility.dof_with_controls_fixed) +
                        " free motion(s) remain (smallest singular value of dC/ds " +
                        FormatG(mobility.smallest_singular_value) + "): " +
-                       FreeMotionText(model, mobility.free_motions) + "; simulation and control are ill-posed");
+                       (mobility.free_motions_listed ? FreeMotionText(model, mobility.free_motions)
+                                                     : std::string("too many to list them")) +
+                       "; simulation and control are ill-posed");
   }
   if (!assembled) {
     warnings.push_back("not assembled at home: E = " + FormatG(mobility.energy) + " m^2 (above " +

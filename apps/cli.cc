@@ -55,7 +55,9 @@ Eigen::VectorXd ParseNumberList(const std::string& text, const std::string& flag
     errno = 0;
     const double v = std::strtod(begin, &end);
     while (end != nullptr && *end == ' ') ++end;
-    if (item.empty() || end == begin || *end != '\0' || errno == ERANGE || !std::isfinite(v)) {
+    // Decimal only (strtod also reads hex floats); underflow to a subnormal is a number.
+    const bool decimal = item.find_first_not_of("0123456789+-.eE ") == std::string::npos;
+    if (item.empty() || end == begin || *end != '\0' || !decimal || !std::isfinite(v)) {
       throw UsageError("--" + flag + ": '" + item + "' is not a finite number");
     }
     values.push_back(v);

@@ -29,7 +29,9 @@ Command CheckCommand() {
           "Validates the model and analyses it at home: counts, constraint rows, the numerical mobility\n"
           "(rank of dC/ds with the controls fixed, end-effector DOF when the controls move) and whether\n"
           "the home configuration is assembled. Warns on stderr when the mechanism is not rigid with its\n"
-          "controls fixed (naming the bodies each free motion moves) or not assembled at home.",
+          "controls fixed (naming the bodies each free motion moves) or not assembled at home.\n"
+          "Beyond 100 bodies the ranks come from a sparse QR (SuiteSparseQR), in time and memory\n"
+          "proportional to the model; above 20,000 bodies the analysis is refused (exit 2).",
           {"model"}, RunCheck};
 }
 
@@ -85,12 +87,26 @@ Command GenerateCommand() {
           {"agents", "kind", "out"}, RunGenerate};
 }
 
+Command ImportCommand() {
+  return {"import", "convert a URDF (with a closure file) or SDFormat robot into a model file",
+          "ccma import --from=FILE.urdf|FILE.sdf [--closures=FILE.yaml] [--actuated=J,...]\n"
+          "            --end_effector=LINK[:px,py,pz] [--controlled=x,y,z,roll,pitch,yaw] --out=MODEL.yaml",
+          "Converts a robot described elsewhere into a model file (docs/import.md): every link a body, every\n"
+          "joint kept, each loop closure (URDF: the closure file's closed_loop pairs; SDFormat: its own\n"
+          "loops) a fixed (6d) or spherical (3d) joint. The written model is assembled at home (the source's\n"
+          "zero configuration, solved with the motors held) and every revolute and prismatic joint carries\n"
+          "q_home, so every q ccma reports is the source's joint position. Exit 2 naming the file, the\n"
+          "element and the name for a malformed source, an unknown name or a closure that cannot be assembled.",
+          {"from", "closures", "actuated", "end_effector", "controlled", "out"}, RunImport};
+}
+
 Command BenchCommand() {
   return {"bench", "time forward solves and control steps (LM, BFGS) on models",
           "ccma bench --model=FILE | --all [--models_dir=DIR] | --scaling  [--steps=N] [--seed=1] [--out=DIR]",
           "The paper's convergence study: seeded paper-size control steps (10 mm + 0.005 rad) solved by LM\n"
           "and BFGS with implicit-function and finite-difference gradients, the warm forward solve and the\n"
-          "Jacobians, all in one run; medians and p95. --out writes per-step CSVs, tables and plots.",
+          "Jacobians, all in one run; medians and p95. --out writes per-step CSVs, tables and plots (moved\n"
+          "into DIR at the end: a link planted at one of their names is replaced, never followed).",
           {"model", "all", "models_dir", "scaling", "steps", "seed", "out"}, RunBench};
 }
 
@@ -100,7 +116,8 @@ Command ReplayCommand() {
           "            [noise, tracking and control flags]",
           "The paper's closed loop, simulated: the control solution of every path step is fed to the bases,\n"
           "each base tracks it with a PI controller from simulated motion capture, and the chain follows\n"
-          "by forward simulation. Writes CSVs, an RMSE table and plots into DIR (SIMULATION, not hardware).\n"
+          "by forward simulation. Writes CSVs, an RMSE table and plots into DIR (SIMULATION, not hardware;\n"
+          "moved into DIR at the end: a link planted at one of their names is replaced, never followed).\n"
           "Warns on stderr when the plan did not converge or the chain was torn.",
           Concat({"model", "waypoints", "out", "noise", "seed", "mocap_noise_m", "mocap_noise_rad", "latency_s",
                   "slip", "kp", "ki", "controller_hz", "max_wheel_speed"},
@@ -183,12 +200,13 @@ const std::vector<Command>& Commands() {
       ControlCommand(),
       TrajectoryCommand(),
       GenerateCommand(),
+      ImportCommand(),
+      ExportCommand(),
       BenchCommand(),
       ReplayCommand(),
       ViewCommand(),
       WorkspaceCommand(),
-      DesignCommand(),
-      ExportCommand()};
+      DesignCommand()};
   return commands;
 }
 

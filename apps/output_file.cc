@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -191,6 +192,31 @@ bool MoveIntoFolder(const std::string& scratch, const std::string& name, const s
 void RemoveScratchFolder(const std::string& scratch) {
   std::error_code ignored;
   fs::remove_all(scratch, ignored);
+}
+
+FolderOutput::FolderOutput(const std::string& dir, const std::string& flag)
+    : dir_(dir), flag_(flag), scratch_(MakeScratchFolder(dir, flag)) {}
+
+FolderOutput::~FolderOutput() { RemoveScratchFolder(scratch_); }
+
+std::string FolderOutput::Final(const std::string& path_in_scratch) const {
+  return (fs::path(dir_) / fs::path(path_in_scratch).filename()).string();
+}
+
+void FolderOutput::Commit() {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (fs::directory_iterator it(scratch_, ec), end; !ec && it != end; it.increment(ec)) {
+    if (it->symlink_status(ec).type() == fs::file_type::regular) names.push_back(it->path().filename().string());
+  }
+  if (ec) throw std::runtime_error("--" + flag_ + ": cannot read '" + scratch_ + "': " + ec.message());
+  std::sort(names.begin(), names.end());
+  for (const std::string& name : names) {
+    if (!MoveIntoFolder(scratch_, name, dir_)) {
+      throw std::runtime_error("--" + flag_ + ": cannot write '" + (fs::path(dir_) / name).string() + "'");
+    }
+  }
+  SyncFolder(dir_);
 }
 
 }  // namespace ccma::cli

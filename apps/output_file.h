@@ -67,6 +67,36 @@ bool MoveIntoFolder(const std::string& scratch, const std::string& name, const s
 // Removes `scratch` and whatever is left in it (links are removed, not followed).
 void RemoveScratchFolder(const std::string& scratch);
 
+// Several files for one folder DIR (`bench --out`, `replay --out`): they are
+// written (plainly, gnuplot included) in a scratch folder made by
+// MakeScratchFolder, which nobody else can write into, and Commit() moves
+// every regular file there into DIR with MoveIntoFolder: an entry of DIR
+// with one of their names, a planted symbolic link included, is replaced,
+// never written through. Without Commit() (an exception on the way) the
+// scratch folder and its files are removed.
+class FolderOutput {
+ public:
+  // `dir` must exist; `flag` names the flag in messages. Throws UsageError
+  // when it cannot be written into.
+  FolderOutput(const std::string& dir, const std::string& flag);
+  ~FolderOutput();
+  FolderOutput(const FolderOutput&) = delete;
+  FolderOutput& operator=(const FolderOutput&) = delete;
+
+  // Where to write the files (an absolute or DIR-relative path).
+  const std::string& scratch() const { return scratch_; }
+  // DIR/name: where a file written as scratch()/name ends up.
+  std::string Final(const std::string& path_in_scratch) const;
+  // Moves the files into DIR; throws std::runtime_error naming the first
+  // that could not be moved.
+  void Commit();
+
+ private:
+  std::string dir_;
+  std::string flag_;
+  std::string scratch_;
+};
+
 }  // namespace ccma::cli
 
 #endif  // CCMA_APPS_OUTPUT_FILE_H_

@@ -18,6 +18,7 @@
 #include "apps/flags.h"
 #include "apps/commands.h"
 #include "apps/json_output.h"
+#include "apps/output_file.h"
 #include "apps/plots.h"
 
 DEFINE_string(noise, "default",
@@ -160,17 +161,23 @@ int RunReplay(const std::vector<std::string>& args) {
   std::string why;
   if (!IsValidReplay(waypoints, options, &why)) throw UsageError("ccma replay: " + why);
   CreateOutputDirectory(dir);
+  // Written in a private scratch folder, moved into --out at the end
+  // (apps/output_file.h): a link planted in --out is replaced, never
+  // written through. Made before the run: an unwritable --out stops here.
+  FolderOutput folder(dir, "out");
 
   const ReplayResult r = Replay(model, waypoints, options);
   const std::string path_name = std::filesystem::path(FLAGS_waypoints).filename().string();
-  WriteReplayCsv(dir, model, r);
+  WriteReplayCsv(folder.scratch(), model, r);
   const std::string table = ReplayRmseTable(model, r, Setting(model, path_name, options));
-  std::ofstream(dir + "/rmse.md") << table;
+  std::ofstream(folder.scratch() + "/rmse.md") << table;
   std::cerr << table;
   for (const std::string& failure : ReplayFailures(r)) std::cerr << "ccma replay: warning: " << failure << "\n";
   std::string plot_warning;
-  const std::vector<std::string> plots = PlotReplay(dir, model, r, path_name, &plot_warning);
+  std::vector<std::string> plots = PlotReplay(folder.scratch(), model, r, path_name, &plot_warning);
+  for (std::string& plot : plots) plot = folder.Final(plot);
   if (!plot_warning.empty()) std::cerr << "ccma replay: " << plot_warning << "\n";
+  folder.Commit();
   nlohmann::json out = ReplayJson(model, options, r, dir, plots);
   if (!plot_warning.empty()) out["plot_warning"] = plot_warning;
   PrintJson(out);

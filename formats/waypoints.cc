@@ -97,7 +97,10 @@ class WaypointParser {
     const double v = std::strtod(item.c_str(), &end);
     const char* const last = item.c_str() + item.size();  // an embedded NUL is not the end
     while (end != last && (*end == ' ' || *end == '\t')) ++end;
-    if (end == item.c_str() || end != last || errno == ERANGE || !std::isfinite(v)) {
+    // Decimal only: strtod would also read hex floats, inf and nan. Underflow
+    // (a subnormal such as 4.9e-324) is a number; overflow gives inf.
+    const bool decimal = item.find_first_not_of("0123456789+-.eE \t") == std::string::npos;
+    if (end == item.c_str() || end != last || !decimal || !std::isfinite(v)) {
       Fail(Quote(item) + " is not a finite number (" + name + ")");
     }
     if (!(std::abs(v) <= max)) {

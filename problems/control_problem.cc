@@ -22,6 +22,7 @@
 #include "problems/internal/control_workspace.h"
 #include "problems/internal/differential_turning.h"
 #include "problems/internal/finite_differences.h"
+#include "problems/internal/idle_motions.h"
 #include "problems/internal/lm_loop.h"
 #include "problems/internal/path_tally.h"
 #include "problems/internal/pivot_ratio.h"
@@ -155,16 +156,34 @@ Eigen::VectorXd ControlProblem::Residuals(const PoseTarget& target) const {
   return r;
 }
 
+std::unique_ptr<Sensitivity> ControlProblem::LinearizedSensitivity(const Eigen::MatrixXd* de_ds) {
+  const auto make = [&](double mu) {
+    return std::make_unique<Sensitivity>(forward_.constraints(), forward_.state(), forward_.controls(), effective_,
+                                         &workspace_->hessian_solver, &workspace_->derivatives, mu);
+  };
+  std::unique_ptr<Sensitivity> sensitivity = make(0.0);
+  if (!sensitivity->singular() || de_ds == nullptr) return sensitivity;
+  // Singular: well posed all the same when every unresisted motion is idle
+  // (problems/internal/idle_motions.h).
+  const double mu = IdleRegularization(sensitivity->derivatives().H);
+  std::unique_ptr<Sensitivity> regularized = make(mu);
+  if (!regularized->singular() &&
+      OnlyIdleMotions(workspace_->hessian_solver, regularized->derivatives().H, mu, *de_ds)) {
+    return regularized;
+  }
+  return make(0.0);  // the shared workspace holds the regularised factors: redo
+}
+
 void ControlProblem::Linearize(const PoseTarget& target, ControlLinearization* lin) {
-  const Sensitivity sensitivity(forward_.constraints(), forward_.state(), forward_.controls(), effective_,
-                                &workspace_->hessian_solver, &workspace_->derivatives);
-  lin->rcond = sensitivity.rcond();
-  lin->singular = sensitivity.singular();
-  const EnergyDerivatives& d = sensitivity.derivatives();
   const bool finite_differences = options_.gradient == GradientMethod::kFiniteDifference;
   Eigen::VectorXd e;
   Eigen::MatrixXd de_ds;
   workspace_->error.Evaluate(forward_.state(), target, &e, finite_differences ? nullptr : &de_ds);
+  const std::unique_ptr<Sensitivity> owned = LinearizedSensitivity(finite_differences ? nullptr : &de_ds);
+  const Sensitivity& sensitivity = *owned;
+  lin->rcond = sensitivity.rcond();
+  lin->singular = sensitivity.singular();
+  const EnergyDerivatives& d = sensitivity.derivatives();
   // r = [e; sqrt(lambda) C] from these evaluations (the same numbers as
   // Residuals(target), which would evaluate both again).
   lin->r.resize(e.size() + d.C.size());

@@ -42,6 +42,7 @@ namespace ccma {
 
 struct ControlLinearization;  // problems/internal/control_linearization.h
 struct PathTally;             // problems/internal/path_tally.h
+class Sensitivity;            // problems/internal/sensitivity.h
 
 enum class ControlMethod { kLevenbergMarquardt, kBfgs };
 // kFiniteDifference: central differences of re-solved forward problems,
@@ -235,6 +236,10 @@ class ControlProblem {
   // J^T J, J^T r of dr/du_eff (implicit or finite differences;
   // problems/internal/control_linearization.h).
   void Linearize(const PoseTarget& target, ControlLinearization* lin);
+  // The sensitivities at the current solution; when dG/ds is singular only
+  // through idle motions (de_ds given: problems/internal/idle_motions.h),
+  // those of dG/ds + mu I.
+  std::unique_ptr<Sensitivity> LinearizedSensitivity(const Eigen::MatrixXd* de_ds);
   void LinearizeByFiniteDifferences(const PoseTarget& target, Eigen::MatrixXd* J, Eigen::MatrixXd* ds_du);
   // ds/du * du at the last linearisation (one sparse solve when ds/du was
   // not formed).

@@ -332,8 +332,8 @@ TEST(Cli, GlobalHelpHasOneLinePerCommand) {
     EXPECT_LE(line.size(), 100u) << line;
     listed.push_back(name);
   }
-  EXPECT_EQ(listed, (std::vector<std::string>{"check", "simulate", "control", "trajectory", "generate", "bench",
-                                              "replay", "view", "workspace", "design", "export"}))
+  EXPECT_EQ(listed, (std::vector<std::string>{"check", "simulate", "control", "trajectory", "generate", "import",
+                                              "export", "bench", "replay", "view", "workspace", "design"}))
       << r.out;
   for (const std::string& name : listed) {
     const ToolRun help = Ccma(name + " --help");

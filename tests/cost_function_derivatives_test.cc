@@ -131,6 +131,22 @@ std::vector<CostCase> AllCostCases() {
          return CostPair(Own(new ActuatedPrismaticCost(r_A, r_B, a)),
                          Own(MakeActuatedPrismaticAutoDiff(r_A, r_B, a)));
        }},
+      // With a home value q_home (model.h): the motor compares u - q_home.
+      {"actuated_revolute_q_home", 2, 1,
+       [](std::mt19937& rng, bool degenerate) {
+         const Eigen::Vector3d a = RandomUnit(rng);
+         const Eigen::Vector3d e1 = (RandomUnit(rng).cross(a)).normalized(), e2 = a.cross(e1);
+         const Eigen::Vector3d w = degenerate ? a : RandomUnit(rng);
+         return CostPair(Own(new ActuatedRevoluteCost(e1, e2, w, 2.7)),
+                         Own(MakeActuatedRevoluteAutoDiff(e1, e2, w, 2.7)));
+       }},
+      {"actuated_prismatic_q_home", 2, 1,
+       [](std::mt19937& rng, bool degenerate) {
+         const Eigen::Vector3d r_A = RandomVector(rng), a = RandomUnit(rng);
+         const Eigen::Vector3d r_B = degenerate ? Eigen::Vector3d(r_A + 0.3 * a) : RandomVector(rng);
+         return CostPair(Own(new ActuatedPrismaticCost(r_A, r_B, a, -0.4)),
+                         Own(MakeActuatedPrismaticAutoDiff(r_A, r_B, a, -0.4)));
+       }},
   };
   return cases;
 }

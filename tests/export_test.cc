@@ -5,8 +5,11 @@
 // 12), and the URDF's geometry is checked with a forward kinematics written
 // here, independent of ccma's code: the closures hold at home to 1e-9, the
 // body frames and joint axes are the model's, limits round-trip exactly.
+// Imported again (`ccma import`), the URDF gives back the same mechanism.
 #include <cmath>
+#include <fstream>
 #include <map>
+#include <random>
 #include <regex>
 #include <string>
 #include <vector>
@@ -18,7 +21,11 @@
 #include <urdf_parser/urdf_parser.h>
 #include <yaml-cpp/yaml.h>
 
+#include "analyses/robot_import.h"
 #include "formats/model_loader.h"
+#include "formats/urdf_reader.h"
+#include "problems/control_problem.h"
+#include "problems/forward_problem.h"
 #include "formats/sdformat_writer.h"
 #include "formats/urdf_writer.h"
 #include "tests/bundled_models.h"
@@ -482,6 +489,96 @@ TEST(ExportCommand, BadInputExitsTwoWithNothingOnStdout) {
     EXPECT_TRUE(run.out.empty()) << run.out;
     EXPECT_FALSE(run.err.empty());
   }
+}
+
+// ------------------------------------------------------------- round trip ---
+// export -> import (analyses/robot_import.h, with the end-effector that the
+// export stored) gives back the same mechanism: the same end-effector pose
+// at the same controls, at home and at seeded controls near home.
+
+// Home, then seeded controls near home that the original assembles: its
+// effective controls moved by up to 0.03 (m or rad) when it assembles there,
+// else (most CCMAs: their bases are tied together by the chain) the controls
+// its controller finds for an end-effector target moved as much.
+std::vector<Eigen::VectorXd> SeededControls(const Model& model, unsigned seed) {
+  std::vector<Eigen::VectorXd> controls = {model.home_controls()};
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> offset(-0.03, 0.03);
+  const EndEffectorPose home = ComputeEndEffectorPose(model, State::Home(model));
+  for (int k = 0; k < 3; ++k) {
+    Eigen::VectorXd u = model.home_controls();
+    for (int i : model.effective_control_indices()) u[i] += offset(rng);
+    ForwardProblem forward(model);
+    if (forward.Assemble(u).assembled) {
+      controls.push_back(u);
+      continue;
+    }
+    ControlProblem control(model);
+    PoseTarget target;
+    target.position = home.position + Eigen::Vector3d(offset(rng), offset(rng), offset(rng));
+    target.rpy = home.rpy + Eigen::Vector3d(offset(rng), offset(rng), offset(rng));
+    EXPECT_TRUE(control.MoveTo(target).assembled) << model.name << " target " << k;
+    controls.push_back(control.controls());
+  }
+  return controls;
+}
+
+// R_EE is the end-effector body's rotation since home, and the imported
+// model's home may differ from the original's (URDF's zero holds actuated
+// joints at 0, not at q_home): the imported rotations are compared relative
+// to the imported model assembled at the original's home controls.
+void ExpectSameMechanism(const Model& original, const Model& imported, const std::string& what) {
+  SCOPED_TRACE(what);
+  ASSERT_EQ(imported.num_controls(), original.num_controls());
+  ForwardProblem reference(imported);
+  ASSERT_TRUE(reference.Assemble(original.home_controls()).assembled);
+  const Eigen::Matrix3d R_home = reference.end_effector().rotation;
+  for (const Eigen::VectorXd& u : SeededControls(original, 7)) {
+    ForwardProblem a(original), b(imported);
+    const ForwardResult ra = a.Assemble(u), rb = b.Assemble(u);
+    ASSERT_TRUE(ra.assembled && rb.assembled) << ra.residual_energy << " " << rb.residual_energy;
+    const EndEffectorPose pa = a.end_effector(), pb = b.end_effector();
+    EXPECT_LT((pa.position - pb.position).norm(), kTolerance) << u.transpose();
+    EXPECT_LT((pa.rotation - pb.rotation * R_home.transpose()).norm(), kTolerance) << u.transpose();
+  }
+}
+
+Model ImportUrdfExport(const Model& model) {
+  const UrdfExport e = WriteUrdf(model);
+  const std::string urdf_path = testing::ScratchPath("export_round_trip", model.name + ".urdf");
+  const std::string closure_path = ClosureFilePath(urdf_path);
+  std::ofstream(urdf_path) << e.urdf;
+  std::ofstream(closure_path) << e.closures;
+  return ImportRobot(ReadUrdf(urdf_path, closure_path), ImportOptions{}).model;
+}
+
+TEST(ExportRoundTrip, UrdfGivesBackTheSameMechanism) {
+  for (const std::string& name : testing::BundledModels()) {
+    const Model model = LoadModel(testing::ModelPath(name));
+    const Model imported = ImportUrdfExport(model);
+    // Without q_home the import's home is the original's.
+    EXPECT_LT((imported.home_controls() - model.home_controls()).norm(), 1e-12) << name;
+    ExpectSameMechanism(model, imported, name + " (urdf)");
+  }
+  const Model loop = LoadModelFromString(kLoopModel, "qhome_loop.yaml");
+  ExpectSameMechanism(loop, ImportUrdfExport(loop), "qhome_loop (urdf)");
+}
+
+TEST(ExportRoundTrip, ImportCommandReadsTheStoredEndEffector) {
+  const std::string urdf_path = testing::ScratchPath("export_cli_round_trip", "hybrid.urdf");
+  const std::string model_path = testing::ScratchPath("export_cli_round_trip", "hybrid.yaml");
+  ASSERT_EQ(testing::RunTool({"export", "--model=" + testing::ModelPath("hybrid_ccma"), "--format=urdf",
+                              "--out=" + urdf_path}).status, 0);
+  const testing::ToolRun run = testing::RunTool({"import", "--from=" + urdf_path, "--closures=" +
+                                                 ClosureFilePath(urdf_path), "--out=" + model_path});
+  ASSERT_EQ(run.status, 0) << run.err;
+  const nlohmann::json json = nlohmann::json::parse(run.out);
+  EXPECT_EQ(json["actuated"], nlohmann::json({"base0_planar", "base1_planar", "base2_planar", "shoulder0"}));
+  const Model imported = LoadModel(model_path);
+  const Model original = LoadModel(testing::ModelPath("hybrid_ccma"));
+  EXPECT_EQ(imported.end_effector.controlled, original.end_effector.controlled);
+  EXPECT_LT((imported.end_effector.p_W_home - original.end_effector.p_W_home).norm(), kTolerance);
+  EXPECT_LT((imported.home_controls() - original.home_controls()).norm(), 1e-12);
 }
 
 }  // namespace

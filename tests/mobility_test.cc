@@ -1,13 +1,18 @@
 // Numerical mobility (`ccma check`): the reference table of
-// shared/reference_models/README.md, and small models counted by hand.
+// shared/reference_models/README.md, small models counted by hand, the
+// sparse analysis against the dense one, and generated models of up to 1000
+// agents against their closed form.
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "analyses/internal/sparse_mobility.h"
 #include "analyses/mobility.h"
+#include "formats/model_generator.h"
 #include "formats/model_loader.h"
 
 namespace ccma {
@@ -167,6 +172,155 @@ TEST(Mobility, AJointTakenOutNamesTheBodiesThatMove) {
   // The bundled model itself is rigid: no free motion to name.
   const Model full = LoadModel(std::string(CCMA_MODELS_DIR) + "/4dof_reduced.yaml");
   EXPECT_TRUE(AnalyzeMobility(full, State::Home(full), full.home_controls()).free_motions.empty());
+}
+
+// The body names of each free motion in `r`.
+Names BodyNames(const Model& m, const MobilityReport& r) {
+  Names names;
+  for (const FreeMotion& motion : r.free_motions) {
+    names.emplace_back();
+    for (const int b : motion.bodies) names.back().push_back(m.bodies[b].name);
+  }
+  return names;
+}
+
+// The sparse analysis (used beyond kDenseMobilityStateSize) gives the dense
+// one's ranks, DOF, body sets of the free motions and smallest singular
+// value, on every bundled model and on the hand-counted ones.
+void ExpectSparseMatchesDense(const Model& m) {
+  SCOPED_TRACE(m.name);
+  const MobilityReport dense = AnalyzeMobility(m, State::Home(m), m.home_controls());
+  MobilityReport sparse;
+  AnalyzeMobilitySparse(m, State::Home(m), m.home_controls(), 1e-8, &sparse);
+  EXPECT_EQ(sparse.constraint_rank, dense.constraint_rank);
+  EXPECT_EQ(sparse.dof_with_controls_fixed, dense.dof_with_controls_fixed);
+  EXPECT_EQ(sparse.rigid_with_controls_fixed, dense.rigid_with_controls_fixed);
+  EXPECT_EQ(sparse.dof_with_controls_free, dense.dof_with_controls_free);
+  EXPECT_EQ(sparse.end_effector_dof, dense.end_effector_dof);
+  EXPECT_EQ(sparse.end_effector_dof_nonholonomic, dense.end_effector_dof_nonholonomic);
+  if (dense.rigid_with_controls_fixed) {
+    EXPECT_NEAR(sparse.smallest_singular_value, dense.smallest_singular_value, 1e-7 * dense.smallest_singular_value);
+  } else {
+    EXPECT_EQ(sparse.smallest_singular_value, 0.0);
+  }
+  EXPECT_TRUE(sparse.free_motions_listed);
+  EXPECT_EQ(BodyNames(m, sparse), BodyNames(m, dense));
+  for (const FreeMotion& motion : sparse.free_motions) EXPECT_NEAR(motion.direction.norm(), 1, 1e-12);
+}
+
+TEST(SparseMobility, MatchesTheDenseAnalysisOnTheBundledModels) {
+  for (const char* name : {"4dof_reduced", "4dof_complete", "4dof_differential", "6dof_symmetric", "6dof_asymmetric",
+                           "6dof_six_agents", "hybrid_ccma", "planar_3rpr", "stewart_gough_6ups"}) {
+    ExpectSparseMatchesDense(LoadModel(std::string(CCMA_MODELS_DIR) + "/" + name + ".yaml"));
+  }
+}
+
+TEST(SparseMobility, MatchesTheDenseAnalysisOnMechanismsThatMove) {
+  std::string text = Slurp(std::string(CCMA_MODELS_DIR) + "/4dof_reduced.yaml");
+  const std::string joint = "  - {type: revolute, between: [link2, ee]";
+  const size_t at = text.find(joint);
+  ASSERT_NE(at, std::string::npos);
+  text.erase(at, text.find('\n', at) + 1 - at);
+  ExpectSparseMatchesDense(LoadModelFromString(text, "4dof_reduced_without_joint.yaml"));
+  StewartOptions options;
+  options.agents = 4;  // complete bases: rigid; 12 agents: reduced bases
+  ExpectSparseMatchesDense(LoadModelFromString(GenerateStewartModel(options), "stewart_4.yaml"));
+}
+
+// The generated family (formats/model_generator.h) from 6 agents: N reduced
+// bases, each a body, with a post and a link (3N + 1 bodies with the
+// end-effector); per leg two revolutes (5 rows each), a spherical (3) and
+// the base's 9 rows: 24 N rows. Each leg R-R-S has 5 DOF and closes 6
+// constraints on the end-effector, so with N >= 6 legs the state is rigid
+// (rank 18 N + 6). With the 2 N effective controls (x, y per reduced base)
+// free, each leg has one internal motion besides the end-effector's 6:
+// N + 6 free motions, all 6 end-effector DOF driven, and omni bases add no
+// lateral restriction.
+void ExpectClosedForm(int agents) {
+  SCOPED_TRACE(agents);
+  StewartOptions options;
+  options.agents = agents;
+  const Model m = LoadModelFromString(GenerateStewartModel(options), "generated.yaml");
+  ASSERT_EQ(m.num_bodies(), 3 * agents + 1);
+  ASSERT_EQ(m.state_size(), 18 * agents + 6);
+  const MobilityReport r = AnalyzeMobility(m, State::Home(m), m.home_controls());
+  EXPECT_EQ(r.constraint_rows, 24 * agents);
+  EXPECT_EQ(r.constraint_rank, 18 * agents + 6);
+  EXPECT_EQ(r.dof_with_controls_fixed, 0);
+  EXPECT_TRUE(r.rigid_with_controls_fixed);
+  EXPECT_EQ(r.dof_with_controls_free, agents + 6);
+  EXPECT_EQ(r.end_effector_dof, 6);
+  EXPECT_EQ(r.end_effector_dof_nonholonomic, 6);
+  EXPECT_TRUE(r.free_motions.empty());
+  EXPECT_LT(r.energy, 1e-24);
+  EXPECT_GT(r.smallest_singular_value, 1e-2);  // 0.037 at 6 agents, 0.065 at 50
+  EXPECT_LT(r.smallest_singular_value, 1);
+}
+
+TEST(SparseMobility, GeneratedFamilyMatchesItsClosedForm) {
+  for (const int agents : {6, 12, 50}) ExpectClosedForm(agents);
+}
+
+// 1000 agents: a dense SVD of the 24000 x 18006 Jacobian needed more than
+// 12 GB and ended in std::bad_alloc; the sparse analysis takes seconds.
+TEST(SparseMobility, AThousandAgentsMatchTheClosedForm) { ExpectClosedForm(1000); }
+
+// 100 agents with one leg's spherical joint taken out: that leg hangs from
+// its base (its post spins carrying the link, the link swings alone), the
+// 99 others hold the end-effector.
+TEST(SparseMobility, NamesTheFreeMotionsOfALargeMechanism) {
+  StewartOptions options;
+  options.agents = 100;
+  std::string text = GenerateStewartModel(options);
+  const size_t at = text.find("  - {type: spherical, between: [link37, ee]");
+  ASSERT_NE(at, std::string::npos);
+  text.erase(at, text.find('\n', at) + 1 - at);
+  const Model m = LoadModelFromString(text, "generated.yaml");
+  ASSERT_GT(m.state_size(), kDenseMobilityStateSize);
+  const MobilityReport r = AnalyzeMobility(m, State::Home(m), m.home_controls());
+  EXPECT_EQ(r.constraint_rank, m.state_size() - 2);
+  EXPECT_EQ(r.dof_with_controls_fixed, 2);
+  EXPECT_EQ(r.smallest_singular_value, 0.0);
+  EXPECT_TRUE(r.free_motions_listed);
+  EXPECT_EQ(BodyNames(m, r), (Names{{"post37", "link37"}, {"link37"}}));
+  ASSERT_EQ(r.free_motions.size(), 2u);
+  EXPECT_NEAR(r.free_motions[0].direction.dot(r.free_motions[1].direction), 0, 1e-12);
+}
+
+// 300 agents with 220 legs hanging (their spherical joints taken out): 440
+// free motions, state size 5406; 5406 x 440^2 is above kMaxFreeMotionWork,
+// so they are counted but not listed.
+TEST(SparseMobility, CountsButDoesNotListTooManyFreeMotions) {
+  StewartOptions options;
+  options.agents = 300;
+  std::string text = GenerateStewartModel(options);
+  for (int leg = 0; leg < 220; ++leg) {
+    const size_t at = text.find("  - {type: spherical, between: [link" + std::to_string(leg) + ", ee]");
+    ASSERT_NE(at, std::string::npos) << leg;
+    text.erase(at, text.find('\n', at) + 1 - at);
+  }
+  const Model m = LoadModelFromString(text, "generated.yaml");
+  const MobilityReport r = AnalyzeMobility(m, State::Home(m), m.home_controls());
+  EXPECT_EQ(r.dof_with_controls_fixed, 440);
+  EXPECT_GT(static_cast<double>(m.state_size()) * 440 * 440, kMaxFreeMotionWork);
+  EXPECT_FALSE(r.free_motions_listed);
+  EXPECT_TRUE(r.free_motions.empty());
+  EXPECT_FALSE(r.rigid_with_controls_fixed);
+}
+
+// The work bound: above kMaxMobilityStateSize (20,000 bodies) the analysis
+// refuses before any work (the bodies need no joints for that).
+TEST(SparseMobility, RefusesAboveTheStateSizeBound) {
+  Model m;
+  m.name = "many_bodies";
+  m.bodies.resize(kMaxMobilityStateSize / 6 + 1);
+  try {
+    AnalyzeMobility(m, State::Home(m), Eigen::VectorXd());
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "mobility analysis: state size 120006 (20001 bodies) is above the bound of 120000 (20000 bodies)");
+  }
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // Output files under hostile folders (issue: planted links at the temporary
 // name, lost modes, leftovers of killed runs, links planted in a --plot
-// folder): the writer of apps/output_file.h seen through the `ccma` tool.
+// folder or in the --out folder of bench and replay): the writer of
+// apps/output_file.h seen through the `ccma` tool.
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <sys/time.h>
@@ -12,6 +13,7 @@
 #include <functional>
 #include <fstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -159,6 +161,81 @@ TEST(OutputFileWriter, WorkspacePlotFolderNeverWritesThroughPlantedLinks) {
     EXPECT_FALSE(fs::is_symlink(plots + "/reachability.png"));
     EXPECT_EQ(Slurp(plots + "/reachability.png").substr(1, 3), "PNG");
   }
+}
+
+// Plants a link to `victim` at every name of `names` in `dir`.
+void PlantLinks(const std::string& dir, const std::string& victim, const std::vector<std::string>& names) {
+  fs::create_directories(dir);
+  for (const std::string& name : names) fs::create_symlink(victim, dir + "/" + name);
+}
+
+// After the run: the victim is untouched, every name is a regular file (the
+// link replaced) that begins with `begins[name]` when given, and no scratch
+// folder is left.
+void ExpectLinksReplaced(const std::string& dir, const std::string& victim, const std::vector<std::string>& names,
+                         const std::vector<std::pair<std::string, std::string>>& begins) {
+  EXPECT_EQ(Slurp(victim), "secret\n");
+  EXPECT_EQ(ModeOf(victim), 0600u);
+  for (const std::string& name : names) {
+    if (!fs::exists(fs::symlink_status(dir + "/" + name))) continue;  // a plot gnuplot did not draw
+    EXPECT_FALSE(fs::is_symlink(dir + "/" + name)) << name;
+  }
+  for (const auto& [name, start] : begins) {
+    ASSERT_FALSE(fs::is_symlink(dir + "/" + name)) << name;
+    EXPECT_EQ(Slurp(dir + "/" + name).rfind(start, 0), 0u) << name;
+  }
+  for (const std::string& name : Entries(dir)) EXPECT_EQ(name.rfind(".ccma-plot-", 0), std::string::npos) << name;
+}
+
+TEST(OutputFileWriter, BenchFolderNeverWritesThroughPlantedLinks) {
+  const std::string dir = Folder("bench"), victim = Victim(dir), out = dir + "/out";
+  const std::vector<std::string> names = {
+      "models.md", "4dof_reduced_steps.csv", "4dof_reduced_convergence_lm.dat", "4dof_reduced_convergence_bfgs.dat",
+      "convergence_lm.gnuplot", "convergence_bfgs.gnuplot", "convergence_lm.png", "convergence_lm.svg",
+      "convergence_bfgs.png", "convergence_bfgs.svg"};
+  PlantLinks(out, victim, names);
+  const testing::ToolRun r =
+      testing::RunTool({"bench", "--model=" + testing::ModelPath("4dof_reduced"), "--steps=1", "--out=" + out});
+  ASSERT_EQ(r.status, 0) << r.err;
+  ExpectLinksReplaced(out, victim, names,
+                      {{"models.md", "Machine: "},
+                       {"4dof_reduced_steps.csv", "step,method,gradient"},
+                       {"4dof_reduced_convergence_lm.dat", "# time_ms objective error"}});
+  // The JSON names the files in --out, not in the scratch folder.
+  if (r.out.find("convergence_lm.png") != std::string::npos) {
+    EXPECT_NE(r.out.find("\"" + out + "/convergence_lm.png\""), std::string::npos) << r.out;
+  }
+}
+
+TEST(OutputFileWriter, ReplayFolderNeverWritesThroughPlantedLinks) {
+  const std::string dir = Folder("replay"), victim = Victim(dir), out = dir + "/out";
+  const std::vector<std::string> names = {"end_effector.csv", "bases.csv", "rmse.md", "replay.gnuplot",
+                                          "end_effector.png", "end_effector.svg", "bases_xy.png", "bases_xy.svg"};
+  PlantLinks(out, victim, names);
+  const testing::ToolRun r =
+      testing::RunTool({"replay", "--model=" + testing::ModelPath("4dof_reduced"),
+                        "--waypoints=" + std::string(CCMA_MODELS_DIR) + "/paths/4dof_sequential.csv", "--out=" + out});
+  ASSERT_EQ(r.status, 0) << r.err;
+  ExpectLinksReplaced(out, victim, names,
+                      {{"end_effector.csv", "# SIMULATION (ccma replay)"},
+                       {"bases.csv", "# SIMULATION (ccma replay)"},
+                       {"rmse.md", ""}});
+  EXPECT_NE(r.out.find("\"" + out + "/rmse.md\""), std::string::npos) << r.out;
+  EXPECT_GT(Slurp(out + "/rmse.md").size(), 100u);
+}
+
+// An --out folder that cannot be written into stops the run before any work.
+TEST(OutputFileWriter, ReplayIntoAnUnwritableFolderIsRefused) {
+  if (geteuid() == 0) GTEST_SKIP() << "root writes into any folder";
+  const std::string dir = Folder("readonly") + "/out";
+  fs::create_directories(dir);
+  chmod(dir.c_str(), 0500);
+  const testing::ToolRun r =
+      testing::RunTool({"replay", "--model=" + testing::ModelPath("4dof_reduced"),
+                        "--waypoints=" + std::string(CCMA_MODELS_DIR) + "/paths/4dof_sequential.csv", "--out=" + dir});
+  chmod(dir.c_str(), 0700);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_TRUE(r.out.empty());
 }
 
 }  // namespace

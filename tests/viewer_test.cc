@@ -4,6 +4,7 @@
 // (CTest: viewer_browser_*).
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -79,6 +80,43 @@ TEST(ViewFrames, BadFilesNameFileLineAndColumn) {
   EXPECT_THROW(FramesFromTrajectory(model, bad), ViewInputError);  // one cell too many
   EXPECT_THROW(FramesFromTrajectory(model, ::testing::TempDir()), ViewInputError);  // a directory
   EXPECT_THROW(FramesFromReplay(model, Scratch("no_such_dir")), ViewInputError);
+}
+
+// A cell is a plain decimal number: every one ccma writes, subnormals too
+// (4.9e-324 used to be refused, strtod flagging its underflow), and nothing
+// else strtod reads (a hexadecimal float used to pass as 8).
+TEST(ViewFrames, CellsAreDecimalNumbersSubnormalsIncluded) {
+  const Model model = LoadModel(ModelPath("4dof_reduced"));
+  std::ifstream in(Trajectory("4dof_reduced"));
+  std::string header, row;
+  std::getline(in, header);
+  std::getline(in, row);
+  const std::string rest = row.substr(row.find(','));
+  const std::string csv = Scratch("decimal.csv");
+  const std::string good[] = {"4.9e-324", "4.9406564584124654e-324", "-0.0", "+2", "2.", ".5", "1E+2", "7e-400"};
+  const double value[] = {4.9e-324, 4.9406564584124654e-324, 0.0, 2.0, 2.0, 0.5, 100.0, 0.0};
+  for (size_t i = 0; i < std::size(good); ++i) {
+    std::ofstream(csv) << header << "\n" << row << "\n" << good[i] << rest << "\n";
+    const std::vector<ViewFrame> frames = FramesFromTrajectory(model, csv);
+    ASSERT_EQ(frames.size(), 2u) << good[i];
+    EXPECT_EQ(frames[1].time, value[i]) << good[i];
+  }
+  EXPECT_GT(FramesFromTrajectory(model, csv).size(), 0u);
+  const std::string bad[] = {"0x1p3", "0x10", "0X1P-2", "inf", "-Infinity", "nan", "NAN(1)", " 1", "1 ", "1e",
+                             "1e+", ".", "-", "+.e1", "1.2.3", "1e5e1", "1,5", "1_000", "\xef\xbc\x91", "1e309"};
+  for (const std::string& cell : bad) {
+    std::ofstream(csv) << header << "\n" << row << "\n" << cell << rest << "\n";
+    try {
+      FramesFromTrajectory(model, csv);
+      ADD_FAILURE() << "accepted the time " << cell;
+    } catch (const ViewInputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find(csv + ":3:"), std::string::npos) << cell << ": " << what;
+      EXPECT_TRUE(what.find("not a number") != std::string::npos ||
+                  what.find("not a finite number") != std::string::npos || what.find("cells") != std::string::npos)
+          << cell << ": " << what;
+    }
+  }
 }
 
 // A control cell between 1e4 and 1e6 passes the CSV's bound (times may reach

@@ -79,6 +79,11 @@ void PrintTo(const Hostile& h, std::ostream* os) { *os << h.what; }
 
 class HostileRows : public WaypointFiles, public ::testing::WithParamInterface<Hostile> {};
 
+TEST_F(WaypointFiles, SubnormalNumbersAreNumbers) {
+  // strtod flags underflow with ERANGE; 4.9e-324 is still a finite number.
+  EXPECT_EQ(ErrorOfText(std::string(kHeader) + "0,4.9e-324,0,0,0,0,1e-320\n"), "");
+}
+
 TEST_P(HostileRows, AreRejectedWithFileAndLine) {
   const Hostile& h = GetParam();
   const std::string message = ErrorOfText(kHeader + h.rows);
@@ -109,7 +114,8 @@ INSTANTIATE_TEST_SUITE_P(
                 ":2: '0\\x01\\x1b[2J' is not a finite number (x)"},
         Hostile{"long field", "0," + std::string(100000, '9') + ",0,0,0,0,0\n",
                 ":2: '" + std::string(40, '9') + "...' (100000 bytes) is not a finite number (x)"},
-        Hostile{"time backwards", "1,0,0,0,0,0,0\n0,0,0,0,0,0,0\n", ":3: time goes backwards"}),
+        Hostile{"time backwards", "1,0,0,0,0,0,0\n0,0,0,0,0,0,0\n", ":3: time goes backwards"},
+        Hostile{"hex float", "0,0x1p3,0,0,0,0,0\n", ":2: '0x1p3' is not a finite number (x)"}),
     [](const auto& info) {
       std::string name = info.param.what;
       for (char& c : name) {

@@ -1,7 +1,6 @@
 #include "viewer/csv_table.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
@@ -30,17 +29,41 @@ std::size_t CountCells(const std::string& line) {
 
 std::string LineWhere(const std::string& path, int line) { return path + ":" + std::to_string(line); }
 
+// Whether `text` is a plain decimal number, all of it: an optional sign,
+// digits with at most one point (at least one digit), an optional exponent
+// e/E, sign, digits. strtod alone also reads hexadecimal ("0x1p3"), "inf",
+// "nan" and leading spaces, none of which ccma writes.
+bool IsDecimal(const std::string& text) {
+  const auto digit = [&](std::size_t i) { return i < text.size() && text[i] >= '0' && text[i] <= '9'; };
+  std::size_t i = 0;
+  if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
+  std::size_t digits = 0;
+  for (; digit(i); ++i) ++digits;
+  if (i < text.size() && text[i] == '.') {
+    for (++i; digit(i); ++i) ++digits;
+  }
+  if (digits == 0) return false;
+  if (i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
+    ++i;
+    if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
+    if (!digit(i)) return false;
+    while (digit(i)) ++i;
+  }
+  return i == text.size();
+}
+
 double ParseNumber(const CsvTable& t, int line, const std::string& text, int col) {
   const std::string where = LineWhere(t.path, line) + ": column '" + Printable(t.header[col]) + "'";
   if (text.empty()) return std::nan("");  // an empty cell (e.g. a failed step's value)
   char* end = nullptr;
-  errno = 0;
   const double v = std::strtod(text.c_str(), &end);
-  if (end == text.c_str() || *end != '\0' || errno == ERANGE) {
-    throw ViewInputError(where + ": not a number: " + Quote(text));
+  // strtod reads "nan", "inf" and overflows to inf: numbers to it, never to a
+  // scene. Its ERANGE is not checked: it flags underflow too, and a subnormal
+  // such as 4.9e-324 (what ccma writes for the smallest double) is a number.
+  if (end != text.c_str() && *end == '\0' && !std::isfinite(v)) {
+    throw ViewInputError(where + ": not a finite number: " + Quote(text));
   }
-  // strtod reads "nan" and "inf": numbers to it, never to a scene.
-  if (!std::isfinite(v)) throw ViewInputError(where + ": not a finite number: " + Quote(text));
+  if (!IsDecimal(text)) throw ViewInputError(where + ": not a number: " + Quote(text));
   if (std::abs(v) > kMaxMagnitude * 100) throw ViewInputError(where + ": " + Quote(text) + " is outside [-1e6, 1e6]");
   return v;
 }

@@ -45,9 +45,11 @@ struct CsvTable {
 // when it is not a regular file within max_bytes, has no header or no rows,
 // a line with more than kMaxCsvColumns cells,
 // a row with another number of cells than the header, more than max_rows
-// rows, or a cell that is neither empty nor a finite number within
-// [-1e6, 1e6] (outside a text column); the message names file, line and
-// column.
+// rows, or a cell that is neither empty nor a plain decimal number within
+// [-1e6, 1e6] (outside a text column: an optional sign, digits with at most
+// one point, an optional exponent; subnormals such as 4.9e-324 are numbers,
+// hexadecimal "0x1p3", "inf", "nan" and spaces are not); the message names
+// file, line and column.
 CsvTable ReadCsvTable(const std::string& path, const CsvLimits& limits);
 
 }  // namespace ccma::viewer

@@ -9,13 +9,20 @@ constexpr double kSingularRcond = 1e-12;
 
 Sensitivity::Sensitivity(const ConstraintSet& constraints, const State& s,
                          const Eigen::VectorXd& u, const std::vector<int>& controls,
-                         HessianSolver* solver, EnergyDerivatives* workspace)
+                         HessianSolver* solver, EnergyDerivatives* workspace, double regularization)
     : d_(workspace != nullptr ? workspace : &own_derivatives_), controls_(controls), solver_(solver) {
   if (solver_ == nullptr) {
     own_solver_ = std::make_unique<HessianSolver>(constraints);
     solver_ = own_solver_.get();
   }
   constraints.EvaluateDerivatives(s, u, d_);
+  if (regularization > 0) {
+    for (Eigen::Index j = 0; j < d_->H.outerSize(); ++j) {
+      for (SparseColMajor::InnerIterator it(d_->H, j); it; ++it) {
+        if (it.row() == j) it.valueRef() += regularization;
+      }
+    }
+  }
   if (solver_->Factorize(d_->H)) rcond_ = solver_->pivot_ratio();
   singular_ = !(rcond_ > kSingularRcond);
 }

@@ -29,9 +29,10 @@ class Sensitivity {
   // `solver` and `workspace` (optional) are reused across calls: no symbolic
   // analysis and no allocation in a control loop. The workspace must outlive
   // this object.
+  // `regularization` mu >= 0 factorises dG/ds + mu I instead (idle_motions.h).
   Sensitivity(const ConstraintSet& constraints, const State& s, const Eigen::VectorXd& u,
               const std::vector<int>& controls, HessianSolver* solver = nullptr,
-              EnergyDerivatives* workspace = nullptr);
+              EnergyDerivatives* workspace = nullptr, double regularization = 0.0);
   Sensitivity(const Sensitivity&) = delete;
   Sensitivity& operator=(const Sensitivity&) = delete;
 

@@ -33,3 +33,4 @@ from ._ccma import __version__  # noqa: F401
 from .viewer import view  # noqa: F401
 from .workspace import workspace  # noqa: F401
 from .design_sweep import design_sweep  # noqa: F401
+from .robots import import_robot  # noqa: F401

@@ -121,6 +121,9 @@ class Joint:
     def upper(self) -> float:
         """Upper limit [rad or m] when limited."""
     @property
+    def q_home(self) -> float:
+        """The coordinate's value at home [rad or m] (0 unless the file gives q_home)."""
+    @property
     def line(self) -> int:
         """Line in the model file."""
     @property
@@ -378,7 +381,9 @@ class ForwardResult:
 class ForwardProblem:
     """Simulation: s_hat(u) = argmin_s E(s, u), warm-started from the last state.
 
-    Keeps the model alive. Not for use by two threads at once.
+    Keeps the model alive. One thread at a time: any call while another thread is inside one
+    of this problem's raises RuntimeError ("ccma.ForwardProblem is being used by another thread;
+    use one problem per thread").
     """
 
     def __init__(self, model: Model, options: ForwardOptions = ...) -> None:
@@ -688,7 +693,9 @@ class ControlProblem:
     """Kinematic control: controls u whose assembly puts the end-effector at a target.
 
     min 1/2 |e|^2 + lambda E, gradients from implicit sensitivities. Keeps the model alive.
-    Not for use by two threads at once.
+    One thread at a time: any call while another thread is inside one of this problem's (or of
+    its forward problem's) raises RuntimeError ("ccma.ControlProblem is being used by another
+    thread; use one problem per thread").
     """
 
     def __init__(self, model: Model, options: ControlOptions = ...) -> None:
@@ -705,12 +712,16 @@ class ControlProblem:
         model); components not controlled are ignored. ValueError on any other length."""
     @overload
     def follow(self, waypoints: Sequence[Waypoint]) -> TrajectoryResult:
-        """Follows ccma.Waypoint's (e.g. load_waypoints(path)) from the current controls; stops at the first unreachable one."""
+        """Follows ccma.Waypoint's (e.g. load_waypoints(path)) from the current controls; stops at the first unreachable one.
+
+        ValueError (naming the waypoint) on a time not finite, beyond 1e6 s, or smaller than the one before."""
     @overload
     def follow(self, waypoints: ArrayLike) -> TrajectoryResult:
         """The same for an (N x 7) array of rows [time [s], x, y, z [m], roll, pitch, yaw [rad]]."""
     def objective(self, target: ArrayLike) -> Tuple[float, NDArray[np.float64]]:
-        """(O, dO/du_eff) at the current controls for target (6 values, or the controlled components); the gradient over the effective controls."""
+        """(O, dO/du_eff) at the current controls for target (6 values, or the controlled components); the gradient over the effective controls.
+
+        ValueError on a target entry not finite or beyond 1e4."""
     def state_sensitivity(self) -> NDArray[np.float64]:
         """ds/du: (state_size x effective controls) at the current solution (m or rad per control unit)."""
     def end_effector_jacobian(self) -> NDArray[np.float64]:

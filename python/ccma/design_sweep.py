@@ -74,7 +74,10 @@ def design_sweep(model, parameter_grid, targets, client=None, chunk_size=8, targ
     if client is None:
         parts = [_evaluate_candidates(text, names, targets, c, target_tolerance) for c in chunks]
     else:
-        text_future = client.scatter(text, broadcast=True)
+        # hash=False, as in ccma.workspace: a fresh key per call. A key hashed
+        # from the text would be shared with an earlier call on this client, and
+        # releasing that call's future would cancel this call's tasks.
+        text_future = client.scatter(text, broadcast=True, hash=False)
         futures = [client.submit(_evaluate_candidates, text_future, names, targets, c, target_tolerance,
                                  pure=False) for c in chunks]
         parts = client.gather(futures)

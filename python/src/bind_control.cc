@@ -18,6 +18,7 @@
 #include "python/src/bindings.h"
 #include "python/src/conversions.h"
 #include "python/src/pose_types.h"
+#include "python/src/usage_guard.h"
 
 namespace py = pybind11;
 
@@ -55,6 +56,15 @@ PoseTarget TargetFrom(const ControlProblem& p, const Eigen::VectorXd& values) {
     }
     throw py::value_error("target: expected 6 values x,y,z,roll,pitch,yaw or " + std::to_string(components.size()) +
                           " (the controlled " + names + "); got " + std::to_string(values.size()));
+  }
+  // As ControlProblem::MoveTo checks them, for every method (objective too,
+  // which would answer NaN).
+  for (int c = 0; c < 6; ++c) {
+    if (!(std::abs(full[c]) <= kMaxMagnitude)) {
+      throw py::value_error(std::string("target: ") + kEndEffectorComponentNames[static_cast<size_t>(c)] + " (" +
+                            FormatG(full[c]) + ") must be a finite number in [-" + FormatG(kMaxMagnitude) + ", " +
+                            FormatG(kMaxMagnitude) + "] (m or rad)");
+    }
   }
   return {full.head<3>(), full.tail<3>()};
 }
@@ -204,6 +214,7 @@ void BindResults(py::module_& m) {
 }
 
 ControlSolution MoveTo(ControlProblem& p, const Eigen::VectorXd& values) {
+  const UsageGuard guard(p);
   const PoseTarget target = TargetFrom(p, values);
   ControlSolution s;
   static_cast<ControlResult&>(s) = p.MoveTo(target);
@@ -214,6 +225,8 @@ ControlSolution MoveTo(ControlProblem& p, const Eigen::VectorXd& values) {
 }
 
 TrajectorySolution Follow(ControlProblem& p, const std::vector<Waypoint>& waypoints) {
+  CheckWaypointTimes(waypoints);
+  const UsageGuard guard(p);
   std::vector<TrajectoryStep> steps;
   TrajectorySolution s;
   static_cast<TrajectoryResult&>(s) =
@@ -252,6 +265,7 @@ void BindSolves(ProblemClass& c) {
       .def(
           "set_controls",
           [](ControlProblem& p, const Eigen::VectorXd& u) {
+            const UsageGuard guard(p);
             ForwardSolution s;
             static_cast<ForwardResult&>(s) = p.SetControls(u);
             s.end_effector = p.forward().end_effector();
@@ -262,7 +276,10 @@ void BindSolves(ProblemClass& c) {
           "Assembles the mechanism at u (following the branch) and starts from there.")
       .def(
           "step",
-          [](ControlProblem& p, const Eigen::VectorXd& t) { return p.SolveStep(TargetFrom(p, t)); },
+          [](ControlProblem& p, const Eigen::VectorXd& t) {
+            const UsageGuard guard(p);
+            return p.SolveStep(TargetFrom(p, t));
+          },
           py::arg("target"), py::call_guard<py::gil_scoped_release>(),
           (std::string("One solve toward the target without path splitting (for small moves). ") + kTargetForms)
               .c_str())
@@ -272,7 +289,8 @@ void BindSolves(ProblemClass& c) {
                .c_str())
       .def("follow", &Follow, py::arg("waypoints"), py::call_guard<py::gil_scoped_release>(),
            "Follows a list of ccma.Waypoint (e.g. ccma.load_waypoints(path)); stops at the first "
-           "waypoint it cannot reach.")
+           "waypoint it cannot reach. ValueError (naming the waypoint) on a time not finite, beyond 1e6 s "
+           "or smaller than the one before.")
       .def(
           "follow",
           [](ControlProblem& p, const Eigen::Ref<const RowMatrix>& a) {
@@ -288,29 +306,40 @@ void BindDerivatives(ProblemClass& c) {
   c.def(
        "objective",
        [](ControlProblem& p, const Eigen::VectorXd& t) {
-         const PoseTarget target = TargetFrom(p, t);
          Eigen::VectorXd g;
          double o = 0;
          {
            py::gil_scoped_release release;
-           o = p.Objective(target, &g);
+           const UsageGuard guard(p);
+           o = p.Objective(TargetFrom(p, t), &g);
          }
          return py::make_tuple(o, g);
        },
        py::arg("target"),
        (std::string("(O, dO/du_eff) at the current controls (effective controls only). ") + kTargetForms).c_str())
-      .def("state_sensitivity", &ControlProblem::StateSensitivity, py::call_guard<py::gil_scoped_release>(),
+      .def(
+          "state_sensitivity",
+          [](ControlProblem& p) -> Eigen::MatrixXd {
+            const UsageGuard guard(p);
+            return p.StateSensitivity();
+          },
+          py::call_guard<py::gil_scoped_release>(),
            "ds/du: (state_size x effective controls) at the current solution (m or rad per control unit)")
       .def(
           "end_effector_jacobian",
           [](ControlProblem& p) -> Eigen::MatrixXd {
+            const UsageGuard guard(p);
             const Eigen::MatrixXd ds_du = p.StateSensitivity();
             return EndEffectorJacobian(p.forward().model(), p.forward().state()) * ds_du;
           },
           py::call_guard<py::gil_scoped_release>(),
           "dX_EE/du: (6 x effective controls), rows x y z [m] then rotation increment [rad]")
       .def_property_readonly(
-          "controls", [](const ControlProblem& p) -> Eigen::VectorXd { return p.controls(); },
+          "controls",
+          [](const ControlProblem& p) -> Eigen::VectorXd {
+            const UsageGuard guard(p);
+            return p.controls();
+          },
           "current controls (a copy)")
       .def_property_readonly("effective_controls", &ControlProblem::effective_controls,
                              "indices into controls that the solver changes")
@@ -318,7 +347,11 @@ void BindDerivatives(ProblemClass& c) {
           "forward", [](ControlProblem& p) -> ForwardProblem& { return p.forward(); },
           py::return_value_policy::reference_internal, "the inner ForwardProblem (state, body poses)")
       .def_property_readonly(
-          "current_pose", [](const ControlProblem& p) { return AsVector(p.CurrentPose()); },
+          "current_pose",
+          [](const ControlProblem& p) {
+            const UsageGuard guard(p);
+            return AsVector(p.CurrentPose());
+          },
           "[x, y, z, roll, pitch, yaw] of the end-effector now");
 }
 
@@ -326,7 +359,7 @@ void BindProblem(py::module_& m) {
   ProblemClass c(m, "ControlProblem",
                  "Kinematic control: controls u whose assembly puts the end-effector at a target "
                  "(min 1/2 |e|^2 + lambda E, gradients from implicit sensitivities). Keeps the model alive. "
-                 "Not for use by two threads at once.");
+                 "One thread at a time: a call while another thread is inside one raises RuntimeError.");
   BindSolves(c);
   BindDerivatives(c);
 }

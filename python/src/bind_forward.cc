@@ -9,6 +9,7 @@
 #include "python/src/bindings.h"
 #include "python/src/conversions.h"
 #include "python/src/pose_types.h"
+#include "python/src/usage_guard.h"
 
 namespace py = pybind11;
 
@@ -115,35 +116,65 @@ void BindSolves(ForwardClass& c) {
         py::keep_alive<1, 2>())
       .def(
           "solve",
-          [](ForwardProblem& p, const Eigen::VectorXd& u) { return Solved(p, p.Solve(u)); },
+          [](ForwardProblem& p, const Eigen::VectorXd& u) {
+            const UsageGuard guard(p);
+            return Solved(p, p.Solve(u));
+          },
           py::arg("u"), py::call_guard<py::gil_scoped_release>(),
           "One warm-started solve at controls u (3 per base: x [m], y [m], theta [rad]; then the "
           "actuated joints [rad or m]). Raises ValueError on a wrong size or a non-finite entry.")
       .def(
           "assemble",
-          [](ForwardProblem& p, const Eigen::VectorXd& u) { return Solved(p, p.Assemble(u)); },
+          [](ForwardProblem& p, const Eigen::VectorXd& u) {
+            const UsageGuard guard(p);
+            return Solved(p, p.Assemble(u));
+          },
           py::arg("u"), py::call_guard<py::gil_scoped_release>(),
           "Moves the controls to u in small sub-steps, following the assembly branch (what "
           "`ccma simulate` does); reports a branch jump.")
-      .def("reset_to_home", &ForwardProblem::ResetToHome, "home state and home controls (no solve)");
+      .def(
+          "reset_to_home",
+          [](ForwardProblem& p) {
+            const UsageGuard guard(p);
+            p.ResetToHome();
+          },
+          "home state and home controls (no solve)");
 }
 
 // The state and controls as arrays, the end-effector and E.
 void BindState(ForwardClass& c) {
-  c.def_property_readonly("state", [](const ForwardProblem& p) { return StateToArray(p.state()); },
+  c.def_property_readonly("state", [](const ForwardProblem& p) {
+                            const UsageGuard guard(p);
+                            return StateToArray(p.state());
+                          },
                           "(num_bodies x 7) array, rows [qw, qx, qy, qz, px, py, pz]: the unit quaternion "
                           "of R_WB, scalar first, then p_WB [m] (a copy)")
       .def(
           "set_state",
           [](ForwardProblem& p, const Eigen::Ref<const StateArray>& a) {
+            const UsageGuard guard(p);
             p.SetState(StateFromArray(p.model(), a));
           },
           py::arg("state"), "Replaces the state ((num_bodies x 7), as .state) without solving.")
       .def_property_readonly(
-          "controls", [](const ForwardProblem& p) -> Eigen::VectorXd { return p.controls(); },
+          "controls",
+          [](const ForwardProblem& p) -> Eigen::VectorXd {
+            const UsageGuard guard(p);
+            return p.controls();
+          },
           "current controls (a copy)")
-      .def_property_readonly("end_effector", &ForwardProblem::end_effector)
-      .def("energy", &ForwardProblem::Energy, "E at the current state and controls [m^2]");
+      .def_property_readonly("end_effector",
+                             [](const ForwardProblem& p) {
+                               const UsageGuard guard(p);
+                               return p.end_effector();
+                             })
+      .def(
+          "energy",
+          [](const ForwardProblem& p) {
+            const UsageGuard guard(p);
+            return p.Energy();
+          },
+          "E at the current state and controls [m^2]");
 }
 
 // Per-body poses, joint coordinates and dX/ds at the current state.
@@ -151,6 +182,7 @@ void BindQueries(ForwardClass& c) {
   c.def(
        "body_pose",
        [](const ForwardProblem& p, int body) {
+         const UsageGuard guard(p);
          if (body < 0 || body >= p.model().num_bodies()) throw py::index_error("body index out of range");
          return PoseOfBody(p.model(), p.state(), body);
        },
@@ -158,6 +190,7 @@ void BindQueries(ForwardClass& c) {
       .def(
           "body_pose",
           [](const ForwardProblem& p, const std::string& name) {
+            const UsageGuard guard(p);
             const int body = p.model().FindBody(name);
             if (body < 0) throw py::key_error("no body named '" + name + "'");
             return PoseOfBody(p.model(), p.state(), body);
@@ -166,27 +199,39 @@ void BindQueries(ForwardClass& c) {
       .def(
           "body_poses",
           [](const ForwardProblem& p) {
+            const UsageGuard guard(p);
             std::vector<BodyPose> poses;
             for (int b = 0; b < p.model().num_bodies(); ++b) poses.push_back(PoseOfBody(p.model(), p.state(), b));
             return poses;
           },
           "every body's absolute pose, in model order")
       .def(
-          "joint_coordinates", [](const ForwardProblem& p) { return JointCoordinates(p.model(), p.state()); },
+          "joint_coordinates",
+          [](const ForwardProblem& p) {
+            const UsageGuard guard(p);
+            return JointCoordinates(p.model(), p.state());
+          },
           "q of every revolute and prismatic joint, in file order")
       .def(
-          "limits_violated", [](const ForwardProblem& p) { return LimitsViolated(p.model(), p.state()); },
+          "limits_violated",
+          [](const ForwardProblem& p) {
+            const UsageGuard guard(p);
+            return LimitsViolated(p.model(), p.state());
+          },
           "names of the joints outside their limits")
       .def(
           "end_effector_state_jacobian",
-          [](const ForwardProblem& p) { return EndEffectorJacobian(p.model(), p.state()); },
+          [](const ForwardProblem& p) {
+            const UsageGuard guard(p);
+            return EndEffectorJacobian(p.model(), p.state());
+          },
           "dX_EE/ds (6 x state_size): rows position [m] then rotation increment [rad]");
 }
 
 void BindProblem(py::module_& m) {
   ForwardClass c(m, "ForwardProblem",
                  "Simulation: s_hat(u) = argmin_s E(s, u), warm-started from the last state. Keeps the "
-                 "model alive. Not for use by two threads at once.");
+                 "model alive. One thread at a time: a call while another thread is inside one raises RuntimeError.");
   BindSolves(c);
   BindState(c);
   BindQueries(c);

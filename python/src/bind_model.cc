@@ -70,6 +70,7 @@ void BindParts(py::module_& m) {
       .def_readonly("limited", &Joint::limited)
       .def_readonly("lower", &Joint::lower, "lower limit [rad or m] when limited")
       .def_readonly("upper", &Joint::upper, "upper limit [rad or m] when limited")
+      .def_readonly("q_home", &Joint::q_home, "the coordinate's value at home [rad or m]")
       .def_readonly("line", &Joint::line, "line in the model file")
       .def_property_readonly("has_coordinate", &Joint::has_coordinate)
       .def("__repr__", [](const Joint& j) {

@@ -1,14 +1,17 @@
 // Conversions shared by the binding files: options from keyword arguments,
-// waypoints from an (N x 7) array.
+// waypoints from an (N x 7) array and the check of their times.
 #ifndef CCMA_PYTHON_SRC_CONVERSIONS_H_
 #define CCMA_PYTHON_SRC_CONVERSIONS_H_
 
+#include <cmath>
 #include <string>
 #include <vector>
 
 #include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>
 
+#include "ccma/internal/format.h"
+#include "ccma/limits.h"
 #include "formats/waypoints.h"
 
 namespace ccma::python {
@@ -44,6 +47,25 @@ inline std::vector<Waypoint> WaypointsFromArray(const Eigen::Ref<const RowMatrix
     w[i].rpy = a.row(i).segment<3>(4).transpose();
   }
   return w;
+}
+
+// The times of waypoints given to ControlProblem.follow, held to the rules of
+// the waypoint CSV (docs/waypoints.md): each finite and within
+// [-kMaxTime, kMaxTime] s, none smaller than the one before (equal times are
+// allowed, as in the CSV). A breach is a ValueError naming the waypoint's index.
+inline void CheckWaypointTimes(const std::vector<Waypoint>& waypoints) {
+  for (std::size_t i = 0; i < waypoints.size(); ++i) {
+    const double t = waypoints[i].time;
+    const std::string name = "waypoints[" + std::to_string(i) + "].time";
+    if (!(std::abs(t) <= kMaxTime)) {
+      throw pybind11::value_error(name + " (" + FormatG(t) + ") must be a finite number in [-" + FormatG(kMaxTime) +
+                                  ", " + FormatG(kMaxTime) + "] (s)");
+    }
+    if (i > 0 && t < waypoints[i - 1].time) {
+      throw pybind11::value_error(name + " (" + FormatG(t) + ") is smaller than waypoints[" + std::to_string(i - 1) +
+                                  "].time (" + FormatG(waypoints[i - 1].time) + "): time goes backwards");
+    }
+  }
 }
 
 }  // namespace ccma::python

@@ -15,4 +15,5 @@ PYBIND11_MODULE(_ccma, m) {
   ccma::python::BindView(m);
   ccma::python::BindDesign(m);
   ccma::python::BindWorkspace(m);
+  ccma::python::BindImport(m);
 }

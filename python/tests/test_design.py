@@ -88,3 +88,19 @@ def test_design_sweep_on_dask_workers_equals_the_local_run():
                                   dashboard_address=None) as cluster, distributed.Client(cluster) as client:
         remote = ccma.design_sweep(str(MODEL_PATH), GRID, high_targets(), client=client, chunk_size=3)
     assert remote == local
+
+
+def test_design_sweep_called_again_and_again_on_one_client():
+    # The model text used to be scattered under a key hashed from its content:
+    # every call shared it, and the release of an earlier call's copy cancelled
+    # a later call's tasks (CancelledError in some of ten calls). A fresh key per
+    # call (as ccma.workspace scatters) leaves each call its own copy.
+    distributed = pytest.importorskip("distributed")
+    grid = {"joint1.z": [0.35, 0.6]}
+    targets = high_targets()[:1]
+    local = ccma.design_sweep(str(MODEL_PATH), grid, targets, chunk_size=1)
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=2, processes=False,
+                                  dashboard_address=None) as cluster, distributed.Client(cluster) as client:
+        for _ in range(10):
+            assert ccma.design_sweep(str(MODEL_PATH), grid, targets, client=client, chunk_size=1) == local
+    assert [c["values"]["joint1.z"] for c in local] == [0.35, 0.6]

@@ -76,6 +76,41 @@ def test_python_refuses_what_the_cli_refuses():
         ccma.evaluate_design(model, targets, [1e300], vary=["joint1.z"])
 
 
+def test_follow_refuses_times_the_waypoint_csv_refuses():
+    """follow() holds its times to the CSV's rules (docs/waypoints.md): finite, within 1e6 s,
+    never smaller than the one before; the error names the waypoint. Equal times are allowed."""
+    model = ccma.load_model(MODEL)
+    p = model.end_effector.p_W_home
+
+    def rows(times):
+        return np.array([[t, p[0], p[1] + 0.01 * i, p[2], 0, 0, 0] for i, t in enumerate(times)])
+
+    control = ccma.ControlProblem(model)
+    with pytest.raises(ValueError, match=r"^waypoints\[2\]\.time \(0\.5\) is smaller than waypoints\[1\]\.time "
+                                         r"\(1\): time goes backwards$"):
+        control.follow(rows([0, 1, 0.5]))
+    with pytest.raises(ValueError, match=r"^waypoints\[1\]\.time \(nan\) must be a finite number in "
+                                         r"\[-1e\+06, 1e\+06\] \(s\)$"):
+        control.follow(rows([0, math.nan, 2]))
+    with pytest.raises(ValueError, match=r"^waypoints\[0\]\.time \(inf\)"):
+        control.follow([ccma.Waypoint(math.inf, p)])
+    with pytest.raises(ValueError, match=r"^waypoints\[1\]\.time \(2e\+06\)"):
+        control.follow(rows([0, 2e6]))
+    # Nothing moved: the refused paths were checked before the first step.
+    np.testing.assert_array_equal(control.controls, model.home_controls)
+    # Equal times are allowed, as in the CSV: two legs, the second one in no time.
+    result = control.follow(rows([0, 1, 1]))
+    assert result.converged
+    assert result.time[0] == 0 and result.time[-1] == 1
+    assert np.abs(result.reached[-1, :3] - [p[0], p[1] + 0.02, p[2]]).max() < 1e-9
+
+
+def test_objective_refuses_a_nan_target():
+    control = ccma.ControlProblem(ccma.load_model(MODEL))
+    with pytest.raises(ValueError, match=r"target: y \(nan\) must be a finite number in \[-10000, 10000\]"):
+        control.objective([0, math.nan, 0.6, 0, 0, 0])
+
+
 def test_bad_options_raise_value_error():
     model = ccma.load_model(MODEL)
     with pytest.raises(ValueError, match="lambda"):

@@ -1,0 +1,126 @@
+// ImportRobot: build the robot as a Model at the source's configuration
+// (internal/robot_model_builder.h), assemble it with the motors held, move
+// home to the assembled configuration and write it as a model file.
+#include "analyses/robot_import.h"
+
+#include <cmath>
+#include <string>
+
+#include "analyses/internal/robot_model_builder.h"
+#include "ccma/internal/constraint_set.h"
+#include "ccma/internal/format.h"
+#include "ccma/joint_coordinates.h"
+#include "formats/joint_geometry.h"
+#include "formats/model_loader.h"
+#include "formats/model_writer.h"
+#include "problems/forward_problem.h"
+
+namespace ccma {
+namespace {
+
+// Assembled: E below this [m^2] (closures then hold to about 1e-12 m).
+constexpr double kAssembledEnergy = 1e-24;
+
+// A joint's world point and axes in state s (A's copy of the point; a
+// closure's point is the middle of its two copies).
+void WorldGeometry(const Joint& joint, const State& s, bool closure, Eigen::Vector3d* p_W, Eigen::Vector3d* a_W,
+                   Eigen::Vector3d* b_W) {
+  const auto R = [&](int body) -> Eigen::Matrix3d {
+    return body == kWorld ? Eigen::Matrix3d::Identity() : s.R_WB(body);
+  };
+  const auto p = [&](int body) -> Eigen::Vector3d { return body == kWorld ? Eigen::Vector3d::Zero() : s.p_WB(body); };
+  const Eigen::Vector3d p_A = R(joint.body_a) * joint.p_A + p(joint.body_a);
+  const Eigen::Vector3d p_B = R(joint.body_b) * joint.p_B + p(joint.body_b);
+  *p_W = closure ? Eigen::Vector3d(0.5 * (p_A + p_B)) : p_A;
+  *a_W = (R(joint.body_a) * joint.a_A).normalized();
+  const Eigen::Vector3d b = R(joint.body_b) * joint.b_B;
+  *b_W = (b - b.dot(*a_W) * *a_W).normalized();
+}
+
+// The closure joint with the largest residual at s, for the message.
+std::string WorstClosure(const internal::RobotModel& built, const State& s) {
+  std::string worst;
+  double largest = -1;
+  for (std::size_t j = 0; j < built.model.joints.size(); ++j) {
+    if (!built.closure[j]) continue;
+    Eigen::Vector3d p_W, a_W, b_W, q_W, c_W, d_W;
+    const Joint& joint = built.model.joints[j];
+    WorldGeometry(joint, s, false, &p_W, &a_W, &b_W);
+    Joint swapped = joint;
+    std::swap(swapped.body_a, swapped.body_b);
+    std::swap(swapped.p_A, swapped.p_B);
+    WorldGeometry(swapped, s, false, &q_W, &c_W, &d_W);
+    const double gap = (p_W - q_W).norm();
+    if (gap > largest) {
+      largest = gap;
+      worst = "closure '" + joint.name + "' (its frames' origins " + FormatG(gap) + " m apart)";
+    }
+  }
+  return worst;
+}
+
+// The model with home moved to state s: bodies, bases and joints re-posed,
+// each revolute/prismatic joint's q_home its coordinate at s.
+Model Rehome(const internal::RobotModel& built, const State& s) {
+  Model model = built.model;
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    model.bodies[b].R_WB_home = s.R_WB(b);
+    model.bodies[b].p_WB_home = s.p_WB(b);
+  }
+  for (MobileBase& base : model.mobile_bases) {
+    const Eigen::Matrix3d R = s.R_WB(base.body);
+    base.home_pose = Eigen::Vector3d(s.p_WB(base.body).x(), s.p_WB(base.body).y(), std::atan2(R(1, 0), R(0, 0)));
+  }
+  for (std::size_t j = 0; j < model.joints.size(); ++j) {
+    const Joint& before = built.model.joints[j];
+    Joint& joint = model.joints[j];
+    Eigen::Vector3d p_W, a_W, b_W;
+    WorldGeometry(before, s, built.closure[j], &p_W, &a_W, &b_W);
+    SetJointGeometry(model, p_W, a_W, b_W, &joint);
+    // A motor's coordinate is its held control (exactly, not to the solver's tolerance).
+    if (joint.has_coordinate()) joint.q_home = joint.actuated ? before.q_home : JointCoordinate(before, s);
+  }
+  const Body& ee = model.bodies[model.end_effector.body];
+  model.end_effector.p_W_home = ee.R_WB_home * model.end_effector.p_B + ee.p_WB_home;
+  return model;
+}
+
+// A limited joint's assembled position must lie within its limits.
+void CheckLimits(const Model& model, const std::string& source) {
+  for (const Joint& joint : model.joints) {
+    if (!joint.limited) continue;
+    const double q = LimitCoordinate(joint, joint.q_home);
+    if (q < joint.lower - 1e-9 || q > joint.upper + 1e-9) {
+      throw ModelError(source + ": joint '" + joint.name + "': its position at home, " + FormatG(joint.q_home) +
+                       ", is outside its limits [" + FormatG(joint.lower) + ", " + FormatG(joint.upper) + "]");
+    }
+  }
+}
+
+}  // namespace
+
+ImportedRobot ImportRobot(const RobotDescription& robot, const ImportOptions& options) {
+  const internal::RobotModel built = internal::BuildRobotModel(robot, options);
+  ForwardOptions forward;
+  forward.max_iterations = 500;
+  ForwardProblem problem(built.model, forward);
+  const ForwardResult result = problem.Solve(built.model.home_controls());
+  if (!(result.residual_energy < kAssembledEnergy)) {
+    throw ModelError(robot.source + ": cannot assemble " + WorstClosure(built, problem.state()) +
+                     " with the motors at their source position: residual energy " +
+                     FormatG(result.residual_energy) + " m^2");
+  }
+  Model home = Rehome(built, problem.state());
+  CheckLimits(home, robot.source);
+  ImportedRobot out;
+  out.yaml = WriteModelYaml(home, "Written by `ccma import` from " + robot.source +
+                                      ". Joint positions q equal the source's (q_home).");
+  out.model = LoadModelFromString(out.yaml, robot.source + " (imported)");
+  ForwardProblem check(out.model);
+  out.residual_energy = check.Energy();
+  out.actuated = built.actuated;
+  for (const bool closure : built.closure) out.closures += closure;
+  return out;
+}
+
+}  // namespace ccma

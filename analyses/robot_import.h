@@ -1,0 +1,56 @@
+// A robot read from URDF or SDFormat (formats/robot_description.h) -> a ccma
+// Model assembled at home (`ccma import`, docs/import.md).
+//
+// Mapping: every link becomes a body of the same name (frame = link frame);
+// every joint keeps its name and type; a planar joint from the ground makes
+// its link an omni mobile base; a closure becomes a fixed (6d) or spherical
+// (3d) joint named A__B. Names are mapped to ccma names ([A-Za-z0-9_-], at
+// most 64 characters; other characters become '_').
+//
+// Home: the source's zero configuration, assembled by the forward solver with
+// the actuated joints held at their source value; every revolute and
+// prismatic joint gets q_home = its source joint position there, so every q
+// ccma reports is the source's joint position.
+#ifndef CCMA_ANALYSES_ROBOT_IMPORT_H_
+#define CCMA_ANALYSES_ROBOT_IMPORT_H_
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "ccma/model.h"
+#include "formats/robot_description.h"
+
+namespace ccma {
+
+struct ImportOptions {
+  // Actuated joints (planar ones are mobile bases); empty: the source's.
+  std::vector<std::string> actuated;
+  // End-effector link; empty: the one stored in the source (ccma export),
+  // else an error.
+  std::string end_effector_link;
+  Eigen::Vector3d end_effector_point_L = Eigen::Vector3d::Zero();  // in the link frame [m]
+  // Controlled components (x y z roll pitch yaw); empty: the stored ones or all six.
+  std::vector<std::string> controlled;
+  std::string model_name;  // name of the written model; empty: the robot's
+};
+
+struct ImportedRobot {
+  Model model;          // as loaded back from `yaml` (validated by the loader)
+  std::string yaml;     // the model file text
+  double residual_energy = 0;  // E at home of `model` [m^2]
+  int closures = 0;
+  std::vector<std::string> actuated;  // ccma names, in control order (bases first)
+};
+
+// Throws ModelError naming the source, the element and the name: an unknown
+// actuated joint or end-effector link, a joint type that cannot be actuated,
+// a link connected to neither the ground nor a base, a closure that cannot
+// be assembled (its residual), a joint whose assembled position lies outside
+// its limits.
+ImportedRobot ImportRobot(const RobotDescription& robot, const ImportOptions& options);
+
+}  // namespace ccma
+
+#endif  // CCMA_ANALYSES_ROBOT_IMPORT_H_

@@ -1,0 +1,92 @@
+// `ccma import --from=FILE.urdf|FILE.sdf [--closures=FILE.yaml] [--actuated=J,...]
+//  --end_effector=LINK[:px,py,pz] [--controlled=x,y,z,...] --out=MODEL.yaml`:
+// a robot described elsewhere -> a model file assembled at home
+// (analyses/robot_import.h, docs/import.md).
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gflags/gflags.h>
+
+#include "analyses/robot_import.h"
+#include "apps/cli.h"
+#include "apps/commands.h"
+#include "apps/flags.h"
+#include "apps/json_output.h"
+#include "apps/output_file.h"
+#include "formats/sdformat_reader.h"
+#include "formats/urdf_reader.h"
+
+DECLARE_string(from);
+DEFINE_string(closures, "", "import: the URDF's closure file (closed_loop, type, name_mot; docs/import.md) [path]");
+DEFINE_string(actuated, "", "import: the actuated joints, comma-separated (URDF: overrides name_mot) [names]");
+DEFINE_string(end_effector, "",
+              "import: the link carrying the end-effector, optionally with the controlled point in that "
+              "link's frame: LINK[:px,py,pz] [name[:m,m,m]]");
+DEFINE_string(controlled, "", "import: the controlled components, default all six [x,y,z,roll,pitch,yaw]");
+
+namespace ccma::cli {
+namespace {
+
+std::vector<std::string> SplitNames(const std::string& text, const std::string& flag) {
+  std::vector<std::string> names;
+  std::istringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) {
+    if (item.empty() || item.size() > 256) throw UsageError("--" + flag + ": empty or overlong name in '" + text + "'");
+    names.push_back(item);
+  }
+  if (!text.empty() && text.back() == ',') throw UsageError("--" + flag + ": trailing comma");
+  return names;
+}
+
+bool EndsWith(const std::string& text, const std::string& suffix) {
+  return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+void ParseEndEffector(const std::string& text, ImportOptions* options) {
+  const std::size_t colon = text.rfind(':');
+  options->end_effector_link = text.substr(0, colon);
+  if (colon != std::string::npos) {
+    const Eigen::VectorXd p = ParseNumberList(text.substr(colon + 1), "end_effector");
+    if (p.size() != 3) throw UsageError("--end_effector: the point needs 3 numbers (LINK:px,py,pz) [m]");
+    if (p.cwiseAbs().maxCoeff() > 1e4) throw UsageError("--end_effector: the point must lie within 1e4 m");
+    options->end_effector_point_L = p;
+  }
+  if (options->end_effector_link.empty() || options->end_effector_link.size() > 256) {
+    throw UsageError("--end_effector: give a link name (LINK[:px,py,pz])");
+  }
+}
+
+}  // namespace
+
+int RunImport(const std::vector<std::string>& args) {
+  ParseCommandFlags(args, "import");
+  const std::string from = RequireFlag(FLAGS_from, "from", "import");
+  const std::string out_path = RequireFlag(FLAGS_out, "out", "import");
+  const bool sdf = EndsWith(from, ".sdf") || EndsWith(from, ".world");
+  if (!sdf && !EndsWith(from, ".urdf") && !EndsWith(from, ".xml")) {
+    throw UsageError("ccma import: --from must be a .urdf or .sdf file");
+  }
+  if (sdf && !FLAGS_closures.empty()) throw UsageError("ccma import: --closures is for URDF (SDFormat holds its loops)");
+  ImportOptions options;
+  options.actuated = SplitNames(FLAGS_actuated, "actuated");
+  options.controlled = SplitNames(FLAGS_controlled, "controlled");
+  if (!FLAGS_end_effector.empty()) ParseEndEffector(FLAGS_end_effector, &options);
+  OutputFile out(out_path, "out");  // checked before the work
+  const RobotDescription robot = sdf ? ReadSdformat(from, options.actuated) : ReadUrdf(from, FLAGS_closures);
+  const ImportedRobot imported = ImportRobot(robot, options);
+  out.stream() << imported.yaml;
+  out.Commit();
+  nlohmann::json summary = {{"out", out_path},
+                            {"bodies", imported.model.num_bodies()},
+                            {"joints", static_cast<int>(imported.model.joints.size())},
+                            {"closures", imported.closures},
+                            {"actuated", imported.actuated},
+                            {"assembled", true},
+                            {"residual_energy", imported.residual_energy},
+                            {"controls", ToJson(imported.model.home_controls())}};
+  PrintJson(summary);
+  return 0;
+}
+
+}  // namespace ccma::cli

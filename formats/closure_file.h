@@ -1,0 +1,55 @@
+// The closure file that accompanies a URDF: the convention of the public
+// example-parallel-robots collection (LAAS-CNRS/INRIA), YAML:
+//   closed_loop: [[A, B], ...]     pairs of frame names (link or joint names)
+//   type: ['6d' | '3d', ...]       6d: the frames coincide; 3d: their origins do
+//   name_mot: [joint, ...]         the actuated joints
+//   joint_name: [joint, ...]       optional: joints whose type is replaced by
+//   joint_type: [SPHERICAL | FIXED | UJOINT_XY | UJOINT_YZ | UJOINT_ZX | UJOINT_ZY, ...]
+// plus ccma's own optional `end_effector: {link, point, controlled}` (written
+// by `ccma export`). Other keys are ignored.
+#ifndef CCMA_FORMATS_CLOSURE_FILE_H_
+#define CCMA_FORMATS_CLOSURE_FILE_H_
+
+#include <string>
+#include <vector>
+
+#include "formats/robot_description.h"
+
+namespace ccma {
+
+struct ClosureFile {
+  struct Loop {
+    std::string frame_a, frame_b;
+    bool six_d = true;
+    int line = 0;
+  };
+  struct Override {
+    std::string joint;
+    std::string type;  // SPHERICAL, FIXED, UJOINT_XY, ...
+    int line = 0;
+  };
+  std::string source;  // the file read
+  std::vector<Loop> loops;
+  std::vector<std::string> actuated;  // name_mot
+  int actuated_line = 0;
+  std::vector<Override> overrides;
+  bool has_end_effector = false;
+  RobotEndEffector end_effector;
+};
+
+// Reads and checks the closure file at `path` (bounded size, names bounded,
+// lists of equal length). Throws ModelError "path:line: key: what".
+ClosureFile ReadClosureFile(const std::string& path);
+// The same for text in memory; `source` names it in messages.
+ClosureFile ParseClosureFile(const std::string& text, const std::string& source);
+
+// Adds the file's closures, type overrides, actuated joints and end-effector
+// to `robot` (read from its URDF). A frame name is a link name, or a joint
+// name standing for its child link's frame. Throws ModelError
+// "closures.yaml:LINE: closed_loop[i]: unknown frame 'X' (no link or joint of
+// robot.urdf has that name)" and likewise for unknown joints.
+void ApplyClosureFile(const ClosureFile& file, RobotDescription* robot);
+
+}  // namespace ccma
+
+#endif  // CCMA_FORMATS_CLOSURE_FILE_H_

@@ -1,0 +1,68 @@
+// ParseYamlText: nesting guard, then yaml-cpp (yaml_document.h).
+#include "formats/internal/yaml_document.h"
+
+#include <string>
+
+#include <yaml-cpp/depthguard.h>
+
+#include "formats/model_loader.h"
+
+namespace ccma {
+namespace internal {
+namespace {
+
+// Flow collections ([...], {...}) nested deeper than this are rejected before
+// yaml-cpp sees them. yaml-cpp 0.7 itself stops any nesting (flow or block)
+// with YAML::DeepRecursion after a few hundred levels, but says only "bad file".
+constexpr int kMaxFlowNesting = 256;
+
+// Rejects flow collections nested deeper than kMaxFlowNesting, counting every
+// bracket outside comments (brackets inside quoted strings count too, which
+// only matters for text no model file contains).
+void CheckFlowNesting(const std::string& text, const std::string& source) {
+  int depth = 0;
+  int line = 1;
+  bool comment = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\n') {
+      ++line;
+      comment = false;
+    } else if (comment) {
+      continue;
+    } else if (c == '#' && (i == 0 || text[i - 1] == ' ' || text[i - 1] == '\t' ||
+                            text[i - 1] == '\n')) {
+      comment = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxFlowNesting) {
+        throw ModelError(source + ":" + std::to_string(line) + ": not valid YAML: nested more than " +
+                         std::to_string(kMaxFlowNesting) + " levels deep");
+      }
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+}
+
+}  // namespace
+
+std::string WithLine(const std::string& source, const YAML::Mark& mark) {
+  return mark.line >= 0 ? source + ":" + std::to_string(mark.line + 1) : source;
+}
+
+YAML::Node ParseYamlText(const std::string& text, const std::string& source) {
+  CheckFlowNesting(text, source);
+  try {
+    return YAML::Load(text);
+  } catch (const YAML::DeepRecursion& e) {
+    throw ModelError(WithLine(source, e.mark) + ": not valid YAML: nested too deeply (" +
+                     std::to_string(e.depth()) + " levels)");
+  } catch (const YAML::ParserException& e) {
+    throw ModelError(WithLine(source, e.mark) + ": not valid YAML: " + e.msg);
+  } catch (const YAML::Exception& e) {
+    throw ModelError(WithLine(source, e.mark) + ": cannot read the YAML: " + e.msg);
+  }
+}
+
+}  // namespace internal
+}  // namespace ccma

@@ -1,0 +1,128 @@
+#include "formats/model_writer.h"
+
+#include <cstdio>
+#include <sstream>
+#include <string>
+
+#include "ccma/rotation.h"
+
+namespace ccma {
+namespace {
+
+std::string Num(double value) {
+  if (value == 0.0) return "0";  // also turns -0 into 0
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.17g", value);
+  return text;
+}
+
+std::string Vec(const Eigen::Vector3d& v) { return "[" + Num(v.x()) + ", " + Num(v.y()) + ", " + Num(v.z()) + "]"; }
+
+const Body& Frame(const Model& model, int body) {
+  static const Body kGround;
+  return body == kWorld ? kGround : model.bodies[body];
+}
+
+// `text` as a YAML double-quoted scalar (control characters escaped).
+std::string Quoted(const std::string& text) {
+  std::string out = "\"";
+  for (const unsigned char c : text) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += static_cast<char>(c);
+    } else if (c < 0x20 || c == 0x7f) {
+      char escaped[8];
+      std::snprintf(escaped, sizeof(escaped), "\\x%02x", c);
+      out += escaped;
+    } else {
+      out += static_cast<char>(c);
+    }
+  }
+  return out + "\"";
+}
+
+std::string BodyName(const Model& model, int body) { return body == kWorld ? "world" : model.bodies[body].name; }
+
+void WriteMeshes(const Body& body, std::ostringstream& out) {
+  if (body.meshes.empty()) return;
+  out << "    meshes:\n";
+  for (const BodyMesh& mesh : body.meshes) {
+    const Eigen::Matrix3d R_WM = body.R_WB_home * mesh.R_BM;
+    out << "      - {file: " << Quoted(mesh.file) << ", position: " << Vec(body.R_WB_home * mesh.p_BM + body.p_WB_home)
+        << ", rpy: " << Vec(RpyFromRotation(R_WM)) << ", scale: " << Vec(mesh.scale) << "}\n";
+  }
+}
+
+void WriteBodies(const Model& model, std::ostringstream& out) {
+  bool any = false;
+  for (const Body& body : model.bodies) any = any || !body.is_mobile_base();
+  out << (any ? "bodies:\n" : "bodies: []\n");
+  for (const Body& body : model.bodies) {
+    if (body.is_mobile_base()) continue;
+    out << "  - name: " << body.name << "\n    position: " << Vec(body.p_WB_home) << "\n    rpy: "
+        << Vec(RpyFromRotation(body.R_WB_home)) << "\n";
+    WriteMeshes(body, out);
+  }
+}
+
+void WriteBases(const Model& model, std::ostringstream& out) {
+  if (model.mobile_bases.empty()) return;
+  out << "mobile_bases:\n";
+  for (const MobileBase& base : model.mobile_bases) {
+    const bool differential = base.type == BaseType::kDifferential;
+    out << "  - name: " << base.name << "\n    type: " << (differential ? "differential" : "omni")
+        << "\n    actuation: " << (base.actuation == Actuation::kReduced ? "reduced" : "complete")
+        << "\n    pose: " << Vec(base.home_pose) << "\n";
+    if (differential) {
+      out << "    wheels: {track: " << Num(base.differential.track) << ", radius: " << Num(base.differential.radius)
+          << "}\n";
+    }
+    WriteMeshes(model.bodies[base.body], out);
+  }
+}
+
+void WriteJoint(const Model& model, const Joint& joint, std::ostringstream& out) {
+  const Body& A = Frame(model, joint.body_a);
+  const Body& B = Frame(model, joint.body_b);
+  out << "  - name: " << joint.name << "\n    type: " << JointTypeName(joint.type) << "\n    between: ["
+      << BodyName(model, joint.body_a) << ", " << BodyName(model, joint.body_b) << "]\n    point: "
+      << Vec(A.R_WB_home * joint.p_A + A.p_WB_home) << "\n";
+  if (joint.has_coordinate()) out << "    axis: " << Vec(A.R_WB_home * joint.a_A) << "\n";
+  if (joint.type == JointType::kUniversal) {
+    out << "    axes: [" << Vec(A.R_WB_home * joint.a_A) << ", " << Vec(B.R_WB_home * joint.b_B) << "]\n";
+  }
+  if (joint.has_coordinate() && joint.q_home != 0.0) out << "    q_home: " << Num(joint.q_home) << "\n";
+  if (joint.actuated) out << "    actuated: true\n";
+  if (joint.limited) out << "    limits: [" << Num(joint.lower) << ", " << Num(joint.upper) << "]\n";
+}
+
+void WriteEndEffector(const Model& model, std::ostringstream& out) {
+  const EndEffector& ee = model.end_effector;
+  out << "end_effector:\n  body: " << model.bodies[ee.body].name << "\n  point: " << Vec(ee.p_W_home)
+      << "\n  controlled: [";
+  const char* separator = "";
+  for (int c = 0; c < 6; ++c) {
+    if (!ee.controlled[c]) continue;
+    out << separator << kEndEffectorComponentNames[c];
+    separator = ", ";
+  }
+  out << "]\n";
+}
+
+}  // namespace
+
+std::string WriteModelYaml(const Model& model, const std::string& header) {
+  std::ostringstream out;
+  std::istringstream lines(header);
+  for (std::string line; std::getline(lines, line);) out << "# " << line << "\n";
+  out << "name: " << model.name << "\n";
+  if (!model.description.empty()) out << "description: " << Quoted(model.description) << "\n";
+  WriteBodies(model, out);
+  WriteBases(model, out);
+  out << "joints:\n";
+  for (const Joint& joint : model.joints) WriteJoint(model, joint, out);
+  WriteEndEffector(model, out);
+  return out.str();
+}
+
+}  // namespace ccma

@@ -1,0 +1,21 @@
+// Model -> model file text (YAML, shared/model_format.md): what `ccma import`
+// writes. Everything is written in world coordinates at home, numbers with
+// 17 significant digits, so LoadModelFromString(WriteModelYaml(m)) gives back
+// m's geometry to rounding. Omni bases are written with their default wheels
+// (the wheel list is not written).
+#ifndef CCMA_FORMATS_MODEL_WRITER_H_
+#define CCMA_FORMATS_MODEL_WRITER_H_
+
+#include <string>
+
+#include "ccma/model.h"
+
+namespace ccma {
+
+// The model file text for `model`; `header` (may be empty) is written first
+// as YAML comments, one "# " per line.
+std::string WriteModelYaml(const Model& model, const std::string& header = "");
+
+}  // namespace ccma
+
+#endif  // CCMA_FORMATS_MODEL_WRITER_H_

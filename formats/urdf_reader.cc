@@ -1,0 +1,216 @@
+#include "formats/urdf_reader.h"
+
+#include <cmath>
+#include <map>
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <console_bridge/console.h>
+#include <tinyxml.h>
+#include <urdf_parser/urdf_parser.h>
+
+#include "ccma/limits.h"
+#include "formats/closure_file.h"
+#include "formats/internal/mesh_paths.h"
+#include "formats/internal/xml_nesting.h"
+#include "formats/model_loader.h"
+
+namespace ccma {
+namespace {
+
+// What urdfdom does not keep: source lines, element order, and whether a
+// <limit> names its range.
+struct XmlIndex {
+  std::vector<std::string> links, joints;  // source order
+  std::map<std::string, int> line;         // "link NAME" / "joint NAME" -> line
+  std::set<std::string> ranged;            // joints whose <limit> has lower or upper
+};
+
+XmlIndex IndexXml(const std::string& text, const std::string& source) {
+  TiXmlDocument doc;
+  doc.Parse(text.c_str(), nullptr, TIXML_ENCODING_UTF8);
+  if (doc.Error()) {
+    throw ModelError(source + ":" + std::to_string(doc.ErrorRow()) + ": not valid XML: " + doc.ErrorDesc());
+  }
+  const TiXmlElement* robot = doc.RootElement();
+  if (robot == nullptr || robot->ValueStr() != "robot") throw ModelError(source + ": not a URDF (no <robot> element)");
+  XmlIndex index;
+  for (const TiXmlElement* e = robot->FirstChildElement(); e != nullptr; e = e->NextSiblingElement()) {
+    const char* name = e->Attribute("name");
+    if (name == nullptr || (e->ValueStr() != "link" && e->ValueStr() != "joint")) continue;
+    const bool link = e->ValueStr() == "link";
+    (link ? index.links : index.joints).push_back(name);
+    index.line[(link ? "link " : "joint ") + std::string(name)] = e->Row();
+    const TiXmlElement* limit = e->FirstChildElement("limit");
+    if (!link && limit != nullptr && (limit->Attribute("lower") != nullptr || limit->Attribute("upper") != nullptr)) {
+      index.ranged.insert(name);
+    }
+  }
+  if (index.links.size() > static_cast<std::size_t>(kMaxBodies) ||
+      index.joints.size() > static_cast<std::size_t>(kMaxJoints)) {
+    throw ModelError(source + ": more than " + std::to_string(kMaxBodies) + " links or " +
+                     std::to_string(kMaxJoints) + " joints");
+  }
+  return index;
+}
+
+// Collects urdfdom's error messages (it reports through console_bridge)
+// instead of letting it print them.
+class CapturedErrors final : public console_bridge::OutputHandler {
+ public:
+  CapturedErrors() { console_bridge::useOutputHandler(this); }
+  ~CapturedErrors() override { console_bridge::restorePreviousOutputHandler(); }
+  void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
+    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR && first_.empty()) first_ = text;
+  }
+  const std::string& first() const { return first_; }
+
+ private:
+  std::string first_;
+};
+
+urdf::ModelInterfaceSharedPtr ParseUrdf(const std::string& text, const std::string& source) {
+  CapturedErrors errors;
+  urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(text);
+  if (!model) {
+    throw ModelError(source + ": not a valid URDF: " + (errors.first().empty() ? "urdfdom rejected it" : errors.first()));
+  }
+  return model;
+}
+
+std::string Where(const XmlIndex& index, const std::string& source, const std::string& element) {
+  const auto it = index.line.find(element);
+  return source + (it == index.line.end() ? "" : ":" + std::to_string(it->second)) + ": " + element;
+}
+
+// A pose, checked finite and within the documented magnitudes.
+Eigen::Isometry3d Isometry(const urdf::Pose& pose, const std::string& where) {
+  const Eigen::Vector3d p(pose.position.x, pose.position.y, pose.position.z);
+  const Eigen::Vector4d q(pose.rotation.w, pose.rotation.x, pose.rotation.y, pose.rotation.z);
+  if (!p.allFinite() || !q.allFinite() || p.cwiseAbs().maxCoeff() > kMaxMagnitude || q.norm() < 1e-9) {
+    throw ModelError(where + ": origin must be finite, within 1e4 m, with a valid rotation");
+  }
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear() = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
+  X.translation() = p;
+  return X;
+}
+
+RobotJointType JointType(const urdf::Joint& joint, const std::string& where) {
+  switch (joint.type) {
+    case urdf::Joint::REVOLUTE:
+    case urdf::Joint::CONTINUOUS: return RobotJointType::kRevolute;
+    case urdf::Joint::PRISMATIC: return RobotJointType::kPrismatic;
+    case urdf::Joint::FIXED: return RobotJointType::kFixed;
+    case urdf::Joint::PLANAR: return RobotJointType::kPlanar;
+    default: break;
+  }
+  throw ModelError(where + ": joint type not supported (revolute, continuous, prismatic, fixed, planar from "
+                           "the ground; a closure file's joint_type may replace it)");
+}
+
+RobotJoint ReadJoint(const urdf::Joint& j, const Eigen::Isometry3d& X_WP, const XmlIndex& index,
+                 const std::string& source) {
+  const std::string where = Where(index, source, "joint " + j.name);
+  RobotJoint joint;
+  joint.name = j.name;
+  joint.type = JointType(j, where);
+  joint.parent = j.parent_link_name;
+  joint.child = j.child_link_name;
+  joint.line = index.line.count("joint " + j.name) ? index.line.at("joint " + j.name) : 0;
+  joint.X_WJ = X_WP * Isometry(j.parent_to_joint_origin_transform, where);
+  const Eigen::Vector3d axis(j.axis.x, j.axis.y, j.axis.z);
+  if (joint.type != RobotJointType::kFixed && (!axis.allFinite() || axis.norm() < 1e-9 || axis.norm() > 1e9)) {
+    throw ModelError(where + ": axis must be a finite, non-zero vector");
+  }
+  if (joint.type != RobotJointType::kFixed) joint.axis_W = joint.X_WJ.linear() * axis.normalized();
+  const bool ranged = index.ranged.count(j.name) > 0 && j.limits && j.type != urdf::Joint::CONTINUOUS;
+  if (ranged && (joint.type == RobotJointType::kRevolute || joint.type == RobotJointType::kPrismatic)) {
+    joint.limited = true;
+    joint.lower = j.limits->lower;
+    joint.upper = j.limits->upper;
+    if (!std::isfinite(joint.lower) || !std::isfinite(joint.upper) || joint.lower > joint.upper ||
+        std::abs(joint.lower) > kMaxMagnitude || std::abs(joint.upper) > kMaxMagnitude) {
+      throw ModelError(where + ": limit lower and upper must be finite, within 1e4, lower <= upper");
+    }
+  }
+  if (joint.type == RobotJointType::kPlanar && joint.parent != kRobotWorld) {
+    throw ModelError(where + ": a planar joint must connect the ground ('world') to a mobile base");
+  }
+  return joint;
+}
+
+void AddMeshes(const urdf::Link& link, const std::string& folder, const std::string& where, RobotLink* out) {
+  for (const urdf::VisualSharedPtr& visual : link.visual_array) {
+    if (!visual || !visual->geometry || visual->geometry->type != urdf::Geometry::MESH) continue;
+    const auto& mesh = static_cast<const urdf::Mesh&>(*visual->geometry);
+    RobotMesh m;
+    m.file = internal::ResolveMeshPath(mesh.filename, folder);
+    m.X_WM = out->X_WL * Isometry(visual->origin, where + " visual");
+    m.scale = Eigen::Vector3d(mesh.scale.x, mesh.scale.y, mesh.scale.z);
+    if (!m.scale.allFinite() || m.scale.minCoeff() <= 0 || m.scale.maxCoeff() > kMaxMagnitude) {
+      throw ModelError(where + ": mesh scale must be positive and finite");
+    }
+    out->meshes.push_back(m);
+  }
+}
+
+// Link poses at the zero configuration, walking the tree from the root
+// without recursion (a chain may be long).
+void WalkTree(const urdf::ModelInterface& urdf, const XmlIndex& index, const std::string& source,
+              const std::string& folder, RobotDescription* robot) {
+  std::map<std::string, Eigen::Isometry3d> X_WL;
+  std::map<std::string, RobotJoint> joints;
+  std::vector<std::string> pending = {urdf.getRoot()->name};
+  X_WL[pending.front()] = Eigen::Isometry3d::Identity();
+  while (!pending.empty()) {
+    const urdf::LinkConstSharedPtr link = urdf.getLink(pending.back());
+    pending.pop_back();
+    for (const urdf::JointSharedPtr& j : link->child_joints) {
+      RobotJoint joint = ReadJoint(*j, X_WL.at(link->name), index, source);
+      X_WL[joint.child] = joint.X_WJ;
+      pending.push_back(joint.child);
+      joints[joint.name] = joint;
+    }
+  }
+  const std::string root = urdf.getRoot()->name;
+  if (root != kRobotWorld) {
+    RobotJoint weld;
+    weld.name = std::string(kRobotWorld) + "__" + root;
+    weld.parent = kRobotWorld;
+    weld.child = root;
+    robot->joints.push_back(weld);
+  }
+  for (const std::string& name : index.links) {
+    if (name == kRobotWorld || X_WL.count(name) == 0) continue;
+    RobotLink link;
+    link.name = name;
+    link.X_WL = X_WL.at(name);
+    link.line = index.line.at("link " + name);
+    AddMeshes(*urdf.getLink(name), folder, Where(index, source, "link " + name), &link);
+    robot->links.push_back(link);
+  }
+  for (const std::string& name : index.joints) {
+    if (joints.count(name)) robot->joints.push_back(joints.at(name));
+  }
+}
+
+}  // namespace
+
+RobotDescription ReadUrdf(const std::string& urdf_path, const std::string& closures_path) {
+  std::string text, error;
+  if (!internal::ReadRegularFile(urdf_path, kMaxRobotFileBytes, "URDF file", &text, &error)) throw ModelError(error);
+  internal::CheckXmlNesting(text, urdf_path);
+  const XmlIndex index = IndexXml(text, urdf_path);
+  const urdf::ModelInterfaceSharedPtr urdf = ParseUrdf(text, urdf_path);
+  RobotDescription robot;
+  robot.name = urdf->getName();
+  robot.source = urdf_path;
+  WalkTree(*urdf, index, urdf_path, internal::AbsoluteFolderOf(urdf_path), &robot);
+  if (!closures_path.empty()) ApplyClosureFile(ReadClosureFile(closures_path), &robot);
+  return robot;
+}
+
+}  // namespace ccma

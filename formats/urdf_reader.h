@@ -1,0 +1,29 @@
+// URDF (a tree of links and joints) plus an optional closure file
+// (formats/closure_file.h) -> RobotDescription (formats/robot_description.h).
+// Parsed with urdfdom, the ROS community's parser; TinyXML (urdfdom's own
+// XML parser) supplies line numbers and what urdfdom does not keep (whether
+// a <limit> gives lower and upper, the order of elements).
+#ifndef CCMA_FORMATS_URDF_READER_H_
+#define CCMA_FORMATS_URDF_READER_H_
+
+#include <string>
+
+#include "formats/robot_description.h"
+
+namespace ccma {
+
+// A URDF file is a few hundred kilobytes; this bounds hostile ones.
+constexpr std::size_t kMaxRobotFileBytes = std::size_t{16} << 20;
+
+// Reads `urdf_path` and, unless `closures_path` is empty, its closure file.
+// Link poses are those of the URDF's zero configuration (every joint at 0).
+// The root link is the ground when it is called `world`; otherwise it is
+// welded to the ground by a fixed joint `world__ROOT`. Mesh references are
+// resolved against the URDF's folder. Throws ModelError naming the file,
+// the line and the element on a malformed file, an unsupported joint type
+// (floating, or planar other than from the ground) or an unknown name.
+RobotDescription ReadUrdf(const std::string& urdf_path, const std::string& closures_path);
+
+}  // namespace ccma
+
+#endif  // CCMA_FORMATS_URDF_READER_H_

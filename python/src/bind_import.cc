@@ -1,0 +1,63 @@
+// Robots described elsewhere (analyses/robot_import.h): ccma.import_robot,
+// the `ccma import` command without the file (unless out= is given).
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include "analyses/robot_import.h"
+#include "formats/sdformat_reader.h"
+#include "formats/urdf_reader.h"
+#include "python/src/bindings.h"
+
+namespace py = pybind11;
+
+namespace ccma::python {
+namespace {
+
+bool EndsWith(const std::string& text, const std::string& suffix) {
+  return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// (model, model file text); the Python wrapper (ccma/robots.py) writes `out`.
+py::tuple ImportRobotFile(const std::filesystem::path& from, const std::optional<std::filesystem::path>& closures,
+                          const std::vector<std::string>& actuated, const std::string& end_effector,
+                          const Eigen::Vector3d& point, const std::vector<std::string>& controlled) {
+  const std::string path = from.string();
+  const bool sdf = EndsWith(path, ".sdf") || EndsWith(path, ".world");
+  if (sdf && closures) throw py::value_error("closures is for URDF (SDFormat holds its loops)");
+  if (!point.allFinite() || point.cwiseAbs().maxCoeff() > 1e4) throw py::value_error("point must be finite, within 1e4 m");
+  ImportOptions options;
+  options.actuated = actuated;
+  options.end_effector_link = end_effector;
+  options.end_effector_point_L = point;
+  options.controlled = controlled;
+  ImportedRobot imported;
+  {
+    py::gil_scoped_release release;
+    const RobotDescription robot = sdf ? ReadSdformat(path, actuated) : ReadUrdf(path, closures ? closures->string() : "");
+    imported = ImportRobot(robot, options);
+  }
+  return py::make_tuple(imported.model, imported.yaml);
+}
+
+}  // namespace
+
+void BindImport(py::module_& m) {
+  m.def("_import_robot", &ImportRobotFile, py::arg("path"), py::arg("closures") = py::none(),
+        py::arg("actuated") = std::vector<std::string>{}, py::arg("end_effector") = "",
+        py::arg("point") = Eigen::Vector3d::Zero(), py::arg("controlled") = std::vector<std::string>{},
+        "Private: ccma.import_robot. Converts a URDF (with its closure file, the example-parallel-robots convention) or an "
+        "SDFormat file into a Model assembled at home, as `ccma import` (docs/import.md): "
+        "actuated: joint names (URDF default: the closure file's name_mot); end_effector: the "
+        "link carrying it and point its controlled point in that link's frame [m]; controlled: "
+        "components (default all six). Returns (Model, model file text). Every joint's q "
+        "equals the source's joint position (q_home). Raises ccma.ModelError naming the file, "
+        "the element and the name.");
+}
+
+}  // namespace ccma::python

@@ -1,0 +1,33 @@
+"""ccma.import_robot on the bundled example-parallel-robots copies (docs/import.md)."""
+import os
+
+import numpy as np
+import pytest
+
+import ccma
+
+ROBOTS = os.path.join(os.path.dirname(__file__), "..", "..", "models", "robots", "example-parallel-robots")
+
+
+def test_five_bar_imports_assembled_with_source_coordinates(tmp_path):
+    folder = os.path.join(ROBOTS, "5bar_linkage")
+    out = tmp_path / "5bar.yaml"
+    model = ccma.import_robot(os.path.join(folder, "robot.urdf"), closures=os.path.join(folder, "robot.yaml"),
+                              end_effector="effector", controlled=["x", "y", "z"], out=str(out))
+    assert out.exists()
+    assert model.num_controls == 2
+    assert np.allclose(model.home_controls, [0.0, 0.0])
+    problem = ccma.ForwardProblem(model)
+    result = problem.solve(np.array([0.1, -0.1]))
+    assert result.assembled
+    assert result.residual_energy < 1e-20
+    # The motors' q are their controls.
+    motors = {j.name: j for j in model.joints if j.actuated}
+    assert set(motors) == {"mot1", "mot2"}
+
+
+def test_unknown_actuated_joint_raises_model_error():
+    folder = os.path.join(ROBOTS, "5bar_linkage")
+    with pytest.raises(ccma.ModelError, match="mot9"):
+        ccma.import_robot(os.path.join(folder, "robot.urdf"), closures=os.path.join(folder, "robot.yaml"),
+                          actuated=["mot9"], end_effector="effector")

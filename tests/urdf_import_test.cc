@@ -1,0 +1,163 @@
+// `ccma import` on real robots (models/robots/example-parallel-robots, from
+// LAAS-CNRS/INRIA, BSD-3-Clause): each imports, is assembled, its closures
+// hold, an independent forward kinematics through the URDF tree with the
+// reported q reproduces every body pose, the motors move it and control
+// reaches an end-effector target. Plus the errors a user can make.
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <random>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <urdf_parser/urdf_parser.h>
+
+#include "analyses/robot_import.h"
+#include "ccma/joint_coordinates.h"
+#include "formats/model_loader.h"
+#include "formats/urdf_reader.h"
+#include "problems/control_problem.h"
+#include "problems/forward_problem.h"
+
+namespace ccma {
+namespace {
+
+const std::string kRobots = std::string(CCMA_MODELS_DIR) + "/robots/example-parallel-robots/";
+
+struct Robot {
+  std::string folder, end_effector;
+};
+const Robot kCopied[] = {{"5bar_linkage", "effector"}, {"robot_delta", "eff"}, {"cassie_like", "foot"}};
+
+ImportedRobot Import(const Robot& robot) {
+  const RobotDescription description =
+      ReadUrdf(kRobots + robot.folder + "/robot.urdf", kRobots + robot.folder + "/robot.yaml");
+  ImportOptions options;
+  options.end_effector_link = robot.end_effector;
+  options.controlled = {"x", "y", "z"};
+  return ImportRobot(description, options);
+}
+
+// ---- An independent forward kinematics: urdfdom's tree, a few lines of Eigen ----
+Eigen::Isometry3d Origin(const urdf::Pose& pose) {
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear() = Eigen::Quaterniond(pose.rotation.w, pose.rotation.x, pose.rotation.y, pose.rotation.z).toRotationMatrix();
+  X.translation() << pose.position.x, pose.position.y, pose.position.z;
+  return X;
+}
+
+// Every link's pose with joint positions q(name); the root at the identity.
+std::map<std::string, Eigen::Isometry3d> UrdfFk(const urdf::ModelInterface& urdf,
+                                                const std::function<double(const std::string&)>& q) {
+  std::map<std::string, Eigen::Isometry3d> X;
+  std::vector<urdf::LinkConstSharedPtr> pending = {urdf.getRoot()};
+  X[urdf.getRoot()->name] = Eigen::Isometry3d::Identity();
+  while (!pending.empty()) {
+    const urdf::LinkConstSharedPtr link = pending.back();
+    pending.pop_back();
+    for (const urdf::JointSharedPtr& j : link->child_joints) {
+      const Eigen::Vector3d axis(j->axis.x, j->axis.y, j->axis.z);
+      Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
+      if (j->type == urdf::Joint::REVOLUTE || j->type == urdf::Joint::CONTINUOUS) {
+        motion.linear() = Eigen::AngleAxisd(q(j->name), axis.normalized()).toRotationMatrix();
+      } else if (j->type == urdf::Joint::PRISMATIC) {
+        motion.translation() = q(j->name) * axis.normalized();
+      }
+      X[j->child_link_name] = X[link->name] * Origin(j->parent_to_joint_origin_transform) * motion;
+      pending.push_back(urdf.getLink(j->child_link_name));
+    }
+  }
+  return X;
+}
+
+urdf::ModelInterfaceSharedPtr ParseUrdfFile(const std::string& path) {
+  std::ifstream in(path);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return urdf::parseURDF(text);
+}
+
+// Body poses at s against the FK with the q ccma reports at s, to 1e-9.
+void ExpectFkMatches(const Model& model, const State& s, const urdf::ModelInterface& urdf) {
+  std::map<std::string, double> q;
+  for (const JointCoordinateReport& r : JointCoordinates(model, s)) q[model.joints[r.joint].name] = r.q;
+  const auto X = UrdfFk(urdf, [&](const std::string& name) { return q.at(name); });
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    const Eigen::Isometry3d& X_WL = X.at(model.bodies[b].name);
+    EXPECT_LT((s.p_WB(b) - X_WL.translation()).norm(), 1e-9) << model.bodies[b].name;
+    EXPECT_LT((s.R_WB(b) - X_WL.linear()).norm(), 1e-9) << model.bodies[b].name;
+  }
+}
+
+// Both frames of every 6d closure (links here) coincide at s, to 1e-9.
+void ExpectClosuresHold(const Model& model, const State& s) {
+  int closures = 0;
+  for (const Joint& joint : model.joints) {
+    if (joint.name.find("__") == std::string::npos || joint.body_a == kWorld) continue;
+    ++closures;
+    EXPECT_LT((s.p_WB(joint.body_a) - s.p_WB(joint.body_b)).norm(), 1e-9) << joint.name;
+    EXPECT_LT((s.R_WB(joint.body_a) - s.R_WB(joint.body_b)).norm(), 1e-9) << joint.name;
+  }
+  EXPECT_GT(closures, 0);
+}
+
+class CopiedRobot : public ::testing::TestWithParam<Robot> {};
+
+TEST_P(CopiedRobot, ImportsAssembledAndMatchesItsUrdfTree) {
+  const ImportedRobot imported = Import(GetParam());
+  const urdf::ModelInterfaceSharedPtr urdf = ParseUrdfFile(kRobots + GetParam().folder + "/robot.urdf");
+  ASSERT_TRUE(urdf);
+  EXPECT_LT(imported.residual_energy, 1e-24);
+  EXPECT_EQ(imported.model.num_controls(), static_cast<int>(imported.actuated.size()));
+  // Motors at the source's zero: the home controls are 0.
+  EXPECT_LT(imported.model.home_controls().cwiseAbs().maxCoeff(), 1e-12);
+  const State home = State::Home(imported.model);
+  ExpectClosuresHold(imported.model, home);
+  ExpectFkMatches(imported.model, home, *urdf);
+}
+
+TEST_P(CopiedRobot, MotorsMoveItAndTheTreeStillMatches) {
+  const ImportedRobot imported = Import(GetParam());
+  const urdf::ModelInterfaceSharedPtr urdf = ParseUrdfFile(kRobots + GetParam().folder + "/robot.urdf");
+  ForwardProblem problem(imported.model);
+  const EndEffectorPose before = problem.end_effector();
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> delta(-0.08, 0.08);
+  Eigen::VectorXd u = imported.model.home_controls();
+  for (int i = 0; i < u.size(); ++i) u[i] += delta(random);
+  const ForwardResult result = problem.Assemble(u);
+  ASSERT_TRUE(result.assembled) << result.message;
+  EXPECT_FALSE(result.branch_jump);
+  EXPECT_GT((problem.end_effector().position - before.position).norm(), 1e-4);
+  ExpectClosuresHold(imported.model, problem.state());
+  ExpectFkMatches(imported.model, problem.state(), *urdf);
+  // An actuated joint's q is its control.
+  for (const JointCoordinateReport& r : JointCoordinates(imported.model, problem.state())) {
+    const Joint& joint = imported.model.joints[r.joint];
+    if (joint.actuated) EXPECT_NEAR(r.q, u[joint.control], 1e-9) << joint.name;
+  }
+}
+
+TEST_P(CopiedRobot, ControlReachesAnEndEffectorTarget) {
+  const ImportedRobot imported = Import(GetParam());
+  // A reachable target: where seeded motor moves put the end-effector.
+  ForwardProblem forward(imported.model);
+  Eigen::VectorXd u = imported.model.home_controls();
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> delta(-0.05, 0.05);
+  for (int i = 0; i < u.size(); ++i) u[i] += delta(random);
+  ASSERT_TRUE(forward.Assemble(u).assembled);
+  const Eigen::Vector3d target = forward.end_effector().position;
+  ControlProblem control(imported.model);
+  PoseTarget goal;
+  goal.position = target;
+  const ControlResult result = control.MoveTo(goal);
+  EXPECT_TRUE(result.converged) << result.warning;
+  EXPECT_LT((control.forward().end_effector().position - target).norm(), 1e-6);
+}
+
+INSTANTIATE_TEST_SUITE_P(ExampleParallelRobots, CopiedRobot, ::testing::ValuesIn(kCopied),
+                         [](const auto& info) { return info.param.folder; });
+
+}  // namespace
+}  // namespace ccma
