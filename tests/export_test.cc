@@ -190,7 +190,9 @@ void ExpectJointKept(const ParsedUrdf& p, const Model& model, const Joint& joint
       const bool a_side = joint.type == JointType::kFixed || joint.type == JointType::kSpherical
                               ? p.urdf->getJoint(link_a) && p.urdf->getJoint(link_a)->parent_link_name == a
                               : u && u->parent_link_name == a && u->child_link_name == link_a;
-      closed = closed || (link_a == joint.name + "_A" && a_side && weld_b && weld_b->parent_link_name == b &&
+      // J_A, or J_A_2, ... when the model already uses the name.
+      const bool named = link_a == joint.name + "_A" || link_a.rfind(joint.name + "_A_", 0) == 0;
+      closed = closed || (named && a_side && weld_b && weld_b->parent_link_name == b &&
                           p.closures["type"][i].as<std::string>() == (joint.type == JointType::kSpherical ? "3d" : "6d"));
     }
     EXPECT_TRUE(closed) << joint.name << " is neither a tree joint nor closed";
@@ -446,6 +448,23 @@ TEST(SdformatExport, RotatedBodyFrames) {
                                                   return Eigen::Vector3d(-0.1 * k, 0.4, 0.2 * k);
                                                 });
   CheckSdf(LoadModelFromString(text, "rotated.yaml"), "stewart_gough_6ups rotated");
+}
+
+TEST(UrdfExport, AddedNamesAvoidTheModelsOwn) {
+  // A body called like the frame link the cut joint rocker_ground would get.
+  std::string text = kLoopModel;
+  for (const std::string& from : {std::string("{name: piston, position"), std::string("between: [piston, crank]")}) {
+    text.replace(text.find(from), from.size(),
+                 std::regex_replace(from, std::regex("piston"), "rocker_ground_A"));
+  }
+  const Model model = LoadModelFromString(text, "collision.yaml");
+  ASSERT_GE(model.FindBody("rocker_ground_A"), 0);
+  CheckUrdf(model, "collision");
+  const ParsedUrdf p = ParseExport(model);
+  ASSERT_TRUE(p.urdf);
+  EXPECT_EQ(p.urdf->getJoint("rocker_ground")->child_link_name, "rocker_ground_A_2");
+  EXPECT_EQ(p.urdf->getJoint("piston")->child_link_name, "rocker_ground_A");
+  CheckSdf(model, "collision");
 }
 
 // ---------------------------------------------------------------- command ---
