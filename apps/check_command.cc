@@ -5,6 +5,7 @@
 #include "apps/commands.h"
 #include "apps/flags.h"
 #include "apps/json_output.h"
+#include "ccma/end_effector.h"
 #include "ccma/internal/format.h"
 
 namespace ccma::cli {
@@ -57,13 +58,29 @@ std::string FreeMotionText(const Model& model, const std::vector<FreeMotion>& mo
   return text;
 }
 
+// Whether every listed free motion leaves the end-effector where it is (an
+// idle motion, such as a rod spinning about its axis: problems/internal/idle_motions.h).
+bool OnlyIdleMotions(const Model& model, const MobilityReport& mobility) {
+  if (!mobility.free_motions_listed || mobility.free_motions.empty()) return false;
+  const Eigen::MatrixXd dX_ds = EndEffectorJacobian(model, State::Home(model));
+  for (const FreeMotion& motion : mobility.free_motions) {
+    if ((dX_ds * motion.direction).norm() > 1e-8) return false;
+  }
+  return true;
+}
+
 // What a user would not expect of the mechanism, one sentence each.
 nlohmann::json CheckWarnings(const Model& model, const MobilityReport& mobility, bool assembled) {
   const ForwardOptions defaults;
   int controlled_count = 0;
   for (int c = 0; c < 6; ++c) controlled_count += model.end_effector.controlled[c] ? 1 : 0;
   nlohmann::json warnings = nlohmann::json::array();
-  if (!mobility.rigid_with_controls_fixed) {
+  if (!mobility.rigid_with_controls_fixed && OnlyIdleMotions(model, mobility)) {
+    warnings.push_back(std::to_string(mobility.dof_with_controls_fixed) +
+                       " idle motion(s) with its controls fixed, which move bodies but not the end-effector: " +
+                       FreeMotionText(model, mobility.free_motions) +
+                       "; control resolves them (docs/numerics.md), simulation leaves them where they are");
+  } else if (!mobility.rigid_with_controls_fixed) {
     warnings.push_back("not rigid with its controls fixed: " + std::to_string(mobility.dof_with_controls_fixed) +
                        " free motion(s) remain (smallest singular value of dC/ds " +
                        FormatG(mobility.smallest_singular_value) + "): " +

@@ -127,7 +127,8 @@ Command ReplayCommand() {
 
 Command ViewCommand() {
   return {"view", "write a self-contained 3D HTML view (animated for a trajectory or replay)",
-          "ccma view --model=FILE [--trajectory=FILE.csv | --replay=DIR | --workspace=MAP.csv] --out=FILE.html",
+          "ccma view --model=FILE [--trajectory=FILE.csv | --replay=DIR | --workspace=MAP.csv] [--meshes]\n"
+          "          --out=FILE.html",
           "Writes one self-contained HTML page (three.js inlined; it fetches nothing) that shows the\n"
           "mechanism in 3D: links as capsules between joint points, bases as discs with a heading arrow,\n"
           "joint markers by type, the end-effector's frame, the ground grid, orbit controls. With a\n"
@@ -139,8 +140,12 @@ Command ViewCommand() {
           "past 200000 sub-steps in all, is not attempted (flagged, drawn as the last frame assembled;\n"
           "JSON beyond_work_bound_frames). With a workspace map (`ccma workspace`, alone) the model at home\n"
           "under the map's end-effector positions as a point cloud: reachable points coloured by sigma_min\n"
-          "[m or rad per control unit], the others grey.",
-          {"model", "trajectory", "replay", "workspace", "out"}, RunView};
+          "[m or rad per control unit], the others grey. With --meshes, the bodies' meshes (`meshes:` in\n"
+          "the model: binary or ASCII STL, paths absolute or relative to the model file's folder) are read,\n"
+          "embedded and drawn at their pose on each body instead of its capsules; at most 16 MiB per file and\n"
+          "64 MiB for all distinct files. A mesh file missing, unreadable, too large or not a valid STL:\n"
+          "exit 2, naming the model file and line, the body and the mesh file (JSON mesh_files, mesh_bytes).",
+          {"model", "trajectory", "replay", "workspace", "meshes", "out"}, RunView};
 }
 
 Command WorkspaceCommand() {

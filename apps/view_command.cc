@@ -1,7 +1,8 @@
-// `ccma view --model=FILE [--trajectory=FILE.csv | --replay=DIR | --workspace=MAP.csv] --out=FILE.html`:
-// one self-contained HTML page showing the mechanism in 3D (viewer/), animated
-// along a trajectory CSV or a replay directory, or at home under the point
-// cloud of a workspace map. Prints {"out", "bytes", "frames", ...} on stdout.
+// `ccma view --model=FILE [--trajectory=FILE.csv | --replay=DIR | --workspace=MAP.csv] [--meshes]
+// --out=FILE.html`: one self-contained HTML page showing the mechanism in 3D
+// (viewer/), animated along a trajectory CSV or a replay directory, or at home
+// under the point cloud of a workspace map; with --meshes, the bodies' STL
+// meshes embedded and drawn. Prints {"out", "bytes", "frames", ...} on stdout.
 #include <iostream>
 #include <optional>
 
@@ -13,6 +14,7 @@
 #include "apps/json_output.h"
 #include "apps/output_file.h"
 #include "viewer/html.h"
+#include "viewer/mesh_files.h"
 #include "viewer/scene.h"
 #include "viewer/view_frames.h"
 #include "viewer/workspace_cloud.h"
@@ -22,6 +24,9 @@ DEFINE_string(replay, "", "a directory written by `ccma replay` to animate [dire
 DEFINE_string(workspace, "",
               "a CSV written by `ccma workspace` to draw as a point cloud over the model at home, coloured by "
               "sigma_min [file]");
+DEFINE_bool(meshes, false,
+            "draw the bodies' meshes (`meshes:` in the model; STL, at most 16 MiB per file and 64 MiB in all) "
+            "[flag]");
 
 namespace ccma::cli {
 
@@ -42,6 +47,28 @@ void WarnAboutFrames(const viewer::SceneSummary& summary, const std::string& sou
   }
 }
 
+// The JSON on stdout (docs/cli.md, "ccma view").
+nlohmann::json Result(const std::string& out_path, std::size_t bytes, const viewer::SceneSummary& summary,
+                      const std::string& source, const viewer::MeshFiles* meshes, bool workspace) {
+  nlohmann::json result = {{"out", out_path},
+                           {"bytes", bytes},
+                           {"frames", summary.frames},
+                           {"source", source},
+                           {"flagged_frames", summary.flagged_frames},
+                           {"not_assembled_frames", summary.not_assembled},
+                           {"branch_jumps", summary.branch_jumps}};
+  if (summary.beyond_work_bound > 0) result["beyond_work_bound_frames"] = summary.beyond_work_bound;
+  if (meshes != nullptr) {
+    result["mesh_files"] = meshes->files.size();
+    result["mesh_bytes"] = meshes->bytes_read;
+  }
+  if (workspace) {
+    result["workspace_points"] = summary.workspace_points;
+    result["workspace_reachable"] = summary.workspace_reachable;
+  }
+  return result;
+}
+
 }  // namespace
 
 int RunView(const std::vector<std::string>& args) {
@@ -58,8 +85,10 @@ int RunView(const std::vector<std::string>& args) {
   const Model model = LoadModelOrThrow(model_path);
   std::vector<viewer::ViewFrame> frames;
   std::optional<viewer::WorkspaceCloud> workspace;
+  std::optional<viewer::MeshFiles> meshes;
   std::string source = "model";
   try {
+    if (FLAGS_meshes) meshes = viewer::ReadMeshFiles(model);
     if (!FLAGS_workspace.empty()) {
       workspace = viewer::CloudFromWorkspaceCsv(model, FLAGS_workspace);
       source = "workspace";
@@ -79,25 +108,14 @@ int RunView(const std::vector<std::string>& args) {
                              "found when it was built; install npm and rebuild)");
   }
   viewer::SceneSummary summary;
-  const std::string scene = viewer::BuildScene(model, frames, source, &summary, workspace ? &*workspace : nullptr);
+  const std::string scene = viewer::BuildScene(model, frames, source, &summary, workspace ? &*workspace : nullptr,
+                                               meshes ? &*meshes : nullptr);
   const std::string html = viewer::ViewerHtml(scene, model.name);
   OutputFile out(out_path, "out");
   out.stream() << html;
   out.Commit();
   WarnAboutFrames(summary, source);
-  nlohmann::json result = {{"out", out_path},
-                           {"bytes", html.size()},
-                           {"frames", summary.frames},
-                           {"source", source},
-                           {"flagged_frames", summary.flagged_frames},
-                           {"not_assembled_frames", summary.not_assembled},
-                           {"branch_jumps", summary.branch_jumps}};
-  if (summary.beyond_work_bound > 0) result["beyond_work_bound_frames"] = summary.beyond_work_bound;
-  if (workspace) {
-    result["workspace_points"] = summary.workspace_points;
-    result["workspace_reachable"] = summary.workspace_reachable;
-  }
-  PrintJson(result);
+  PrintJson(Result(out_path, html.size(), summary, source, meshes ? &*meshes : nullptr, workspace.has_value()));
   return 0;
 }
 

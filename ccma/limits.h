@@ -31,6 +31,11 @@ constexpr int kMaxBodies = 100000;
 constexpr int kMaxJoints = 200000;
 // Wheels per mobile base.
 constexpr int kMaxWheels = 64;
+// Visual meshes (`meshes:` of bodies and bases): per body, per model, and the
+// length of one mesh's file path in bytes.
+constexpr int kMaxMeshesPerBody = 64;
+constexpr int kMaxMeshes = 10000;
+constexpr std::size_t kMaxMeshPathLength = 4096;
 
 // Waypoint files: at most this many bytes (16 MiB; a million rows of a path
 // fit in 14 MB) and this many waypoints.

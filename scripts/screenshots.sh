@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The viewer's screenshots in docs/viewer.md: `ccma view` of every bundled model, of a
-# replay and of a workspace map (a few seconds of `ccma workspace`), opened in headless
+# replay, of a workspace map (a few seconds of `ccma workspace`) and of a model with meshes, opened in headless
 # Chromium by the browser test, which also checks
 # each page (no console error, no request, the mechanism drawn) before saving
 # docs/images/view_<name>.png; and the workspace slice map of docs/workspace.md (gnuplot).
@@ -30,6 +30,10 @@ echo "screenshots: docs/images/view_replay_4dof_reduced.png"
 node viewer/js/test/browser_test.mjs --html "$out/workspace.html" \
   --screenshot docs/images/view_workspace_4dof_reduced.png > /dev/null
 echo "screenshots: docs/images/view_workspace_4dof_reduced.png"
+# A model with STL meshes (docs/viewer.md, "Meshes").
+"$build"/apps/ccma view --model=tests/meshes/four_bar_meshes.yaml --meshes --out="$out/meshes.html" > /dev/null
+node viewer/js/test/browser_test.mjs --html "$out/meshes.html" --screenshot docs/images/viewer_meshes.png > /dev/null
+echo "screenshots: docs/images/viewer_meshes.png"
 # The workspace slice map of docs/workspace.md (gnuplot, `ccma workspace --plot`).
 "$build"/apps/ccma workspace --model=models/4dof_reduced.yaml --x=-0.5:0.5 --z=0.4:1.0 --resolution=25 \
   --out="$out/slice.csv" --plot="$out/slice" > /dev/null

@@ -376,7 +376,7 @@ TEST(Cli, EachCommandHasItsOwnHelpWithUnits) {
       {"replay", {"model", "waypoints", "out", "noise", "seed", "mocap_noise_m", "mocap_noise_rad",
                   "latency_s", "slip", "kp", "ki", "controller_hz", "max_wheel_speed", "method", "max_step_m",
                   "max_step_rad", "lambda"}},
-      {"view", {"model", "trajectory", "replay", "workspace", "out"}},
+      {"view", {"model", "trajectory", "replay", "workspace", "meshes", "out"}},
       {"workspace", {"model", "out", "x", "y", "z", "roll", "pitch", "yaw", "resolution", "samples", "seed",
                      "threads", "plot", "method", "max_step_m", "max_step_rad", "lambda"}},
       {"design", {"model", "targets", "out", "vary", "vary_length", "max_change", "min_length", "min_singular_value",

@@ -3,8 +3,10 @@
 #  2. a valid page that also asks for a remote image (a network request;
 #     the page's CSP blocks it, the test still sees the attempt);
 #  3. a valid page whose mechanism is never drawn (bodies hidden by a script);
-#  4. a valid workspace page whose cloud is never drawn (hidden by a script).
-#   cmake -DNODE=.. -DTEST_JS=.. -DBUNDLE=.. -DTOOL=.. -DMODEL=.. -DWORK=.. -P this
+#  4. a valid workspace page whose cloud is never drawn (hidden by a script);
+#  5. a valid page of MESH_MODEL (`--meshes`) whose meshes are never drawn;
+#  6. that page with a mesh naming a file the scene does not carry.
+#   cmake -DNODE=.. -DTEST_JS=.. -DBUNDLE=.. -DTOOL=.. -DMODEL=.. -DMESH_MODEL=.. -DWORK=.. -P this
 cmake_minimum_required(VERSION 3.16)
 file(MAKE_DIRECTORY "${WORK}")
 execute_process(COMMAND "${TOOL}" view "--model=${MODEL}" "--out=${WORK}/good.html" RESULT_VARIABLE rc OUTPUT_QUIET)
@@ -39,8 +41,23 @@ endif()
 file(READ "${WORK}/cloud.html" cloud)
 string(REPLACE "</body>" "<script>window.ccmaView.showWorkspace(false); window.ccmaView.showWorkspace = () => {};</script></body>" cloud "${cloud}")
 file(WRITE "${WORK}/hidden_cloud.html" "${cloud}")
+execute_process(COMMAND "${TOOL}" view "--model=${MESH_MODEL}" --meshes "--out=${WORK}/meshes.html"
+                RESULT_VARIABLE rc OUTPUT_QUIET)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "ccma view --meshes failed")
+endif()
+file(READ "${WORK}/meshes.html" meshes)
+string(REPLACE "</body>" "<script>window.ccmaView.showMeshes(false); window.ccmaView.showMeshes = () => {};</script></body>"
+       hidden_meshes "${meshes}")
+file(WRITE "${WORK}/hidden_meshes.html" "${hidden_meshes}")
+string(REPLACE "{\"file\":0," "{\"file\":7," bad_mesh "${meshes}")
+if(bad_mesh STREQUAL meshes)
+  message(FATAL_ERROR "test bug: no mesh with file 0 in ${WORK}/meshes.html")
+endif()
+file(WRITE "${WORK}/bad_mesh.html" "${bad_mesh}")
 foreach(case "bad_scene|console errors" "remote|network requests" "hidden|body points drawn"
-             "hidden_cloud|workspace points drawn")
+             "hidden_cloud|workspace points drawn" "hidden_meshes|meshes drawn at their centroid"
+             "bad_mesh|meshes\\[0\\]\\.file: an index into meshes")
   string(REPLACE "|" ";" parts "${case}")
   list(GET parts 0 page)
   list(GET parts 1 expected)

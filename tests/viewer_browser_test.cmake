@@ -1,9 +1,10 @@
 # One real-browser test of `ccma view` (CTest): writes the page for MODEL
 # (animated along a trajectory or a replay of WAYPOINTS when KIND says so;
 # with KIND=workspace, under the cloud of a small `ccma workspace` map over
-# x, y, z, reachable and unreachable points both) and opens it with
+# x, y, z, reachable and unreachable points both; with KIND=meshes, with
+# `--meshes`) and opens it with
 # viewer/js/test/browser_test.mjs in headless Chromium.
-#   cmake -DTOOL=.. -DNODE=.. -DTEST_JS=.. -DMODEL=.. -DWORK=.. -DKIND=model|trajectory|replay|workspace
+#   cmake -DTOOL=.. -DNODE=.. -DTEST_JS=.. -DMODEL=.. -DWORK=.. -DKIND=model|trajectory|replay|workspace|meshes
 #         [-DWAYPOINTS=..] -P viewer_browser_test.cmake
 # Skipped (CTest's SKIP_REGULAR_EXPRESSION on "SKIPPED: chromium", with the
 # reason printed) only when Chromium is missing; never a silent pass.
@@ -25,6 +26,8 @@ elseif(KIND STREQUAL "replay")
   run("${TOOL}" replay "--model=${MODEL}" "--waypoints=${WAYPOINTS}" "--out=${WORK}/replay")
   set(source "--replay=${WORK}/replay")
   set(animation --expect-animation)
+elseif(KIND STREQUAL "meshes")
+  set(source --meshes)  # the model names its STL meshes; browser_test.mjs checks where they are drawn
 elseif(KIND STREQUAL "workspace")
   run("${TOOL}" workspace "--model=${MODEL}" --x=-0.4:0.4 --y=-0.4:0.4 --z=0.45:1.0 --resolution=7 --threads=2
       "--out=${WORK}/map.csv")

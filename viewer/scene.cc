@@ -9,6 +9,7 @@
 #include "ccma/rotation.h"
 #include "problems/forward_problem.h"
 #include "execution/replay.h"
+#include "viewer/stl.h"
 
 namespace ccma::viewer {
 namespace {
@@ -96,7 +97,32 @@ double BaseRadius(const MobileBase& base, double scale) {
   return std::clamp(r > 0 ? r : 0.13, 0.02, std::max(0.05, 0.3 * scale));
 }
 
-json Bodies(const Model& model, double scale) {
+// A body's meshes (scene_format.md): the file's index in the scene's
+// "meshes", the mesh frame in the body frame, the scale (not rounded: a scale
+// of 1e-9 is valid and must not become 0).
+json BodyMeshes(const Body& body, const std::vector<int>& file_of) {
+  json meshes = json::array();
+  for (std::size_t i = 0; i < body.meshes.size(); ++i) {
+    const BodyMesh& m = body.meshes[i];
+    const Eigen::Quaterniond q(m.R_BM);
+    meshes.push_back({{"file", file_of[i]},
+                      {"position", Vec(m.p_BM)},
+                      {"quaternion", {Round(q.x()), Round(q.y()), Round(q.z()), Round(q.w())}},
+                      {"scale", {m.scale.x(), m.scale.y(), m.scale.z()}}});
+  }
+  return meshes;
+}
+
+// The scene's "meshes": each distinct file once, as base64 binary STL.
+json MeshList(const MeshFiles& files) {
+  json list = json::array();
+  for (const MeshFiles::File& f : files.files) {
+    list.push_back({{"path", f.path}, {"triangles", f.triangles}, {"stl_base64", Base64(f.stl)}});
+  }
+  return list;
+}
+
+json Bodies(const Model& model, double scale, const MeshFiles* meshes) {
   json bodies = json::array();
   for (int b = 0; b < model.num_bodies(); ++b) {
     const Body& body = model.bodies[b];
@@ -110,6 +136,7 @@ json Bodies(const Model& model, double scale) {
     j["points"] = json::array();
     for (const Eigen::Vector3d& p : points) j["points"].push_back(Vec(p));
     j["links"] = BodyLinks(points, body.is_mobile_base());
+    if (meshes != nullptr && !body.meshes.empty()) j["meshes"] = BodyMeshes(body, meshes->file_of[b]);
     bodies.push_back(j);
   }
   return bodies;
@@ -211,10 +238,10 @@ double FlagEnergyFor(const std::string& source) {
 }
 
 std::string BuildScene(const Model& model, const std::vector<ViewFrame>& frames, const std::string& source,
-                       SceneSummary* summary, const WorkspaceCloud* workspace) {
+                       SceneSummary* summary, const WorkspaceCloud* workspace, const MeshFiles* meshes) {
   const double scale = Scale(model, workspace);
   json scene = {{"format", "ccma-scene-1"}, {"model", model.name},    {"description", model.description},
-                {"scale", Round(scale)},     {"bodies", Bodies(model, scale)}, {"joints", Joints(model)},
+                {"scale", Round(scale)},     {"bodies", Bodies(model, scale, meshes)}, {"joints", Joints(model)},
                 {"end_effector", {{"body", model.end_effector.body}, {"point", Vec(model.end_effector.p_B)}}},
                 {"source", source}};
   json time = json::array(), poses = json::array(), flags = json::array();
@@ -261,6 +288,8 @@ std::string BuildScene(const Model& model, const std::vector<ViewFrame>& frames,
     s.workspace_points = static_cast<long>(workspace->points.size());
     s.workspace_reachable = workspace->reachable_count;
   }
+  // No key without meshes: --meshes on a model that names none changes nothing.
+  if (meshes != nullptr && !meshes->files.empty()) scene["meshes"] = MeshList(*meshes);
   if (summary != nullptr) *summary = s;
   return ScriptSafeJson(scene);
 }

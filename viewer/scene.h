@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "ccma/model.h"
+#include "viewer/mesh_files.h"
 #include "viewer/view_frames.h"
 #include "viewer/workspace_cloud.h"
 
@@ -43,10 +44,14 @@ double FlagEnergyFor(const std::string& source);
 // FlagEnergyFor(source), beyond the bound, or reached by a branch jump, are
 // flagged. `source` is "model", "trajectory",
 // "replay" or "workspace". With `workspace`, the scene's "workspace" object
-// holds its cloud and the scale covers it. Returns the JSON text (numbers
-// rounded to 1e-7: display precision, a tenth of a micrometre; never NaN).
+// holds its cloud and the scale covers it. With `meshes` (ReadMeshFiles of
+// the same model), the scene carries the mesh files and each body its
+// meshes' poses; without, no mesh is mentioned. Returns the JSON text
+// (numbers rounded to 1e-7: display precision, a tenth of a micrometre;
+// never NaN).
 std::string BuildScene(const Model& model, const std::vector<ViewFrame>& frames, const std::string& source,
-                       SceneSummary* summary, const WorkspaceCloud* workspace = nullptr);
+                       SceneSummary* summary, const WorkspaceCloud* workspace = nullptr,
+                       const MeshFiles* meshes = nullptr);
 
 }  // namespace ccma::viewer
 

@@ -25,6 +25,9 @@ void ModelParser::ParseBases(const YAML::Node& bases_node, std::size_t num_bodie
     body.base_index = model_.num_bases();
     body.p_WB_home = Eigen::Vector3d(base.home_pose.x(), base.home_pose.y(), 0.0);
     body.R_WB_home = RotationZ(base.home_pose.z());
+    if (YamlReader::Has(bases[k], "meshes")) {
+      body.meshes = ParseMeshes(bases[k]["meshes"], Indexed("mobile_bases", k) + ".meshes", body);
+    }
     model_.bodies.push_back(body);
     model_.mobile_bases.push_back(base);
   }
@@ -32,7 +35,7 @@ void ModelParser::ParseBases(const YAML::Node& bases_node, std::size_t num_bodie
 
 MobileBase ModelParser::ParseBase(const YAML::Node& at, const std::string& path) {
   const YAML::Node node = r_.Map(at, path);
-  r_.CheckKeys(node, {"name", "type", "actuation", "pose", "wheels"}, path);
+  r_.CheckKeys(node, {"name", "type", "actuation", "pose", "wheels", "meshes"}, path);
   MobileBase base;
   base.name = AddBodyName(r_.Require(node, "name", path), path + ".name");
   base.body = model_.num_bodies();

@@ -14,13 +14,14 @@ void ModelParser::ParseBodies(const YAML::Node& bodies) {
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const std::string path = Indexed("bodies", i);
     const YAML::Node node = r_.Map(bodies[i], path);
-    r_.CheckKeys(node, {"name", "position", "rpy"}, path);
+    r_.CheckKeys(node, {"name", "position", "rpy", "meshes"}, path);
     Body body;
     body.name = AddBodyName(r_.Require(node, "name", path), path + ".name");
     body.p_WB_home = r_.Vector3(r_.Require(node, "position", path), path + ".position", "m");
     if (YamlReader::Has(node, "rpy")) {
       body.R_WB_home = RotationFromRpy(r_.Vector3(node["rpy"], path + ".rpy", "rad"));
     }
+    if (YamlReader::Has(node, "meshes")) body.meshes = ParseMeshes(node["meshes"], path + ".meshes", body);
     model_.bodies.push_back(body);
   }
 }

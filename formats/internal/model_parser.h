@@ -9,6 +9,7 @@
 //   model_joint_geometry.cc  joints' point, axis, axes
 //   model_actuation_limits.cc joints' actuated and limits
 //   model_end_effector.cc    end_effector
+//   model_meshes.cc          bodies' and bases' meshes (visual only)
 // Shared checks (keys, numbers, vectors, messages): yaml_checks.h.
 //
 // Internal to the library: formats/model_loader.h is the public API.
@@ -110,6 +111,10 @@ class ModelParser {
   // model_end_effector.cc
   void ParseEndEffector(const YAML::Node& ee);
 
+  // model_meshes.cc
+  std::vector<BodyMesh> ParseMeshes(const YAML::Node& node, const std::string& path, const Body& body);
+  BodyMesh ParseMesh(const YAML::Node& at, const std::string& path, const Body& body) const;
+
   MagnitudeChecks magnitudes_;
   std::vector<std::string>* warnings_;
   const YamlReader r_;
@@ -117,6 +122,7 @@ class ModelParser {
   std::unordered_map<std::string, NamedBody> body_names_;  // bodies and bases
   Components components_{0};
   std::vector<int> grounded_bodies_;  // bodies jointed to `world`
+  std::size_t num_meshes_ = 0;        // meshes of every body so far (kMaxMeshes)
 };
 
 }  // namespace internal

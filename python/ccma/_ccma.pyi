@@ -992,7 +992,13 @@ def viewer_available() -> bool:
     """Whether this build carries the viewer's JavaScript (else view_html raises RuntimeError)."""
 
 def view_html(
-    model: Model, trajectory: Optional[str] = None, replay: Optional[str] = None, workspace: Optional[str] = None
+    model: Model,
+    trajectory: Optional[str] = None,
+    replay: Optional[str] = None,
+    workspace: Optional[str] = None,
+    meshes: bool = False,
 ) -> Tuple[str, _ViewInfo]:
     """(html, info): the self-contained page of `ccma view`, animated along a trajectory CSV or a replay
-    directory, or with a `ccma workspace` CSV drawn as a point cloud (at most one of the three)."""
+    directory, or with a `ccma workspace` CSV drawn as a point cloud (at most one of the three);
+    meshes=True draws the bodies' STL meshes (`ccma view --meshes`; files relative to the folder of
+    the model's file)."""

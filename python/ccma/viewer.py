@@ -68,7 +68,7 @@ def _write_replacing(path, data):
         raise
 
 
-def view(model, trajectory=None, replay=None, out=None, height=600, workspace=None):
+def view(model, trajectory=None, replay=None, out=None, height=600, workspace=None, meshes=False):
     """Shows `model` (a ccma.Model or a model file path) in 3D.
 
     trajectory: a CSV written by `ccma trajectory` (or ControlProblem.follow
@@ -76,17 +76,20 @@ def view(model, trajectory=None, replay=None, out=None, height=600, workspace=No
     workspace: a CSV written by `ccma workspace`, drawn as a point cloud of
     end-effector positions over the model at home (reachable points coloured
     by sigma_min, unreachable ones grey). Give at most one of the three.
+    meshes: draw the bodies' STL meshes (`meshes:` in the model; files
+    relative to the folder of the model's file), as `ccma view --meshes`.
     out: write the self-contained HTML page there and return its path.
     Without `out`, inside Jupyter the page is displayed inline (an iframe,
     `height` pixels); elsewhere the HTML text is returned.
-    Raises ccma.ViewInputError on a bad trajectory, replay or workspace file.
+    Raises ccma.ViewInputError on a bad trajectory, replay, workspace or mesh file.
     """
     if isinstance(model, (str, _os.PathLike)):
         model = _ccma.load_model(_os.fspath(model))
     page, _info = _ccma.view_html(model,
                                   None if trajectory is None else _os.fspath(trajectory),
                                   None if replay is None else _os.fspath(replay),
-                                  None if workspace is None else _os.fspath(workspace))
+                                  None if workspace is None else _os.fspath(workspace),
+                                  bool(meshes))
     if out is not None:
         out = _os.fspath(out)
         _write_replacing(out, page.encode("utf-8"))

@@ -1,4 +1,4 @@
-// The 3D viewer's page from Python: ccma.view_html(model, trajectory=..., replay=..., workspace=...)
+// The 3D viewer's page from Python: ccma.view_html(model, trajectory=..., replay=..., workspace=..., meshes=...)
 // (ccma.view in python/ccma/viewer.py writes it or shows it in Jupyter).
 #include <optional>
 
@@ -6,6 +6,7 @@
 
 #include "python/src/bindings.h"
 #include "viewer/html.h"
+#include "viewer/mesh_files.h"
 #include "viewer/scene.h"
 #include "viewer/view_frames.h"
 #include "viewer/workspace_cloud.h"
@@ -25,7 +26,7 @@ void BindView(py::module_& m) {
   m.def(
       "view_html",
       [](const Model& model, std::optional<std::string> trajectory, std::optional<std::string> replay,
-         std::optional<std::string> workspace) {
+         std::optional<std::string> workspace, bool meshes) {
         if (int(bool(trajectory)) + int(bool(replay)) + int(bool(workspace)) > 1) {
           throw py::value_error("give one of trajectory, replay or workspace");
         }
@@ -36,6 +37,8 @@ void BindView(py::module_& m) {
           py::gil_scoped_release release;
           std::vector<viewer::ViewFrame> frames;
           std::optional<viewer::WorkspaceCloud> cloud;
+          std::optional<viewer::MeshFiles> mesh_files;
+          if (meshes) mesh_files = viewer::ReadMeshFiles(model);  // relative to model.source's folder
           if (workspace) {
             // Drawn over the model at home, as `ccma view --workspace` does.
             cloud = viewer::CloudFromWorkspaceCsv(model, *workspace);
@@ -48,7 +51,9 @@ void BindView(py::module_& m) {
             source = "replay";
           }
           html = viewer::ViewerHtml(
-              viewer::BuildScene(model, frames, source, &summary, cloud ? &*cloud : nullptr), model.name);
+              viewer::BuildScene(model, frames, source, &summary, cloud ? &*cloud : nullptr,
+                                 mesh_files ? &*mesh_files : nullptr),
+              model.name);
         }
         py::dict info;
         info["frames"] = summary.frames;
@@ -64,9 +69,10 @@ void BindView(py::module_& m) {
         return py::make_tuple(html, info);
       },
       py::arg("model"), py::arg("trajectory") = py::none(), py::arg("replay") = py::none(),
-      py::arg("workspace") = py::none(),
+      py::arg("workspace") = py::none(), py::arg("meshes") = false,
       "(html, info): the self-contained page of `ccma view` for the model, animated along a "
       "trajectory CSV or a replay directory, or with a `ccma workspace` CSV as a point cloud; "
+      "meshes=True draws the bodies' STL meshes (`ccma view --meshes`); "
       "raises ccma.ViewInputError on a bad file.");
 }
 

@@ -132,3 +132,19 @@ def test_view_out_replaces_the_file_safely(tmp_path):
     assert link.is_symlink() and out.read_text(encoding="utf-8").startswith("<!DOCTYPE html>")
     assert not [p.name for p in tmp_path.iterdir() if "ccma-tmp" in p.name]
     assert stat.S_IMODE(os.stat(out).st_mode) == 0o600
+
+
+def test_view_draws_meshes_like_the_cli(tmp_path):
+    """ccma.view(meshes=True) writes the same page as `ccma view --meshes`
+    (the STL files found beside the model file), and a missing mesh raises
+    ccma.ViewInputError naming the model file, the body and the mesh file."""
+    model = ROOT / "tests" / "meshes" / "four_bar_meshes.yaml"
+    cli = run_tool("view", "--model=%s" % model, "--meshes", "--out=%s" % (tmp_path / "cli.html"))
+    assert cli["mesh_files"] == 2
+    ccma.view(model, meshes=True, out=tmp_path / "py.html")
+    assert (tmp_path / "py.html").read_bytes() == (tmp_path / "cli.html").read_bytes()
+    assert '"stl_base64"' not in ccma.view(model)  # the scene's key (the script names it unquoted)
+    lonely = tmp_path / "four_bar_meshes.yaml"
+    lonely.write_text(model.read_text())  # no STL files beside this copy
+    with pytest.raises(ccma.ViewInputError, match=r"four_bar_meshes.yaml:11: body 'crank': mesh 'box.stl'"):
+        ccma.view(lonely, meshes=True)

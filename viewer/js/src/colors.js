@@ -23,6 +23,7 @@ export const COLORS = {
   axisX: 0xe53935,
   axisY: 0x43a047,
   axisZ: 0x1e88e5,
+  mesh: 0xb3bcc8,  // a body's meshes (`ccma view --meshes`)
 };
 
 // CSS "#rrggbb" of a palette colour.

@@ -156,6 +156,11 @@ function start() {
     bodyPointsScreen: () => mechanism.bodyPointsWorld().map((p) => toScreen(p.toArray())),
     background: [16, 8, 0].map((shift) => (COLORS.background >> shift) & 255),  // sRGB, as on screen
     showMechanism: (visible) => { mechanism.setVisible(visible); render(); },
+    // The bodies' meshes (`ccma view --meshes`): how many, shown or hidden,
+    // their vertex centroids in the world.
+    meshes: mechanism.meshCount,
+    showMeshes: (visible) => { mechanism.setMeshesVisible(visible); render(); },
+    meshCentroidsWorld: () => mechanism.meshCentroidsWorld().map((p) => p.toArray()),
     // The workspace cloud: counts, visibility, reachable points on screen and
     // the ramp's colours (sRGB 0..255) that they are drawn in.
     workspace: cloud && { points: cloud.points, reachable: cloud.reachable, sigmaMin: [cloud.range.lo, cloud.range.hi] },

@@ -6,6 +6,7 @@
 // a 0.3 m planar robot and a 2 m Stewart platform look alike.
 import { BoxGeometry, CylinderGeometry, Group, Mesh, SphereGeometry, Vector3 } from 'three';
 import { COLORS } from './colors.js';
+import { addBodyMeshes, meshCentroidsWorld, meshesBox, meshGeometries } from './meshes.js';
 import { alongAxis, arrow, ball, capsule, material } from './shapes.js';
 
 // Marker sizes as fractions of the scene's scale.
@@ -40,14 +41,18 @@ function baseShape(body, u) {
   return group;
 }
 
-function bodyGroup(body, u) {
+// A body's group; a body with meshes (`ccma view --meshes`) shows them
+// instead of its capsules, which are pushed onto `meshes`.
+function bodyGroup(body, u, geometries, meshes) {
   const group = new Group();
   group.name = body.name;
   const isBase = body.kind === 'omni' || body.kind === 'differential';
   if (isBase) group.add(baseShape(body, u));
   const color = !isBase ? COLORS.link : body.kind === 'differential' ? COLORS.differential : COLORS.omni;
   const mat = material(color);
-  for (const [i, j] of body.links) {
+  const own = addBodyMeshes(group, body, geometries);
+  meshes.push(...own);
+  for (const [i, j] of own.length ? [] : body.links) {
     if (body.points[i] && body.points[j]) group.add(capsule(body.points[i], body.points[j], SIZE.link * u, mat));
   }
   for (const p of body.points) group.add(ball(p, SIZE.point * u, mat));
@@ -120,7 +125,9 @@ export function sceneSize(scene) {
 // Builds the mechanism into `root` with markers sized from `u` (sceneSize);
 // returns what the animation and the tests need.
 export function buildMechanism(scene, root, u) {
-  const bodies = scene.bodies.map((b) => bodyGroup(b, u));
+  const geometries = meshGeometries(scene);
+  const meshes = [];  // every body's meshes
+  const bodies = scene.bodies.map((b) => bodyGroup(b, u, geometries, meshes));
   const ground = new Group();  // joints on the world (body -1): static
   bodies.forEach((g) => root.add(g));
   root.add(ground);
@@ -158,6 +165,14 @@ export function buildMechanism(scene, root, u) {
     },
     bodyOriginsWorld() {
       return bodies.map((g) => g.position.clone());
+    },
+    // The bodies' meshes: how many, their world box as posed, their vertex
+    // centroids in the world (tests), shown or hidden.
+    meshCount: meshes.length,
+    meshesBox: () => meshesBox(meshes),
+    meshCentroidsWorld: () => meshCentroidsWorld(meshes),
+    setMeshesVisible(visible) {
+      meshes.forEach((m) => { m.visible = visible; });
     },
   };
 }

@@ -91,7 +91,9 @@ function legend(scene, gridStep, cloud) {
   const joints = scene.joints || [];
   if (kinds.has('omni')) item('block', [COLORS.omni], 'omni base (arrow: heading)');
   if (kinds.has('differential')) item('block', [COLORS.differential], 'differential base (arrow: heading)');
-  item('block', [COLORS.link], 'link');
+  const withMeshes = scene.bodies.filter((b) => (b.meshes || []).length > 0).length;
+  if (withMeshes < scene.bodies.length) item('block', [COLORS.link], 'link');
+  if (withMeshes > 0) item('block', [COLORS.mesh], 'body mesh (STL)');
   if (joints.some((j) => !j.actuated)) item('block', [COLORS.joint], 'joint (passive)');
   if (joints.some((j) => j.actuated)) item('block', [COLORS.actuated], 'actuated joint');
   if (scene.end_effector) item('block', [COLORS.axisX, COLORS.axisY, COLORS.axisZ], 'end-effector frame x, y, z');

@@ -2,7 +2,9 @@
 // drawn, so that a malformed page shows one readable message instead of a
 // half-built view or an exception from deep inside three.js. Returns a list
 // of problems (empty when the scene is usable). Optional parts (joints,
-// end_effector, paths, flags, workspace) are checked only when present.
+// end_effector, paths, flags, workspace, meshes) are checked only when present.
+import { checkMeshes } from './meshes.js';
+
 const isVec = (v, n) => Array.isArray(v) && v.length === n && v.every(Number.isFinite);
 const isList = (v, n) => Array.isArray(v) && v.every((p) => isVec(p, n));
 
@@ -66,5 +68,6 @@ export function checkScene(scene) {
       problems.push('workspace.components: a list of names');
     }
   }
+  problems.push(...checkMeshes(scene));
   return problems;
 }

@@ -38,8 +38,8 @@ export function addGround(world, box, step) {
   bold.renderOrder = 1;  // drawn after the fine grid where they coincide
 }
 
-// The box of everything shown: the mechanism at frame 0, every path and the
-// workspace cloud.
+// The box of everything shown: the mechanism at frame 0 (its meshes
+// included), every path and the workspace cloud.
 export function sceneBox(scene, mechanism) {
   const box = new Box3();
   mechanism.bodyPointsWorld().forEach((p) => box.expandByPoint(p));
@@ -53,6 +53,7 @@ export function sceneBox(scene, mechanism) {
     for (const p of cloud) for (let k = 0; k < 3; ++k) { lo[k] = Math.min(lo[k], p[k]); hi[k] = Math.max(hi[k], p[k]); }
     box.expandByPoint(new Vector3(...lo)).expandByPoint(new Vector3(...hi));
   }
+  if (mechanism.meshCount) box.union(mechanism.meshesBox());  // bodies' meshes (`ccma view --meshes`)
   box.expandByPoint(new Vector3(box.min.x, box.min.y, 0));  // down to the ground
   // The bases' discs reach past their points.
   const r = Math.max(0, ...scene.bodies.map((b) => (b.kind !== 'body' && b.radius > 0 ? b.radius : 0)));

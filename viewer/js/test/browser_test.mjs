@@ -17,6 +17,8 @@
 //      changes the picture (off and on again);
 //   e. (--expect-animation) moving the time slider through the UI moves the
 //      end-effector and the picture; play advances the frames, pause stops them;
+//   h, i. (pages with meshes, `ccma view --meshes`) the meshes are drawn
+//      where the scene puts them: test/mesh_checks.mjs;
 //   f. (--screenshot OUT.png) saves the 1200x800 picture at frame 0 (or at
 //      --screenshot-frame N), also of a failed page.
 // Prints one JSON line; exit 0 when every check passes, 1 otherwise, 77 when
@@ -27,6 +29,7 @@ import { existsSync, writeFileSync } from 'node:fs';
 import { resolve } from 'node:path';
 import { pathToFileURL } from 'node:url';
 import { chromium } from 'playwright-core';
+import { checkMeshes } from './mesh_checks.mjs';
 import { decodePng } from './png.mjs';
 
 const CHROMIUM = '/usr/bin/chromium';
@@ -173,6 +176,9 @@ try {
         if (rampFraction < 0.002) failures.push(`the workspace cloud covers only ${(100 * rampFraction).toFixed(2)}% of the picture`);
       }
     }
+
+    // h, i. The bodies' meshes, where the scene puts them.
+    if (await page.evaluate(() => window.ccmaView.meshes > 0)) failures.push(...await checkMeshes(page, shot, drawnNear, result));
 
     // e. The slider (through the UI) and play move the end-effector.
     if (args.includes('--expect-animation') && view.frames < 2) {
