@@ -75,18 +75,16 @@ nlohmann::json CheckWarnings(const Model& model, const MobilityReport& mobility,
   int controlled_count = 0;
   for (int c = 0; c < 6; ++c) controlled_count += model.end_effector.controlled[c] ? 1 : 0;
   nlohmann::json warnings = nlohmann::json::array();
-  if (!mobility.rigid_with_controls_fixed && OnlyIdleMotions(model, mobility)) {
-    warnings.push_back(std::to_string(mobility.dof_with_controls_fixed) +
-                       " idle motion(s) with its controls fixed, which move bodies but not the end-effector: " +
-                       FreeMotionText(model, mobility.free_motions) +
-                       "; control resolves them (docs/numerics.md), simulation leaves them where they are");
-  } else if (!mobility.rigid_with_controls_fixed) {
+  if (!mobility.rigid_with_controls_fixed) {
+    const bool idle = OnlyIdleMotions(model, mobility);
     warnings.push_back("not rigid with its controls fixed: " + std::to_string(mobility.dof_with_controls_fixed) +
                        " free motion(s) remain (smallest singular value of dC/ds " +
                        FormatG(mobility.smallest_singular_value) + "): " +
                        (mobility.free_motions_listed ? FreeMotionText(model, mobility.free_motions)
                                                      : std::string("too many to list them")) +
-                       "; simulation and control are ill-posed");
+                       (idle ? "; none moves the end-effector (idle motions, docs/numerics.md): control resolves "
+                               "them, simulation leaves them where they are"
+                             : "; simulation and control are ill-posed"));
   }
   if (!assembled) {
     warnings.push_back("not assembled at home: E = " + FormatG(mobility.energy) + " m^2 (above " +

@@ -34,6 +34,13 @@ echo "screenshots: docs/images/view_workspace_4dof_reduced.png"
 "$build"/apps/ccma view --model=tests/meshes/four_bar_meshes.yaml --meshes --out="$out/meshes.html" > /dev/null
 node viewer/js/test/browser_test.mjs --html "$out/meshes.html" --screenshot docs/images/viewer_meshes.png > /dev/null
 echo "screenshots: docs/images/viewer_meshes.png"
+# An imported robot (docs/import.md): the five-bar of example-parallel-robots.
+robots=models/robots/example-parallel-robots
+"$build"/apps/ccma import --from=$robots/5bar_linkage/robot.urdf --closures=$robots/5bar_linkage/robot.yaml \
+  --end_effector=effector --controlled=x,y,z --out="$out/5bar.yaml" > /dev/null
+"$build"/apps/ccma view --model="$out/5bar.yaml" --out="$out/5bar.html" > /dev/null
+node viewer/js/test/browser_test.mjs --html "$out/5bar.html" --screenshot docs/images/import_5bar.png > /dev/null
+echo "screenshots: docs/images/import_5bar.png"
 # The workspace slice map of docs/workspace.md (gnuplot, `ccma workspace --plot`).
 "$build"/apps/ccma workspace --model=models/4dof_reduced.yaml --x=-0.5:0.5 --z=0.4:1.0 --resolution=25 \
   --out="$out/slice.csv" --plot="$out/slice" > /dev/null

@@ -5,11 +5,12 @@
 // 12), and the URDF's geometry is checked with a forward kinematics written
 // here, independent of ccma's code: the closures hold at home to 1e-9, the
 // body frames and joint axes are the model's, limits round-trip exactly.
-// Imported again (`ccma import`), the URDF gives back the same mechanism.
+// Imported again (`ccma import`), both give back the same mechanism.
 #include <cmath>
 #include <fstream>
 #include <map>
 #include <random>
+#include <sstream>
 #include <regex>
 #include <string>
 #include <vector>
@@ -23,6 +24,7 @@
 
 #include "analyses/robot_import.h"
 #include "formats/model_loader.h"
+#include "formats/sdformat_reader.h"
 #include "formats/urdf_reader.h"
 #include "problems/control_problem.h"
 #include "problems/forward_problem.h"
@@ -581,6 +583,37 @@ TEST(ExportRoundTrip, UrdfGivesBackTheSameMechanism) {
   }
   const Model loop = LoadModelFromString(kLoopModel, "qhome_loop.yaml");
   ExpectSameMechanism(loop, ImportUrdfExport(loop), "qhome_loop (urdf)");
+}
+
+// The SDFormat export, read back with the actuated joints it names
+// (<ccma:actuated>, the model's control order).
+Model ImportSdformatExport(const Model& model) {
+  const SdformatExport e = WriteSdformat(model);
+  const std::string path = testing::ScratchPath("export_round_trip", model.name + ".sdf");
+  std::ofstream(path) << e.sdf;
+  sdf::Root root;
+  root.LoadSdfString(e.sdf);
+  std::vector<std::string> actuated;
+  const sdf::ElementPtr model_element = root.Model()->Element();
+  if (model_element->HasElement("ccma:actuated")) {
+    std::istringstream names(model_element->GetElement("ccma:actuated")->GetAttribute("joints")->GetAsString());
+    for (std::string name; names >> name;) actuated.push_back(name);
+  }
+  return ImportRobot(ReadSdformat(path, actuated), ImportOptions{}).model;
+}
+
+TEST(ExportRoundTrip, SdformatGivesBackTheSameMechanism) {
+  for (const std::string& name : testing::BundledModels()) {
+    const Model model = LoadModel(testing::ModelPath(name));
+    const Model imported = ImportSdformatExport(model);
+    EXPECT_LT((imported.home_controls() - model.home_controls()).norm(), 1e-12) << name;
+    ExpectSameMechanism(model, imported, name + " (sdf)");
+  }
+  const Model loop = LoadModelFromString(kLoopModel, "qhome_loop.yaml");
+  const Model imported = ImportSdformatExport(loop);
+  // SDFormat keeps the home (initial_position = q_home): the same home controls.
+  EXPECT_LT((imported.home_controls() - loop.home_controls()).norm(), 1e-12);
+  ExpectSameMechanism(loop, imported, "qhome_loop (sdf)");
 }
 
 TEST(ExportRoundTrip, ImportCommandReadsTheStoredEndEffector) {

@@ -1,0 +1,156 @@
+// `ccma import` from the command line: the contract's JSON, a planar-base
+// robot written by hand, and hostile sources (exit 2, file, line, element and
+// name in one line on stderr, nothing on stdout).
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "ccma/joint_coordinates.h"
+#include "formats/model_loader.h"
+#include "problems/forward_problem.h"
+#include "tests/tool_run.h"
+
+namespace ccma {
+namespace {
+
+using testing::RunTool;
+using testing::ToolRun;
+
+const std::string kRobots = std::string(CCMA_MODELS_DIR) + "/robots/example-parallel-robots/";
+
+class ImportCli : public ::testing::Test {
+ protected:
+  ImportCli() {
+    dir_ = std::filesystem::path(::testing::TempDir()) /
+           ("ccma_import_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::filesystem::create_directories(dir_);
+  }
+  ~ImportCli() override { std::filesystem::remove_all(dir_); }
+  std::string Write(const std::string& name, const std::string& text) const {
+    const std::string path = (dir_ / name).string();
+    std::ofstream(path, std::ios::binary) << text;
+    return path;
+  }
+  std::string Out() const { return (dir_ / "out.yaml").string(); }
+  // Runs import and expects exit 2 with `needle` on stderr, nothing on stdout, no output file.
+  void ExpectRefused(const std::vector<std::string>& args, const std::string& needle) const {
+    const ToolRun r = RunTool(args);
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_EQ(r.out, "");
+    EXPECT_NE(r.err.find(needle), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(Out()));
+  }
+  std::filesystem::path dir_;
+};
+
+// An arm on a planar base: base (planar from world), shoulder (revolute,
+// actuated, limited), upper arm 0.5 m along x, end-effector at its tip.
+constexpr char kArmOnBase[] = R"(<?xml version="1.0"?>
+<robot name="arm_on_base">
+  <link name="world"/>
+  <link name="base"/>
+  <link name="upper"/>
+  <joint name="drive" type="planar">
+    <parent link="world"/><child link="base"/>
+    <origin xyz="1 2 0" rpy="0 0 0.5"/><axis xyz="0 0 1"/>
+    <limit effort="1" velocity="1"/>
+  </joint>
+  <joint name="shoulder" type="revolute">
+    <parent link="base"/><child link="upper"/>
+    <origin xyz="0 0 0.3" rpy="0 0 0"/><axis xyz="0 1 0"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/>
+  </joint>
+</robot>
+)";
+
+TEST_F(ImportCli, PlanarJointMakesAMobileBaseAndControlsFollowTheSource) {
+  const std::string urdf = Write("arm.urdf", kArmOnBase);
+  const ToolRun r = RunTool({"import", "--from=" + urdf, "--actuated=drive,shoulder",
+                             "--end_effector=upper:0.5,0,0", "--controlled=x,y,z", "--out=" + Out()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["bodies"], 2);
+  EXPECT_EQ(j["closures"], 0);
+  EXPECT_EQ(j["actuated"], nlohmann::json({"drive", "shoulder"}));
+  EXPECT_EQ(j["assembled"], true);
+  const std::vector<double> controls = j["controls"];
+  ASSERT_EQ(controls.size(), 4u);
+  EXPECT_NEAR(controls[0], 1, 1e-12);
+  EXPECT_NEAR(controls[1], 2, 1e-12);
+  EXPECT_NEAR(controls[2], 0.5, 1e-12);
+  EXPECT_NEAR(controls[3], 0, 1e-12);
+  // The written model: shoulder at 0.4 rad about the base's y axis puts the
+  // tip at base + Rz(0.5) (0.5 cos 0.4, 0, 0.3 - 0.5 sin 0.4).
+  const Model model = LoadModel(Out());
+  ASSERT_EQ(model.num_bases(), 1);
+  ASSERT_TRUE(model.joints[0].limited);
+  ForwardProblem problem(model);
+  Eigen::VectorXd u(4);
+  u << 1, 2, 0.5, 0.4;
+  ASSERT_TRUE(problem.Assemble(u).assembled);
+  const Eigen::Vector3d local(0.5 * std::cos(0.4), 0, 0.3 - 0.5 * std::sin(0.4));
+  const Eigen::Vector3d expected =
+      Eigen::Vector3d(1, 2, 0) + Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()) * local;
+  EXPECT_LT((problem.end_effector().position - expected).norm(), 1e-9);
+}
+
+TEST_F(ImportCli, FiveBarJsonAsTheContractSays) {
+  const ToolRun r = RunTool({"import", "--from=" + kRobots + "5bar_linkage/robot.urdf",
+                             "--closures=" + kRobots + "5bar_linkage/robot.yaml", "--end_effector=effector",
+                             "--out=" + Out()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  for (const char* key : {"out", "bodies", "joints", "closures", "actuated", "assembled", "residual_energy", "controls"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+  EXPECT_EQ(j["closures"], 1);
+  EXPECT_LT(j["residual_energy"].get<double>(), 1e-24);
+  EXPECT_EQ(j["controls"], nlohmann::json({0.0, 0.0}));
+}
+
+TEST_F(ImportCli, HostileSourcesAreRefusedWithFileLineAndName) {
+  const std::string five = kRobots + "5bar_linkage/";
+  std::ifstream in(five + "robot.urdf");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string truncated = Write("truncated.urdf", text.substr(0, text.size() / 2));
+  ExpectRefused({"import", "--from=" + truncated, "--end_effector=effector", "--out=" + Out()},
+                "truncated.urdf:");
+  const std::string unknown_frame = Write("c.yaml", "closed_loop: [['closedloop1_A', 'nowhere']]\ntype: ['6d']\n"
+                                                    "name_mot: ['mot1', 'mot2']\n");
+  ExpectRefused({"import", "--from=" + five + "robot.urdf", "--closures=" + unknown_frame, "--end_effector=effector",
+                 "--out=" + Out()},
+                "c.yaml:1: closed_loop[0]: unknown frame 'nowhere'");
+  ExpectRefused({"import", "--from=" + five + "robot.urdf", "--closures=" + five + "robot.yaml",
+                 "--actuated=mot1,mot9", "--end_effector=effector", "--out=" + Out()},
+                "actuated joint 'mot9'");
+  ExpectRefused({"import", "--from=" + five + "robot.urdf", "--closures=" + five + "robot.yaml",
+                 "--end_effector=nolink", "--out=" + Out()},
+                "end-effector link 'nolink'");
+  // The base welded to the effector cannot be assembled with both motors held.
+  const std::string impossible = Write("i.yaml", "closed_loop: [['built', 'effector']]\ntype: ['6d']\n"
+                                                 "name_mot: ['mot1', 'mot2']\n");
+  ExpectRefused({"import", "--from=" + five + "robot.urdf", "--closures=" + impossible, "--end_effector=effector",
+                 "--out=" + Out()},
+                "cannot assemble closure 'built__effector'");
+  std::string floating = kArmOnBase;
+  floating.replace(floating.find("type=\"revolute\""), 15, "type=\"floating\"");
+  ExpectRefused({"import", "--from=" + Write("f.urdf", floating), "--actuated=drive", "--end_effector=upper",
+                 "--out=" + Out()},
+                "f.urdf:11: joint shoulder: joint type not supported");
+  std::string deep = "<robot name=\"r\">";
+  for (int i = 0; i < 100000; ++i) deep += "<a>";
+  ExpectRefused({"import", "--from=" + Write("deep.urdf", deep), "--end_effector=x", "--out=" + Out()},
+                "deep.urdf:1: XML elements nested more than 100 deep");
+  ExpectRefused({"import", "--from=" + Write("nan.urdf", std::string(kArmOnBase).replace(
+                                                             std::string(kArmOnBase).find("1 2 0"), 5, "nan 2 0")),
+                 "--actuated=drive", "--end_effector=upper", "--out=" + Out()},
+                "nan.urdf");
+}
+
+}  // namespace
+}  // namespace ccma
