@@ -185,6 +185,17 @@ Command DesignCommand() {
           RunDesign};
 }
 
+Command ExportCommand() {
+  return {"export", "write a model as URDF (tree + closure file) or SDFormat (with its loops)",
+          "ccma export --model=FILE --format=urdf|sdf --out=FILE",
+          "Writes the model as URDF (a spanning tree; the joints that close loops, the motors and the\n"
+          "end-effector go to a closure file beside it, OUT with the extension .closures.yaml) or as\n"
+          "SDFormat 1.7 with its loops (links posed at home). `ccma import` of the output gives back the same\n"
+          "mechanism: the same end-effector pose at the same controls. Prints {out, format, closures (path or\n"
+          "null), links, joints, loops}.",
+          {"model", "format", "out"}, RunExport};
+}
+
 }  // namespace
 
 const std::vector<Command>& Commands() {
@@ -195,6 +206,7 @@ const std::vector<Command>& Commands() {
       TrajectoryCommand(),
       GenerateCommand(),
       ImportCommand(),
+      ExportCommand(),
       BenchCommand(),
       ReplayCommand(),
       ViewCommand(),

@@ -52,6 +52,7 @@ int RunReplay(const std::vector<std::string>& args);
 int RunView(const std::vector<std::string>& args);
 int RunWorkspace(const std::vector<std::string>& args);
 int RunDesign(const std::vector<std::string>& args);
+int RunExport(const std::vector<std::string>& args);
 
 // The control flags (method, max_step_m, max_step_rad, lambda) as options;
 // throws UsageError when ControlOptions::IsValid says no.

@@ -335,7 +335,7 @@ TEST(Cli, GlobalHelpHasOneLinePerCommand) {
     listed.push_back(name);
   }
   EXPECT_EQ(listed, (std::vector<std::string>{"check", "simulate", "control", "trajectory", "generate", "import",
-                                              "bench", "replay", "view", "workspace", "design"}))
+                                              "export", "bench", "replay", "view", "workspace", "design"}))
       << r.out;
   for (const std::string& name : listed) {
     const ToolRun help = Ccma(name + " --help");
@@ -383,7 +383,8 @@ TEST(Cli, EachCommandHasItsOwnHelpWithUnits) {
       {"workspace", {"model", "out", "x", "y", "z", "roll", "pitch", "yaw", "resolution", "samples", "seed",
                      "threads", "plot", "method", "max_step_m", "max_step_rad", "lambda"}},
       {"design", {"model", "targets", "out", "vary", "vary_length", "max_change", "min_length", "min_singular_value",
-                  "target_tolerance", "design_iterations", "method", "max_step_m", "max_step_rad", "lambda"}}};
+                  "target_tolerance", "design_iterations", "method", "max_step_m", "max_step_rad", "lambda"}},
+      {"export", {"model", "format", "out"}}};
   for (const auto& [command, expected] : flags) {
     const ToolRun r = Ccma(command + " --help");
     ASSERT_EQ(r.status, 0) << command;
