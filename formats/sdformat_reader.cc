@@ -318,6 +318,19 @@ std::vector<double> Numbers(const std::string& text, const std::string& where, s
   return values;
 }
 
+// <ccma:actuated joints="a b c"/> (written by `ccma export`): the default
+// for --actuated. Names are checked by the importer.
+std::vector<std::string> StoredActuated(const sdf::Model& model) {
+  std::vector<std::string> names;
+  const sdf::ElementPtr root = model.Element();
+  if (!root || !root->HasElement("ccma:actuated")) return names;
+  const sdf::ElementPtr element = root->GetElement("ccma:actuated");
+  if (!element->HasAttribute("joints")) return names;
+  std::istringstream joints(element->GetAttribute("joints")->GetAsString());
+  for (std::string name; joints >> name && names.size() < 100000;) names.push_back(name);
+  return names;
+}
+
 // <ccma:end_effector link=".." point="x y z" controlled="x y z yaw"/>.
 void ReadEndEffector(const sdf::Model& model, const Context& context, RobotDescription* out) {
   const sdf::ElementPtr root = model.Element();
@@ -404,7 +417,7 @@ RobotDescription ReadSdformatFromString(const std::string& text, const std::stri
     robot.links.push_back(ReadLink(*model.LinkByIndex(i), context));
   for (uint64_t i = 0; i < model.JointCount(); ++i)
     robot.joints.push_back(ReadJoint(*model.JointByIndex(i), context));
-  robot.actuated = actuated;
+  robot.actuated = actuated.empty() ? StoredActuated(model) : actuated;
   ReadEndEffector(model, context, &robot);
   return robot;
 }

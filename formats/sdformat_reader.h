@@ -51,7 +51,9 @@ namespace ccma {
 constexpr std::size_t kMaxSdformatFileBytes = std::size_t{16} << 20;
 
 // Reads the SDFormat file at `path`. `actuated` (joint names, in control
-// order) is copied to RobotDescription::actuated; ImportRobot checks it.
+// order) is copied to RobotDescription::actuated, or when empty the list a
+// `<ccma:actuated joints="..."/>` element stores (`ccma export` writes one);
+// ImportRobot checks the names.
 // Throws ModelError.
 RobotDescription ReadSdformat(const std::string& path, const std::vector<std::string>& actuated);
 

@@ -55,10 +55,13 @@ export function sceneBox(scene, mechanism) {
   }
   if (mechanism.meshCount) box.union(mechanism.meshesBox());  // bodies' meshes (`ccma view --meshes`)
   box.expandByPoint(new Vector3(box.min.x, box.min.y, 0));  // down to the ground
+  // Below the ground only what is there (a robot imported in its own frame
+  // may hang below z = 0), not the bases' disc radius added next.
+  const lowest = Math.min(box.min.z, 0);
   // The bases' discs reach past their points.
   const r = Math.max(0, ...scene.bodies.map((b) => (b.kind !== 'body' && b.radius > 0 ? b.radius : 0)));
   box.expandByScalar(r);
-  box.min.z = Math.max(box.min.z, 0);
+  box.min.z = Math.max(box.min.z, lowest);
   return box;
 }
 
