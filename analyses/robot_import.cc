@@ -4,6 +4,8 @@
 #include "analyses/robot_import.h"
 
 #include <cmath>
+
+#include <Eigen/Geometry>
 #include <string>
 
 #include "analyses/internal/robot_model_builder.h"
@@ -61,7 +63,7 @@ std::string WorstClosure(const internal::RobotModel& built, const State& s) {
 
 // The model with home moved to state s: bodies, bases and joints re-posed,
 // each revolute/prismatic joint's q_home its coordinate at s.
-Model Rehome(const internal::RobotModel& built, const State& s) {
+Model Rehome(const internal::RobotModel& built, const State& s, bool motors_held) {
   Model model = built.model;
   for (int b = 0; b < model.num_bodies(); ++b) {
     model.bodies[b].R_WB_home = s.R_WB(b);
@@ -77,8 +79,9 @@ Model Rehome(const internal::RobotModel& built, const State& s) {
     Eigen::Vector3d p_W, a_W, b_W;
     WorldGeometry(before, s, built.closure[j], &p_W, &a_W, &b_W);
     SetJointGeometry(model, p_W, a_W, b_W, &joint);
-    // A motor's coordinate is its held control (exactly, not to the solver's tolerance).
-    if (joint.has_coordinate()) joint.q_home = joint.actuated ? before.q_home : JointCoordinate(before, s);
+    // A held motor's coordinate is its control (exactly, not to the solver's tolerance).
+    const bool held = joint.actuated && motors_held;
+    if (joint.has_coordinate()) joint.q_home = held ? before.q_home : JointCoordinate(before, s);
   }
   const Body& ee = model.bodies[model.end_effector.body];
   model.end_effector.p_W_home = ee.R_WB_home * model.end_effector.p_B + ee.p_WB_home;
@@ -97,20 +100,89 @@ void CheckLimits(const Model& model, const std::string& source) {
   }
 }
 
+// The closure joints of `model` with their B side moved by the fraction t
+// of the way from `open` (where A's frame is at the source's configuration,
+// so that they hold there) to `closed` (the true geometry).
+void BlendClosures(const internal::RobotModel& built, const Model& open, double t, Model* model) {
+  for (std::size_t j = 0; j < model->joints.size(); ++j) {
+    if (!built.closure[j]) continue;
+    const Joint &from = open.joints[j], &to = built.model.joints[j];
+    Joint& joint = model->joints[j];
+    joint.p_B = (1 - t) * from.p_B + t * to.p_B;
+    Eigen::Matrix3d R_from, R_to;
+    R_from << from.d1_B, from.d2_B, from.d1_B.cross(from.d2_B);
+    R_to << to.d1_B, to.d2_B, to.d1_B.cross(to.d2_B);
+    const Eigen::AngleAxisd turn(R_from.transpose() * R_to);
+    const Eigen::Matrix3d R = R_from * Eigen::AngleAxisd(t * turn.angle(), turn.axis()).toRotationMatrix();
+    joint.d1_B = R.col(0);
+    joint.d2_B = R.col(1);
+  }
+}
+
+// Closures far apart at the source's configuration may defeat one solve
+// from there: close them in kContinuationSteps steps instead, each solve
+// starting from the last. Returns the final state; *energy its E.
+State AssembleByContinuation(const internal::RobotModel& built, const ForwardOptions& options, double* energy) {
+  constexpr int kContinuationSteps = 20;
+  const State source = State::Home(built.model);
+  Model open = built.model;
+  for (std::size_t j = 0; j < open.joints.size(); ++j) {
+    if (!built.closure[j]) continue;
+    Joint& joint = open.joints[j];
+    const auto R = [&](int b) -> Eigen::Matrix3d { return b == kWorld ? Eigen::Matrix3d::Identity() : source.R_WB(b); };
+    const auto p = [&](int b) -> Eigen::Vector3d { return b == kWorld ? Eigen::Vector3d::Zero() : source.p_WB(b); };
+    const Eigen::Matrix3d R_BA = R(joint.body_b).transpose() * R(joint.body_a);
+    joint.p_B = R(joint.body_b).transpose() * (R(joint.body_a) * joint.p_A + p(joint.body_a) - p(joint.body_b));
+    joint.d1_B = R_BA * joint.d1_A;
+    joint.d2_B = R_BA * joint.d2_A;
+  }
+  State s = source;
+  Model step = built.model;
+  for (int k = 1; k <= kContinuationSteps; ++k) {
+    BlendClosures(built, open, static_cast<double>(k) / kContinuationSteps, &step);
+    ForwardProblem problem(step, options);
+    problem.SetState(s);
+    *energy = problem.Solve(step.home_controls()).residual_energy;
+    s = problem.state();
+  }
+  return s;
+}
+
+// The robot assembled with its motors held (if it has any): one solve from
+// the source's configuration, else by continuation. *energy: E at the end.
+State Assemble(const internal::RobotModel& built, const ForwardOptions& options, double* energy) {
+  ForwardProblem problem(built.model, options);
+  *energy = problem.Solve(built.model.home_controls()).residual_energy;
+  if (*energy < kAssembledEnergy) return problem.state();
+  return AssembleByContinuation(built, options, energy);
+}
+
 }  // namespace
 
 ImportedRobot ImportRobot(const RobotDescription& robot, const ImportOptions& options) {
   const internal::RobotModel built = internal::BuildRobotModel(robot, options);
   ForwardOptions forward;
   forward.max_iterations = 500;
-  ForwardProblem problem(built.model, forward);
-  const ForwardResult result = problem.Solve(built.model.home_controls());
-  if (!(result.residual_energy < kAssembledEnergy)) {
-    throw ModelError(robot.source + ": cannot assemble " + WorstClosure(built, problem.state()) +
-                     " with the motors at their source position: residual energy " +
-                     FormatG(result.residual_energy) + " m^2");
+  double energy = 0;
+  State assembled = Assemble(built, forward, &energy);
+  bool motors_held = true;
+  if (!(energy < kAssembledEnergy)) {
+    // CAD files are not always exported with the loops closable at the
+    // motors' zero: close them with the motors free, as near the source's
+    // configuration as the solver finds, and say so.
+    internal::RobotModel free = built;
+    for (Joint& joint : free.model.joints) joint.actuated = false, joint.control = -1;
+    double free_energy = 0;
+    const State loose = Assemble(free, forward, &free_energy);
+    if (!(free_energy < kAssembledEnergy)) {
+      throw ModelError(robot.source + ": cannot assemble " + WorstClosure(built, assembled) +
+                       " with the motors at their source position: residual energy " + FormatG(energy) +
+                       " m^2 (" + FormatG(free_energy) + " m^2 with the motors free)");
+    }
+    assembled = loose;
+    motors_held = false;
   }
-  Model home = Rehome(built, problem.state());
+  Model home = Rehome(built, assembled, motors_held);
   CheckLimits(home, robot.source);
   ImportedRobot out;
   out.yaml = WriteModelYaml(home, "Written by `ccma import` from " + robot.source +
@@ -119,6 +191,11 @@ ImportedRobot ImportRobot(const RobotDescription& robot, const ImportOptions& op
   ForwardProblem check(out.model);
   out.residual_energy = check.Energy();
   out.actuated = built.actuated;
+  if (!motors_held) {
+    out.warnings.push_back(robot.source + ": the loops cannot be closed with the motors at their source position; "
+                           "home has the motors where the closed loops put them (controls at home: the "
+                           "motors' source positions there)");
+  }
   // Independent loops of the joint graph (bodies and the ground; a base is
   // an edge to the ground): the closure file's pairs for a URDF, the loops an
   // SDFormat file closes itself.

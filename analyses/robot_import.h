@@ -8,7 +8,8 @@
 // most 64 characters; other characters become '_').
 //
 // Home: the source's zero configuration, assembled by the forward solver with
-// the actuated joints held at their source value; every revolute and
+// the actuated joints held at their source value (when the loops cannot be
+// closed so, with the motors free, and a warning); every revolute and
 // prismatic joint gets q_home = its source joint position there, so every q
 // ccma reports is the source's joint position.
 #ifndef CCMA_ANALYSES_ROBOT_IMPORT_H_
@@ -42,6 +43,7 @@ struct ImportedRobot {
   double residual_energy = 0;  // E at home of `model` [m^2]
   int closures = 0;  // independent loops (joints + bases - bodies)
   std::vector<std::string> actuated;  // ccma names, in control order (bases first)
+  std::vector<std::string> warnings;  // e.g. the motors had to move to close the loops
 };
 
 // Throws ModelError naming the source, the element and the name: an unknown

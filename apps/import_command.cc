@@ -2,6 +2,7 @@
 //  --end_effector=LINK[:px,py,pz] [--controlled=x,y,z,...] --out=MODEL.yaml`:
 // a robot described elsewhere -> a model file assembled at home
 // (analyses/robot_import.h, docs/import.md).
+#include <iostream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -74,7 +75,9 @@ int RunImport(const std::vector<std::string>& args) {
   if (!FLAGS_end_effector.empty()) ParseEndEffector(FLAGS_end_effector, &options);
   OutputFile out(out_path, "out");  // checked before the work
   const RobotDescription robot = sdf ? ReadSdformat(from, options.actuated) : ReadUrdf(from, FLAGS_closures);
+  for (const std::string& warning : robot.warnings) std::cerr << "ccma import: warning: " << warning << "\n";
   const ImportedRobot imported = ImportRobot(robot, options);
+  for (const std::string& warning : imported.warnings) std::cerr << "ccma import: warning: " << warning << "\n";
   out.stream() << imported.yaml;
   out.Commit();
   nlohmann::json summary = {{"out", out_path},

@@ -52,10 +52,12 @@ void ReadLoops(const internal::YamlReader& r, const YAML::Node& root, ClosureFil
     loop.frame_b = SourceName(r, pair[1], path + "[1]");
     loop.line = loops[i].Mark().line + 1;
     if (!types.empty()) {
-      if (types[i] != "6d" && types[i] != "3d") {
+      // The collection writes both cases (its loader reads "3d" and "3D").
+      const std::string type = types[i] == "3D" ? "3d" : types[i] == "6D" ? "6d" : types[i];
+      if (type != "6d" && type != "3d") {
         r.Fail(root["type"][i], internal::Indexed("type", i), "must be '6d' or '3d', got '" + types[i] + "'");
       }
-      loop.six_d = types[i] == "6d";
+      loop.six_d = type == "6d";
     }
     file->loops.push_back(loop);
   }

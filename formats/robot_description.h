@@ -86,6 +86,9 @@ struct RobotDescription {
   std::vector<std::string> actuated;  // joint names, in control order
   bool has_end_effector = false;
   RobotEndEffector end_effector;
+  // What the reader skipped, one line each ("file:line: key: what"); the
+  // command prints them on stderr.
+  std::vector<std::string> warnings;
 
   int FindLink(const std::string& link_name) const {
     for (int i = 0; i < static_cast<int>(links.size()); ++i) {

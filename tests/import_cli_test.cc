@@ -113,6 +113,23 @@ TEST_F(ImportCli, FiveBarJsonAsTheContractSays) {
   EXPECT_EQ(j["controls"], nlohmann::json({0.0, 0.0}));
 }
 
+TEST_F(ImportCli, ClosureFileQuirksOfTheCollectionAreRead) {
+  // Upper-case types ('3D', as kangaroo_like_2legs writes) and a joint_name
+  // the URDF does not have (as disney_robot's): read, the latter with a warning.
+  const std::string five = kRobots + "5bar_linkage/";
+  const std::string closures = Write("q.yaml", "closed_loop: [['closedloop1_A', 'closedloop1_B']]\ntype: ['6D']\n"
+                                               "name_mot: ['mot1', 'mot2']\njoint_name: ['no_such_joint']\n"
+                                               "joint_type: ['SPHERICAL']\n");
+  const ToolRun r = RunTool({"import", "--from=" + five + "robot.urdf", "--closures=" + closures,
+                             "--end_effector=effector", "--out=" + Out()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("ccma import: warning: " + (dir_ / "q.yaml").string() +
+                       ":4: joint_name: no joint 'no_such_joint' in"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["closures"], 1);
+}
+
 TEST_F(ImportCli, HostileSourcesAreRefusedWithFileLineAndName) {
   const std::string five = kRobots + "5bar_linkage/";
   std::ifstream in(five + "robot.urdf");

@@ -3,6 +3,7 @@
 // hold, an independent forward kinematics through the URDF tree with the
 // reported q reproduces every body pose, the motors move it and control
 // reaches an end-effector target. Plus the errors a user can make.
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <functional>
@@ -28,7 +29,21 @@ const std::string kRobots = std::string(CCMA_MODELS_DIR) + "/robots/example-para
 struct Robot {
   std::string folder, end_effector;
 };
-const Robot kCopied[] = {{"5bar_linkage", "effector"}, {"robot_delta", "eff"}, {"cassie_like", "foot"}};
+// battobot_6d replaces joints by universal and spherical ones (joint_name /
+// joint_type) and has a link named 'toe_a_2/2'; 5bar_linkage_iso3d closes
+// its loop with a 3d closure.
+const Robot kCopied[] = {{"5bar_linkage", "effector"},       {"robot_delta", "eff"},
+                         {"cassie_like", "foot"},            {"5bar_linkage_iso3d", "effector"},
+                         {"battobot_6d", "foot_left"}};
+
+// The ccma name of a URDF name (docs/import.md): other characters than
+// [A-Za-z0-9_-] become '_'.
+std::string CcmaName(std::string name) {
+  for (char& c : name) {
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '-') c = '_';
+  }
+  return name;
+}
 
 ImportedRobot Import(const Robot& robot) {
   const RobotDescription description =
@@ -48,8 +63,11 @@ Eigen::Isometry3d Origin(const urdf::Pose& pose) {
 }
 
 // Every link's pose with joint positions q(name); the root at the identity.
-std::map<std::string, Eigen::Isometry3d> UrdfFk(const urdf::ModelInterface& urdf,
-                                                const std::function<double(const std::string&)>& q) {
+// A joint without a q (made spherical or universal by the closure file) takes
+// its child's rotation from `R_child` (its point is still checked).
+std::map<std::string, Eigen::Isometry3d> UrdfFk(
+    const urdf::ModelInterface& urdf, const std::function<const double*(const std::string&)>& q,
+    const std::function<Eigen::Matrix3d(const std::string&)>& R_child) {
   std::map<std::string, Eigen::Isometry3d> X;
   std::vector<urdf::LinkConstSharedPtr> pending = {urdf.getRoot()};
   X[urdf.getRoot()->name] = Eigen::Isometry3d::Identity();
@@ -57,14 +75,17 @@ std::map<std::string, Eigen::Isometry3d> UrdfFk(const urdf::ModelInterface& urdf
     const urdf::LinkConstSharedPtr link = pending.back();
     pending.pop_back();
     for (const urdf::JointSharedPtr& j : link->child_joints) {
-      const Eigen::Vector3d axis(j->axis.x, j->axis.y, j->axis.z);
-      Eigen::Isometry3d motion = Eigen::Isometry3d::Identity();
-      if (j->type == urdf::Joint::REVOLUTE || j->type == urdf::Joint::CONTINUOUS) {
-        motion.linear() = Eigen::AngleAxisd(q(j->name), axis.normalized()).toRotationMatrix();
+      const Eigen::Vector3d axis = Eigen::Vector3d(j->axis.x, j->axis.y, j->axis.z).normalized();
+      Eigen::Isometry3d X_child = X[link->name] * Origin(j->parent_to_joint_origin_transform);
+      const double* value = q(j->name);
+      if (j->type != urdf::Joint::FIXED && value == nullptr) {
+        X_child.linear() = R_child(j->child_link_name);
+      } else if (j->type == urdf::Joint::REVOLUTE || j->type == urdf::Joint::CONTINUOUS) {
+        X_child.linear() = X_child.linear() * Eigen::AngleAxisd(*value, axis).toRotationMatrix();
       } else if (j->type == urdf::Joint::PRISMATIC) {
-        motion.translation() = q(j->name) * axis.normalized();
+        X_child.translation() += X_child.linear() * (*value * axis);
       }
-      X[j->child_link_name] = X[link->name] * Origin(j->parent_to_joint_origin_transform) * motion;
+      X[j->child_link_name] = X_child;
       pending.push_back(urdf.getLink(j->child_link_name));
     }
   }
@@ -81,22 +102,35 @@ urdf::ModelInterfaceSharedPtr ParseUrdfFile(const std::string& path) {
 void ExpectFkMatches(const Model& model, const State& s, const urdf::ModelInterface& urdf) {
   std::map<std::string, double> q;
   for (const JointCoordinateReport& r : JointCoordinates(model, s)) q[model.joints[r.joint].name] = r.q;
-  const auto X = UrdfFk(urdf, [&](const std::string& name) { return q.at(name); });
-  for (int b = 0; b < model.num_bodies(); ++b) {
-    const Eigen::Isometry3d& X_WL = X.at(model.bodies[b].name);
-    EXPECT_LT((s.p_WB(b) - X_WL.translation()).norm(), 1e-9) << model.bodies[b].name;
-    EXPECT_LT((s.R_WB(b) - X_WL.linear()).norm(), 1e-9) << model.bodies[b].name;
+  const auto X = UrdfFk(
+      urdf,
+      [&](const std::string& name) -> const double* {
+        const auto it = q.find(CcmaName(name));
+        return it == q.end() ? nullptr : &it->second;
+      },
+      [&](const std::string& link) { return s.R_WB(model.FindBody(CcmaName(link))); });
+  int checked = 0;
+  for (const auto& [link, X_WL] : X) {
+    const int b = model.FindBody(CcmaName(link));
+    ASSERT_GE(b, 0) << link;
+    EXPECT_LT((s.p_WB(b) - X_WL.translation()).norm(), 1e-9) << link;
+    EXPECT_LT((s.R_WB(b) - X_WL.linear()).norm(), 1e-9) << link;
+    ++checked;
   }
+  EXPECT_EQ(checked, model.num_bodies());
 }
 
-// Both frames of every 6d closure (links here) coincide at s, to 1e-9.
+// The frames of every closure (links here) coincide at s, to 1e-9: their
+// origins (3d, a spherical joint), and their orientations too (6d, fixed).
 void ExpectClosuresHold(const Model& model, const State& s) {
   int closures = 0;
   for (const Joint& joint : model.joints) {
     if (joint.name.find("__") == std::string::npos || joint.body_a == kWorld) continue;
     ++closures;
     EXPECT_LT((s.p_WB(joint.body_a) - s.p_WB(joint.body_b)).norm(), 1e-9) << joint.name;
-    EXPECT_LT((s.R_WB(joint.body_a) - s.R_WB(joint.body_b)).norm(), 1e-9) << joint.name;
+    if (joint.type == JointType::kFixed) {
+      EXPECT_LT((s.R_WB(joint.body_a) - s.R_WB(joint.body_b)).norm(), 1e-9) << joint.name;
+    }
   }
   EXPECT_GT(closures, 0);
 }

@@ -59,7 +59,11 @@ void MakeUniversal(const std::string& type, RobotJoint* joint) {
 
 void ApplyOverride(const ClosureFile& file, const ClosureFile::Override& o, RobotDescription* robot) {
   const int j = robot->FindJoint(o.joint);
-  if (j < 0) Fail(file, o.line, "joint_name", "unknown joint '" + o.joint + "' (not a joint of " + robot->source + ")");
+  if (j < 0) {  // the collection's own loader skips these too; say so
+    robot->warnings.push_back(file.source + ":" + std::to_string(o.line) + ": joint_name: no joint '" + o.joint +
+                              "' in " + robot->source + ", ignored");
+    return;
+  }
   RobotJoint& joint = robot->joints[j];
   if (joint.type == RobotJointType::kPlanar) Fail(file, o.line, "joint_type", "joint '" + o.joint + "' is planar");
   if (o.type == "SPHERICAL") {
