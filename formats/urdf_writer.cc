@@ -107,9 +107,25 @@ class UrdfBuilder {
     return X;
   }
 
+  // Every body's link has the body's own frame (so an end-effector point
+  // given in the body's frame means the same after import); a joint frame
+  // elsewhere gets a link of its own, welded to the body (JointFrameLink).
   void AddBodyLinks() {
     AddLink("world", Eigen::Isometry3d::Identity());
-    for (int b = 0; b < model_.num_bodies(); ++b) AddLink(model_.bodies[b].name, BodyLinkFrame(b));
+    for (int b = 0; b < model_.num_bodies(); ++b) AddLink(model_.bodies[b].name, HomePose(model_, b));
+  }
+
+  // The link that body's parent joint moves: the body's own when the joint
+  // frame is the body frame, else `<body>_joint_frame` welded to it.
+  int JointFrameLink(int body) {
+    const Eigen::Isometry3d X_J = BodyLinkFrame(body);
+    const Eigen::Isometry3d& X_B = links_[Link(body)].X_W;
+    if ((X_J.translation() - X_B.translation()).norm() < 1e-12 && (X_J.linear() - X_B.linear()).norm() < 1e-12) {
+      return Link(body);
+    }
+    const int link = AddLink(names_.Claim(model_.bodies[body].name + "_joint_frame"), X_J);
+    weld_after_.emplace_back(link, Link(body));
+    return link;
   }
 
   // A model joint from link `parent` to link `child`, its `between` reversed
@@ -149,8 +165,13 @@ class UrdfBuilder {
     for (int body : tree_.order) {
       const int j = tree_.parent_joint[body];
       if (j >= 0) {
-        AddModelJoint(model_.joints[j], model_.joints[j].name, Link(tree_.parent_body[body]), Link(body),
+        const int moved = JointFrameLink(body);
+        AddModelJoint(model_.joints[j], model_.joints[j].name, Link(tree_.parent_body[body]), moved,
                       tree_.reversed[body]);
+        for (const auto& [frame, child] : weld_after_) {
+          AddFixedJoint(names_.Claim(links_[child].name + "_weld"), frame, child);
+        }
+        weld_after_.clear();
         continue;
       }
       UrdfJoint u;  // a mobile base's planar joint from world
@@ -200,6 +221,7 @@ class UrdfBuilder {
   std::vector<UrdfClosure> closures_;
   std::vector<std::pair<std::string, std::string>> overrides_;  // joint_name, joint_type
   std::vector<std::string> planar_joints_;                      // base order
+  std::vector<std::pair<int, int>> weld_after_;                  // (joint frame link, body link) to weld
 };
 
 std::string UrdfBuilder::UrdfText() const {

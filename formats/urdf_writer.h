@@ -6,12 +6,14 @@
 // tree of the joint graph (bases' planar joints, then revolute, prismatic and
 // universal joints, then fixed, then spherical ones) and writes every other
 // joint as a loop closure:
-//  * every body is a link of the same name. A mobile base hangs from world by
-//    a `planar` joint (normal z) and its link frame is its body frame; any
-//    other body's link frame sits at the point of the joint that joins it to
-//    its parent, with the body's home orientation (universal joints: x = the
-//    parent's axis, y = the child's axis). A joint whose `between` runs
-//    against the tree gets its axis negated, so its coordinate keeps its sign;
+//  * every body is a link of the same name, with the body's frame. A mobile
+//    base hangs from world by a `planar` joint (normal z). The joint that
+//    joins any other body to its parent moves a frame at the joint point,
+//    with the body's home orientation (universal joints: x = the parent's
+//    axis, y = the child's axis): the body's own link when that is its body
+//    frame, else a link `<body>_joint_frame` welded to the body's link by a
+//    fixed joint `<body>_weld`. A joint whose `between` runs against the
+//    tree gets its axis negated, so its coordinate keeps its sign;
 //  * URDF's zero configuration is q = 0 for every joint: a joint with q_home
 //    != 0 has its origin moved back by q_home, so the model's home is where
 //    every joint reads q_home;

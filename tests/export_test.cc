@@ -177,11 +177,19 @@ void ExpectClosuresHold(const ParsedUrdf& p, const std::string& what) {
 
 // The URDF joint of a model joint: in the tree (between the two bodies' links)
 // or cut (A -> J_A, closed to J_B on B). Checks it, its axis and its limits.
+// The body a link stands for: a joint frame link `B_joint_frame` (welded to
+// B's link, which keeps B's frame) stands for B.
+std::string Carrier(const std::string& link) {
+  const std::string suffix = "_joint_frame";
+  const bool frame = link.size() > suffix.size() && link.compare(link.size() - suffix.size(), suffix.size(), suffix) == 0;
+  return frame ? link.substr(0, link.size() - suffix.size()) : link;
+}
+
 void ExpectJointKept(const ParsedUrdf& p, const Model& model, const Joint& joint, int* cut) {
   const std::string a = Name(model, joint.body_a), b = Name(model, joint.body_b);
   const urdf::JointConstSharedPtr u = p.urdf->getJoint(joint.name);
-  const bool tree = u && ((u->parent_link_name == a && u->child_link_name == b) ||
-                          (u->parent_link_name == b && u->child_link_name == a));
+  const bool tree = u && ((u->parent_link_name == a && Carrier(u->child_link_name) == b) ||
+                          (u->parent_link_name == b && Carrier(u->child_link_name) == a));
   if (!tree) {
     ++*cut;
     bool closed = false;
@@ -592,6 +600,31 @@ Model ImportSdformatExport(const Model& model) {
   const std::string path = testing::ScratchPath("export_round_trip", model.name + ".sdf");
   std::ofstream(path) << e.sdf;
   return ImportRobot(ReadSdformat(path, {}), ImportOptions{}).model;
+}
+
+// Every body's link keeps the body's frame: naming the end-effector by its
+// body and its point in that body's frame (what a user of the original model
+// knows) gives back the same mechanism, through URDF and SDFormat.
+TEST(ExportRoundTrip, EndEffectorNamedByBodyAndPointInItsFrame) {
+  for (const std::string& name : testing::BundledModels()) {
+    const Model model = LoadModel(testing::ModelPath(name));
+    ImportOptions options;
+    options.end_effector_link = model.bodies[model.end_effector.body].name;
+    options.end_effector_point_L = model.end_effector.p_B;
+    for (int c = 0; c < 6; ++c) {
+      if (model.end_effector.controlled[c]) options.controlled.push_back(kEndEffectorComponentNames[c]);
+    }
+    const UrdfExport urdf = WriteUrdf(model);
+    const std::string urdf_path = testing::ScratchPath("export_body_frames", name + ".urdf");
+    std::ofstream(urdf_path) << urdf.urdf;
+    std::ofstream(ClosureFilePath(urdf_path)) << urdf.closures;
+    ExpectSameMechanism(model, ImportRobot(ReadUrdf(urdf_path, ClosureFilePath(urdf_path)), options).model,
+                        name + " (urdf, end-effector by body)");
+    const std::string sdf_path = testing::ScratchPath("export_body_frames", name + ".sdf");
+    std::ofstream(sdf_path) << WriteSdformat(model).sdf;
+    ExpectSameMechanism(model, ImportRobot(ReadSdformat(sdf_path, {}), options).model,
+                        name + " (sdf, end-effector by body)");
+  }
 }
 
 TEST(ExportRoundTrip, SdformatGivesBackTheSameMechanism) {
