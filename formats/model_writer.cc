@@ -91,7 +91,8 @@ void WriteJoint(const Model& model, const Joint& joint, std::ostringstream& out)
   if (joint.type == JointType::kUniversal) {
     out << "    axes: [" << Vec(A.R_WB_home * joint.a_A) << ", " << Vec(B.R_WB_home * joint.b_B) << "]\n";
   }
-  if (joint.has_coordinate() && joint.q_home != 0.0) out << "    q_home: " << Num(joint.q_home) << "\n";
+  // Always written (also 0): the file says what every coordinate reads at home.
+  if (joint.has_coordinate()) out << "    q_home: " << Num(joint.q_home) << "\n";
   if (joint.actuated) out << "    actuated: true\n";
   if (joint.limited) out << "    limits: [" << Num(joint.lower) << ", " << Num(joint.upper) << "]\n";
 }

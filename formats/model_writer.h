@@ -1,7 +1,8 @@
 // Model -> model file text (YAML, shared/model_format.md): what `ccma import`
 // writes. Everything is written in world coordinates at home, numbers with
 // 17 significant digits, so LoadModelFromString(WriteModelYaml(m)) gives back
-// m's geometry to rounding. Omni bases are written with their default wheels
+// m's geometry to rounding. Every revolute and prismatic joint carries
+// `q_home` (0 included). Omni bases are written with their default wheels
 // (the wheel list is not written).
 #ifndef CCMA_FORMATS_MODEL_WRITER_H_
 #define CCMA_FORMATS_MODEL_WRITER_H_

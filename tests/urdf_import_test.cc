@@ -142,6 +142,14 @@ TEST_P(CopiedRobot, ImportsAssembledAndMatchesItsUrdfTree) {
   const urdf::ModelInterfaceSharedPtr urdf = ParseUrdfFile(kRobots + GetParam().folder + "/robot.urdf");
   ASSERT_TRUE(urdf);
   EXPECT_LT(imported.residual_energy, 1e-24);
+  // Every revolute and prismatic joint carries q_home in the written file.
+  int coordinates = 0;
+  for (const Joint& joint : imported.model.joints) coordinates += joint.has_coordinate();
+  std::size_t written = 0;
+  for (std::size_t at = imported.yaml.find("q_home:"); at != std::string::npos; at = imported.yaml.find("q_home:", at + 1)) {
+    ++written;
+  }
+  EXPECT_EQ(written, static_cast<std::size_t>(coordinates));
   EXPECT_EQ(imported.model.num_controls(), static_cast<int>(imported.actuated.size()));
   // Motors at the source's zero: the home controls are 0.
   EXPECT_LT(imported.model.home_controls().cwiseAbs().maxCoeff(), 1e-12);
