@@ -94,9 +94,11 @@ Command ImportCommand() {
           "Converts a robot described elsewhere into a model file (docs/import.md): every link a body, every\n"
           "joint kept, each loop closure (URDF: the closure file's closed_loop pairs; SDFormat: its own\n"
           "loops) a fixed (6d) or spherical (3d) joint. The written model is assembled at home (the source's\n"
-          "zero configuration, solved with the motors held) and every revolute and prismatic joint carries\n"
-          "q_home, so every q ccma reports is the source's joint position. Exit 2 naming the file, the\n"
-          "element and the name for a malformed source, an unknown name or a closure that cannot be assembled.",
+          "zero configuration, solved with the motors held; if the loops cannot close so, with the motors\n"
+          "free and a warning) and every revolute and prismatic joint carries q_home, so every q ccma\n"
+          "reports is the source's joint position. Without --end_effector, the one `ccma export` stored.\n"
+          "Exit 2 naming the file, the element and the name for a malformed source, an unknown name or a\n"
+          "closure that cannot be assembled.",
           {"from", "closures", "actuated", "end_effector", "controlled", "out"}, RunImport};
 }
 
