@@ -810,6 +810,9 @@ class MobilityReport:
     @property
     def free_motions(self) -> list[FreeMotion]:
         """A basis of the free motions with the controls fixed, each naming few bodies; empty when rigid."""
+    @property
+    def free_motions_listed(self) -> bool:
+        """False when free motions exist but were too many to list (then free_motions is empty)."""
 
 def analyze_mobility(
     model: Model,

@@ -28,7 +28,9 @@ void BindAnalysis(py::module_& m) {
       .def_readonly("smallest_singular_value", &MobilityReport::smallest_singular_value, "of dC/ds")
       .def_readonly("energy", &MobilityReport::energy, "E [m^2]")
       .def_readonly("free_motions", &MobilityReport::free_motions,
-                    "a basis of the free motions with the controls fixed, each naming few bodies (empty when rigid)");
+                    "a basis of the free motions with the controls fixed, each naming few bodies (empty when rigid)")
+      .def_readonly("free_motions_listed", &MobilityReport::free_motions_listed,
+                    "False when free motions exist but were too many to list (then free_motions is empty)");
   m.def(
       "analyze_mobility",
       [](const Model& model, std::optional<StateArray> state, std::optional<Eigen::VectorXd> controls,

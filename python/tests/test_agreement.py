@@ -100,6 +100,7 @@ def test_free_motions_match_check(tmp_path):
     mobility = ccma.analyze_mobility(model)
     names = [[model.bodies[i].name for i in motion.bodies] for motion in mobility.free_motions]
     assert names == [["post2", "link2"], ["link2"]]
+    assert mobility.free_motions_listed
     check = run_tool("check", "--model=" + str(path))
     assert names == [motion["bodies"] for motion in check["free_motions"]]
     d = np.array([motion.direction for motion in mobility.free_motions])
