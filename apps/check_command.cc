@@ -118,6 +118,7 @@ int RunCheck(const std::vector<std::string>& args) {
     out["warnings"] = warnings;
     for (const auto& w : warnings) std::cerr << "ccma check: warning: " << w.get<std::string>() << "\n";
   }
+  AddClearance(model, home, "check", &out);  // at home
   PrintJson(out);
   return 0;
 }

@@ -32,7 +32,7 @@ Command CheckCommand() {
           "controls fixed (naming the bodies each free motion moves) or not assembled at home.\n"
           "Beyond 100 bodies the ranks come from a sparse QR (SuiteSparseQR), in time and memory\n"
           "proportional to the model; above 20,000 bodies the analysis is refused (exit 2).",
-          {"model"}, RunCheck};
+          {"model", "obstacles"}, RunCheck};
 }
 
 Command SimulateCommand() {
@@ -43,7 +43,7 @@ Command SimulateCommand() {
           "home, or the configuration and controls in a JSON document printed by `ccma simulate` or\n"
           "`ccma control` (--from; then --controls defaults to that document's controls, so the result is\n"
           "reproduced exactly). Warns on stderr when not assembled, not converged or a branch jump.",
-          {"model", "controls", "from"}, RunSimulate};
+          {"model", "controls", "from", "obstacles"}, RunSimulate};
 }
 
 Command ControlCommand() {
@@ -63,7 +63,7 @@ Command ControlCommand() {
           "and the pivot ratio of dG/ds (--pivot_weight) away from zero, or keep bases apart / travel\n"
           "little (--secondary), in the null space of the end-effector task: the end-effector error is\n"
           "unchanged (docs/cli.md).",
-          Concat(Concat({"model", "target", "controls"}, SecondaryFlagNames()), kControlFlags),
+          Concat(Concat({"model", "target", "controls", "obstacles"}, SecondaryFlagNames()), kControlFlags),
           RunControl};
 }
 
@@ -75,7 +75,8 @@ Command TrajectoryCommand() {
           "per step (header names carry units). Stops at the first waypoint it cannot reach and warns.\n"
           "Prints the conditioning along the path (smallest singular value of dX/du, pivot ratio of\n"
           "dG/ds); the singularity barriers and secondary objectives act at every step as in ccma control.",
-          Concat(Concat({"model", "waypoints", "out", "controls"}, SecondaryFlagNames()), kControlFlags), RunTrajectory};
+          Concat(Concat({"model", "waypoints", "out", "controls", "obstacles"}, SecondaryFlagNames()), kControlFlags),
+          RunTrajectory};
 }
 
 Command GenerateCommand() {
@@ -122,7 +123,7 @@ Command ReplayCommand() {
           "moved into DIR at the end: a link planted at one of their names is replaced, never followed).\n"
           "Warns on stderr when the plan did not converge or the chain was torn.",
           Concat({"model", "waypoints", "out", "noise", "seed", "mocap_noise_m", "mocap_noise_rad", "latency_s",
-                  "slip", "kp", "ki", "controller_hz", "max_wheel_speed"},
+                  "slip", "kp", "ki", "controller_hz", "max_wheel_speed", "obstacles"},
                  kControlFlags),
           RunReplay};
 }
@@ -147,7 +148,7 @@ Command ViewCommand() {
           "embedded and drawn at their pose on each body instead of its capsules; at most 16 MiB per file and\n"
           "64 MiB for all distinct files. A mesh file missing, unreadable, too large or not a valid STL:\n"
           "exit 2, naming the model file and line, the body and the mesh file (JSON mesh_files, mesh_bytes).",
-          {"model", "trajectory", "replay", "workspace", "meshes", "out"}, RunView};
+          {"model", "trajectory", "replay", "workspace", "meshes", "out", "obstacles"}, RunView};
 }
 
 Command WorkspaceCommand() {
@@ -164,7 +165,7 @@ Command WorkspaceCommand() {
           "Results do not depend on --threads. --plot writes reachability and sigma_min maps over the first\n"
           "two ranges. Prints {samples, reachable, seconds, ...}; a percentage bar on stderr at a terminal.",
           Concat({"model", "out", "x", "y", "z", "roll", "pitch", "yaw", "resolution", "samples", "seed", "threads",
-                  "plot"},
+                  "plot", "obstacles"},
                  kControlFlags),
           RunWorkspace};
 }
@@ -275,6 +276,7 @@ std::string VersionLine() {
 Model LoadModelOrThrow(const std::string& path) {
   std::vector<std::string> warnings;
   Model model = LoadModel(path, &warnings);
+  if (!FLAGS_obstacles.empty()) AddObstaclesFromFile(FLAGS_obstacles, &model, &warnings);
   for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
   return model;
 }

@@ -113,6 +113,7 @@ int RunControl(const std::vector<std::string>& args) {
   out["bodies"] = BodiesToJson(model, control.forward().state());
   out["joints"] = JointsToJson(model, control.forward().state());
   out["limits_violated"] = LimitsViolatedToJson(model, control.forward().state());
+  AddClearance(model, control.forward().state(), "control", &out);
   out["from_home"] = from_home;
   if (!result.warning.empty()) {
     out["warning"] = result.warning;

@@ -1,6 +1,9 @@
 #include "apps/flags.h"
 
 DEFINE_string(model, "", "model file, YAML or JSON (docs/model_format.md) [path]");
+DEFINE_string(obstacles, "",
+              "obstacles file, added to the model's: a YAML mapping with the one key obstacles: "
+              "(docs/model_format.md, Collision geometry and obstacles) [path]");
 DEFINE_string(controls, "",
               "comma-separated controls, 3 per mobile base in file order: x [m], y [m], theta [rad] "
               "(default: the model's home controls)");

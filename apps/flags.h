@@ -8,6 +8,7 @@
 #include <gflags/gflags.h>
 
 DECLARE_string(model);       // check simulate control trajectory bench replay
+DECLARE_string(obstacles);   // check simulate control trajectory replay workspace view
 DECLARE_string(controls);    // simulate control trajectory
 DECLARE_string(waypoints);   // trajectory replay
 DECLARE_string(out);         // trajectory generate bench replay view

@@ -48,6 +48,25 @@ nlohmann::json LimitsViolatedToJson(const Model& model, const State& s) {
   return nlohmann::json(LimitsViolated(model, s));
 }
 
+nlohmann::json ClearanceToJson(const Model& model, const State& s) {
+  const CollisionModel collision(model);
+  const ClearanceSummary c = MinimumClearance(collision, s);
+  if (!c.any) return nullptr;
+  return {{"min", c.min}, {"pair", {c.a, c.b}}, {"margin", collision.margin()}, {"below_margin", c.min < collision.margin() - 1e-9}};
+}
+
+void AddClearance(const Model& model, const State& s, const std::string& command, nlohmann::json* out) {
+  const nlohmann::json clearance = ClearanceToJson(model, s);
+  if (clearance.is_null()) return;
+  (*out)["clearance"] = clearance;
+  if (clearance["below_margin"].get<bool>()) {
+    std::cerr << "ccma " << command << ": warning: clearance " << FormatG(clearance["min"].get<double>())
+              << " m between '" << clearance["pair"][0].get<std::string>() << "' and '"
+              << clearance["pair"][1].get<std::string>() << "' is below the margin "
+              << FormatG(clearance["margin"].get<double>()) << " m\n";
+  }
+}
+
 namespace {
 
 Eigen::VectorXd Numbers(const nlohmann::json& j, size_t count, const std::string& where) {

@@ -22,6 +22,14 @@ nlohmann::json JointsToJson(const Model& model, const State& s);
 // The names of the joints outside their limits (tolerance 1e-9).
 nlohmann::json LimitsViolatedToJson(const Model& model, const State& s);
 
+// {"min": d [m], "pair": [a, b], "margin": m [m], "below_margin": bool}: the
+// smallest clearance at s (collision/clearance.h); null when the model has
+// no collision geometry or no pair of shapes is checked.
+nlohmann::json ClearanceToJson(const Model& model, const State& s);
+// Adds ClearanceToJson as out["clearance"] when not null, and when it is
+// below the margin says so on stderr in one line ("ccma COMMAND: warning: ...").
+void AddClearance(const Model& model, const State& s, const std::string& command, nlohmann::json* out);
+
 // The state in `document["bodies"]` (as BodiesToJson writes it; quaternion
 // preferred, else rpy), every body of the model by name. Throws UsageError
 // naming `source` and the offending key.

@@ -141,6 +141,7 @@ int RunSimulate(const std::vector<std::string>& args) {
   out["bodies"] = BodiesToJson(model, forward.state());
   out["joints"] = JointsToJson(model, forward.state());
   out["limits_violated"] = LimitsViolatedToJson(model, forward.state());
+  AddClearance(model, forward.state(), "simulate", &out);
   out["message"] = result.message;
   WarnOnFailure(result, out["limits_violated"], &out);
   PrintJson(out);

@@ -36,6 +36,13 @@ constexpr int kMaxWheels = 64;
 constexpr int kMaxMeshesPerBody = 64;
 constexpr int kMaxMeshes = 10000;
 constexpr std::size_t kMaxMeshPathLength = 4096;
+// Collision geometry: capsules (`collision.links`), ignored pairs and
+// obstacles (model file and --obstacles files together) per model.
+constexpr int kMaxCollisionLinks = 10000;
+constexpr int kMaxIgnoredPairs = 10000;
+constexpr int kMaxObstacles = 10000;
+// --obstacles files are read up to this many bytes.
+constexpr std::size_t kMaxObstacleFileBytes = std::size_t{4} << 20;
 
 // Waypoint files: at most this many bytes (16 MiB; a million rows of a path
 // fit in 14 MB) and this many waypoints.

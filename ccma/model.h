@@ -15,6 +15,7 @@
 
 #include <Eigen/Core>
 
+#include "ccma/collision_geometry.h"
 #include "ccma/omni_wheels.h"
 
 namespace ccma {
@@ -141,6 +142,9 @@ struct Model {
   std::vector<MobileBase> mobile_bases;
   std::vector<Joint> joints;
   EndEffector end_effector;
+  // Shapes kept apart by control (collision_geometry.h); disabled unless the
+  // file has `collision:` or `obstacles:`.
+  CollisionGeometry collision;
 
   int num_bodies() const { return static_cast<int>(bodies.size()); }
   int num_bases() const { return static_cast<int>(mobile_bases.size()); }

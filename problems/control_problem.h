@@ -131,7 +131,11 @@ struct ControlStepResult {
   // joints held at a limit when the step ended ("" if none).
   double max_limit_violation = 0;
   double max_lateral_displacement = 0;
-  std::string limited_by;
+  // Clearance (model_format.md `collision`): how far [m] a pair of shapes is
+  // below collision.margin at the returned controls (0; a pair that started
+  // below keeps its starting clearance instead).
+  double max_clearance_violation = 0;
+  std::string limited_by;  // also the pairs of shapes held at the margin
   double time_ms = 0;
 };
 
@@ -154,7 +158,8 @@ struct ControlResult {
   int null_space_steps = 0;             // accepted null-space steps, all steps
   double max_limit_violation = 0;       // worst over the path's steps
   double max_lateral_displacement = 0;  // worst over the path's steps
-  std::string limited_by;               // joints at a limit when it stopped
+  double max_clearance_violation = 0;   // worst over the path's steps
+  std::string limited_by;               // joints at a limit, pairs at the margin, when it stopped
   double solve_time_ms = 0;
   std::string warning;      // empty, or why the target was not reached
 };

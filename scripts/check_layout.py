@@ -19,11 +19,11 @@ import sys
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 MAX_FILE_LINES = 500
 MAX_FUNCTION_LINES = 60
-SOURCE_DIRS = ["ccma", "cost_functions", "formats", "problems", "analyses",
+SOURCE_DIRS = ["ccma", "cost_functions", "formats", "collision", "problems", "analyses",
                "execution", "viewer", "apps", "python/src"]
 # Layer of each top folder, lowest first. A file may include its own layer
 # and lower ones. ccma/ccma.h (the umbrella header) may include everything.
-LAYERS = {"ccma": 0, "cost_functions": 0, "formats": 1, "problems": 2,
+LAYERS = {"ccma": 0, "cost_functions": 0, "formats": 1, "collision": 1, "problems": 2,
           "analyses": 3, "execution": 4, "viewer": 5, "apps": 6, "python": 6}
 UMBRELLA = "ccma/ccma.h"
 

@@ -30,7 +30,8 @@ PACKAGES=(g++ make cmake pkg-config
           pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module and its tests
           python3-matplotlib  # the Python trajectory example's plot
           python3-distributed  # ccma.workspace on a Dask cluster (and its local-cluster test)
-          liburdfdom-dev libsdformat-dev)  # ccma import: URDF and SDFormat robot files
+          liburdfdom-dev libsdformat-dev  # ccma import: URDF and SDFormat robot files
+          libfcl-dev)  # tests: FCL's distances, the independent check of ccma's clearances
 # The viewer's JavaScript is bundled with npm (three.js from the npm registry).
 command -v npm > /dev/null || PACKAGES+=(npm)
 # shellcheck disable=SC2206

@@ -30,12 +30,13 @@ void ModelParser::ParseBases(const YAML::Node& bases_node, std::size_t num_bodie
     }
     model_.bodies.push_back(body);
     model_.mobile_bases.push_back(base);
+    base_radius_given_.push_back(BaseRadius(bases[k], Indexed("mobile_bases", k)));
   }
 }
 
 MobileBase ModelParser::ParseBase(const YAML::Node& at, const std::string& path) {
   const YAML::Node node = r_.Map(at, path);
-  r_.CheckKeys(node, {"name", "type", "actuation", "pose", "wheels", "meshes"}, path);
+  r_.CheckKeys(node, {"name", "type", "actuation", "pose", "wheels", "meshes", "radius"}, path);
   MobileBase base;
   base.name = AddBodyName(r_.Require(node, "name", path), path + ".name");
   base.body = model_.num_bodies();

@@ -10,6 +10,7 @@
 //   model_actuation_limits.cc joints' actuated and limits
 //   model_end_effector.cc    end_effector
 //   model_meshes.cc          bodies' and bases' meshes (visual only)
+//   model_collision.cc       collision (margin, base cylinders, link capsules, ignore) and obstacles
 // Shared checks (keys, numbers, vectors, messages): yaml_checks.h.
 //
 // Internal to the library: formats/model_loader.h is the public API.
@@ -115,6 +116,12 @@ class ModelParser {
   std::vector<BodyMesh> ParseMeshes(const YAML::Node& node, const std::string& path, const Body& body);
   BodyMesh ParseMesh(const YAML::Node& at, const std::string& path, const Body& body) const;
 
+  // model_collision.cc
+  void ParseCollision(const YAML::Node& root);
+  void ParseCollisionLinks(const YAML::Node& node, const std::string& path);
+  void ParseIgnoredPairs(const YAML::Node& node, const std::string& path);
+  double BaseRadius(const YAML::Node& base, const std::string& path) const;
+
   MagnitudeChecks magnitudes_;
   std::vector<std::string>* warnings_;
   const YamlReader r_;
@@ -123,6 +130,7 @@ class ModelParser {
   Components components_{0};
   std::vector<int> grounded_bodies_;  // bodies jointed to `world`
   std::size_t num_meshes_ = 0;        // meshes of every body so far (kMaxMeshes)
+  std::vector<double> base_radius_given_;  // per base: its `radius:` [m], or 0
 };
 
 }  // namespace internal

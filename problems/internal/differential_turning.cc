@@ -51,7 +51,7 @@ bool DifferentialTurning::Turn(const PoseTarget& target, ControlStepResult* turn
   const PoseTarget before = p_.CurrentPose();
   const State state_before = forward.state();
   const Eigen::VectorXd u_before = forward.controls();
-  p_.workspace_->step_constraints.Begin(forward.controls());  // a turn on the spot: no lateral motion
+  p_.workspace_->step_constraints.Begin(forward.controls(), forward.state());  // a turn on the spot: no lateral motion
   const ForwardResult assembled = forward.Assemble(u);
   ++p_.forward_solves_;
   *turn = ControlStepResult();

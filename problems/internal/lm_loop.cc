@@ -54,7 +54,7 @@ ControlStepResult LmLoop::SolveStep(const PoseTarget& target) {
   const int solves_before = p_.forward_solves_;
   ControlStepResult result;
   StepConstraints& step_constraints = p_.workspace_->step_constraints;
-  if (!step_constraints.empty()) step_constraints.Begin(p_.forward_.controls());
+  if (!step_constraints.empty()) step_constraints.Begin(p_.forward_.controls(), p_.forward_.state());
   p_.workspace_->active = step_constraints.NoneActive();
   const bool reached = ConvergeTask(target, &result, /*report_iterations=*/true);
   if (!StepConstraintsHold()) ProjectOntoStepConstraints(&result);

@@ -51,6 +51,7 @@ struct PathTally {
     result.max_step_residual_energy = std::max(result.max_step_residual_energy, step.residual_energy);
     result.max_limit_violation = std::max(result.max_limit_violation, step.max_limit_violation);
     result.max_lateral_displacement = std::max(result.max_lateral_displacement, step.max_lateral_displacement);
+    result.max_clearance_violation = std::max(result.max_clearance_violation, step.max_clearance_violation);
     result.limited_by = step.limited_by;
     result.min_rcond = std::min(result.min_rcond, step.rcond);
     if (!turn_on_the_spot) {  // (a turn does not linearise)
@@ -85,7 +86,8 @@ inline std::string StepNotReached(int i, int n, const ControlStepResult& step) {
          (step.branch_jumps_rejected > 0 ? ", trial steps landed on another assembly branch" : "") +
          (step.limited_by.empty() ? "" : ", stopped by " + step.limited_by) +
          (step.limited_by.empty() ? "): the target may be outside the workspace or past a singularity"
-                                  : "): the target would need a joint beyond its limits");
+          : step.limited_by.find("clearance") == std::string::npos ? "): the target would need a joint beyond its limits"
+                                                                    : "): the target would need less clearance than the margin");
 }
 
 

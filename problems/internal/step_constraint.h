@@ -36,8 +36,8 @@ class StepConstraint {
 
   // Items (bases, joints, ...) this constraint holds; bounds the active-set passes.
   virtual int num_items() const = 0;
-  // The step starts at controls u0 (the previous row of a path).
-  virtual void Begin(const Eigen::VectorXd& /*u0*/) {}
+  // The step starts at controls u0 and state s0 (the previous row of a path).
+  virtual void Begin(const Eigen::VectorXd& /*u0*/, const State& /*s0*/) {}
   // Largest violation at (u, s) [m or rad]; 0 when it holds.
   virtual double MaxViolation(const Eigen::VectorXd& u, const State& s) const = 0;
   // How far a trial LM step may leave the constraint and still be accepted

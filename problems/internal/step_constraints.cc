@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "problems/internal/clearance_constraint.h"
 #include "problems/internal/differential_arc_constraint.h"
 #include "problems/internal/joint_limit_constraint.h"
 
@@ -18,16 +19,17 @@ StepConstraints::StepConstraints(const Model& model, const std::vector<int>& eff
   for (int j = 0; j < static_cast<int>(model.joints.size()); ++j) {
     if (model.joints[j].limited) limited.push_back(j);
   }
-  // The order of the rows: arcs first, then limits. A new kind: one line here.
+  // The order of the rows: arcs, limits, clearance. A new kind: one line here.
   if (!differential.empty()) {
     constraints_.push_back(std::make_unique<DifferentialArcConstraint>(model, differential, column_of));
   }
   if (!limited.empty()) constraints_.push_back(std::make_unique<JointLimitConstraint>(model, limited));
+  if (model.collision.enabled) constraints_.push_back(std::make_unique<ClearanceConstraint>(model));
   for (const auto& c : constraints_) num_items_ += c->num_items();
 }
 
-void StepConstraints::Begin(const Eigen::VectorXd& u0) {
-  for (const auto& c : constraints_) c->Begin(u0);
+void StepConstraints::Begin(const Eigen::VectorXd& u0, const State& s0) {
+  for (const auto& c : constraints_) c->Begin(u0, s0);
 }
 
 bool StepConstraints::Hold(const Eigen::VectorXd& u, const State& s, double tolerance) const {

@@ -1,5 +1,5 @@
 // The step constraints of one model (step_constraint.h), in a fixed order
-// (differential arcs, then joint limits: the order of the rows), and the
+// (differential arcs, joint limits, clearance: the order of the rows), and the
 // active set of their inequalities. Used by the control problem's LM loop.
 #ifndef CCMA_PROBLEMS_INTERNAL_STEP_CONSTRAINTS_H_
 #define CCMA_PROBLEMS_INTERNAL_STEP_CONSTRAINTS_H_
@@ -29,8 +29,8 @@ class StepConstraints {
   bool empty() const { return constraints_.empty(); }
   // An empty active set of the right shape.
   ActiveSet NoneActive() const { return ActiveSet(constraints_.size()); }
-  // The step starts at controls u0 (the previous row of a path).
-  void Begin(const Eigen::VectorXd& u0);
+  // The step starts at controls u0 and state s0 (the previous row of a path).
+  void Begin(const Eigen::VectorXd& u0, const State& s0);
 
   // Whether every constraint holds to `tolerance` at (u, s).
   bool Hold(const Eigen::VectorXd& u, const State& s, double tolerance) const;

@@ -1,0 +1,24 @@
+// --obstacles=FILE.yaml (model_format.md, "Collision geometry and
+// obstacles"): a file with only an `obstacles:` list, added to a loaded
+// model by any command that moves the mechanism.
+#ifndef CCMA_FORMATS_OBSTACLES_FILE_H_
+#define CCMA_FORMATS_OBSTACLES_FILE_H_
+
+#include <string>
+#include <vector>
+
+#include "ccma/model.h"
+
+namespace ccma {
+
+// Reads the obstacles of the file at `path` (a regular file of at most
+// kMaxObstacleFileBytes) and appends them to model->collision.obstacles,
+// which turns clearance on (model->collision.enabled). Names must differ
+// from the model's bodies, bases and obstacles. Throws ModelError
+// "path:line: key: what" on any problem; unknown keys are appended to
+// `warnings` (may be null) as the model loader does.
+void AddObstaclesFromFile(const std::string& path, Model* model, std::vector<std::string>* warnings = nullptr);
+
+}  // namespace ccma
+
+#endif  // CCMA_FORMATS_OBSTACLES_FILE_H_
