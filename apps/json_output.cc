@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "apps/cli.h"
+#include "ccma/internal/format.h"
 
 namespace ccma::cli {
 

@@ -5,6 +5,8 @@
 #include <limits>
 #include <numeric>
 
+#include <Eigen/Geometry>
+
 namespace ccma {
 namespace {
 

@@ -13,6 +13,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Geometry>
+
 #include "collision/shapes.h"
 
 namespace ccma {

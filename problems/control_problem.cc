@@ -179,8 +179,8 @@ void ControlProblem::Linearize(const PoseTarget& target, ControlLinearization* l
   Eigen::VectorXd e;
   Eigen::MatrixXd de_ds;
   workspace_->error.Evaluate(forward_.state(), target, &e, finite_differences ? nullptr : &de_ds);
-  const std::unique_ptr<Sensitivity> owned = LinearizedSensitivity(finite_differences ? nullptr : &de_ds);
-  const Sensitivity& sensitivity = *owned;
+  lin->sensitivity = LinearizedSensitivity(finite_differences ? nullptr : &de_ds);
+  const Sensitivity& sensitivity = *lin->sensitivity;
   lin->rcond = sensitivity.rcond();
   lin->singular = sensitivity.singular();
   const EnergyDerivatives& d = sensitivity.derivatives();
@@ -197,7 +197,7 @@ void ControlProblem::Linearize(const PoseTarget& target, ControlLinearization* l
     lin->Jtr.noalias() = J.transpose() * lin->r;
   } else {
     ImplicitGaussNewton(sensitivity, e, de_ds, effective_, workspace_->effective_column, options_.lambda,
-                        /*dense=*/!workspace_->step_constraints.empty(), lin);
+                        /*dense=*/false, lin);
   }
   lin->has_eigen = lin->JtJ.cols() <= kMaxEigenSolveSize;
   if (lin->has_eigen) lin->JtJ_eigen.compute(lin->JtJ);

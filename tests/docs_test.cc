@@ -531,7 +531,10 @@ TEST(ModelFormatDocs, EveryLoaderKeyIsDocumented) {
       // joints
       "between", "point", "axis", "axes", "actuated", "limits", "world",
       // end_effector
-      "body", "controlled"};
+      "body", "controlled",
+      // collision, obstacles
+      "collision", "margin", "base_radius", "base_height", "links", "from", "to", "ignore", "obstacles",
+      "cylinder", "box", "center", "height", "size", "yaw"};
   const std::string doc = ReadDoc("model_format.md");
   for (const std::string& key : keys) {
     EXPECT_NE(doc.find("`" + key + "`"), std::string::npos)

@@ -96,11 +96,11 @@ TEST(StepConstraints, ArcRowsAreTheLateralDisplacementsGradient) {
   StepConstraints constraints(model, effective);
   ASSERT_FALSE(constraints.empty());
   const Eigen::VectorXd u0 = model.home_controls();
-  constraints.Begin(u0);
-  Eigen::VectorXd u = u0;
-  for (int i = 0; i < u.size(); ++i) u[i] += 0.01 * std::cos(0.9 * i + 0.1);
   ForwardProblem forward(model);
   const State s = forward.state();
+  constraints.Begin(u0, s);
+  Eigen::VectorXd u = u0;
+  for (int i = 0; i < u.size(); ++i) u[i] += 0.01 * std::cos(0.9 * i + 0.1);
   const Eigen::MatrixXd ds_du = Eigen::MatrixXd::Zero(model.state_size(), static_cast<Eigen::Index>(effective.size()));
   const ActiveSet none = constraints.NoneActive();
   const LinearConstraints rows = constraints.Linearize(u, s, ds_du, none);

@@ -50,7 +50,7 @@ std::vector<int> ClearanceConstraint::AtOrBeyond(const State& s, double toleranc
   return out;
 }
 
-void ClearanceConstraint::AppendRows(const Eigen::VectorXd& /*u*/, const State& s, const Eigen::MatrixXd& ds_du,
+void ClearanceConstraint::AppendRows(const Eigen::VectorXd& /*u*/, const State& s, const SensitivityView& ds_du,
                                      const std::vector<int>& active, int first_row, LinearConstraints* rows) const {
   collision_.PlaceShapes(s, &shapes_);
   int row = first_row;
@@ -59,20 +59,21 @@ void ClearanceConstraint::AppendRows(const Eigen::VectorXd& /*u*/, const State& 
     const auto [a, b] = items_[static_cast<size_t>(item)];
     const PairClearance p{a, b, Distance(shapes_[a], shapes_[b])};
     ClearanceGradient(collision_, s, p, &g_a, &g_b);
-    rows->A.row(row).setZero();
+    Eigen::RowVectorXd g = Eigen::RowVectorXd::Zero(s.tangent_size());
     const int body_a = collision_.BodyOf(a), body_b = collision_.BodyOf(b);
-    if (body_a != kWorld) rows->A.row(row) += g_a * ds_du.middleRows<kPoseTangentSize>(kPoseTangentSize * body_a);
-    if (body_b != kWorld) rows->A.row(row) += g_b * ds_du.middleRows<kPoseTangentSize>(kPoseTangentSize * body_b);
+    if (body_a != kWorld) g.segment<kPoseTangentSize>(kPoseTangentSize * body_a) += g_a;
+    if (body_b != kWorld) g.segment<kPoseTangentSize>(kPoseTangentSize * body_b) += g_b;
+    rows->A.row(row) = ds_du.RowTimes(g);
     rows->b[row] = Floor({a, b}) - p.distance.distance;
     ++row;
   }
 }
 
-std::vector<int> ClearanceConstraint::WouldCross(const State& s, const Eigen::MatrixXd& ds_du,
+std::vector<int> ClearanceConstraint::WouldCross(const State& s, const SensitivityView& ds_du,
                                                  const Eigen::VectorXd& d, double tolerance) const {
   // How far any shape can move in this step (first order): translation plus
   // rotation times the shapes' reach; pairs farther apart cannot cross.
-  const Eigen::VectorXd ds = ds_du * d;
+  const Eigen::VectorXd ds = ds_du.Times(d);
   double motion = 0;
   for (int body = 0; body < s.num_bodies(); ++body) {
     const auto block = ds.segment<kPoseTangentSize>(kPoseTangentSize * body);

@@ -35,9 +35,9 @@ class ClearanceConstraint final : public StepConstraint {
   double trial_slack() const override { return 1e-6; }
   int NumRows(const std::vector<int>& active) const override { return static_cast<int>(active.size()); }
   // d(u + delta) = floor for each active pair.
-  void AppendRows(const Eigen::VectorXd& u, const State& s, const Eigen::MatrixXd& ds_du,
+  void AppendRows(const Eigen::VectorXd& u, const State& s, const SensitivityView& ds_du,
                   const std::vector<int>& active, int first_row, LinearConstraints* rows) const override;
-  std::vector<int> WouldCross(const State& s, const Eigen::MatrixXd& ds_du, const Eigen::VectorXd& d,
+  std::vector<int> WouldCross(const State& s, const SensitivityView& ds_du, const Eigen::VectorXd& d,
                               double tolerance) const override;
   std::vector<int> AtOrBeyond(const State& s, double tolerance) const override;
   // Sets result->max_clearance_violation; names the active pairs at their

@@ -5,15 +5,22 @@
 #ifndef CCMA_PROBLEMS_INTERNAL_CONTROL_LINEARIZATION_H_
 #define CCMA_PROBLEMS_INTERNAL_CONTROL_LINEARIZATION_H_
 
+#include <memory>
+
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 
 namespace ccma {
 
+class Sensitivity;  // sensitivity.h
+
 struct ControlLinearization {
   Eigen::VectorXd r;      // [e; sqrt(lambda) C] (ne + m)
   Eigen::MatrixXd ds_du;  // n x k, or empty when not formed (sparse products)
+  // The factorised dG/ds of this linearisation (implicit ds/du for the step
+  // constraints, sensitivity_view.h); valid until the next one.
+  std::shared_ptr<const Sensitivity> sensitivity;
   Eigen::MatrixXd J_e;    // de/du_eff (ne x k): the end-effector rows of dr/du
   Eigen::MatrixXd JtJ;    // (dr/du)^T dr/du (k x k)
   Eigen::VectorXd Jtr;    // (dr/du)^T r (k)

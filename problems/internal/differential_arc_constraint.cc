@@ -28,7 +28,7 @@ double DifferentialArcConstraint::MaxViolation(const Eigen::VectorXd& u, const S
 }
 
 void DifferentialArcConstraint::AppendRows(const Eigen::VectorXd& u, const State& /*s*/,
-                                           const Eigen::MatrixXd& /*ds_du*/, const std::vector<int>& /*active*/,
+                                           const SensitivityView& /*ds_du*/, const std::vector<int>& /*active*/,
                                            int first_row, LinearConstraints* rows) const {
   int row = first_row;
   for (int base : bases_) {

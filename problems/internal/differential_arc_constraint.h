@@ -25,7 +25,7 @@ class DifferentialArcConstraint final : public StepConstraint {
   // Largest |l(u)| over the bases [m].
   double MaxViolation(const Eigen::VectorXd& u, const State& s) const override;
   int NumRows(const std::vector<int>& /*active*/) const override { return num_items(); }
-  void AppendRows(const Eigen::VectorXd& u, const State& s, const Eigen::MatrixXd& ds_du,
+  void AppendRows(const Eigen::VectorXd& u, const State& s, const SensitivityView& ds_du,
                   const std::vector<int>& active, int first_row, LinearConstraints* rows) const override;
   // Sets result->max_lateral_displacement.
   std::string Report(const Eigen::VectorXd& u, const State& s, const std::vector<int>& active,

@@ -71,7 +71,7 @@ std::vector<int> JointLimitConstraint::AtOrBeyond(const State& s, double toleran
   return out;
 }
 
-void JointLimitConstraint::AppendRows(const Eigen::VectorXd& /*u*/, const State& s, const Eigen::MatrixXd& ds_du,
+void JointLimitConstraint::AppendRows(const Eigen::VectorXd& /*u*/, const State& s, const SensitivityView& ds_du,
                                       const std::vector<int>& active, int first_row, LinearConstraints* rows) const {
   int row = first_row;
   Eigen::RowVectorXd dq_ds;
@@ -79,19 +79,20 @@ void JointLimitConstraint::AppendRows(const Eigen::VectorXd& /*u*/, const State&
     const Joint& joint = model_.joints[j];
     const double q = JointCoordinateGradient(model_, joint, s, &dq_ds);
     const double bound = std::abs(q - joint.lower) < std::abs(q - joint.upper) ? joint.lower : joint.upper;
-    rows->A.row(row) = dq_ds * ds_du;
+    rows->A.row(row) = ds_du.RowTimes(dq_ds);
     rows->b[row] = bound - q;
     ++row;
   }
 }
 
-std::vector<int> JointLimitConstraint::WouldCross(const State& s, const Eigen::MatrixXd& ds_du,
+std::vector<int> JointLimitConstraint::WouldCross(const State& s, const SensitivityView& ds_du,
                                                   const Eigen::VectorXd& d, double tolerance) const {
   std::vector<int> out;
   Eigen::RowVectorXd dq_ds;
+  const Eigen::VectorXd ds = ds_du.Times(d);
   for (int j : joints_) {
     const Joint& joint = model_.joints[j];
-    const double q = JointCoordinateGradient(model_, joint, s, &dq_ds) + (dq_ds * ds_du).dot(d);
+    const double q = JointCoordinateGradient(model_, joint, s, &dq_ds) + dq_ds.dot(ds);
     if (q < joint.lower - tolerance || q > joint.upper + tolerance) out.push_back(j);
   }
   return out;

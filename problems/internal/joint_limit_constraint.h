@@ -29,9 +29,9 @@ class JointLimitConstraint final : public StepConstraint {
   int NumRows(const std::vector<int>& active) const override { return static_cast<int>(active.size()); }
   // q(u + d) = bound for each active joint (bound: the nearer one to its
   // current q, or the one it is beyond).
-  void AppendRows(const Eigen::VectorXd& u, const State& s, const Eigen::MatrixXd& ds_du,
+  void AppendRows(const Eigen::VectorXd& u, const State& s, const SensitivityView& ds_du,
                   const std::vector<int>& active, int first_row, LinearConstraints* rows) const override;
-  std::vector<int> WouldCross(const State& s, const Eigen::MatrixXd& ds_du, const Eigen::VectorXd& d,
+  std::vector<int> WouldCross(const State& s, const SensitivityView& ds_du, const Eigen::VectorXd& d,
                               double tolerance) const override;
   std::vector<int> AtOrBeyond(const State& s, double tolerance) const override;
   // Sets result->max_limit_violation; names the active joints ("joint 'leg0'

@@ -161,9 +161,12 @@ Eigen::VectorXd LmLoop::Step(const ControlLinearization& lin, double mu, ActiveS
   const State& s = p_.forward_.state();
   const Eigen::VectorXd& u = p_.forward_.controls();
   Eigen::VectorXd step;
+  // ds/du as formed, or through the linearisation's factorisation.
+  const SensitivityView ds_du = lin.ds_du.size() > 0 ? SensitivityView(lin.ds_du)
+                                                     : SensitivityView(*lin.sensitivity, lin.JtJ.cols());
   for (int pass = 0; pass <= constraints.max_passes(); ++pass) {
-    step = ConstrainedLmStep(lin.JtJ, lin.Jtr, mu, constraints.Linearize(u, s, lin.ds_du, *active), lin.eigen());
-    if (!constraints.Grow(s, lin.ds_du, step, active)) break;
+    step = ConstrainedLmStep(lin.JtJ, lin.Jtr, mu, constraints.Linearize(u, s, ds_du, *active), lin.eigen());
+    if (!constraints.Grow(s, ds_du, step, active)) break;
   }
   return step;
 }

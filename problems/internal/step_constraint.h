@@ -20,6 +20,7 @@
 
 #include "ccma/state.h"
 #include "problems/control_problem.h"
+#include "problems/internal/sensitivity_view.h"
 
 namespace ccma {
 
@@ -50,12 +51,12 @@ class StepConstraint {
   // Writes its rows at (u, s) into rows->A and rows->b from `first_row` on
   // (A is zeroed and sized by the caller): the rows held in every step, then
   // one per item of `active`. ds_du: state tangent x effective controls.
-  virtual void AppendRows(const Eigen::VectorXd& u, const State& s, const Eigen::MatrixXd& ds_du,
+  virtual void AppendRows(const Eigen::VectorXd& u, const State& s, const SensitivityView& ds_du,
                           const std::vector<int>& active, int first_row, LinearConstraints* rows) const = 0;
 
   // Inequalities only: items that the control change d would push past a
   // bound by more than `tolerance`, to first order.
-  virtual std::vector<int> WouldCross(const State& /*s*/, const Eigen::MatrixXd& /*ds_du*/,
+  virtual std::vector<int> WouldCross(const State& /*s*/, const SensitivityView& /*ds_du*/,
                                       const Eigen::VectorXd& /*d*/, double /*tolerance*/) const {
     return {};
   }

@@ -46,7 +46,7 @@ bool StepConstraints::WithinTrialSlack(const Eigen::VectorXd& u, const State& s)
   return true;
 }
 
-LinearConstraints StepConstraints::Linearize(const Eigen::VectorXd& u, const State& s, const Eigen::MatrixXd& ds_du,
+LinearConstraints StepConstraints::Linearize(const Eigen::VectorXd& u, const State& s, const SensitivityView& ds_du,
                                              const ActiveSet& active) const {
   int rows = 0;
   for (size_t c = 0; c < constraints_.size(); ++c) rows += constraints_[c]->NumRows(active[c]);
@@ -61,7 +61,7 @@ LinearConstraints StepConstraints::Linearize(const Eigen::VectorXd& u, const Sta
   return out;
 }
 
-bool StepConstraints::Grow(const State& s, const Eigen::MatrixXd& ds_du, const Eigen::VectorXd& d,
+bool StepConstraints::Grow(const State& s, const SensitivityView& ds_du, const Eigen::VectorXd& d,
                            ActiveSet* active) const {
   bool grew = false;
   for (size_t c = 0; c < constraints_.size(); ++c) {

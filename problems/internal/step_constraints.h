@@ -38,11 +38,11 @@ class StepConstraints {
   bool WithinTrialSlack(const Eigen::VectorXd& u, const State& s) const;
 
   // All rows at (u, s): each constraint's, in order, for its active items.
-  LinearConstraints Linearize(const Eigen::VectorXd& u, const State& s, const Eigen::MatrixXd& ds_du,
+  LinearConstraints Linearize(const Eigen::VectorXd& u, const State& s, const SensitivityView& ds_du,
                               const ActiveSet& active) const;
   // Adds to `active` the items that the change d would push past a bound
   // (tolerance 1e-12); returns whether it grew.
-  bool Grow(const State& s, const Eigen::MatrixXd& ds_du, const Eigen::VectorXd& d, ActiveSet* active) const;
+  bool Grow(const State& s, const SensitivityView& ds_du, const Eigen::VectorXd& d, ActiveSet* active) const;
   // The items at or beyond a bound at s (tolerance 1e-12 beyond), then
   // those of `active` not among them: what a projection must hold.
   ActiveSet AtOrBeyond(const State& s, const ActiveSet& active) const;
