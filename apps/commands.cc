@@ -131,7 +131,7 @@ Command ReplayCommand() {
 Command ViewCommand() {
   return {"view", "write a self-contained 3D HTML view (animated for a trajectory or replay)",
           "ccma view --model=FILE [--trajectory=FILE.csv | --replay=DIR | --workspace=MAP.csv] [--meshes]\n"
-          "          --out=FILE.html",
+          "          [--obstacles=FILE.yaml] --out=FILE.html",
           "Writes one self-contained HTML page (three.js inlined; it fetches nothing) that shows the\n"
           "mechanism in 3D: links as capsules between joint points, bases as discs with a heading arrow,\n"
           "joint markers by type, the end-effector's frame, the ground grid, orbit controls. With a\n"
@@ -147,7 +147,11 @@ Command ViewCommand() {
           "the model: binary or ASCII STL, paths absolute or relative to the model file's folder) are read,\n"
           "embedded and drawn at their pose on each body instead of its capsules; at most 16 MiB per file and\n"
           "64 MiB for all distinct files. A mesh file missing, unreadable, too large or not a valid STL:\n"
-          "exit 2, naming the model file and line, the body and the mesh file (JSON mesh_files, mesh_bytes).",
+          "exit 2, naming the model file and line, the body and the mesh file (JSON mesh_files, mesh_bytes).\n"
+          "With collision geometry (`collision:`, `obstacles:` or --obstacles) the obstacles, bases' cylinders\n"
+          "and link capsules are drawn see-through with each frame's clearance and pair; a frame below\n"
+          "collision.margin reads \"below margin\", its pair turns red and it is flagged (JSON\n"
+          "clearance_below_margin_frames).",
           {"model", "trajectory", "replay", "workspace", "meshes", "out", "obstacles"}, RunView};
 }
 

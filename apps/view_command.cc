@@ -2,7 +2,9 @@
 // --out=FILE.html`: one self-contained HTML page showing the mechanism in 3D
 // (viewer/), animated along a trajectory CSV or a replay directory, or at home
 // under the point cloud of a workspace map; with --meshes, the bodies' STL
-// meshes embedded and drawn. Prints {"out", "bytes", "frames", ...} on stdout.
+// meshes embedded and drawn; with collision geometry or --obstacles, the
+// shapes drawn and frames closer than the margin marked. Prints {"out",
+// "bytes", "frames", ...} on stdout.
 #include <iostream>
 #include <optional>
 
@@ -34,7 +36,7 @@ namespace {
 
 // The stderr warning about frames not assembled, branch jumps and frames
 // beyond the work bound (viewer/scene.h).
-void WarnAboutFrames(const viewer::SceneSummary& summary, const std::string& source) {
+void WarnAboutFrames(const viewer::SceneSummary& summary, const std::string& source, double margin) {
   if (summary.not_assembled > 0 || summary.branch_jumps > 0) {
     std::cerr << "ccma view: warning: " << summary.not_assembled << " frame(s) not assembled and "
               << summary.branch_jumps << " branch jump(s) while re-assembling the " << source
@@ -45,11 +47,15 @@ void WarnAboutFrames(const viewer::SceneSummary& summary, const std::string& sou
               << viewer::kMaxViewFrameSubsteps << " assembly sub-steps from the last frame assembled, or past "
               << viewer::kMaxViewSubsteps << " in all\n";
   }
+  if (summary.clearance_below_margin > 0) {
+    std::cerr << "ccma view: warning: " << summary.clearance_below_margin
+              << " frame(s) with a clearance below the margin of " << margin << " m (marked red in the page)\n";
+  }
 }
 
 // The JSON on stdout (docs/cli.md, "ccma view").
 nlohmann::json Result(const std::string& out_path, std::size_t bytes, const viewer::SceneSummary& summary,
-                      const std::string& source, const viewer::MeshFiles* meshes, bool workspace) {
+                      const std::string& source, const viewer::MeshFiles* meshes, bool workspace, bool collision) {
   nlohmann::json result = {{"out", out_path},
                            {"bytes", bytes},
                            {"frames", summary.frames},
@@ -58,6 +64,7 @@ nlohmann::json Result(const std::string& out_path, std::size_t bytes, const view
                            {"not_assembled_frames", summary.not_assembled},
                            {"branch_jumps", summary.branch_jumps}};
   if (summary.beyond_work_bound > 0) result["beyond_work_bound_frames"] = summary.beyond_work_bound;
+  if (collision) result["clearance_below_margin_frames"] = summary.clearance_below_margin;
   if (meshes != nullptr) {
     result["mesh_files"] = meshes->files.size();
     result["mesh_bytes"] = meshes->bytes_read;
@@ -114,8 +121,9 @@ int RunView(const std::vector<std::string>& args) {
   OutputFile out(out_path, "out");
   out.stream() << html;
   out.Commit();
-  WarnAboutFrames(summary, source);
-  PrintJson(Result(out_path, html.size(), summary, source, meshes ? &*meshes : nullptr, workspace.has_value()));
+  WarnAboutFrames(summary, source, model.collision.margin);
+  PrintJson(Result(out_path, html.size(), summary, source, meshes ? &*meshes : nullptr, workspace.has_value(),
+                   model.collision.enabled));
   return 0;
 }
 

@@ -5,7 +5,9 @@
 #  3. a valid page whose mechanism is never drawn (bodies hidden by a script);
 #  4. a valid workspace page whose cloud is never drawn (hidden by a script);
 #  5. a valid page of MESH_MODEL (`--meshes`) whose meshes are never drawn;
-#  6. that page with a mesh naming a file the scene does not carry.
+#  6. that page with a mesh naming a file the scene does not carry;
+#  7. a valid page of MODEL with obstacles (--obstacles) whose shapes are never drawn;
+#  8. that page with an obstacle of an unknown shape.
 #   cmake -DNODE=.. -DTEST_JS=.. -DBUNDLE=.. -DTOOL=.. -DMODEL=.. -DMESH_MODEL=.. -DWORK=.. -P this
 cmake_minimum_required(VERSION 3.16)
 file(MAKE_DIRECTORY "${WORK}")
@@ -55,9 +57,29 @@ if(bad_mesh STREQUAL meshes)
   message(FATAL_ERROR "test bug: no mesh with file 0 in ${WORK}/meshes.html")
 endif()
 file(WRITE "${WORK}/bad_mesh.html" "${bad_mesh}")
+file(WRITE "${WORK}/obstacles.yaml" "obstacles:
+  - {name: pillar, cylinder: {center: [1.0, -0.3], radius: 0.2, height: 1.0}}
+  - {name: crate, box: {center: [-0.9, 0.6, 0.25], size: [0.5, 0.4, 0.5], yaw: 0.4}}
+")
+execute_process(COMMAND "${TOOL}" view "--model=${MODEL}" "--obstacles=${WORK}/obstacles.yaml" "--out=${WORK}/room.html"
+                RESULT_VARIABLE rc OUTPUT_QUIET ERROR_QUIET)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "ccma view --obstacles failed")
+endif()
+file(READ "${WORK}/room.html" room)
+string(REPLACE "</body>" "<script>window.ccmaView.showCollision(false); window.ccmaView.showCollision = () => {};</script></body>"
+       hidden_shapes "${room}")
+file(WRITE "${WORK}/hidden_shapes.html" "${hidden_shapes}")
+string(REPLACE "\"shape\":\"cylinder\"" "\"shape\":\"cone\"" bad_shape "${room}")
+if(bad_shape STREQUAL room)
+  message(FATAL_ERROR "test bug: no cylinder in ${WORK}/room.html")
+endif()
+file(WRITE "${WORK}/bad_shape.html" "${bad_shape}")
 foreach(case "bad_scene|console errors" "remote|network requests" "hidden|body points drawn"
              "hidden_cloud|workspace points drawn" "hidden_meshes|meshes drawn at their centroid"
-             "bad_mesh|meshes\\[0\\]\\.file: an index into meshes")
+             "bad_mesh|meshes\\[0\\]\\.file: an index into meshes"
+             "hidden_shapes|collision shapes drawn at their centre"
+             "bad_shape|collision\\.obstacles\\[0\\]\\.shape")
   string(REPLACE "|" ";" parts "${case}")
   list(GET parts 0 page)
   list(GET parts 1 expected)

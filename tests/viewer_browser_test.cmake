@@ -2,9 +2,9 @@
 # (animated along a trajectory or a replay of WAYPOINTS when KIND says so;
 # with KIND=workspace, under the cloud of a small `ccma workspace` map over
 # x, y, z, reachable and unreachable points both; with KIND=meshes, with
-# `--meshes`) and opens it with
+# `--meshes`; with KIND=collision, MODEL given capsules and obstacles) and opens it with
 # viewer/js/test/browser_test.mjs in headless Chromium.
-#   cmake -DTOOL=.. -DNODE=.. -DTEST_JS=.. -DMODEL=.. -DWORK=.. -DKIND=model|trajectory|replay|workspace|meshes
+#   cmake -DTOOL=.. -DNODE=.. -DTEST_JS=.. -DMODEL=.. -DWORK=.. -DKIND=model|trajectory|replay|workspace|meshes|collision
 #         [-DWAYPOINTS=..] -P viewer_browser_test.cmake
 # Skipped (CTest's SKIP_REGULAR_EXPRESSION on "SKIPPED: chromium", with the
 # reason printed) only when Chromium is missing; never a silent pass.
@@ -28,6 +28,31 @@ elseif(KIND STREQUAL "replay")
   set(animation --expect-animation)
 elseif(KIND STREQUAL "meshes")
   set(source --meshes)  # the model names its STL meshes; browser_test.mjs checks where they are drawn
+elseif(KIND STREQUAL "collision")
+  # MODEL (4dof_reduced) with capsules on its legs and posts, seen with obstacles
+  # (--obstacles) along a trajectory planned without them: base2 starts 5 mm into
+  # the pillar, leaves it and comes back, so some frames are below the margin
+  # and some are not (collision_checks.mjs checks both).
+  file(READ "${MODEL}" model_text)
+  file(WRITE "${WORK}/model.yaml" "${model_text}
+collision:
+  margin: 0.05
+  links:
+    - {body: link0, from: [0, 0.583012702, 0.35], to: [0, 0.15, 0.6], radius: 0.03}
+    - {body: link1, from: [-0.504903811, -0.291506351, 0.35], to: [-0.129903811, -0.075, 0.6], radius: 0.03}
+    - {body: link2, from: [0.504903811, -0.291506351, 0.35], to: [0.129903811, -0.075, 0.6], radius: 0.03}
+    - {body: post0, from: [0, 0.583012702, 0.1], to: [0, 0.583012702, 0.35], radius: 0.04}
+    - {body: post1, from: [-0.504903811, -0.291506351, 0.1], to: [-0.504903811, -0.291506351, 0.35], radius: 0.04}
+    - {body: post2, from: [0.504903811, -0.291506351, 0.1], to: [0.504903811, -0.291506351, 0.35], radius: 0.04}
+")
+  file(WRITE "${WORK}/obstacles.yaml" "obstacles:
+  - {name: pillar, cylinder: {center: [1.0, -0.3], radius: 0.2, height: 1.0}}
+  - {name: crate, box: {center: [-0.9, 0.6, 0.25], size: [0.5, 0.4, 0.5], yaw: 0.4}}
+")
+  run("${TOOL}" trajectory "--model=${MODEL}" "--waypoints=${WAYPOINTS}" "--out=${WORK}/path.csv")
+  set(MODEL "${WORK}/model.yaml")
+  set(source "--obstacles=${WORK}/obstacles.yaml" "--trajectory=${WORK}/path.csv")
+  set(animation --expect-animation)
 elseif(KIND STREQUAL "workspace")
   run("${TOOL}" workspace "--model=${MODEL}" --x=-0.4:0.4 --y=-0.4:0.4 --z=0.45:1.0 --resolution=7 --threads=2
       "--out=${WORK}/map.csv")

@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include <Eigen/Eigenvalues>
 #include <nlohmann/json.hpp>
 
 #include "ccma/rotation.h"
+#include "collision/clearance.h"
+#include "collision/collision_model.h"
 #include "problems/forward_problem.h"
 #include "execution/replay.h"
 #include "viewer/stl.h"
@@ -170,6 +173,70 @@ json Workspace(const WorkspaceCloud& cloud) {
           {"components", cloud.components}, {"source", cloud.source}};
 }
 
+// The "collision" object (scene_format.md): the shapes as the model gives
+// them. Capsules stay in their body's frame and obstacles in the world, so
+// the page poses them with the bodies' poses alone; a base's cylinder
+// follows its body's x and y (collision_model.h).
+json Collision(const Model& model) {
+  const CollisionGeometry& g = model.collision;
+  json bases = json::array(), base_bodies = json::array(), links = json::array(), obstacles = json::array();
+  for (int k = 0; k < model.num_bases(); ++k) {
+    bases.push_back(Round(g.base_radii.empty() ? g.base_radius : g.base_radii[static_cast<size_t>(k)]));
+    base_bodies.push_back(model.mobile_bases[k].body);
+  }
+  for (const CollisionCapsule& c : g.links) {
+    links.push_back({{"body", c.body}, {"from", Vec(c.a_B)}, {"to", Vec(c.b_B)}, {"radius", Round(c.radius)}});
+  }
+  for (const Obstacle& o : g.obstacles) {
+    // The centre of the shape: a cylinder's z is half-way up (the model's own centre has no z).
+    const Eigen::Vector3d center(o.center.x(), o.center.y(), 0.5 * (o.z_min + o.z_max));
+    json j = {{"name", o.name}, {"center", Vec(center)}, {"z_min", Round(o.z_min)}, {"z_max", Round(o.z_max)}};
+    if (o.shape == ObstacleShape::kCylinder) {
+      j["shape"] = "cylinder";
+      j["radius"] = Round(o.radius);
+    } else {
+      j["shape"] = "box";
+      j["size"] = Vec(o.size);
+      j["yaw"] = Round(o.yaw);
+    }
+    obstacles.push_back(j);
+  }
+  return {{"margin", Round(g.margin)}, {"base_height", Round(g.base_height)}, {"bases", std::move(bases)},
+          {"base_bodies", std::move(base_bodies)}, {"links", std::move(links)}, {"obstacles", std::move(obstacles)}};
+}
+
+// Each frame's smallest clearance and its pair (frames.clearance,
+// frames.clearance_pairs), for a model with collision geometry in which
+// some pair is checked; nothing otherwise.
+class ClearanceColumns {
+ public:
+  ClearanceColumns(const Model& model, const State& home) {
+    if (!model.collision.enabled) return;
+    collision_.emplace(model);
+    active_ = MinimumClearance(*collision_, home).any;  // which pairs are checked does not depend on the state
+  }
+
+  // Records the clearance at s; true when it is below the margin (the frame is flagged).
+  bool Add(const State& s) {
+    if (!active_) return false;
+    const ClearanceSummary c = MinimumClearance(*collision_, s);
+    clearance_.push_back(Round(c.min));
+    pairs_.push_back({c.a, c.b});
+    return c.min < collision_->margin() - 1e-9;
+  }
+
+  void WriteTo(json* frames) const {
+    if (!active_) return;
+    (*frames)["clearance"] = clearance_;
+    (*frames)["clearance_pairs"] = pairs_;
+  }
+
+ private:
+  std::optional<CollisionModel> collision_;
+  bool active_ = false;
+  json clearance_ = json::array(), pairs_ = json::array();
+};
+
 json Poses(const State& s) {
   json poses = json::array();
   for (int b = 0; b < s.num_bodies(); ++b) {
@@ -231,6 +298,42 @@ class FrameAssembler {
   long used_ = 0;  // sub-steps solved so far
 };
 
+// The per-frame columns of the scene ("frames" and "paths").
+struct FrameColumns {
+  json time = json::array(), poses = json::array(), flags = json::array();
+  json commanded = json::array(), tracked = json::array(), bases = json::array();  // bases: one list per base
+  bool any_commanded = false;
+};
+
+// Re-assembles the frames in turn (scene.h), filling the columns, the
+// clearance and the summary's counts.
+void AddFrames(const Model& model, const std::vector<ViewFrame>& frames, FrameAssembler* assembler,
+               ClearanceColumns* clearance, FrameColumns* c, SceneSummary* s) {
+  const ForwardProblem& forward = assembler->forward();
+  for (const ViewFrame& f : frames) {
+    bool jump = false, beyond = false;
+    const bool assembled = assembler->Assemble(f.controls, &jump, &beyond);
+    const bool below = clearance->Add(forward.state());  // at the state drawn
+    const bool flagged = f.flagged || !assembled || jump || below;
+    s->not_assembled += assembled ? 0 : 1;
+    s->beyond_work_bound += beyond ? 1 : 0;
+    s->branch_jumps += jump ? 1 : 0;
+    s->clearance_below_margin += below ? 1 : 0;
+    s->flagged_frames += flagged ? 1 : 0;
+    c->time.push_back(Round(f.time));
+    c->poses.push_back(Poses(forward.state()));
+    c->flags.push_back(flagged ? 1 : 0);
+    c->any_commanded = c->any_commanded || f.commanded.has_value();
+    // A missing point (a failed step's empty cell) repeats the last one.
+    const Eigen::Vector3d reached = forward.end_effector().position;
+    c->commanded.push_back(Vec(f.commanded.value_or(reached)));
+    c->tracked.push_back(Vec(f.tracked.value_or(reached)));
+    for (int k = 0; k < model.num_bases(); ++k) {
+      c->bases[k].push_back({Round(f.controls[3 * k]), Round(f.controls[3 * k + 1])});
+    }
+  }
+}
+
 }  // namespace
 
 double FlagEnergyFor(const std::string& source) {
@@ -244,45 +347,29 @@ std::string BuildScene(const Model& model, const std::vector<ViewFrame>& frames,
                 {"scale", Round(scale)},     {"bodies", Bodies(model, scale, meshes)}, {"joints", Joints(model)},
                 {"end_effector", {{"body", model.end_effector.body}, {"point", Vec(model.end_effector.p_B)}}},
                 {"source", source}};
-  json time = json::array(), poses = json::array(), flags = json::array();
-  json commanded = json::array(), tracked = json::array();
-  json bases = json::array();
-  for (int k = 0; k < model.num_bases(); ++k) bases.push_back(json::array());
   SceneSummary s;
   FrameAssembler assembler(model, FlagEnergyFor(source));
-  const ForwardProblem& forward = assembler.forward();
-  if (frames.empty()) {
-    time.push_back(0);
-    poses.push_back(Poses(forward.state()));
-    flags.push_back(0);
+  ClearanceColumns clearance(model, assembler.forward().state());
+  FrameColumns c;
+  for (int k = 0; k < model.num_bases(); ++k) c.bases.push_back(json::array());
+  if (frames.empty()) {  // the model at home
+    const bool below = clearance.Add(assembler.forward().state());
+    c.time.push_back(0);
+    c.poses.push_back(Poses(assembler.forward().state()));
+    c.flags.push_back(below ? 1 : 0);
+    s.clearance_below_margin += below ? 1 : 0;
+    s.flagged_frames += below ? 1 : 0;
   }
-  bool any_commanded = false;
-  for (const ViewFrame& f : frames) {
-    bool jump = false, beyond = false;
-    const bool assembled = assembler.Assemble(f.controls, &jump, &beyond);
-    const bool flagged = f.flagged || !assembled || jump;
-    s.not_assembled += assembled ? 0 : 1;
-    s.beyond_work_bound += beyond ? 1 : 0;
-    s.branch_jumps += jump ? 1 : 0;
-    s.flagged_frames += flagged ? 1 : 0;
-    time.push_back(Round(f.time));
-    poses.push_back(Poses(forward.state()));
-    flags.push_back(flagged ? 1 : 0);
-    any_commanded = any_commanded || f.commanded.has_value();
-    // A missing point (a failed step's empty cell) repeats the last one.
-    const Eigen::Vector3d reached = forward.end_effector().position;
-    commanded.push_back(Vec(f.commanded.value_or(reached)));
-    tracked.push_back(Vec(f.tracked.value_or(reached)));
-    for (int k = 0; k < model.num_bases(); ++k) {
-      bases[k].push_back({Round(f.controls[3 * k]), Round(f.controls[3 * k + 1])});
-    }
-  }
-  s.frames = static_cast<int>(time.size());
-  scene["frames"] = {{"time", time}, {"poses", poses}, {"flags", flags}};
+  AddFrames(model, frames, &assembler, &clearance, &c, &s);
+  s.frames = static_cast<int>(c.time.size());
+  scene["frames"] = {{"time", c.time}, {"poses", c.poses}, {"flags", c.flags}};
+  clearance.WriteTo(&scene["frames"]);
   if (!frames.empty()) {
-    scene["paths"] = {{"tracked", tracked}, {"bases", bases}};
-    if (any_commanded) scene["paths"]["commanded"] = commanded;
+    scene["paths"] = {{"tracked", c.tracked}, {"bases", c.bases}};
+    if (c.any_commanded) scene["paths"]["commanded"] = c.commanded;
   }
+  // No key without collision geometry: the scene of any other model is as it was.
+  if (model.collision.enabled) scene["collision"] = Collision(model);
   if (workspace != nullptr) {
     scene["workspace"] = Workspace(*workspace);
     s.workspace_points = static_cast<long>(workspace->points.size());

@@ -28,6 +28,7 @@ struct SceneSummary {
   int not_assembled = 0;       // frames whose E stayed above FlagEnergyFor(source), or beyond the bound
   int beyond_work_bound = 0;   // of which not attempted: beyond kMaxViewFrameSubsteps or kMaxViewSubsteps
   int branch_jumps = 0;        // frames reached by a jump to another branch
+  int clearance_below_margin = 0;  // frames whose clearance is below collision.margin (collision geometry only)
   long workspace_points = 0;     // points of the workspace cloud (0 without one)
   long workspace_reachable = 0;  // of which reachable
 };
@@ -42,7 +43,11 @@ double FlagEnergyFor(const std::string& source);
 // is assembled from the previous one (ForwardProblem::Assemble, following
 // the branch), within the work bound above; frames whose E stays above
 // FlagEnergyFor(source), beyond the bound, or reached by a branch jump, are
-// flagged. `source` is "model", "trajectory",
+// flagged. With collision geometry (model.collision.enabled), the scene's
+// "collision" object holds the shapes and each frame its smallest clearance
+// (MinimumClearance at the state drawn) and pair; a frame whose clearance is
+// below collision.margin (by more than 1e-9 m) is flagged too. Without, no
+// collision key appears. `source` is "model", "trajectory",
 // "replay" or "workspace". With `workspace`, the scene's "workspace" object
 // holds its cloud and the scale covers it. With `meshes` (ReadMeshFiles of
 // the same model), the scene carries the mesh files and each body its

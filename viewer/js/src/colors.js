@@ -3,7 +3,9 @@
 // amber, omni bases blue, differential bases teal; the paths green (commanded),
 // violet (tracked) and dark blue (bases); flagged frames red; the end-effector
 // frame the usual x red, y green, z blue; a workspace map's unreachable
-// points grey (its reachable ones take the sigma_min ramp of workspace.js).
+// points grey (its reachable ones take the sigma_min ramp of workspace.js);
+// obstacles see-through grey, the collision shapes of bases and links
+// see-through sky blue (the closest pair red when below the margin).
 export const COLORS = {
   background: 0xf4f5f7,
   grid: 0xdadde2,
@@ -24,6 +26,9 @@ export const COLORS = {
   axisY: 0x43a047,
   axisZ: 0x1e88e5,
   mesh: 0xb3bcc8,  // a body's meshes (`ccma view --meshes`)
+  obstacle: 0x6b7280,      // obstacles (translucent) and their outline
+  obstacleEdge: 0x374151,
+  envelope: 0x0ea5e9,      // collision shapes of bases and links (translucent sky blue)
 };
 
 // CSS "#rrggbb" of a palette colour.

@@ -4,6 +4,7 @@
 // Nothing is fetched: the page's CSP forbids it, and nothing here asks.
 import { Color, Object3D, Scene, Vector3, WebGLRenderer } from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import { buildCollision, clearanceAt } from './collision.js';
 import { COLORS, css } from './colors.js';
 import { buildMechanism, sceneSize } from './mechanism.js';
 import { buildOverlay, showError } from './overlay.js';
@@ -62,8 +63,10 @@ function start() {
   const mechanism = buildMechanism(scene, world, size);
   buildPaths(scene, world, size);
   const cloud = buildWorkspace(scene, world, size, FOV, renderer.getPixelRatio());
+  const collision = buildCollision(scene, world);
   mechanism.pose(frames, 0);
-  const box = sceneBox(scene, mechanism);
+  if (collision) collision.pose(0);
+  const box = sceneBox(scene, mechanism, collision);
   const radius = box.getSize(new Vector3()).length() / 2;
   const step = gridStep(radius);
   addGround(world, box, step);
@@ -83,10 +86,15 @@ function start() {
   const timeOf = (f) => (span > 0 ? frames.time[f] - t0 : f / 10);
 
   // Rendered on demand: after a new frame, an orbit, a resize.
-  const render = () => renderer.render(world, camera);
+  const render = () => {
+    renderer.render(world, camera);
+    if (collision) collision.placeLabels(camera, window.innerWidth, window.innerHeight);
+  };
   const show = (f) => {
     current = Math.min(Math.max(0, Math.round(Number(f) || 0)), n - 1);
     mechanism.pose(frames, current);
+    if (collision) collision.pose(current);
+    if (ui.clearance) ui.clearance(clearanceAt(scene, current));
     ui.slider.value = String(current);
     ui.label.textContent = `t = ${frames.time[current].toFixed(2)} s (frame ${current + 1}/${n})`;
     ui.badge.style.visibility = frames.flags && frames.flags[current] === 1 ? 'visible' : 'hidden';
@@ -167,6 +175,9 @@ function start() {
     showWorkspace: (visible) => { if (cloud) cloud.setVisible('all', visible); render(); },
     workspacePointsScreen: (max = 400) => (cloud ? cloud.reachableSample(max).map(toScreen) : []),
     workspaceRamp: Array.from({ length: 33 }, (_, i) => rampColor(i / 32).map((c) => Math.round(255 * c))),
+    // The collision shapes: how many of each, shown or hidden (or shape i alone).
+    collision: collision && collision.counts,
+    showCollision: (visible, only = -1) => { if (collision) collision.setVisible(visible, only); render(); },
   };
 }
 

@@ -1,7 +1,8 @@
 // The page's controls and labels, plain DOM over the canvas (styles set from
 // here: the page has no stylesheet): title, legend, play/pause, the time
-// slider and label, a badge for flagged frames, the workspace cloud's colour
-// scale and its "unreachable" switch; and the error panel.
+// slider and label, a badge for flagged frames, the frame's clearance (with
+// collision geometry), the workspace cloud's colour scale and its
+// "unreachable" switch; and the error panel.
 import { COLORS, css } from './colors.js';
 import { rampGradient } from './workspace.js';
 
@@ -101,7 +102,14 @@ function legend(scene, gridStep, cloud) {
   if ((paths.commanded || []).length > 1) item('dashed', [COLORS.commanded], 'end-effector commanded');
   if ((paths.tracked || []).length > 1) item('solid', [COLORS.tracked], 'end-effector tracked');
   if ((paths.bases || []).some((b) => b.length > 1)) item('solid', [COLORS.basePath], 'base paths (ground)');
-  if ((scene.frames.flags || []).includes(1)) item('dot', [COLORS.flagged], 'suspect frame (not assembled / torn)');
+  const collision = scene.collision;
+  if (collision && collision.obstacles.length) item('block', [COLORS.obstacle], 'obstacle');
+  if (collision && (collision.bases.length || collision.links.length)) {
+    item('block', [COLORS.envelope], `collision shape (red: closest pair below the ${round(collision.margin)} m margin)`);
+  }
+  if ((scene.frames.flags || []).includes(1)) {
+    item('dot', [COLORS.flagged], `suspect frame (not assembled / torn${collision ? ' / below the margin' : ''})`);
+  }
   panel.append(el('div', { marginTop: '5px', color: '#6b7280' }, `grid: ${round(gridStep)} m squares (bold every ${round(5 * gridStep)} m); world z up`));
   return { panel, toggle };
 }
@@ -134,9 +142,27 @@ export function buildOverlay(scene, frames, gridStep, cloud = null) {
     slider.disabled = true;
     play.textContent = 'static';
   }
-  bar.append(play, slider, label, badge);
+  bar.append(play, slider, label);
+  const clearance = scene.collision ? clearanceLabel(bar) : null;
+  bar.append(badge);
   document.body.append(bar);
-  return { play, slider, label, badge, unreachable: toggle };
+  return { play, slider, label, badge, unreachable: toggle, clearance };
+}
+
+// The frame's clearance: its value and pair, and "below margin" in red.
+function clearanceLabel(bar) {
+  const text = el('span', { fontVariantNumeric: 'tabular-nums', whiteSpace: 'nowrap' });
+  text.id = 'ccma-clearance';
+  const below = el('span', { color: '#fff', background: css(COLORS.flagged), borderRadius: '4px', padding: '2px 8px',
+                             fontWeight: '600', display: 'none' }, 'below margin');
+  below.id = 'ccma-below-margin';
+  bar.append(text, below);
+  // info: clearanceAt() of the frame shown (null: no pair is checked).
+  return (info) => {
+    text.textContent = info ? `clearance ${info.min.toFixed(3)} m (${info.pair[0]} to ${info.pair[1]})` : 'clearance: no pair checked';
+    text.style.color = info && info.below ? css(COLORS.flagged) : '';
+    below.style.display = info && info.below ? '' : 'none';
+  };
 }
 
 export function showError(message) {

@@ -39,8 +39,8 @@ export function addGround(world, box, step) {
 }
 
 // The box of everything shown: the mechanism at frame 0 (its meshes
-// included), every path and the workspace cloud.
-export function sceneBox(scene, mechanism) {
+// included), every path, the workspace cloud and the collision shapes.
+export function sceneBox(scene, mechanism, collision = null) {
   const box = new Box3();
   mechanism.bodyPointsWorld().forEach((p) => box.expandByPoint(p));
   mechanism.bodyOriginsWorld().forEach((p) => box.expandByPoint(p));
@@ -54,6 +54,7 @@ export function sceneBox(scene, mechanism) {
     box.expandByPoint(new Vector3(...lo)).expandByPoint(new Vector3(...hi));
   }
   if (mechanism.meshCount) box.union(mechanism.meshesBox());  // bodies' meshes (`ccma view --meshes`)
+  if (collision) box.union(collision.box());  // obstacles, bases' cylinders, capsules at frame 0
   box.expandByPoint(new Vector3(box.min.x, box.min.y, 0));  // down to the ground
   // Below the ground only what is there (a robot imported in its own frame
   // may hang below z = 0), not the bases' disc radius added next.

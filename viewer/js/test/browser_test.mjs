@@ -19,6 +19,10 @@
 //      end-effector and the picture; play advances the frames, pause stops them;
 //   h, i. (pages with meshes, `ccma view --meshes`) the meshes are drawn
 //      where the scene puts them: test/mesh_checks.mjs;
+//   j, k, l. (pages with collision shapes: `collision:`, `obstacles:`,
+//      `--obstacles`) every shape drawn where the scene puts it, the overlay's
+//      clearance and "below margin" per frame, the closest pair in red:
+//      test/collision_checks.mjs;
 //   f. (--screenshot OUT.png) saves the 1200x800 picture at frame 0 (or at
 //      --screenshot-frame N), also of a failed page.
 // Prints one JSON line; exit 0 when every check passes, 1 otherwise, 77 when
@@ -29,6 +33,7 @@ import { existsSync, writeFileSync } from 'node:fs';
 import { resolve } from 'node:path';
 import { pathToFileURL } from 'node:url';
 import { chromium } from 'playwright-core';
+import { checkCollision } from './collision_checks.mjs';
 import { checkMeshes } from './mesh_checks.mjs';
 import { decodePng } from './png.mjs';
 
@@ -179,6 +184,10 @@ try {
 
     // h, i. The bodies' meshes, where the scene puts them.
     if (await page.evaluate(() => window.ccmaView.meshes > 0)) failures.push(...await checkMeshes(page, shot, drawnNear, result));
+    // j, k, l. The collision shapes and the clearance, as the scene has them.
+    if (await page.evaluate(() => Boolean(window.ccmaView.collision))) {
+      failures.push(...await checkCollision(page, shot, drawnNear, result));
+    }
 
     // e. The slider (through the UI) and play move the end-effector.
     if (args.includes('--expect-animation') && view.frames < 2) {

@@ -21,8 +21,8 @@ function stlCentroid(base64) {
   return c.map((x) => x / (3 * n));
 }
 
-// q (x, y, z, w) applied to vector v.
-function rotate([x, y, z, w], v) {
+// q (x, y, z, w) applied to vector v (also used by collision_checks.mjs).
+export function rotate([x, y, z, w], v) {
   const n = Math.hypot(x, y, z, w);
   [x, y, z, w] = [x / n, y / n, z / n, w / n];
   const t = [2 * (y * v[2] - z * v[1]), 2 * (z * v[0] - x * v[2]), 2 * (x * v[1] - y * v[0])];
