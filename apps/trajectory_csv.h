@@ -1,0 +1,30 @@
+// The CSV of `ccma trajectory` and `ccma plan` (cli.md): one row per control
+// step, every column name carrying its unit; clearance columns only with
+// collision geometry.
+#ifndef CCMA_APPS_TRAJECTORY_CSV_H_
+#define CCMA_APPS_TRAJECTORY_CSV_H_
+
+#include <ostream>
+
+#include "ccma/ccma.h"
+
+namespace ccma::cli {
+
+// Writes rows as steps arrive; keeps the smallest clearance of all rows.
+class TrajectoryCsv {
+ public:
+  TrajectoryCsv(const Model& model, std::ostream& csv);
+  void Write(const TrajectoryStep& step);
+  // The smallest clearance over the rows written (any = false: none checked).
+  const ClearanceSummary& min_clearance() const { return path_clearance_; }
+
+ private:
+  const Model& model_;
+  std::ostream& csv_;
+  const CollisionModel collision_;
+  ClearanceSummary path_clearance_;
+};
+
+}  // namespace ccma::cli
+
+#endif  // CCMA_APPS_TRAJECTORY_CSV_H_
