@@ -8,6 +8,7 @@
 #include "ccma/internal/format.h"
 #include "collision/clearance.h"
 #include "problems/internal/control_workspace.h"
+#include "problems/internal/detour_seeds.h"
 #include "problems/internal/trajectory_planner.h"
 #include "problems/path.h"
 
@@ -22,14 +23,17 @@ bool InRange(double v, double lo, double hi) { return v >= lo && v <= hi; }
 
 // The greedy steps of the legs it completed, then straight-path steps for
 // the others, all at the last assembled configuration.
-std::vector<PlannedStep> StartingSteps(const ControlProblem& problem, const std::vector<Waypoint>& waypoints,
+// Only the user's waypoints (`original`) are waypoints to the plan.
+std::vector<PlannedStep> StartingSteps(const ControlProblem& problem, const SeededPath& seeded,
                                        const std::vector<TrajectoryStep>& greedy, int reached,
                                        const Eigen::VectorXd& u0, const State& s0, const PoseTarget& start_pose) {
+  const std::vector<Waypoint>& waypoints = seeded.waypoints;
   std::vector<PlannedStep> steps;
   for (size_t i = 0; i < greedy.size(); ++i) {
     if (greedy[i].leg >= reached) break;
     const bool leg_end = i + 1 == greedy.size() || greedy[i + 1].leg != greedy[i].leg;
-    steps.push_back({greedy[i].target, leg_end, greedy[i].controls, greedy[i].state, greedy[i].result.residual_energy});
+    const bool waypoint = leg_end && seeded.original[static_cast<size_t>(greedy[i].leg)];
+    steps.push_back({greedy[i].target, waypoint, greedy[i].controls, greedy[i].state, greedy[i].result.residual_energy});
   }
   const ControlOptions& o = problem.options();
   PoseTarget from = reached == 0 ? start_pose
@@ -41,7 +45,9 @@ std::vector<PlannedStep> StartingSteps(const ControlProblem& problem, const std:
   for (size_t w = static_cast<size_t>(reached); w < waypoints.size(); ++w) {
     const PoseTarget to{waypoints[w].position, waypoints[w].rpy};
     const PosePath path(problem.forward().model(), from, to, o.max_step_m, o.max_step_rad);
-    for (int i = 1; i <= path.steps(); ++i) steps.push_back({path.At(i), i == path.steps(), u, s, energy});
+    for (int i = 1; i <= path.steps(); ++i) {
+      steps.push_back({path.At(i), i == path.steps() && seeded.original[w], u, s, energy});
+    }
     from = to;
   }
   return steps;
@@ -81,11 +87,17 @@ std::vector<TrajectoryStep> Rows(ControlProblem& problem, const std::vector<Wayp
     if (step.waypoint) {
       row.result = problem.SolveStep(step.target);
       if (!row.result.reached) problem.forward().Restore(step.s, step.u);
+    } else if (!(step.energy < problem.forward().options().assembly_tolerance)) {
+      // Assembled exactly where the plan left it nearly so: a control step
+      // to the end-effector pose it has.
+      const ControlStepResult polished = problem.SolveStep(problem.CurrentPose());
+      if (!polished.assembled) problem.forward().Restore(step.s, step.u);
+      row.result = polished;
     } else {
-      row.result.assembled = step.energy < problem.forward().options().assembly_tolerance;
+      row.result.assembled = true;
       row.result.residual_energy = step.energy;
-      row.result.reached = row.result.assembled;
     }
+    if (!step.waypoint) row.result.reached = row.result.assembled;
     step.u = problem.controls();
     step.s = problem.forward().state();
     row.target = step.target;
@@ -127,7 +139,10 @@ double MidpointClearance(ControlProblem& problem, const Eigen::VectorXd& u0, con
     problem.forward().SetState(s);
     const ForwardResult r = problem.forward().Solve(0.5 * (u + row.controls));
     const ClearanceSummary c = MinimumClearance(collision, problem.forward().state());
-    if (!r.assembled) least = -std::numeric_limits<double>::infinity();
+    // Averaged controls need not assemble exactly (a model whose controls
+    // are tied): the least-squares configuration stands for the midpoint
+    // unless it is torn by more than 1 mm.
+    if (!(r.residual_energy < 1e-6)) least = -std::numeric_limits<double>::infinity();
     if (c.any) least = std::min(least, c.min);
     u = row.controls;
     s = row.state;
@@ -173,8 +188,11 @@ PlanResult PlanTrajectory(ControlProblem& problem, const std::vector<Waypoint>& 
   const TrajectoryResult walked = FollowWaypoints(problem, waypoints, [&](const TrajectoryStep& s) { greedy.push_back(s); });
   result.greedy = Measure(model, u0, greedy, walked.reached_waypoints);
   result.greedy_warning = walked.warning;
+  // Where the greedy walk stalls, the plan starts from a detour (detour_seeds.h).
+  SeededWalk seed{{waypoints, std::vector<bool>(waypoints.size(), true)}, walked, greedy, result.greedy.travel_m};
+  if (!walked.converged && model.collision.enabled) seed = WalkWithDetours(problem, waypoints, u0, s0, 4);
   std::vector<PlannedStep> planned =
-      StartingSteps(problem, waypoints, greedy, walked.reached_waypoints, u0, s0, start_pose);
+      StartingSteps(problem, seed.path, seed.steps, seed.result.reached_waypoints, u0, s0, start_pose);
   const long unknowns = static_cast<long>(planned.size()) * static_cast<long>(problem.effective_controls().size());
   if (unknowns > kMaxPlanUnknowns) {
     throw std::invalid_argument("plan: " + std::to_string(planned.size()) + " steps of " +
