@@ -79,6 +79,24 @@ Command TrajectoryCommand() {
           RunTrajectory};
 }
 
+Command PlanCommand() {
+  return {"plan", "optimise a waypoint path's controls all together (smooth, short, clear of obstacles)",
+          "ccma plan --model=FILE --waypoints=FILE.csv --out=FILE.csv [--controls=...] [--obstacles=FILE]\n"
+          "          [--plan_iterations=200] [--path_weight=0.01] [--smoothness_weight=1] [--travel_weight=0.01]\n"
+          "          [--max_step_m=0.01] [--max_step_rad=0.005] [--lambda=0.5]",
+          "Whole-trajectory planning: walks the waypoints greedily as ccma trajectory does, then optimises\n"
+          "the controls of all the steps together: end-effector error at the waypoints (and, weakly, on the\n"
+          "straight path between them), smoothness and travel of the bases, with every step's joint limits\n"
+          "and clearance >= collision.margin held. Between waypoints the end-effector may leave the straight\n"
+          "path, so the plan finds its way round an obstacle where the greedy walk stalls. The plan is kept\n"
+          "only if it is no worse than the greedy trajectory (waypoints reached, base travel, clearance, also\n"
+          "half-way between steps); otherwise the greedy one is written, with a warning. Same CSV as\n"
+          "trajectory. Models with differential bases are refused (exit 2).",
+          {"model", "waypoints", "out", "controls", "obstacles", "plan_iterations", "path_weight",
+           "smoothness_weight", "travel_weight", "max_step_m", "max_step_rad", "lambda"},
+          RunPlan};
+}
+
 Command GenerateCommand() {
   return {"generate", "write a generated model (N-base CCMA or Stewart-Gough platform)",
           "ccma generate --agents=N [--kind=ccma|stewart_gough] --out=FILE.yaml",
@@ -211,6 +229,7 @@ const std::vector<Command>& Commands() {
       SimulateCommand(),
       ControlCommand(),
       TrajectoryCommand(),
+      PlanCommand(),
       GenerateCommand(),
       ImportCommand(),
       ExportCommand(),

@@ -35,6 +35,7 @@
 #include "analyses/design.h"
 #include "problems/forward_problem.h"
 #include "problems/path.h"
+#include "problems/plan.h"
 #include "execution/replay.h"
 #include "problems/trajectory.h"
 #include "analyses/workspace.h"

@@ -229,6 +229,7 @@ class ControlProblem {
   friend class NullSpaceStep;
   friend class SecondaryObjectiveTerms;
   friend class DifferentialTurning;
+  friend class TrajectoryPlanner;
   struct Workspace;  // end-effector error, Hessian solver, step constraints, buffers
   // The entries of u that are controls.
   Eigen::VectorXd EffectiveControls(const Eigen::VectorXd& u) const;

@@ -47,6 +47,7 @@ TrajectoryResult FollowWaypoints(ControlProblem& problem, const std::vector<Wayp
           step.controls = problem.controls();
           step.reached = problem.forward().end_effector();
           step.state = problem.forward().state();
+          step.leg = static_cast<int>(w);
           steps.push_back(step);
         });
     for (size_t i = 0; i < steps.size(); ++i) {
@@ -59,6 +60,7 @@ TrajectoryResult FollowWaypoints(ControlProblem& problem, const std::vector<Wayp
     out.solve_time_ms += leg.solve_time_ms;
     out.max_residual_energy = std::max(out.max_residual_energy, leg.max_step_residual_energy);
     out.max_error = std::max(out.max_error, leg.error);
+    if (leg.converged) ++out.reached_waypoints;
     if (!leg.converged) {
       out.converged = false;
       out.warning = "waypoint " + std::to_string(w) + " (time " + FormatG(waypoint.time) +

@@ -19,10 +19,12 @@ struct TrajectoryStep {
   Eigen::VectorXd controls;  // after the step
   EndEffectorPose reached;   // after the step
   State state;               // the configuration after the step
+  int leg = 0;               // index of the waypoint this step walks to
 };
 
 struct TrajectoryResult {
   bool converged = true;   // every waypoint reached
+  int reached_waypoints = 0;  // waypoints reached, in order, before a stop
   int steps = 0;
   int iterations = 0;
   double max_residual_energy = 0;

@@ -50,20 +50,34 @@ std::vector<int> ClearanceConstraint::AtOrBeyond(const State& s, double toleranc
   return out;
 }
 
+Eigen::RowVectorXd ClearanceConstraint::ControlGradient(const State& s, const PairClearance& p,
+                                                        const SensitivityView& ds_du) const {
+  Eigen::Matrix<double, 1, 6> g_a, g_b;
+  ClearanceGradient(collision_, s, p, &g_a, &g_b);
+  Eigen::RowVectorXd g = Eigen::RowVectorXd::Zero(s.tangent_size());
+  const int body_a = collision_.BodyOf(p.a), body_b = collision_.BodyOf(p.b);
+  if (body_a != kWorld) g.segment<kPoseTangentSize>(kPoseTangentSize * body_a) += g_a;
+  if (body_b != kWorld) g.segment<kPoseTangentSize>(kPoseTangentSize * body_b) += g_b;
+  return ds_du.RowTimes(g);
+}
+
+void ClearanceConstraint::AppendInequalities(const Eigen::VectorXd& /*u*/, const State& s,
+                                             const SensitivityView& ds_du, double watch,
+                                             std::vector<InequalityRow>* rows) const {
+  for (const PairClearance& p : Near(s, collision_.margin() + watch)) {
+    const double floor = Floor({p.a, p.b});
+    if (p.distance.distance <= floor + watch) rows->push_back({ControlGradient(s, p, ds_du), floor - p.distance.distance});
+  }
+}
+
 void ClearanceConstraint::AppendRows(const Eigen::VectorXd& /*u*/, const State& s, const SensitivityView& ds_du,
                                      const std::vector<int>& active, int first_row, LinearConstraints* rows) const {
   collision_.PlaceShapes(s, &shapes_);
   int row = first_row;
-  Eigen::Matrix<double, 1, 6> g_a, g_b;
   for (int item : active) {
     const auto [a, b] = items_[static_cast<size_t>(item)];
     const PairClearance p{a, b, Distance(shapes_[a], shapes_[b])};
-    ClearanceGradient(collision_, s, p, &g_a, &g_b);
-    Eigen::RowVectorXd g = Eigen::RowVectorXd::Zero(s.tangent_size());
-    const int body_a = collision_.BodyOf(a), body_b = collision_.BodyOf(b);
-    if (body_a != kWorld) g.segment<kPoseTangentSize>(kPoseTangentSize * body_a) += g_a;
-    if (body_b != kWorld) g.segment<kPoseTangentSize>(kPoseTangentSize * body_b) += g_b;
-    rows->A.row(row) = ds_du.RowTimes(g);
+    rows->A.row(row) = ControlGradient(s, p, ds_du);
     rows->b[row] = Floor({a, b}) - p.distance.distance;
     ++row;
   }

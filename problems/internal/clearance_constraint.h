@@ -40,6 +40,9 @@ class ClearanceConstraint final : public StepConstraint {
   std::vector<int> WouldCross(const State& s, const SensitivityView& ds_du, const Eigen::VectorXd& d,
                               double tolerance) const override;
   std::vector<int> AtOrBeyond(const State& s, double tolerance) const override;
+  // d + a delta >= floor for the pairs within `watch` of their floor.
+  void AppendInequalities(const Eigen::VectorXd& u, const State& s, const SensitivityView& ds_du, double watch,
+                          std::vector<InequalityRow>* rows) const override;
   // Sets result->max_clearance_violation; names the active pairs at their
   // floor ("clearance between 'base0' and 'pillar' at its margin 0.05 m").
   std::string Report(const Eigen::VectorXd& u, const State& s, const std::vector<int>& active,
@@ -48,6 +51,8 @@ class ClearanceConstraint final : public StepConstraint {
  private:
   // The item number of a pair (a new one the first time it is met).
   int ItemOf(int a, int b) const;
+  // dd/du (effective controls) of one pair at s.
+  Eigen::RowVectorXd ControlGradient(const State& s, const PairClearance& p, const SensitivityView& ds_du) const;
   double Floor(const std::pair<int, int>& pair) const;
   // The clearances of the pairs within `threshold` at s.
   std::vector<PairClearance> Near(const State& s, double threshold) const;

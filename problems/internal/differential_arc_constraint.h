@@ -21,6 +21,7 @@ class DifferentialArcConstraint final : public StepConstraint {
   DifferentialArcConstraint(const Model& model, std::vector<int> bases, std::vector<int> column_of);
 
   int num_items() const override { return static_cast<int>(bases_.size()); }
+  bool is_equality() const override { return true; }
   void Begin(const Eigen::VectorXd& u0, const State& /*s0*/) override { u0_ = u0; }
   // Largest |l(u)| over the bases [m].
   double MaxViolation(const Eigen::VectorXd& u, const State& s) const override;

@@ -85,6 +85,19 @@ void JointLimitConstraint::AppendRows(const Eigen::VectorXd& /*u*/, const State&
   }
 }
 
+void JointLimitConstraint::AppendInequalities(const Eigen::VectorXd& /*u*/, const State& s,
+                                              const SensitivityView& ds_du, double watch,
+                                              std::vector<InequalityRow>* rows) const {
+  Eigen::RowVectorXd dq_ds;
+  for (int j : AtOrBeyond(s, watch)) {
+    const Joint& joint = model_.joints[j];
+    const double q = JointCoordinateGradient(model_, joint, s, &dq_ds);
+    const Eigen::RowVectorXd a = ds_du.RowTimes(dq_ds);
+    if (q <= joint.lower + watch) rows->push_back({a, joint.lower - q});
+    if (q >= joint.upper - watch) rows->push_back({-a, q - joint.upper});
+  }
+}
+
 std::vector<int> JointLimitConstraint::WouldCross(const State& s, const SensitivityView& ds_du,
                                                   const Eigen::VectorXd& d, double tolerance) const {
   std::vector<int> out;

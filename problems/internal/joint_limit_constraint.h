@@ -34,6 +34,9 @@ class JointLimitConstraint final : public StepConstraint {
   std::vector<int> WouldCross(const State& s, const SensitivityView& ds_du, const Eigen::VectorXd& d,
                               double tolerance) const override;
   std::vector<int> AtOrBeyond(const State& s, double tolerance) const override;
+  // q + a d >= lower and -(q + a d) >= -upper for the bounds within `watch`.
+  void AppendInequalities(const Eigen::VectorXd& u, const State& s, const SensitivityView& ds_du, double watch,
+                          std::vector<InequalityRow>* rows) const override;
   // Sets result->max_limit_violation; names the active joints ("joint 'leg0'
   // at its upper limit 0.1 m") while a limited joint sits at a bound.
   std::string Report(const Eigen::VectorXd& u, const State& s, const std::vector<int>& active,

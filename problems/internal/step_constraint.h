@@ -24,6 +24,13 @@
 
 namespace ccma {
 
+// One-sided rows a . d >= b over the effective controls (a plan's
+// linearisation of one step, problems/internal/trajectory_planner.h).
+struct InequalityRow {
+  Eigen::RowVectorXd a;
+  double b = 0;
+};
+
 // Rows A d = b over the effective controls.
 struct LinearConstraints {
   Eigen::MatrixXd A;  // c x k (effective controls)
@@ -60,6 +67,13 @@ class StepConstraint {
                                       const Eigen::VectorXd& /*d*/, double /*tolerance*/) const {
     return {};
   }
+  // Inequalities only: a one-sided row per bound within `watch` of the
+  // items' values at (u, s) (a whole-trajectory plan holds them all at once).
+  virtual void AppendInequalities(const Eigen::VectorXd& /*u*/, const State& /*s*/, const SensitivityView& /*ds_du*/,
+                                  double /*watch*/, std::vector<InequalityRow>* /*rows*/) const {}
+  // Whether the constraint holds equalities in every step (a plan refuses it).
+  virtual bool is_equality() const { return false; }
+
   // Inequalities only: items beyond a bound, or within `tolerance` of one.
   virtual std::vector<int> AtOrBeyond(const State& /*s*/, double /*tolerance*/) const { return {}; }
 

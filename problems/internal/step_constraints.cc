@@ -87,6 +87,20 @@ ActiveSet StepConstraints::AtOrBeyond(const State& s, const ActiveSet& active) c
   return out;
 }
 
+std::vector<InequalityRow> StepConstraints::Inequalities(const Eigen::VectorXd& u, const State& s,
+                                                         const SensitivityView& ds_du, double watch) const {
+  std::vector<InequalityRow> rows;
+  for (const auto& c : constraints_) c->AppendInequalities(u, s, ds_du, watch, &rows);
+  return rows;
+}
+
+bool StepConstraints::has_equalities() const {
+  for (const auto& c : constraints_) {
+    if (c->is_equality()) return true;
+  }
+  return false;
+}
+
 void StepConstraints::Report(const Eigen::VectorXd& u, const State& s, const ActiveSet& active,
                              ControlStepResult* result) const {
   std::string limited_by;

@@ -46,6 +46,12 @@ class StepConstraints {
   // The items at or beyond a bound at s (tolerance 1e-12 beyond), then
   // those of `active` not among them: what a projection must hold.
   ActiveSet AtOrBeyond(const State& s, const ActiveSet& active) const;
+  // Every inequality's one-sided rows within `watch` of a bound at (u, s).
+  std::vector<InequalityRow> Inequalities(const Eigen::VectorXd& u, const State& s, const SensitivityView& ds_du,
+                                          double watch) const;
+  // Whether some constraint holds equalities in every step (differential arcs).
+  bool has_equalities() const;
+
   // Upper bound on the active-set passes of one LM step.
   int max_passes() const { return num_items_; }
 

@@ -1,0 +1,228 @@
+#include "problems/plan.h"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "ccma/internal/format.h"
+#include "collision/clearance.h"
+#include "problems/internal/control_workspace.h"
+#include "problems/internal/detour_seeds.h"
+#include "problems/internal/trajectory_planner.h"
+#include "problems/path.h"
+
+namespace ccma {
+namespace {
+
+// The plan's unknowns (steps x effective controls) are bounded: its sparse
+// KKT system is factorised in every iteration.
+constexpr long kMaxPlanUnknowns = 100000;
+
+bool InRange(double v, double lo, double hi) { return v >= lo && v <= hi; }
+
+// The greedy steps of the legs it completed, then straight-path steps for
+// the others, all at the last assembled configuration.
+// Only the user's waypoints (`original`) are waypoints to the plan.
+std::vector<PlannedStep> StartingSteps(const ControlProblem& problem, const SeededPath& seeded,
+                                       const std::vector<TrajectoryStep>& greedy, int reached,
+                                       const Eigen::VectorXd& u0, const State& s0, const PoseTarget& start_pose) {
+  const std::vector<Waypoint>& waypoints = seeded.waypoints;
+  std::vector<PlannedStep> steps;
+  for (size_t i = 0; i < greedy.size(); ++i) {
+    if (greedy[i].leg >= reached) break;
+    const bool leg_end = i + 1 == greedy.size() || greedy[i + 1].leg != greedy[i].leg;
+    const bool waypoint = leg_end && seeded.original[static_cast<size_t>(greedy[i].leg)];
+    steps.push_back({greedy[i].target, waypoint, greedy[i].controls, greedy[i].state, greedy[i].result.residual_energy});
+  }
+  const ControlOptions& o = problem.options();
+  PoseTarget from = reached == 0 ? start_pose
+                                 : PoseTarget{waypoints[static_cast<size_t>(reached - 1)].position,
+                                              waypoints[static_cast<size_t>(reached - 1)].rpy};
+  const Eigen::VectorXd u = steps.empty() ? u0 : steps.back().u;
+  const State s = steps.empty() ? s0 : steps.back().s;
+  const double energy = steps.empty() ? problem.forward().Energy() : steps.back().energy;
+  for (size_t w = static_cast<size_t>(reached); w < waypoints.size(); ++w) {
+    const PoseTarget to{waypoints[w].position, waypoints[w].rpy};
+    const PosePath path(problem.forward().model(), from, to, o.max_step_m, o.max_step_rad);
+    for (int i = 1; i <= path.steps(); ++i) {
+      steps.push_back({path.At(i), i == path.steps() && seeded.original[w], u, s, energy});
+    }
+    from = to;
+  }
+  return steps;
+}
+
+PathMeasures Measure(const Model& model, const Eigen::VectorXd& u0, const std::vector<TrajectoryStep>& steps,
+                     int reached) {
+  PathMeasures m;
+  m.reached_waypoints = reached;
+  m.min_clearance_m = std::numeric_limits<double>::infinity();
+  const CollisionModel collision(model);
+  Eigen::VectorXd previous = u0;
+  for (const TrajectoryStep& s : steps) {
+    for (int k = 0; k < model.num_bases(); ++k) {
+      m.travel_m += (s.controls.segment<2>(3 * k) - previous.segment<2>(3 * k)).norm();
+    }
+    previous = s.controls;
+    const ClearanceSummary c = MinimumClearance(collision, s.state);
+    if (c.any) m.min_clearance_m = std::min(m.min_clearance_m, c.min);
+  }
+  return m;
+}
+
+// The planned steps as trajectory rows: each waypoint's step solved exactly
+// from its planned controls (a control step), the others as planned.
+std::vector<TrajectoryStep> Rows(ControlProblem& problem, const std::vector<Waypoint>& waypoints,
+                                 std::vector<PlannedStep>* planned, int* reached) {
+  std::vector<TrajectoryStep> rows;
+  *reached = 0;
+  int leg = 0;
+  size_t leg_first = 0;
+  double previous_time = waypoints.front().time;
+  for (size_t k = 0; k < planned->size(); ++k) {
+    PlannedStep& step = (*planned)[k];
+    problem.forward().Restore(step.s, step.u);
+    TrajectoryStep row;
+    if (step.waypoint) {
+      row.result = problem.SolveStep(step.target);
+      if (!row.result.reached) problem.forward().Restore(step.s, step.u);
+    } else if (!(step.energy < problem.forward().options().assembly_tolerance)) {
+      // Assembled exactly where the plan left it nearly so: a control step
+      // to the end-effector pose it has.
+      const ControlStepResult polished = problem.SolveStep(problem.CurrentPose());
+      if (!polished.assembled) problem.forward().Restore(step.s, step.u);
+      row.result = polished;
+    } else {
+      row.result.assembled = true;
+      row.result.residual_energy = step.energy;
+    }
+    if (!step.waypoint) row.result.reached = row.result.assembled;
+    step.u = problem.controls();
+    step.s = problem.forward().state();
+    row.target = step.target;
+    row.controls = step.u;
+    row.state = step.s;
+    row.reached = problem.forward().end_effector();
+    row.leg = leg;
+    if (!step.waypoint) {
+      const Eigen::Vector3d dp = row.reached.position - step.target.position;
+      row.result.error = dp.lpNorm<Eigen::Infinity>();
+    }
+    rows.push_back(row);
+    if (step.waypoint) {
+      const double t = waypoints[static_cast<size_t>(leg)].time;
+      const size_t n = rows.size() - leg_first;
+      for (size_t i = leg_first; i < rows.size(); ++i) {
+        rows[i].time = previous_time + (t - previous_time) * double(i - leg_first + 1) / double(n);
+      }
+      if (row.result.reached && *reached == leg) ++*reached;
+      previous_time = t;
+      leg_first = rows.size();
+      ++leg;
+    }
+  }
+  return rows;
+}
+
+// The smallest clearance at the midpoints of consecutive steps' controls
+// (a plan must not jump through an obstacle between two steps); +inf when
+// nothing is checked.
+double MidpointClearance(ControlProblem& problem, const Eigen::VectorXd& u0, const State& s0,
+                         const std::vector<TrajectoryStep>& rows) {
+  const CollisionModel collision(problem.forward().model());
+  double least = std::numeric_limits<double>::infinity();
+  if (!collision.enabled()) return least;
+  Eigen::VectorXd u = u0;
+  State s = s0;
+  for (const TrajectoryStep& row : rows) {
+    problem.forward().SetState(s);
+    const ForwardResult r = problem.forward().Solve(0.5 * (u + row.controls));
+    const ClearanceSummary c = MinimumClearance(collision, problem.forward().state());
+    // Averaged controls need not assemble exactly (a model whose controls
+    // are tied): the least-squares configuration stands for the midpoint
+    // unless it is torn by more than 1 mm.
+    if (!(r.residual_energy < 1e-6)) least = -std::numeric_limits<double>::infinity();
+    if (c.any) least = std::min(least, c.min);
+    u = row.controls;
+    s = row.state;
+  }
+  return least;
+}
+
+}  // namespace
+
+bool PlanOptions::IsValid(std::string* why) const {
+  auto fail = [&](const std::string& text) {
+    if (why != nullptr) *why = text;
+    return false;
+  };
+  if (!(waypoint_weight > 0 && waypoint_weight <= 1e6)) return fail("waypoint_weight must lie in (0, 1e6]");
+  if (!InRange(path_weight, 0, 1e6)) return fail("path_weight must lie in [0, 1e6]");
+  if (!InRange(smoothness_weight, 0, 1e6)) return fail("smoothness_weight must lie in [0, 1e6]");
+  if (!InRange(travel_weight, 0, 1e6)) return fail("travel_weight must lie in [0, 1e6]");
+  if (max_iterations < 1 || max_iterations > 10000) return fail("max_iterations must lie in [1, 10000]");
+  return true;
+}
+
+PlanResult PlanTrajectory(ControlProblem& problem, const std::vector<Waypoint>& waypoints, const PlanOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument("plan options: " + why);
+  if (problem.options().method != ControlMethod::kLevenbergMarquardt) {
+    throw std::invalid_argument("plan: the whole-path optimisation uses the lm method");
+  }
+  const Model& model = problem.forward().model();
+  for (const MobileBase& base : model.mobile_bases) {
+    if (base.type == BaseType::kDifferential) {
+      throw std::invalid_argument("plan: differential bases (their arcs tie neighbouring steps) are not planned yet");
+    }
+  }
+  PlanResult result;
+  if (waypoints.empty()) return result;
+  const Eigen::VectorXd u0 = problem.controls();
+  const State s0 = problem.forward().state();
+  const PoseTarget start_pose = problem.CurrentPose();
+  // The greedy trajectory: the start, and what the plan must not be worse than.
+  std::vector<TrajectoryStep> greedy;
+  const TrajectoryResult walked = FollowWaypoints(problem, waypoints, [&](const TrajectoryStep& s) { greedy.push_back(s); });
+  result.greedy = Measure(model, u0, greedy, walked.reached_waypoints);
+  result.greedy_warning = walked.warning;
+  // Where the greedy walk stalls, the plan starts from a detour (detour_seeds.h).
+  SeededWalk seed{{waypoints, std::vector<bool>(waypoints.size(), true)}, walked, greedy, result.greedy.travel_m};
+  if (!walked.converged && model.collision.enabled) seed = WalkWithDetours(problem, waypoints, u0, s0, 4);
+  std::vector<PlannedStep> planned =
+      StartingSteps(problem, seed.path, seed.steps, seed.result.reached_waypoints, u0, s0, start_pose);
+  const long unknowns = static_cast<long>(planned.size()) * static_cast<long>(problem.effective_controls().size());
+  if (unknowns > kMaxPlanUnknowns) {
+    throw std::invalid_argument("plan: " + std::to_string(planned.size()) + " steps of " +
+                                std::to_string(problem.effective_controls().size()) + " controls exceed " +
+                                std::to_string(kMaxPlanUnknowns) + " unknowns; use fewer or longer steps (--max_step_m)");
+  }
+  result.iterations = TrajectoryPlanner(&problem, options).Optimize(u0, s0, &planned);
+  int reached = 0;
+  std::vector<TrajectoryStep> rows = Rows(problem, waypoints, &planned, &reached);
+  result.plan = Measure(model, u0, rows, reached);
+  result.plan.min_clearance_m = std::min(result.plan.min_clearance_m, MidpointClearance(problem, u0, s0, rows));
+  const double margin = model.collision.margin;
+  const bool safe = result.plan.min_clearance_m >= std::min(result.greedy.min_clearance_m, margin) - 1e-9;
+  const bool more = result.plan.reached_waypoints > result.greedy.reached_waypoints;
+  const bool as_many = result.plan.reached_waypoints == result.greedy.reached_waypoints;
+  result.used_plan = safe && (more || (as_many && result.plan.travel_m <= result.greedy.travel_m + 1e-9));
+  if (result.used_plan) {
+    result.steps = std::move(rows);
+  } else {
+    result.note = !safe ? "the plan came closer to an obstacle than the margin (between or at steps)"
+                  : result.plan.reached_waypoints < result.greedy.reached_waypoints ? "the plan reached fewer waypoints"
+                                                                                     : "the plan travelled further";
+    result.steps = std::move(greedy);
+  }
+  const TrajectoryStep* last = result.steps.empty() ? nullptr : &result.steps.back();
+  if (last != nullptr) problem.forward().Restore(last->state, last->controls);
+  const int reached_final = result.used_plan ? result.plan.reached_waypoints : result.greedy.reached_waypoints;
+  result.converged = reached_final == static_cast<int>(waypoints.size());
+  result.solve_time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace ccma
