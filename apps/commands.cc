@@ -80,7 +80,7 @@ Command TrajectoryCommand() {
 }
 
 Command PlanCommand() {
-  return {"plan", "optimise a waypoint path's controls all together (smooth, short, clear of obstacles)",
+  return {"plan", "optimise a waypoint path's controls together (smooth, short, round obstacles)",
           "ccma plan --model=FILE --waypoints=FILE.csv --out=FILE.csv [--controls=...] [--obstacles=FILE]\n"
           "          [--plan_iterations=200] [--path_weight=0.01] [--smoothness_weight=1] [--travel_weight=0.01]\n"
           "          [--max_step_m=0.01] [--max_step_rad=0.005] [--lambda=0.5]",

@@ -46,3 +46,11 @@ echo "screenshots: docs/images/import_5bar.png"
   --out="$out/slice.csv" --plot="$out/slice" > /dev/null
 cp "$out/slice/sigma_min.png" docs/images/workspace_sigma_min_4dof_reduced.png
 echo "screenshots: docs/images/workspace_sigma_min_4dof_reduced.png"
+# A detour round a pillar (docs/obstacles.md): ccma plan where the greedy walk stops.
+"$build"/apps/ccma plan --model=examples/obstacles/pillar_detour.yaml --waypoints=examples/obstacles/one_metre_x.csv \
+  --out="$out/detour.csv" > /dev/null
+"$build"/apps/ccma view --model=examples/obstacles/pillar_detour.yaml --trajectory="$out/detour.csv" \
+  --out="$out/detour.html" > /dev/null
+node viewer/js/test/browser_test.mjs --html "$out/detour.html" --expect-animation \
+  --screenshot docs/images/obstacles_detour.png --screenshot-frame 75 > /dev/null
+echo "screenshots: docs/images/obstacles_detour.png"

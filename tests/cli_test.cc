@@ -334,7 +334,7 @@ TEST(Cli, GlobalHelpHasOneLinePerCommand) {
     EXPECT_LE(line.size(), 100u) << line;
     listed.push_back(name);
   }
-  EXPECT_EQ(listed, (std::vector<std::string>{"check", "simulate", "control", "trajectory", "generate", "import",
+  EXPECT_EQ(listed, (std::vector<std::string>{"check", "simulate", "control", "trajectory", "plan", "generate", "import",
                                               "export", "bench", "replay", "view", "workspace", "design"}))
       << r.out;
   for (const std::string& name : listed) {
@@ -365,23 +365,25 @@ TEST(Cli, HelpGoesToStdout) {
 // each with a unit in brackets.
 TEST(Cli, EachCommandHasItsOwnHelpWithUnits) {
   const std::map<std::string, std::vector<std::string>> flags = {
-      {"check", {"model"}},
-      {"simulate", {"model", "controls", "from"}},
-      {"control", {"model", "target", "controls", "singularity_weight", "singularity_threshold", "pivot_weight",
+      {"check", {"model", "obstacles"}},
+      {"simulate", {"model", "controls", "from", "obstacles"}},
+      {"control", {"model", "target", "controls", "obstacles", "singularity_weight", "singularity_threshold", "pivot_weight",
                    "pivot_threshold", "secondary", "secondary_weight", "clearance_m", "method", "max_step_m",
                    "max_step_rad", "lambda"}},
-      {"trajectory", {"model", "waypoints", "out", "controls", "singularity_weight", "singularity_threshold",
+      {"plan", {"model", "waypoints", "out", "controls", "obstacles", "plan_iterations", "path_weight",
+                "smoothness_weight", "travel_weight", "max_step_m", "max_step_rad", "lambda"}},
+      {"trajectory", {"model", "waypoints", "out", "controls", "obstacles", "singularity_weight", "singularity_threshold",
                       "pivot_weight", "pivot_threshold", "secondary", "secondary_weight", "clearance_m", "method",
                       "max_step_m", "max_step_rad", "lambda"}},
       {"generate", {"agents", "kind", "out"}},
       {"import", {"from", "closures", "actuated", "end_effector", "controlled", "out"}},
       {"bench", {"model", "all", "models_dir", "scaling", "steps", "seed", "out"}},
       {"replay", {"model", "waypoints", "out", "noise", "seed", "mocap_noise_m", "mocap_noise_rad",
-                  "latency_s", "slip", "kp", "ki", "controller_hz", "max_wheel_speed", "method", "max_step_m",
+                  "latency_s", "slip", "kp", "ki", "controller_hz", "max_wheel_speed", "obstacles", "method", "max_step_m",
                   "max_step_rad", "lambda"}},
-      {"view", {"model", "trajectory", "replay", "workspace", "meshes", "out"}},
+      {"view", {"model", "trajectory", "replay", "workspace", "meshes", "out", "obstacles"}},
       {"workspace", {"model", "out", "x", "y", "z", "roll", "pitch", "yaw", "resolution", "samples", "seed",
-                     "threads", "plot", "method", "max_step_m", "max_step_rad", "lambda"}},
+                     "threads", "plot", "obstacles", "method", "max_step_m", "max_step_rad", "lambda"}},
       {"design", {"model", "targets", "out", "vary", "vary_length", "max_change", "min_length", "min_singular_value",
                   "target_tolerance", "design_iterations", "method", "max_step_m", "max_step_rad", "lambda"}},
       {"export", {"model", "format", "out"}}};

@@ -14,7 +14,8 @@ namespace {
 using Table = CsvTable;
 
 Table ReadTable(const std::string& path) {
-  return ReadCsvTable(path, CsvLimits{kMaxViewFileBytes, kMaxReplaySamples, {}});
+  // A trajectory's clearance_pair (cli.md) names two shapes: text.
+  return ReadCsvTable(path, CsvLimits{kMaxViewFileBytes, kMaxReplaySamples, {"clearance_pair"}});
 }
 
 // A value that must be present and finite (controls, times).

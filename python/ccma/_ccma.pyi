@@ -5,7 +5,7 @@ Type stub of the extension module `ccma._ccma` (python/src/*.cc), re-exported by
 package `ccma`. Checked against the built module by python/tests/test_stub.py.
 Reference: docs/python.md.
 """
-from typing import Literal, NotRequired, Optional, Sequence, Tuple, TypedDict, overload
+from typing import Any, Literal, NotRequired, Optional, Sequence, Tuple, TypedDict, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -206,8 +206,8 @@ class Model:
     def __repr__(self) -> str:
         """<ccma.Model 'name': N bodies, N bases, N joints>."""
 
-def load_model(path: str) -> Model:
-    """Reads and validates a model file (YAML or JSON); raises ModelError 'file:line: key: what' (a misspelt key too); other unknown keys, lengths above 100 m and angles above 2 pi warn (UserWarning)."""
+def load_model(path: str, obstacles: str | None = None) -> Model:
+    """Reads and validates a model file (YAML or JSON); raises ModelError 'file:line: key: what' (a misspelt key too); other unknown keys, lengths above 100 m and angles above 2 pi warn (UserWarning). obstacles: a file with one key, obstacles:, added to the model's."""
 
 def load_model_from_string(text: str, source_name: str = "<string>") -> Model:
     """load_model for model text in memory; source_name stands in for the file name in messages."""
@@ -568,6 +568,9 @@ class ControlStepResult:
     def max_limit_violation(self) -> float:
         """Largest joint limit violation [rad or m]."""
     @property
+    def max_clearance_violation(self) -> float:
+        """How far a pair of shapes is below collision.margin [m] (0)."""
+    @property
     def max_lateral_displacement(self) -> float:
         """Largest lateral displacement of a differential base over the step [m]."""
     @property
@@ -619,6 +622,9 @@ class ControlResult:
     @property
     def max_limit_violation(self) -> float:
         """The worst joint limit violation over the path's steps [rad or m]."""
+    @property
+    def max_clearance_violation(self) -> float:
+        """The worst clearance below collision.margin over the path's steps [m] (0)."""
     @property
     def max_lateral_displacement(self) -> float:
         """The worst lateral displacement of a differential base over the path's steps [m]."""
@@ -738,6 +744,24 @@ class ControlProblem:
     @property
     def current_pose(self) -> NDArray[np.float64]:
         """[x, y, z, roll, pitch, yaw] of the end-effector now, shape (6,) [m, rad]."""
+
+# --------------------------------------------------------------- collision ----
+
+@overload
+def clearance(problem: ForwardProblem) -> dict[str, Any] | None:
+    """The smallest clearance at the problem's configuration: {'min', 'pair', 'margin', 'below_margin'}, or None without collision geometry."""
+@overload
+def clearance(problem: ControlProblem) -> dict[str, Any] | None:
+    """The same for a ControlProblem."""
+def plan(
+    problem: ControlProblem,
+    waypoints: Sequence[Waypoint],
+    path_weight: float = 0.01,
+    smoothness_weight: float = 1.0,
+    travel_weight: float = 0.01,
+    max_iterations: int = 200,
+) -> dict[str, Any]:
+    """Whole-trajectory planning (`ccma plan`): converged, used, note, iterations, greedy, plan, and per step time, controls, reached, clearance."""
 
 # --------------------------------------------------------------- waypoints ----
 

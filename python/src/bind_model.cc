@@ -1,5 +1,6 @@
 // Models: ccma.load_model(path) -> Model (read-only), ccma.ModelError.
 #include <filesystem>
+#include <optional>
 
 #include <pybind11/eigen.h>
 #include <pybind11/stl/filesystem.h>
@@ -7,6 +8,7 @@
 
 #include "ccma/model.h"
 #include "formats/model_loader.h"
+#include "formats/obstacles_file.h"
 #include "python/src/bindings.h"
 
 namespace py = pybind11;
@@ -126,16 +128,18 @@ void BindModel(py::module_& m) {
   BindModelClass(m);
   m.def(
       "load_model",
-      [](const std::filesystem::path& path) {
+      [](const std::filesystem::path& path, const std::optional<std::filesystem::path>& obstacles) {
         std::vector<std::string> warnings;
         Model model = LoadModel(path.string(), &warnings);
+        if (obstacles) AddObstaclesFromFile(obstacles->string(), &model, &warnings);
         Warn(warnings);
         return model;
       },
-      py::arg("path"),
+      py::arg("path"), py::arg("obstacles") = py::none(),
       "Reads and validates a model file (YAML or JSON, docs/model_format.md). Raises "
       "ccma.ModelError with 'file:line: key: what' on any problem (a misspelt key too); other "
-      "unknown keys, lengths above 100 m and angles above 2 pi give a UserWarning.");
+      "unknown keys, lengths above 100 m and angles above 2 pi give a UserWarning. obstacles: "
+      "a file with one key, obstacles: (docs/obstacles.md), added to the model's (`--obstacles`).");
   m.def(
       "load_model_from_string",
       [](const std::string& text, const std::string& source_name) {

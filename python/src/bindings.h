@@ -25,6 +25,7 @@ void BindView(pybind11::module_& m);       // the 3D viewer's HTML
 void BindWorkspace(pybind11::module_& m);  // workspace maps (private; ccma.workspace wraps them)
 void BindDesign(pybind11::module_& m);     // design parameters: ds/dp and the design loop
 void BindImport(pybind11::module_& m);     // robots described elsewhere (URDF, SDFormat)
+void BindCollision(pybind11::module_& m);  // clearance, whole-trajectory planning
 
 }  // namespace ccma::python
 

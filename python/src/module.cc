@@ -16,4 +16,5 @@ PYBIND11_MODULE(_ccma, m) {
   ccma::python::BindDesign(m);
   ccma::python::BindWorkspace(m);
   ccma::python::BindImport(m);
+  ccma::python::BindCollision(m);
 }

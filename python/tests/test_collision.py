@@ -1,0 +1,51 @@
+"""Obstacles and collisions from Python (docs/obstacles.md): obstacles added to
+a loaded model, the clearance of a problem, control stopping at the margin,
+and ccma.plan finding the detour the greedy walk cannot."""
+import math
+import pathlib
+
+import numpy as np
+import pytest
+
+import ccma
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+EXAMPLES = ROOT / "examples" / "obstacles"
+MODELS = ROOT / "models"
+
+
+def test_load_model_adds_an_obstacles_file_and_clearance_is_the_closed_form():
+    model = ccma.load_model(MODELS / "4dof_reduced.yaml", obstacles=EXAMPLES / "pillar_on_base2.yaml")
+    problem = ccma.ForwardProblem(model)
+    c = ccma.clearance(problem)
+    # base2 at (0.504903811, -0.291506351), radius 0.3; the pillar at (1, -0.29), radius 0.1.
+    assert c["pair"] == ("base2", "pillar")
+    assert c["min"] == pytest.approx(math.hypot(1 - 0.504903811, 0.291506351 - 0.29) - 0.4, abs=1e-9)
+    assert c["margin"] == pytest.approx(0.02)
+    assert not c["below_margin"]
+    assert ccma.clearance(ccma.ForwardProblem(ccma.load_model(MODELS / "4dof_reduced.yaml"))) is None
+    with pytest.raises(ccma.ModelError):
+        ccma.load_model(MODELS / "4dof_reduced.yaml", obstacles=EXAMPLES / "missing.yaml")
+
+
+def test_control_stops_at_the_margin_and_names_the_pair():
+    model = ccma.load_model(EXAMPLES / "pillar_detour.yaml")
+    control = ccma.ControlProblem(model)
+    result = control.move_to([1.0, 0.0, 0.6, 0, 0, 0])
+    assert not result.converged
+    assert "'base2' and 'pillar'" in result.warning
+    assert result.max_clearance_violation <= 1e-9
+    assert ccma.clearance(control)["min"] >= 0.05 - 1e-9
+
+
+def test_plan_goes_round_the_pillar():
+    model = ccma.load_model(EXAMPLES / "pillar_detour.yaml")
+    control = ccma.ControlProblem(model)
+    waypoints = ccma.load_waypoints(EXAMPLES / "one_metre_x.csv")
+    result = ccma.plan(control, waypoints)
+    assert result["used"] == "plan" and result["converged"]
+    assert result["plan"]["reached_waypoints"] == 2 > result["greedy"]["reached_waypoints"]
+    assert np.all(result["clearance"] >= 0.05 - 1e-9)
+    np.testing.assert_allclose(result["reached"][-1, :3], [1.0, 0.0, 0.6], atol=1e-9)
+    with pytest.raises(ValueError):
+        ccma.plan(control, waypoints, path_weight=-1)

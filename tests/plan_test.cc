@@ -1,0 +1,138 @@
+// Whole-trajectory planning (problems/plan.h, `ccma plan`): it finds a detour
+// where the greedy walk stalls against a pillar, keeps every step and every
+// midpoint between steps clear of it, is never worse than the greedy walk,
+// and refuses what it does not handle.
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "collision/clearance.h"
+#include "formats/model_loader.h"
+#include "formats/waypoints.h"
+#include "problems/control_problem.h"
+#include "problems/forward_problem.h"
+#include "problems/plan.h"
+#include "problems/trajectory.h"
+#include "tool_run.h"
+
+namespace ccma {
+namespace {
+
+const std::string kExamples = std::string(CCMA_SOURCE_DIR) + "/examples/obstacles/";
+
+double Clearance(const Model& model, const State& s) {
+  const ClearanceSummary c = MinimumClearance(CollisionModel(model), s);
+  return c.any ? c.min : INFINITY;
+}
+
+TEST(Plan, FindsTheDetourWhereTheGreedyWalkStalls) {
+  const Model model = LoadModel(kExamples + "pillar_detour.yaml");
+  const std::vector<Waypoint> path = LoadWaypoints(kExamples + "one_metre_x.csv");
+  {  // The greedy walk stops in front of the pillar and names it.
+    ControlProblem greedy(model);
+    greedy.SetControls(model.home_controls());
+    const TrajectoryResult walked = FollowWaypoints(greedy, path, nullptr);
+    EXPECT_FALSE(walked.converged);
+    EXPECT_NE(walked.warning.find("'base2' and 'pillar'"), std::string::npos) << walked.warning;
+  }
+  ControlProblem problem(model);
+  problem.SetControls(model.home_controls());
+  const PlanResult plan = PlanTrajectory(problem, path);
+  ASSERT_TRUE(plan.used_plan) << plan.note;
+  EXPECT_TRUE(plan.converged);
+  EXPECT_EQ(plan.plan.reached_waypoints, 2);
+  EXPECT_EQ(plan.greedy.reached_waypoints, 1);
+  const TrajectoryStep& last = plan.steps.back();
+  EXPECT_LT((last.reached.position - Eigen::Vector3d(1.0, 0, 0.6)).norm(), 1e-9);
+  // Every step assembled and clear; base2 passes the pillar beside it.
+  ForwardProblem forward(model);
+  Eigen::VectorXd u = model.home_controls();
+  State s = State::Home(model);
+  bool beside = false;
+  for (const TrajectoryStep& step : plan.steps) {
+    EXPECT_TRUE(step.result.assembled);
+    EXPECT_GE(Clearance(model, step.state), 0.05 - 1e-9);
+    const Eigen::Vector2d base2 = step.controls.segment<2>(6);
+    beside = beside || (std::abs(base2.x() - 1.0) < 0.05 && std::abs(base2.y() + 0.29) >= 0.1 + 0.15 + 0.05);
+    // Half-way between this step and the last, re-solved: clear too.
+    forward.SetState(s);
+    forward.Solve(0.5 * (u + step.controls));
+    EXPECT_GE(Clearance(model, forward.state()), 0.05 - 1e-6);
+    u = step.controls;
+    s = step.state;
+  }
+  EXPECT_TRUE(beside);
+  EXPECT_NEAR(plan.plan.min_clearance_m, 0.154, 0.01);
+}
+
+TEST(Plan, IsNeverWorseThanTheGreedyWalk) {
+  struct Case {
+    std::string model, path;
+  };
+  for (const Case& c : {Case{std::string(CCMA_MODELS_DIR) + "/4dof_reduced.yaml",
+                             std::string(CCMA_MODELS_DIR) + "/paths/4dof_sequential.csv"},
+                        Case{kExamples + "six_agents_pillar.yaml", kExamples + "path_x.csv"}}) {
+    const Model model = LoadModel(c.model);
+    ControlProblem problem(model);
+    problem.SetControls(model.home_controls());
+    PlanOptions options;
+    options.max_iterations = 30;  // the comparison holds after any number
+    const PlanResult plan = PlanTrajectory(problem, LoadWaypoints(c.path), options);
+    const PathMeasures& chosen = plan.used_plan ? plan.plan : plan.greedy;
+    EXPECT_GE(chosen.reached_waypoints, plan.greedy.reached_waypoints) << c.model;
+    if (chosen.reached_waypoints == plan.greedy.reached_waypoints) {
+      EXPECT_LE(chosen.travel_m, plan.greedy.travel_m + 1e-9) << c.model;
+    }
+    EXPECT_GE(chosen.min_clearance_m, std::min(plan.greedy.min_clearance_m, model.collision.margin) - 1e-9);
+    EXPECT_TRUE(plan.converged) << c.model;
+    EXPECT_EQ(plan.used_plan, plan.note.empty());
+  }
+}
+
+TEST(Plan, RefusesWhatItDoesNotHandle) {
+  const Model differential = LoadModel(std::string(CCMA_MODELS_DIR) + "/4dof_differential.yaml");
+  ControlProblem arcs(differential);
+  const std::vector<Waypoint> path = {{1.0, Eigen::Vector3d(0.01, 0, 0.6), Eigen::Vector3d::Zero()}};
+  EXPECT_THROW(PlanTrajectory(arcs, path), std::invalid_argument);
+  const Model model = LoadModel(std::string(CCMA_MODELS_DIR) + "/4dof_reduced.yaml");
+  ControlOptions bfgs;
+  bfgs.method = ControlMethod::kBfgs;
+  ControlProblem with_bfgs(model, bfgs);
+  EXPECT_THROW(PlanTrajectory(with_bfgs, path), std::invalid_argument);
+  ControlProblem problem(model);
+  PlanOptions bad;
+  bad.path_weight = -1;
+  EXPECT_THROW(PlanTrajectory(problem, path, bad), std::invalid_argument);
+  bad = PlanOptions();
+  bad.max_iterations = 0;
+  EXPECT_FALSE(bad.IsValid(nullptr));
+}
+
+TEST(Plan, CliWritesTheTrajectoryCsvAndSaysWhichItKept) {
+  const std::string dir = ::testing::TempDir();
+  const testing::ToolRun run =
+      testing::RunTool({"plan", "--model=" + kExamples + "pillar_detour.yaml",
+                        "--waypoints=" + kExamples + "one_metre_x.csv", "--out=" + dir + "/plan.csv"});
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_NE(run.out.find("\"used\": \"plan\""), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("\"converged\": true"), std::string::npos);
+  const std::string csv = testing::Slurp(dir + "/plan.csv");
+  EXPECT_EQ(csv.rfind("time_s,target_x_m,", 0), 0u);
+  EXPECT_NE(csv.find(",clearance_m,clearance_pair\n"), std::string::npos);
+  const testing::ToolRun refused =
+      testing::RunTool({"plan", "--model=" + std::string(CCMA_MODELS_DIR) + "/4dof_differential.yaml",
+                        "--waypoints=" + kExamples + "one_metre_x.csv", "--out=" + dir + "/no.csv"});
+  EXPECT_EQ(refused.status, 2);
+  EXPECT_TRUE(refused.out.empty());
+  EXPECT_NE(refused.err.find("differential"), std::string::npos);
+  const testing::ToolRun bad_flag = testing::RunTool(
+      {"plan", "--model=" + kExamples + "pillar_detour.yaml", "--waypoints=" + kExamples + "one_metre_x.csv",
+       "--out=" + dir + "/no.csv", "--path_weight=-1"});
+  EXPECT_EQ(bad_flag.status, 2);
+  EXPECT_NE(bad_flag.err.find("--path_weight"), std::string::npos) << bad_flag.err;
+}
+
+}  // namespace
+}  // namespace ccma
