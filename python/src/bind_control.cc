@@ -153,7 +153,7 @@ void BindOptions(py::module_& m) {
   }, "(ok, why): whether every field is in range");
 }
 
-void BindResults(py::module_& m) {
+void BindStepResult(py::module_& m) {
   py::class_<ControlStepResult>(m, "ControlStepResult", "One solve toward one target (ControlProblem.step).")
       .def_readonly("reached", &ControlStepResult::reached)
       .def_readonly("assembled", &ControlStepResult::assembled)
@@ -171,6 +171,10 @@ void BindResults(py::module_& m) {
       .def_readonly("max_lateral_displacement", &ControlStepResult::max_lateral_displacement, "[m]")
       .def_readonly("limited_by", &ControlStepResult::limited_by)
       .def_readonly("time_ms", &ControlStepResult::time_ms, "[ms]");
+}
+
+void BindResults(py::module_& m) {
+  BindStepResult(m);
   py::class_<ControlSolution>(m, "ControlResult", "The outcome of ControlProblem.move_to.")
       .def_readonly("converged", &ControlSolution::converged, "the target was reached")
       .def_readonly("assembled", &ControlSolution::assembled)
