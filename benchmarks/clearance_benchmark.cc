@@ -17,6 +17,7 @@
 #include <benchmark/benchmark.h>
 
 #include "ccma/ccma.h"
+#include "benchmarks/paper_step.h"
 
 namespace {
 
@@ -51,14 +52,6 @@ std::string WithCollision(const std::string& text, double ring, double base_radi
   return out.str();
 }
 
-PoseTarget Moved(const Model& m, const PoseTarget& home) {
-  const Eigen::Vector3d direction = Eigen::Vector3d(1, 1, 1).normalized();
-  PoseTarget t = home;
-  t.position += 0.010 * direction;
-  const Eigen::Vector3d axis = m.end_effector.controlled[kRoll] ? direction : Eigen::Vector3d::UnitZ();
-  t.rpy = RpyFromRotation(QuaternionExp(0.005 * axis).toRotationMatrix() * RotationFromRpy(home.rpy));
-  return t;
-}
 
 // obstacles < 0: no collision geometry at all.
 void BM_ClearanceStep(benchmark::State& state, const std::string& name, double ring, double base_radius,
@@ -67,7 +60,7 @@ void BM_ClearanceStep(benchmark::State& state, const std::string& name, double r
   const Model model =
       LoadModelFromString(obstacles < 0 ? text : WithCollision(text, ring, base_radius, obstacles), name);
   ControlProblem control(model);
-  const PoseTarget targets[2] = {control.CurrentPose(), Moved(model, control.CurrentPose())};
+  const PoseTarget targets[2] = {control.CurrentPose(), PaperStep(model, control.CurrentPose())};
   int which = 1;
   long steps = 0, reached = 0;
   for (auto _ : state) {

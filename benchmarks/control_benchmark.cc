@@ -16,19 +16,12 @@
 #include <benchmark/benchmark.h>
 
 #include "ccma/ccma.h"
+#include "benchmarks/paper_step.h"
 
 namespace {
 
 using namespace ccma;
 
-PoseTarget Moved(const Model& m, const PoseTarget& home) {
-  const Eigen::Vector3d direction = Eigen::Vector3d(1, 1, 1).normalized();
-  PoseTarget t = home;
-  t.position += 0.010 * direction;
-  const Eigen::Vector3d axis = m.end_effector.controlled[kRoll] ? direction : Eigen::Vector3d::UnitZ();
-  t.rpy = RpyFromRotation(QuaternionExp(0.005 * axis).toRotationMatrix() * RotationFromRpy(home.rpy));
-  return t;
-}
 
 void BM_ControlStep(benchmark::State& state, const std::string& name, ControlMethod method,
                     GradientMethod gradient) {
@@ -37,7 +30,7 @@ void BM_ControlStep(benchmark::State& state, const std::string& name, ControlMet
   options.method = method;
   options.gradient = gradient;
   ControlProblem control(model, options);
-  const PoseTarget targets[2] = {control.CurrentPose(), Moved(model, control.CurrentPose())};
+  const PoseTarget targets[2] = {control.CurrentPose(), PaperStep(model, control.CurrentPose())};
   int which = 1;
   long iterations = 0, solves = 0, steps = 0, reached = 0;
   for (auto _ : state) {
@@ -64,7 +57,7 @@ void BM_Gradient(benchmark::State& state, const std::string& name, Derivative de
     state.SkipWithError("home does not assemble");
     return;
   }
-  const PoseTarget target = Moved(model, control.CurrentPose());
+  const PoseTarget target = PaperStep(model, control.CurrentPose());
   Eigen::VectorXd dO_du;
   double checksum = 0;
   for (auto _ : state) {

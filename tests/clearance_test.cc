@@ -181,6 +181,16 @@ std::string ModelText(const std::string& collision_extra = "") {
          "  - {name: shelf, box: {center: [0.0, -0.7, 0.45], size: [1.2, 0.2, 0.1], yaw: 0.1}}\n";
 }
 
+// Home moved by a seeded normal tangent step of deviation `sigma` per coordinate.
+State RandomState(const Model& model, std::mt19937* rng, double sigma) {
+  std::normal_distribution<double> normal(0.0, sigma);
+  State s = State::Home(model);
+  Eigen::VectorXd ds(s.tangent_size());
+  for (int i = 0; i < ds.size(); ++i) ds[i] = normal(*rng);
+  s.Plus(ds);
+  return s;
+}
+
 // Largest |analytic - central difference| over the pairs near each other at
 // seeded random states (pairs at a tie, where one-sided differences
 // disagree, skipped). `tamper` may spoil the analytic gradient.
@@ -192,14 +202,10 @@ GradientCheck CheckGradients(const std::function<void(Eigen::Matrix<double, 1, 6
   const Model model = LoadModelFromString(ModelText(), "clearance.yaml");
   const CollisionModel collision(model);
   std::mt19937 rng(7);
-  std::normal_distribution<double> normal(0.0, 0.15);
   GradientCheck out;
   std::vector<PlacedShape> shapes;
   for (int trial = 0; trial < 20; ++trial) {
-    State s = State::Home(model);
-    Eigen::VectorXd ds(s.tangent_size());
-    for (int i = 0; i < ds.size(); ++i) ds[i] = normal(rng);
-    s.Plus(ds);
+    const State s = RandomState(model, &rng, 0.15);
     collision.PlaceShapes(s, &shapes);
     for (const PairClearance& pair : NearClearances(collision, shapes, 10.0)) {
       // A capsule inside a prism: its deepest point sits where two faces'
@@ -252,13 +258,9 @@ TEST(BroadPhase, FindsEveryPairWithinTheThreshold) {
   const Model model = LoadModelFromString(ModelText(), "clearance.yaml");
   const CollisionModel collision(model);
   std::mt19937 rng(11);
-  std::normal_distribution<double> normal(0.0, 0.3);
   std::vector<PlacedShape> shapes;
   for (int trial = 0; trial < 20; ++trial) {
-    State s = State::Home(model);
-    Eigen::VectorXd ds(s.tangent_size());
-    for (int i = 0; i < ds.size(); ++i) ds[i] = normal(rng);
-    s.Plus(ds);
+    const State s = RandomState(model, &rng, 0.3);
     collision.PlaceShapes(s, &shapes);
     for (double threshold : {0.0, 0.05, 0.3}) {
       std::vector<std::pair<int, int>> near;
