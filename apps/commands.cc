@@ -97,6 +97,20 @@ Command PlanCommand() {
           RunPlan};
 }
 
+Command StaticsCommand() {
+  return {"statics", "joint reactions and control efforts under gravity, payload and a wrench",
+          "ccma statics --model=FILE [--controls=...] [--wrench=fx,fy,fz,mx,my,mz] [--obstacles=FILE]",
+          "Static equilibrium of the mechanism assembled at the controls (home by default) under gravity on\n"
+          "every mass, the end-effector's payload and an external wrench on the end-effector body (world\n"
+          "frame, force at the end-effector point): the force and moment every joint's between[0] exerts on\n"
+          "its between[1] (world frame, moment about the joint's current point) and the effort every\n"
+          "control must supply (N along a base's x or y, N*m about its heading, N*m or N at an actuated\n"
+          "joint), analytic from the constraint Jacobians. Statically indeterminate mechanisms get the\n"
+          "minimum-norm reactions (determinate: false); effort_limits and push_limit are checked\n"
+          "(within_limits, limiting). Warns when not assembled, unbalanced, indeterminate or beyond a limit.",
+          {"model", "controls", "wrench", "obstacles"}, RunStatics};
+}
+
 Command GenerateCommand() {
   return {"generate", "write a generated model (N-base CCMA or Stewart-Gough platform)",
           "ccma generate --agents=N [--kind=ccma|stewart_gough] --out=FILE.yaml",
@@ -230,6 +244,7 @@ const std::vector<Command>& Commands() {
       ControlCommand(),
       TrajectoryCommand(),
       PlanCommand(),
+      StaticsCommand(),
       GenerateCommand(),
       ImportCommand(),
       ExportCommand(),

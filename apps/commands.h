@@ -46,6 +46,7 @@ int RunSimulate(const std::vector<std::string>& args);
 int RunControl(const std::vector<std::string>& args);
 int RunTrajectory(const std::vector<std::string>& args);
 int RunPlan(const std::vector<std::string>& args);
+int RunStatics(const std::vector<std::string>& args);
 int RunGenerate(const std::vector<std::string>& args);
 int RunImport(const std::vector<std::string>& args);
 int RunBench(const std::vector<std::string>& args);

@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 
 #include "ccma/collision_geometry.h"
+#include "ccma/mass_properties.h"
 #include "ccma/omni_wheels.h"
 
 namespace ccma {
@@ -62,6 +63,7 @@ struct Body {
   Eigen::Matrix3d R_WB_home = Eigen::Matrix3d::Identity();
   Eigen::Vector3d p_WB_home = Eigen::Vector3d::Zero();
   int base_index = -1;  // index into Model::mobile_bases, or -1
+  MassProperties inertia;  // `mass`, `com` (statics only)
   bool is_mobile_base() const { return base_index >= 0; }
 };
 
@@ -83,6 +85,9 @@ struct MobileBase {
   // Only the base-driving layer (base_tracking.h) uses them.
   std::vector<Wheel> wheels = DefaultWheels();
   DifferentialWheels differential;  // type kDifferential only
+  // The largest horizontal force the base can exert [N] (`push_limit`);
+  // 0: not given.
+  double push_limit = 0;
 };
 
 // A joint of the passive chain between bodies A and B (file order of
@@ -117,6 +122,8 @@ struct Joint {
   // as q, so lower <= q_home <= upper) when `limited`.
   bool limited = false;
   double lower = 0, upper = 0;
+  // Actuated joints: the range of the motor's effort (`effort_limits`).
+  EffortLimits effort;
   int line = 0;  // source line in the model file (for messages)
 
   // Revolute and prismatic joints have a coordinate q.
@@ -132,6 +139,7 @@ struct EndEffector {
   Eigen::Vector3d p_B = Eigen::Vector3d::Zero();       // point in body frame
   Eigen::Vector3d p_W_home = Eigen::Vector3d::Zero();  // the same, world, home
   std::array<bool, 6> controlled{};                    // x y z roll pitch yaw
+  MassProperties payload;  // carried by `body` (`payload`; statics only)
 };
 
 struct Model {
@@ -145,6 +153,8 @@ struct Model {
   // Shapes kept apart by control (collision_geometry.h); disabled unless the
   // file has `collision:` or `obstacles:`.
   CollisionGeometry collision;
+  // Gravity in the world frame [m/s^2] (`gravity`; statics only).
+  Eigen::Vector3d gravity = Eigen::Vector3d(0, 0, -9.81);
 
   int num_bodies() const { return static_cast<int>(bodies.size()); }
   int num_bases() const { return static_cast<int>(mobile_bases.size()); }

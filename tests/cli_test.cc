@@ -334,7 +334,7 @@ TEST(Cli, GlobalHelpHasOneLinePerCommand) {
     EXPECT_LE(line.size(), 100u) << line;
     listed.push_back(name);
   }
-  EXPECT_EQ(listed, (std::vector<std::string>{"check", "simulate", "control", "trajectory", "plan", "generate", "import",
+  EXPECT_EQ(listed, (std::vector<std::string>{"check", "simulate", "control", "trajectory", "plan", "statics", "generate", "import",
                                               "export", "bench", "replay", "view", "workspace", "design"}))
       << r.out;
   for (const std::string& name : listed) {
@@ -370,6 +370,7 @@ TEST(Cli, EachCommandHasItsOwnHelpWithUnits) {
       {"control", {"model", "target", "controls", "obstacles", "singularity_weight", "singularity_threshold", "pivot_weight",
                    "pivot_threshold", "secondary", "secondary_weight", "clearance_m", "method", "max_step_m",
                    "max_step_rad", "lambda"}},
+      {"statics", {"model", "controls", "wrench", "obstacles"}},
       {"plan", {"model", "waypoints", "out", "controls", "obstacles", "plan_iterations", "path_weight",
                 "smoothness_weight", "travel_weight", "max_step_m", "max_step_rad", "lambda"}},
       {"trajectory", {"model", "waypoints", "out", "controls", "obstacles", "singularity_weight", "singularity_threshold",

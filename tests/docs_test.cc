@@ -534,7 +534,9 @@ TEST(ModelFormatDocs, EveryLoaderKeyIsDocumented) {
       "body", "controlled",
       // collision, obstacles
       "collision", "margin", "base_radius", "base_height", "links", "from", "to", "ignore", "obstacles",
-      "cylinder", "box", "center", "height", "size", "yaw"};
+      "cylinder", "box", "center", "height", "size", "yaw",
+      // masses and loads
+      "mass", "com", "payload", "gravity", "effort_limits", "push_limit"};
   const std::string doc = ReadDoc("model_format.md");
   for (const std::string& key : keys) {
     EXPECT_NE(doc.find("`" + key + "`"), std::string::npos)

@@ -14,7 +14,7 @@ void ModelParser::ParseBodies(const YAML::Node& bodies) {
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const std::string path = Indexed("bodies", i);
     const YAML::Node node = r_.Map(bodies[i], path);
-    r_.CheckKeys(node, {"name", "position", "rpy", "meshes"}, path);
+    r_.CheckKeys(node, {"name", "position", "rpy", "meshes", "mass", "com"}, path);
     Body body;
     body.name = AddBodyName(r_.Require(node, "name", path), path + ".name");
     body.p_WB_home = r_.Vector3(r_.Require(node, "position", path), path + ".position", "m");
@@ -22,6 +22,7 @@ void ModelParser::ParseBodies(const YAML::Node& bodies) {
       body.R_WB_home = RotationFromRpy(r_.Vector3(node["rpy"], path + ".rpy", "rad"));
     }
     if (YamlReader::Has(node, "meshes")) body.meshes = ParseMeshes(node["meshes"], path + ".meshes", body);
+    body.inertia = ParseMassProperties(node, path, body);
     model_.bodies.push_back(body);
   }
 }

@@ -9,7 +9,7 @@ namespace ccma {
 namespace internal {
 
 void ModelParser::ParseEndEffector(const YAML::Node& ee) {
-  r_.CheckKeys(ee, {"body", "point", "controlled"}, "end_effector");
+  r_.CheckKeys(ee, {"body", "point", "controlled", "payload"}, "end_effector");
   EndEffector& out = model_.end_effector;
   const YAML::Node body = r_.Require(ee, "body", "end_effector");
   if (r_.String(body, "end_effector.body") == "world") {

@@ -11,6 +11,7 @@
 //   model_end_effector.cc    end_effector
 //   model_meshes.cc          bodies' and bases' meshes (visual only)
 //   model_collision.cc       collision (margin, base cylinders, link capsules, ignore) and obstacles
+//   model_masses.cc          mass, com, payload, gravity, effort_limits, push_limit
 // Shared checks (keys, numbers, vectors, messages): yaml_checks.h.
 //
 // Internal to the library: formats/model_loader.h is the public API.
@@ -115,6 +116,12 @@ class ModelParser {
   // model_meshes.cc
   std::vector<BodyMesh> ParseMeshes(const YAML::Node& node, const std::string& path, const Body& body);
   BodyMesh ParseMesh(const YAML::Node& at, const std::string& path, const Body& body) const;
+
+  // model_masses.cc
+  MassProperties ParseMassProperties(const YAML::Node& node, const std::string& path, const Body& body) const;
+  void ParseEffortLimits(const YAML::Node& node, const std::string& path, Joint* joint) const;
+  double ParsePushLimit(const YAML::Node& node, const std::string& path) const;
+  void ParseLoads(const YAML::Node& root, const YAML::Node& end_effector);
 
   // model_collision.cc
   void ParseCollision(const YAML::Node& root);

@@ -18,7 +18,8 @@ ModelParser::ModelParser(const std::string& source, std::vector<std::string>* wa
 Model ModelParser::Parse(const YAML::Node& root) {
   if (!root.IsDefined() || root.IsNull()) r_.Fail(root, "", "empty model file");
   if (!root.IsMap()) r_.Fail(root, "", "the top level must be a mapping of keys");
-  r_.CheckKeys(root, {"name", "description", "bodies", "mobile_bases", "joints", "end_effector", "collision", "obstacles"},
+  r_.CheckKeys(root, {"name", "description", "bodies", "mobile_bases", "joints", "end_effector", "collision", "obstacles",
+               "gravity"},
               "");
   ParseHeader(root);
   const YAML::Node bodies = r_.Sequence(r_.Require(root, "bodies", ""), "bodies",
@@ -33,6 +34,7 @@ Model ModelParser::Parse(const YAML::Node& root) {
             "a model needs at least one actuator: a mobile base or a joint with actuated: true");
   }
   ParseEndEffector(r_.Map(r_.Require(root, "end_effector", ""), "end_effector"));
+  ParseLoads(root, root["end_effector"]);
   CheckConnected(bodies);
   ParseCollision(root);
   // Only a model that loads has its magnitudes reported.

@@ -763,6 +763,15 @@ def plan(
 ) -> dict[str, Any]:
     """Whole-trajectory planning (`ccma plan`): converged, used, note, iterations, greedy, plan, and per step time, controls, reached, clearance."""
 
+# ----------------------------------------------------------------- statics ----
+
+@overload
+def statics(problem: ForwardProblem, wrench: ArrayLike | None = None) -> dict[str, Any]:
+    """Joint reactions and control efforts at the problem's configuration (`ccma statics`)."""
+@overload
+def statics(problem: ControlProblem, wrench: ArrayLike | None = None) -> dict[str, Any]:
+    """The same for a ControlProblem."""
+
 # --------------------------------------------------------------- waypoints ----
 
 class Waypoint:

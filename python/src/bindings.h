@@ -26,6 +26,7 @@ void BindWorkspace(pybind11::module_& m);  // workspace maps (private; ccma.work
 void BindDesign(pybind11::module_& m);     // design parameters: ds/dp and the design loop
 void BindImport(pybind11::module_& m);     // robots described elsewhere (URDF, SDFormat)
 void BindCollision(pybind11::module_& m);  // clearance, whole-trajectory planning
+void BindStatics(pybind11::module_& m);    // joint reactions and control efforts
 
 }  // namespace ccma::python
 

@@ -17,4 +17,5 @@ PYBIND11_MODULE(_ccma, m) {
   ccma::python::BindWorkspace(m);
   ccma::python::BindImport(m);
   ccma::python::BindCollision(m);
+  ccma::python::BindStatics(m);
 }

@@ -1,0 +1,155 @@
+#include "analyses/statics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <Eigen/LU>
+#include <Eigen/QR>
+
+#include "ccma/end_effector.h"
+#include "ccma/internal/constraint_set.h"
+
+namespace ccma {
+namespace {
+
+// [M; F] of a force F at world point p on body b (moment about its origin).
+void AddForce(const State& s, int body, const Eigen::Vector3d& p, const Eigen::Vector3d& F, Eigen::VectorXd* Q) {
+  Q->segment<3>(kPoseTangentSize * body) += (p - s.p_WB(body)).cross(F);
+  Q->segment<3>(kPoseTangentSize * body + 3) += F;
+}
+
+// The blocks of C that join joint j's bodies: the joint's, and its motor's.
+std::vector<std::vector<int>> JointBlocks(const Model& model) {
+  std::vector<std::vector<int>> out;
+  int block = 0;
+  for (const Joint& joint : model.joints) {
+    out.push_back({block++});
+    if (joint.actuated) out.back().push_back(block++);
+  }
+  return out;
+}
+
+// [M; F] (about the body's origin) that rows `blocks` put on `body`.
+Eigen::Matrix<double, 6, 1> OnBody(const ConstraintSet& set, const std::vector<int>& blocks, const Eigen::MatrixXd& J_s,
+                                   const Eigen::VectorXd& lambda, int body) {
+  Eigen::Matrix<double, 6, 1> g = Eigen::Matrix<double, 6, 1>::Zero();
+  for (int b : blocks) {
+    const ConstraintBlock& block = set.blocks()[static_cast<size_t>(b)];
+    g += J_s.block(block.row, kPoseTangentSize * body, block.rows, kPoseTangentSize).transpose() *
+         lambda.segment(block.row, block.rows);
+  }
+  return g;
+}
+
+JointReaction Reaction(const Model& model, const ConstraintSet& set, const State& s, const Joint& joint,
+                       const std::vector<int>& blocks, const Eigen::MatrixXd& J_s, const Eigen::VectorXd& lambda) {
+  JointReaction r;
+  r.name = joint.name;
+  r.point = joint.body_a == kWorld ? joint.p_A : Eigen::Vector3d(s.R_WB(joint.body_a) * joint.p_A + s.p_WB(joint.body_a));
+  // On between[1]; when that is the ground, minus what between[0] receives.
+  const bool on_b = joint.body_b != kWorld;
+  const int body = on_b ? joint.body_b : joint.body_a;
+  const Eigen::Matrix<double, 6, 1> g = (on_b ? 1.0 : -1.0) * OnBody(set, blocks, J_s, lambda, body);
+  r.force = g.tail<3>();
+  r.moment = g.head<3>() - (r.point - s.p_WB(body)).cross(r.force);
+  (void)model;
+  return r;
+}
+
+// Whether the loads fix every joint's reaction and every effort: the
+// multipliers may still be free within one block's own redundant rows (a
+// fixed joint locks 3 rotations with 6 rows), which changes neither, so the
+// test is on what every null vector of J_s^T does through each block.
+bool ReactionsDetermined(const ConstraintSet& set, const Eigen::MatrixXd& J_s, const Eigen::MatrixXd& J_u) {
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(J_s.transpose());
+  lu.setThreshold(1e-10);
+  if (lu.rank() == J_s.rows()) return true;
+  const Eigen::MatrixXd N = lu.kernel();  // rows x k
+  const double scale = std::max(1.0, J_s.cwiseAbs().maxCoeff());
+  for (const ConstraintBlock& block : set.blocks()) {
+    const Eigen::MatrixXd n = N.middleRows(block.row, block.rows);
+    const double through = std::max((J_s.middleRows(block.row, block.rows).transpose() * n).cwiseAbs().maxCoeff(),
+                                    (J_u.middleRows(block.row, block.rows).transpose() * n).cwiseAbs().maxCoeff());
+    if (through > 1e-8 * scale) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+const char* ActuatorKindName(ActuatorKind kind) {
+  switch (kind) {
+    case ActuatorKind::kBaseX: return "base_x";
+    case ActuatorKind::kBaseY: return "base_y";
+    case ActuatorKind::kBaseTheta: return "base_theta";
+    case ActuatorKind::kJoint: return "joint";
+  }
+  return "joint";
+}
+
+Eigen::VectorXd GeneralizedLoads(const Model& model, const State& s, const ExternalWrench& wrench) {
+  Eigen::VectorXd Q = Eigen::VectorXd::Zero(s.tangent_size());
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    const MassProperties& m = model.bodies[static_cast<size_t>(b)].inertia;
+    if (m.mass > 0) AddForce(s, b, s.R_WB(b) * m.com_B + s.p_WB(b), m.mass * model.gravity, &Q);
+  }
+  const int ee = model.end_effector.body;
+  const MassProperties& payload = model.end_effector.payload;
+  if (payload.mass > 0) AddForce(s, ee, s.R_WB(ee) * payload.com_B + s.p_WB(ee), payload.mass * model.gravity, &Q);
+  const Eigen::Vector3d p_WE = s.R_WB(ee) * model.end_effector.p_B + s.p_WB(ee);
+  AddForce(s, ee, p_WE, wrench.force, &Q);
+  Q.segment<3>(kPoseTangentSize * ee) += wrench.moment;
+  return Q;
+}
+
+StaticsReport ComputeStatics(const Model& model, const State& s, const Eigen::VectorXd& u,
+                             const ExternalWrench& wrench) {
+  const ConstraintSet set(model);
+  if (static_cast<long>(set.num_rows()) * set.state_size() > kMaxStaticsEntries) {
+    throw std::invalid_argument("statics: " + std::to_string(set.num_rows()) + " constraint rows x " +
+                                std::to_string(set.state_size()) + " state coordinates exceed " +
+                                std::to_string(kMaxStaticsEntries) + " entries");
+  }
+  Eigen::VectorXd C;
+  Eigen::MatrixXd J_s, J_u;
+  set.Evaluate(s, u, &C, &J_s, &J_u);
+  const Eigen::VectorXd Q = GeneralizedLoads(model, s, wrench);
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(J_s.transpose());
+  cod.setThreshold(1e-10);
+  const Eigen::VectorXd lambda = cod.solve(-Q);
+  StaticsReport out;
+  out.determinate = cod.rank() == J_s.rows() || ReactionsDetermined(set, J_s, J_u);
+  out.residual = Q.size() > 0 ? (J_s.transpose() * lambda + Q).lpNorm<Eigen::Infinity>() : 0.0;
+  out.balanced = out.residual <= 1e-8 * (1.0 + (Q.size() > 0 ? Q.lpNorm<Eigen::Infinity>() : 0.0));
+  const std::vector<std::vector<int>> blocks = JointBlocks(model);
+  for (size_t j = 0; j < model.joints.size(); ++j) {
+    out.joints.push_back(Reaction(model, set, s, model.joints[j], blocks[j], J_s, lambda));
+  }
+  const Eigen::VectorXd effort = -J_u.transpose() * lambda;
+  for (int k = 0; k < model.num_bases(); ++k) {
+    const std::string& name = model.mobile_bases[static_cast<size_t>(k)].name;
+    out.actuators.push_back({name, ActuatorKind::kBaseX, effort[3 * k]});
+    out.actuators.push_back({name, ActuatorKind::kBaseY, effort[3 * k + 1]});
+    out.actuators.push_back({name, ActuatorKind::kBaseTheta, effort[3 * k + 2]});
+  }
+  for (const Joint& joint : model.joints) {
+    if (joint.actuated) out.actuators.push_back({joint.name, ActuatorKind::kJoint, effort[joint.control]});
+  }
+  for (int k = 0; k < model.num_bases(); ++k) {
+    const MobileBase& base = model.mobile_bases[static_cast<size_t>(k)];
+    if (base.push_limit <= 0) continue;
+    out.limits_given = true;
+    if (std::hypot(effort[3 * k], effort[3 * k + 1]) > base.push_limit * (1 + 1e-12)) out.limiting.push_back(base.name);
+  }
+  for (const Joint& joint : model.joints) {
+    if (!joint.actuated || !joint.effort.given) continue;
+    out.limits_given = true;
+    const double e = effort[joint.control], slack = 1e-12 * (1 + std::abs(e));
+    if (e < joint.effort.lower - slack || e > joint.effort.upper + slack) out.limiting.push_back(joint.name);
+  }
+  out.within_limits = out.limiting.empty();
+  return out;
+}
+
+}  // namespace ccma

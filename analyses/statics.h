@@ -1,0 +1,82 @@
+// Static equilibrium of an assembled mechanism (cli.md, `ccma statics`):
+// the joint reactions and the effort of every control under gravity on every
+// mass (model_format.md, "Masses and loads"), the payload and an external
+// wrench on the end-effector body.
+//
+// Method. The loads are a generalized force Q over the state tangent (per
+// body [M; F]: moment about the body's origin and force, world frame, the
+// work conjugates of (dphi, dp), state.h). Equilibrium is Q + J_s^T lambda = 0
+// with J_s = dC/ds of every constraint row: lambda is its least-squares,
+// minimum-norm solution (a complete orthogonal decomposition), unique when
+// the rows are independent (`determinate`). A joint's reaction on a body is
+// its rows' J_s^T lambda on that body; a control's effort is
+// -(dC/du)^T lambda, which obeys virtual work: effort . du = -Q . ds along
+// every motion that keeps the constraints (J_s ds + J_u du = 0). Analytic:
+// the Jacobians of the cost functions, no finite differences.
+//
+// Units: N, N*m, m, kg.
+#ifndef CCMA_ANALYSES_STATICS_H_
+#define CCMA_ANALYSES_STATICS_H_
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "ccma/model.h"
+#include "ccma/state.h"
+
+namespace ccma {
+
+// On the end-effector body, world frame: a force at the end-effector point
+// and a moment [N, N*m].
+struct ExternalWrench {
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+};
+
+// What body between[0] exerts on body between[1] through a joint (its motor
+// included), world frame, the moment about the joint's current point.
+struct JointReaction {
+  std::string name;
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();   // m
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();   // N
+  Eigen::Vector3d moment = Eigen::Vector3d::Zero();  // N*m
+};
+
+enum class ActuatorKind { kBaseX, kBaseY, kBaseTheta, kJoint };
+const char* ActuatorKindName(ActuatorKind kind);  // "base_x", ...
+
+// The generalized force a control must supply: N along a base's x or y,
+// N*m about its heading, N*m or N at an actuated joint.
+struct ActuatorEffort {
+  std::string name;  // the base's or the joint's
+  ActuatorKind kind = ActuatorKind::kJoint;
+  double effort = 0;
+};
+
+struct StaticsReport {
+  std::vector<JointReaction> joints;      // every joint, file order
+  std::vector<ActuatorEffort> actuators;  // every control, control order (model.h)
+  bool determinate = true;   // the reactions and efforts are unique (else the minimum-norm ones)
+  double residual = 0;       // max |Q + J_s^T lambda| [N or N*m]: loads the joints cannot hold
+  bool balanced = true;      // residual within rounding of the loads
+  bool limits_given = false;  // some effort_limits or push_limit
+  bool within_limits = true;
+  std::vector<std::string> limiting;  // actuators beyond their limits
+};
+
+// The loads as a generalized force over the state tangent (n).
+Eigen::VectorXd GeneralizedLoads(const Model& model, const State& s, const ExternalWrench& wrench);
+
+// Statics at (s, u). Throws std::invalid_argument when the constraint
+// Jacobian would exceed kMaxStaticsEntries doubles.
+StaticsReport ComputeStatics(const Model& model, const State& s, const Eigen::VectorXd& u,
+                             const ExternalWrench& wrench = {});
+
+// Bound on rows x state size of the dense equilibrium solve (64 MB).
+constexpr long kMaxStaticsEntries = 8000000;
+
+}  // namespace ccma
+
+#endif  // CCMA_ANALYSES_STATICS_H_

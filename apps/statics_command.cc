@@ -1,0 +1,108 @@
+// `ccma statics --model=FILE [--controls=...] [--wrench=fx,fy,fz,mx,my,mz]`:
+// static equilibrium of the mechanism assembled at the controls
+// (analyses/statics.h): joint reactions and the effort of every control.
+#include <cmath>
+#include <iostream>
+#include <string>
+
+#include "apps/cli.h"
+#include "apps/commands.h"
+#include "apps/flags.h"
+#include "apps/json_output.h"
+#include "ccma/internal/format.h"
+
+DEFINE_string(wrench, "",
+              "statics: external wrench on the end-effector body, world frame: fx,fy,fz [N] at the end-effector "
+              "point, mx,my,mz [N*m]; each in [-1e6, 1e6] (default none) [list]");
+
+namespace ccma::cli {
+namespace {
+
+ExternalWrench WrenchFlag() {
+  ExternalWrench w;
+  if (FLAGS_wrench.empty()) return w;
+  const Eigen::VectorXd v = ParseNumberList(FLAGS_wrench, "wrench");
+  if (v.size() != 6) {
+    throw UsageError("--wrench: 6 numbers fx,fy,fz,mx,my,mz (N, N*m) are needed, got " + std::to_string(v.size()));
+  }
+  for (int i = 0; i < 6; ++i) {
+    if (!(std::abs(v[i]) <= 1e6)) throw UsageError("--wrench: entry " + std::to_string(i) + " must lie in [-1e6, 1e6]");
+  }
+  w.force = v.head<3>();
+  w.moment = v.tail<3>();
+  return w;
+}
+
+nlohmann::json Vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+nlohmann::json ReportJson(const StaticsReport& r) {
+  nlohmann::json out;
+  nlohmann::json joints = nlohmann::json::array(), actuators = nlohmann::json::array();
+  for (const JointReaction& j : r.joints) {
+    joints.push_back({{"name", j.name}, {"point", Vec(j.point)}, {"force", Vec(j.force)}, {"moment", Vec(j.moment)}});
+  }
+  for (const ActuatorEffort& a : r.actuators) {
+    actuators.push_back({{"name", a.name}, {"kind", ActuatorKindName(a.kind)}, {"effort", a.effort}});
+  }
+  out["joints"] = joints;
+  out["actuators"] = actuators;
+  out["determinate"] = r.determinate;
+  out["balanced"] = r.balanced;
+  out["unbalanced_load"] = r.residual;
+  if (r.limits_given) {
+    out["within_limits"] = r.within_limits;
+    out["limiting"] = r.limiting;
+  }
+  return out;
+}
+
+// The warnings of a statics report, for JSON and stderr.
+std::string Warnings(const StaticsReport& r, const ForwardResult& assembly) {
+  std::string w;
+  auto add = [&](const std::string& text) { w += (w.empty() ? "" : "; ") + text; };
+  if (!assembly.assembled) add("not assembled (E = " + FormatG(assembly.residual_energy) + "): the reactions are not meaningful");
+  if (!r.balanced) {
+    add("the joints cannot hold the loads (" + FormatG(r.residual) + " N or N*m left over): the mechanism moves freely under them");
+  }
+  if (!r.determinate) add("statically indeterminate: the minimum-norm reactions are reported");
+  if (!r.within_limits) {
+    std::string names;
+    for (const std::string& n : r.limiting) names += (names.empty() ? "'" : ", '") + n + "'";
+    add("beyond their effort or push limits: " + names);
+  }
+  return w;
+}
+
+}  // namespace
+
+int RunStatics(const std::vector<std::string>& args) {
+  ParseCommandFlags(args, "statics");
+  const Model model = LoadModelOrThrow(RequireFlag(FLAGS_model, "model", "statics"));
+  const ExternalWrench wrench = WrenchFlag();
+  const Eigen::VectorXd u = ControlsFlagOrHome(model);
+  ForwardProblem forward(model);
+  const ForwardResult assembly = forward.Assemble(u);
+  StaticsReport report;
+  try {
+    report = ComputeStatics(model, forward.state(), forward.controls(), wrench);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("ccma statics: ") + e.what());
+  }
+  nlohmann::json out = ReportJson(report);
+  out["model"] = model.name;
+  out["assembled"] = assembly.assembled;
+  out["residual_energy"] = assembly.residual_energy;
+  out["controls"] = ToJson(forward.controls());
+  out["end_effector"] = ToJson(forward.end_effector());
+  out["bodies"] = BodiesToJson(model, forward.state());
+  AddClearance(model, forward.state(), "statics", &out);
+  const std::string warning = Warnings(report, assembly);
+  if (!warning.empty()) {
+    out["warning"] = warning;
+    std::cerr << "ccma statics: warning: " << warning << "\n";
+  }
+  PrintJson(out);
+  return 0;
+}
+
+}  // namespace ccma::cli

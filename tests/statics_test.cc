@@ -1,0 +1,228 @@
+// Statics (analyses/statics.h, `ccma statics`): closed forms (a symmetric
+// tripod of two-force legs carries W/3 each vertically; a crank's holding
+// torque), virtual work along feasible motions re-solved on every bundled
+// model with seeded masses, payloads and wrenches, the equilibrium of every
+// body from the reported reactions, limits, and the loader's keys.
+#include <cmath>
+#include <random>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <Eigen/SVD>
+
+#include "analyses/statics.h"
+#include "ccma/internal/constraint_set.h"
+#include "bundled_models.h"
+#include "formats/model_loader.h"
+#include "problems/forward_problem.h"
+
+namespace ccma {
+namespace {
+
+// Three prismatic legs from the unit circle on the ground to an apex 1 m up,
+// spherical at both ends; `mass` kg at the apex.
+std::string Tripod(double mass, const std::string& leg_extra = "") {
+  std::ostringstream m;
+  m.precision(17);
+  m << "name: tripod\nbodies:\n  - {name: top, position: [0, 0, 1], mass: " << mass << "}\n";
+  std::ostringstream joints;
+  joints.precision(17);
+  for (int i = 0; i < 3; ++i) {
+    const double a = M_PI / 2 + 2 * M_PI * i / 3, x = std::cos(a), y = std::sin(a);
+    m << "  - {name: low" << i << ", position: [" << 0.75 * x << ", " << 0.75 * y << ", 0.25]}\n"
+      << "  - {name: up" << i << ", position: [" << 0.25 * x << ", " << 0.25 * y << ", 0.75]}\n";
+    joints << "  - {name: foot" << i << ", type: spherical, between: [world, low" << i << "], point: [" << x << ", "
+           << y << ", 0]}\n"
+           << "  - {name: leg" << i << ", type: prismatic, actuated: true" << leg_extra << ", between: [low" << i
+           << ", up" << i << "], point: [" << 0.5 * x << ", " << 0.5 * y << ", 0.5], axis: [" << -x << ", " << -y
+           << ", 1]}\n"
+           << "  - {name: head" << i << ", type: spherical, between: [up" << i << ", top], point: [0, 0, 1]}\n";
+  }
+  m << "joints:\n" << joints.str() << "end_effector: {body: top, point: [0, 0, 1], controlled: [x, y, z]}\n";
+  return m.str();
+}
+
+TEST(Statics, SymmetricTripodLegsCarryAThirdOfTheWeightEach) {
+  const Model model = LoadModelFromString(Tripod(3.0), "tripod.yaml");
+  ForwardProblem forward(model);
+  ASSERT_TRUE(forward.Solve(model.home_controls()).assembled);
+  const StaticsReport r = ComputeStatics(model, forward.state(), forward.controls());
+  EXPECT_TRUE(r.balanced);
+  EXPECT_TRUE(r.determinate);
+  const double W = 3.0 * 9.81;
+  for (int i = 0; i < 3; ++i) {
+    const double a = M_PI / 2 + 2 * M_PI * i / 3;
+    const Eigen::Vector3d along(-std::cos(a), -std::sin(a), 1.0);  // foot to apex, vertical component 1
+    const Eigen::Vector3d f = W / 3 * along;                          // up the leg, W/3 vertically
+    const JointReaction& foot = r.joints[static_cast<size_t>(3 * i)];
+    const JointReaction& head = r.joints[static_cast<size_t>(3 * i + 2)];
+    EXPECT_LT((foot.force - f).norm(), 1e-9 * W) << foot.name;  // the ground pushes the leg up along it
+    EXPECT_LT((head.force - f).norm(), 1e-9 * W) << head.name;  // the leg pushes the apex up along it
+    EXPECT_LT(foot.moment.norm(), 1e-9 * W);                    // spherical: no moment
+    EXPECT_NEAR(std::abs(r.actuators[static_cast<size_t>(i)].effort), W / 3 * std::sqrt(2.0), 1e-9 * W);
+  }
+}
+
+TEST(Statics, CrankHoldingTorqueIsWeightTimesLever) {
+  // A crank on a motorised horizontal hinge (axis y) at the origin, its mass
+  // 0.4 m out along x: holding it at angle q takes m g 0.4 cos(q).
+  const std::string text =
+      "name: crank\nbodies:\n  - {name: arm, position: [0.2, 0, 0], mass: 2, com: [0.4, 0, 0]}\n"
+      "joints:\n  - {name: hinge, type: revolute, actuated: true, between: [world, arm], point: [0, 0, 0], "
+      "axis: [0, -1, 0]}\nend_effector: {body: arm, point: [0.5, 0, 0], controlled: [x, z]}\n";
+  const Model model = LoadModelFromString(text, "crank.yaml");
+  ForwardProblem forward(model);
+  for (double q : {0.0, 0.3, -0.7, 1.2}) {
+    Eigen::VectorXd u(1);
+    u << q;
+    ASSERT_TRUE(forward.Assemble(u).assembled);
+    const StaticsReport r = ComputeStatics(model, forward.state(), forward.controls());
+    // axis -y: q raises the arm; the motor holds it up against gravity.
+    EXPECT_NEAR(r.actuators[0].effort, 2 * 9.81 * 0.4 * std::cos(q), 1e-9) << q;
+    EXPECT_NEAR(r.joints[0].force.z(), 2 * 9.81, 1e-9);  // the ground carries the weight
+  }
+}
+
+// Seeded masses (0.5-2 kg, centres up to 0.1 m off each origin), a payload
+// and a wrench on every body of a bundled model.
+Model WithLoads(Model model, std::mt19937* rng) {
+  std::uniform_real_distribution<double> mass(0.5, 2.0), offset(-0.1, 0.1);
+  for (Body& body : model.bodies) body.inertia = {mass(*rng), Eigen::Vector3d(offset(*rng), offset(*rng), offset(*rng))};
+  model.end_effector.payload = {mass(*rng), model.end_effector.p_B + Eigen::Vector3d(0.02, -0.01, 0.03)};
+  return model;
+}
+
+// Feasible motions: the null space of [dC/ds dC/du] (directions in which the
+// mechanism stays assembled), as (ds, du) columns.
+Eigen::MatrixXd FeasibleMotions(const Model& model, const State& s, const Eigen::VectorXd& u) {
+  const ConstraintSet set(model);
+  Eigen::VectorXd C;
+  Eigen::MatrixXd J_s, J_u;
+  set.Evaluate(s, u, &C, &J_s, &J_u);
+  Eigen::MatrixXd J(J_s.rows(), J_s.cols() + J_u.cols());
+  J << J_s, J_u;
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeFullV);
+  const int rank = static_cast<int>((svd.singularValues().array() > 1e-9 * svd.singularValues()[0]).count());
+  return svd.matrixV().rightCols(J.cols() - rank);
+}
+
+TEST(Statics, VirtualWorkAlongEveryFeasibleMotionOfEveryBundledModel) {
+  std::mt19937 rng(27);
+  for (const std::string& name : testing::BundledModels()) {
+    const Model model = WithLoads(LoadModel(std::string(CCMA_MODELS_DIR) + "/" + name + ".yaml"), &rng);
+    ForwardProblem forward(model);
+    ASSERT_TRUE(forward.Solve(model.home_controls()).assembled) << name;
+    ExternalWrench wrench;
+    wrench.force = Eigen::Vector3d(3, -2, 5);
+    wrench.moment = Eigen::Vector3d(0.4, 0.1, -0.3);
+    const StaticsReport r = ComputeStatics(model, forward.state(), forward.controls(), wrench);
+    ASSERT_TRUE(r.balanced) << name << " " << r.residual;
+    Eigen::VectorXd effort(model.num_controls());
+    for (int c = 0; c < effort.size(); ++c) effort[c] = r.actuators[static_cast<size_t>(c)].effort;
+    const Eigen::VectorXd Q = GeneralizedLoads(model, forward.state(), wrench);
+    const Eigen::MatrixXd motions = FeasibleMotions(model, forward.state(), forward.controls());
+    ASSERT_GT(motions.cols(), 0) << name;
+    const int n = model.state_size();
+    for (int k = 0; k < motions.cols(); ++k) {
+      const Eigen::VectorXd ds = motions.col(k).head(n), du = motions.col(k).tail(model.num_controls());
+      // efforts . du = -(the loads' power), to 1e-8 relative.
+      const double scale = effort.cwiseAbs().sum() * du.norm() + Q.cwiseAbs().sum() * ds.norm();
+      EXPECT_NEAR(effort.dot(du), -Q.dot(ds), 1e-8 * scale) << name << " motion " << k;
+    }
+  }
+}
+
+TEST(Statics, EffortsMatchThePotentialsSlopeOfReSolvedMotions) {
+  // Independent of the multipliers: move the controls along a feasible
+  // direction, re-solve, and difference the potential energy of gravity and
+  // of a constant force at the end-effector point.
+  std::mt19937 rng(5);
+  for (const std::string& name : testing::BundledModels()) {
+    const Model model = WithLoads(LoadModel(std::string(CCMA_MODELS_DIR) + "/" + name + ".yaml"), &rng);
+    ForwardProblem forward(model);
+    ASSERT_TRUE(forward.Solve(model.home_controls()).assembled);
+    const State home = forward.state();
+    const Eigen::VectorXd u0 = forward.controls();
+    ExternalWrench wrench;
+    wrench.force = Eigen::Vector3d(-4, 1, 2);
+    const StaticsReport r = ComputeStatics(model, home, u0, wrench);
+    const Eigen::MatrixXd motions = FeasibleMotions(model, home, u0);
+    const Eigen::VectorXd du = motions.col(0).tail(model.num_controls()).normalized();
+    if (du.norm() == 0) continue;
+    auto potential = [&](double h) {
+      forward.SetState(home);
+      EXPECT_LT(forward.Solve(u0 + h * du).residual_energy, 1e-12) << name;
+      const State& s = forward.state();
+      double V = -wrench.force.dot(forward.end_effector().position);
+      for (int b = 0; b < model.num_bodies(); ++b) {
+        const MassProperties& m = model.bodies[static_cast<size_t>(b)].inertia;
+        V -= m.mass * model.gravity.dot(s.R_WB(b) * m.com_B + s.p_WB(b));
+      }
+      const int ee = model.end_effector.body;
+      V -= model.end_effector.payload.mass *
+           model.gravity.dot(s.R_WB(ee) * model.end_effector.payload.com_B + s.p_WB(ee));
+      return V;
+    };
+    const double h = 1e-5, slope = (potential(h) - potential(-h)) / (2 * h);
+    double power = 0;
+    for (int c = 0; c < du.size(); ++c) power += r.actuators[static_cast<size_t>(c)].effort * du[c];
+    EXPECT_NEAR(power, slope, 1e-6 * (1 + std::abs(slope))) << name;
+  }
+}
+
+TEST(Statics, EveryBodyIsInEquilibriumUnderTheReportedReactions) {
+  std::mt19937 rng(9);
+  for (const std::string& name : testing::BundledModels()) {
+    const Model model = WithLoads(LoadModel(std::string(CCMA_MODELS_DIR) + "/" + name + ".yaml"), &rng);
+    ForwardProblem forward(model);
+    ASSERT_TRUE(forward.Solve(model.home_controls()).assembled);
+    const State& s = forward.state();
+    ExternalWrench wrench;
+    wrench.force = Eigen::Vector3d(1, 2, -3);
+    wrench.moment = Eigen::Vector3d(-0.2, 0.5, 0.1);
+    const StaticsReport r = ComputeStatics(model, s, forward.controls(), wrench);
+    const Eigen::VectorXd Q = GeneralizedLoads(model, s, wrench);
+    for (int b = 0; b < model.num_bodies(); ++b) {
+      if (model.bodies[static_cast<size_t>(b)].is_mobile_base()) continue;  // held by the ground too
+      Eigen::Vector3d F = Q.segment<3>(6 * b + 3), M = Q.segment<3>(6 * b);  // about the origin
+      for (size_t j = 0; j < model.joints.size(); ++j) {
+        const Joint& joint = model.joints[j];
+        const double sign = joint.body_b == b ? 1.0 : joint.body_a == b ? -1.0 : 0.0;
+        const JointReaction& re = r.joints[j];
+        F += sign * re.force;
+        M += sign * (re.moment + (re.point - s.p_WB(b)).cross(re.force));
+      }
+      const double scale = 1 + Q.cwiseAbs().maxCoeff();
+      EXPECT_LT(F.norm(), 1e-9 * scale) << name << " " << model.bodies[static_cast<size_t>(b)].name;
+      EXPECT_LT(M.norm(), 1e-9 * scale) << name << " " << model.bodies[static_cast<size_t>(b)].name;
+    }
+  }
+}
+
+TEST(Statics, LimitsAndLoaderKeys) {
+  const Model limited =
+      LoadModelFromString(Tripod(3.0, ", effort_limits: [-10, 10]"), "tripod.yaml");  // legs carry 13.9 N
+  ForwardProblem forward(limited);
+  ASSERT_TRUE(forward.Solve(limited.home_controls()).assembled);
+  const StaticsReport r = ComputeStatics(limited, forward.state(), forward.controls());
+  EXPECT_TRUE(r.limits_given);
+  EXPECT_FALSE(r.within_limits);
+  EXPECT_EQ(r.limiting, std::vector<std::string>({"leg0", "leg1", "leg2"}));
+  const Model fine = LoadModelFromString(Tripod(3.0, ", effort_limits: [-20, 20]"), "tripod.yaml");
+  EXPECT_TRUE(ComputeStatics(fine, forward.state(), forward.controls()).within_limits);
+  for (const auto& [extra, message] : std::vector<std::pair<std::string, std::string>>{
+           {", effort_limits: [5, -5]", "must not exceed upper"},
+           {", effort_limits: [1]", "must be [lower, upper]"}}) {
+    try {
+      LoadModelFromString(Tripod(3.0, extra), "bad.yaml");
+      ADD_FAILURE() << extra;
+    } catch (const ModelError& e) {
+      EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_THROW(LoadModelFromString(Tripod(-1.0), "bad.yaml"), ModelError);
+}
+
+}  // namespace
+}  // namespace ccma
