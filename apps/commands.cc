@@ -99,7 +99,8 @@ Command PlanCommand() {
 
 Command StaticsCommand() {
   return {"statics", "joint reactions and control efforts under gravity, payload and a wrench",
-          "ccma statics --model=FILE [--controls=...] [--wrench=fx,fy,fz,mx,my,mz] [--obstacles=FILE]",
+          "ccma statics --model=FILE [--controls=...] [--wrench=fx,fy,fz,mx,my,mz] [--mocap_noise_m=0.001]\n"
+          "             [--mocap_noise_rad=0.003] [--obstacles=FILE]",
           "Static equilibrium of the mechanism assembled at the controls (home by default) under gravity on\n"
           "every mass, the end-effector's payload and an external wrench on the end-effector body (world\n"
           "frame, force at the end-effector point): the force and moment every joint's between[0] exerts on\n"
@@ -107,8 +108,10 @@ Command StaticsCommand() {
           "control must supply (N along a base's x or y, N*m about its heading, N*m or N at an actuated\n"
           "joint), analytic from the constraint Jacobians. Statically indeterminate mechanisms get the\n"
           "minimum-norm reactions (determinate: false); effort_limits and push_limit are checked\n"
-          "(within_limits, limiting). Warns when not assembled, unbalanced, indeterminate or beyond a limit.",
-          {"model", "controls", "wrench", "obstacles"}, RunStatics};
+          "(within_limits, limiting). ee_covariance: the end-effector pose's 6x6 covariance from the bases'\n"
+          "pose noise (the replay's motion-capture model) through dX/du. Warns when not assembled,\n"
+          "unbalanced, indeterminate or beyond a limit.",
+          {"model", "controls", "wrench", "mocap_noise_m", "mocap_noise_rad", "obstacles"}, RunStatics};
 }
 
 Command GenerateCommand() {

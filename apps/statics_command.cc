@@ -15,8 +15,31 @@ DEFINE_string(wrench, "",
               "statics: external wrench on the end-effector body, world frame: fx,fy,fz [N] at the end-effector "
               "point, mx,my,mz [N*m]; each in [-1e6, 1e6] (default none) [list]");
 
+DECLARE_double(mocap_noise_m);    // apps/replay_command.cc (the replay's noise model)
+DECLARE_double(mocap_noise_rad);
+
 namespace ccma::cli {
 namespace {
+
+// The bases' pose noise: the replay's defaults unless given.
+BasePoseNoise NoiseFlags() {
+  BasePoseNoise noise;
+  const SimulationNoise replay;
+  noise.position_sigma = FLAGS_mocap_noise_m >= 0 ? FLAGS_mocap_noise_m : replay.position_sigma;
+  noise.heading_sigma = FLAGS_mocap_noise_rad >= 0 ? FLAGS_mocap_noise_rad : replay.heading_sigma;
+  if (!(noise.position_sigma <= 1.0) || !(noise.heading_sigma <= 1.0)) {
+    throw UsageError("--mocap_noise_m and --mocap_noise_rad must lie in [0, 1] (m, rad)");
+  }
+  return noise;
+}
+
+// Sigma_X as 6 rows, or null when dG/ds is singular (no first-order answer).
+nlohmann::json CovarianceJson(const Eigen::Matrix<double, 6, 6>& sigma) {
+  if (!sigma.allFinite()) return nullptr;
+  nlohmann::json rows = nlohmann::json::array();
+  for (int r = 0; r < 6; ++r) rows.push_back({sigma(r, 0), sigma(r, 1), sigma(r, 2), sigma(r, 3), sigma(r, 4), sigma(r, 5)});
+  return rows;
+}
 
 ExternalWrench WrenchFlag() {
   ExternalWrench w;
@@ -79,6 +102,7 @@ int RunStatics(const std::vector<std::string>& args) {
   ParseCommandFlags(args, "statics");
   const Model model = LoadModelOrThrow(RequireFlag(FLAGS_model, "model", "statics"));
   const ExternalWrench wrench = WrenchFlag();
+  const BasePoseNoise noise = NoiseFlags();
   const Eigen::VectorXd u = ControlsFlagOrHome(model);
   ForwardProblem forward(model);
   const ForwardResult assembly = forward.Assemble(u);
@@ -95,6 +119,10 @@ int RunStatics(const std::vector<std::string>& args) {
   out["controls"] = ToJson(forward.controls());
   out["end_effector"] = ToJson(forward.end_effector());
   out["bodies"] = BodiesToJson(model, forward.state());
+  const nlohmann::json covariance =
+      CovarianceJson(EndEffectorCovariance(model, forward.state(), forward.controls(), noise));
+  if (!covariance.is_null()) out["ee_covariance"] = covariance;
+  out["noise"] = {{"mocap_noise_m", noise.position_sigma}, {"mocap_noise_rad", noise.heading_sigma}};
   AddClearance(model, forward.state(), "statics", &out);
   const std::string warning = Warnings(report, assembly);
   if (!warning.empty()) {

@@ -23,6 +23,7 @@
 #include "ccma/joint_coordinates.h"
 #include "ccma/limits.h"
 #include "analyses/mobility.h"
+#include "analyses/precision.h"
 #include "analyses/statics.h"
 #include "ccma/model.h"
 #include "formats/model_generator.h"

@@ -766,10 +766,14 @@ def plan(
 # ----------------------------------------------------------------- statics ----
 
 @overload
-def statics(problem: ForwardProblem, wrench: ArrayLike | None = None) -> dict[str, Any]:
+def statics(
+    problem: ForwardProblem, wrench: ArrayLike | None = None, mocap_noise_m: float = 0.001, mocap_noise_rad: float = 0.003
+) -> dict[str, Any]:
     """Joint reactions and control efforts at the problem's configuration (`ccma statics`)."""
 @overload
-def statics(problem: ControlProblem, wrench: ArrayLike | None = None) -> dict[str, Any]:
+def statics(
+    problem: ControlProblem, wrench: ArrayLike | None = None, mocap_noise_m: float = 0.001, mocap_noise_rad: float = 0.003
+) -> dict[str, Any]:
     """The same for a ControlProblem."""
 
 # --------------------------------------------------------------- waypoints ----

@@ -15,7 +15,7 @@ namespace ccma::python {
 namespace {
 
 py::dict Statics(const Model& model, const State& s, const Eigen::VectorXd& u,
-                 const std::optional<Eigen::VectorXd>& wrench) {
+                 const std::optional<Eigen::VectorXd>& wrench, const BasePoseNoise& noise) {
   ExternalWrench w;
   if (wrench) {
     if (wrench->size() != 6 || !wrench->allFinite() || wrench->cwiseAbs().maxCoeff() > 1e6) {
@@ -56,7 +56,16 @@ py::dict Statics(const Model& model, const State& s, const Eigen::VectorXd& u,
     out["within_limits"] = r.within_limits;
     out["limiting"] = r.limiting;
   }
+  const Eigen::Matrix<double, 6, 6> covariance = EndEffectorCovariance(model, s, u, noise);
+  if (covariance.allFinite()) out["ee_covariance"] = Eigen::MatrixXd(covariance);
   return out;
+}
+
+BasePoseNoise Noise(double position_sigma, double heading_sigma) {
+  if (!(position_sigma >= 0 && position_sigma <= 1) || !(heading_sigma >= 0 && heading_sigma <= 1)) {
+    throw py::value_error("statics: mocap_noise_m and mocap_noise_rad must lie in [0, 1] (m, rad)");
+  }
+  return {position_sigma, heading_sigma};
 }
 
 }  // namespace
@@ -64,21 +73,24 @@ py::dict Statics(const Model& model, const State& s, const Eigen::VectorXd& u,
 void BindStatics(py::module_& m) {
   m.def(
       "statics",
-      [](const ForwardProblem& p, const std::optional<Eigen::VectorXd>& wrench) {
-        return Statics(p.model(), p.state(), p.controls(), wrench);
+      [](const ForwardProblem& p, const std::optional<Eigen::VectorXd>& wrench, double m, double rad) {
+        return Statics(p.model(), p.state(), p.controls(), wrench, Noise(m, rad));
       },
-      py::arg("problem"), py::arg("wrench") = py::none(),
+      py::arg("problem"), py::arg("wrench") = py::none(), py::arg("mocap_noise_m") = 0.001,
+      py::arg("mocap_noise_rad") = 0.003,
       "Static equilibrium at the problem's current configuration (`ccma statics`, docs/statics.md): a dict "
       "with joints (name, point [m], force [N], moment [N*m] that between[0] exerts on between[1], world "
       "frame, moment about point), actuators (name, kind, effort [N or N*m] per control), determinate, "
-      "balanced, unbalanced_load, and within_limits, limiting when the model gives limits. wrench: "
-      "fx, fy, fz [N] at the end-effector point, mx, my, mz [N*m], world frame.");
+      "balanced, unbalanced_load, ee_covariance (6 x 6 [m^2, m rad, rad^2], from the bases' pose noise "
+      "mocap_noise_m [m], mocap_noise_rad [rad]), and within_limits, limiting when the model gives limits. "
+      "wrench: fx, fy, fz [N] at the end-effector point, mx, my, mz [N*m], world frame.");
   m.def(
       "statics",
-      [](const ControlProblem& p, const std::optional<Eigen::VectorXd>& wrench) {
-        return Statics(p.forward().model(), p.forward().state(), p.controls(), wrench);
+      [](const ControlProblem& p, const std::optional<Eigen::VectorXd>& wrench, double m, double rad) {
+        return Statics(p.forward().model(), p.forward().state(), p.controls(), wrench, Noise(m, rad));
       },
-      py::arg("problem"), py::arg("wrench") = py::none(), "The same for a ControlProblem.");
+      py::arg("problem"), py::arg("wrench") = py::none(), py::arg("mocap_noise_m") = 0.001,
+      py::arg("mocap_noise_rad") = 0.003, "The same for a ControlProblem.");
 }
 
 }  // namespace ccma::python

@@ -32,3 +32,4 @@ def test_matches_the_command_line():
     for a, b in zip(r["actuators"], cli["actuators"]):
         assert a["name"] == b["name"] and a["kind"] == b["kind"]
         assert a["effort"] == pytest.approx(b["effort"], abs=1e-9)
+    np.testing.assert_allclose(r["ee_covariance"], cli["ee_covariance"], atol=1e-15)
