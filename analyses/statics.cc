@@ -88,6 +88,20 @@ const char* ActuatorKindName(ActuatorKind kind) {
   return "joint";
 }
 
+bool HasLoads(const Model& model) {
+  if (model.end_effector.payload.mass > 0) return true;
+  for (const Body& body : model.bodies) {
+    if (body.inertia.mass > 0) return true;
+  }
+  for (const MobileBase& base : model.mobile_bases) {
+    if (base.push_limit > 0) return true;
+  }
+  for (const Joint& joint : model.joints) {
+    if (joint.effort.given) return true;
+  }
+  return false;
+}
+
 Eigen::VectorXd GeneralizedLoads(const Model& model, const State& s, const ExternalWrench& wrench) {
   Eigen::VectorXd Q = Eigen::VectorXd::Zero(s.tangent_size());
   for (int b = 0; b < model.num_bodies(); ++b) {

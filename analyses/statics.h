@@ -66,6 +66,10 @@ struct StaticsReport {
   std::vector<std::string> limiting;  // actuators beyond their limits
 };
 
+// Whether the model gives anything statics weighs or limits: a mass, a
+// payload, effort limits or a push limit.
+bool HasLoads(const Model& model);
+
 // The loads as a generalized force over the state tangent (n).
 Eigen::VectorXd GeneralizedLoads(const Model& model, const State& s, const ExternalWrench& wrench);
 

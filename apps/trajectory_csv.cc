@@ -23,7 +23,25 @@ void WriteHeader(const Model& model, std::ostream& csv) {
   for (const Joint& joint : model.joints) {
     if (joint.has_coordinate()) csv << ",q_" << joint.name << unit(joint);
   }
-  csv << ",residual_energy_m2,error_m_or_rad,iterations,solve_time_ms,reached,limits_violated" << clearance << "\n";
+  csv << ",residual_energy_m2,error_m_or_rad,iterations,solve_time_ms,reached,limits_violated" << clearance;
+}
+
+// Effort columns (statics, only with masses, a payload or effort limits):
+// one per control, then whether every effort is within its limits.
+void WriteEffortHeader(const Model& model, std::ostream& csv) {
+  for (int k = 0; k < model.num_bases(); ++k) {
+    csv << ",effort_u" << k << "_x_N,effort_u" << k << "_y_N,effort_u" << k << "_theta_Nm";
+  }
+  for (const Joint& joint : model.joints) {
+    if (joint.actuated) csv << ",effort_" << joint.name << (joint.type == JointType::kRevolute ? "_Nm" : "_N");
+  }
+  csv << ",within_limits";
+}
+
+void WriteEffortCells(const Model& model, const TrajectoryStep& s, std::ostream& csv) {
+  const StaticsReport r = ComputeStatics(model, s.state, s.controls);
+  for (const ActuatorEffort& a : r.actuators) csv << "," << a.effort;
+  csv << "," << (r.within_limits ? 1 : 0);
 }
 
 // The row's clearance cells: the smallest clearance [m] and its pair "a|b"
@@ -50,14 +68,17 @@ void WriteRow(const Model& model, const ClearanceSummary* clearance, const State
   }
   csv << "," << s.result.residual_energy << "," << s.result.error << "," << s.result.iterations << ","
       << s.result.time_ms << "," << (s.result.reached ? 1 : 0) << "," << violated
-      << (clearance != nullptr ? ClearanceCells(*clearance) : "") << "\n";
+      << (clearance != nullptr ? ClearanceCells(*clearance) : "");
 }
 
 }  // namespace
 
-TrajectoryCsv::TrajectoryCsv(const Model& model, std::ostream& csv) : model_(model), csv_(csv), collision_(model) {
+TrajectoryCsv::TrajectoryCsv(const Model& model, std::ostream& csv)
+    : model_(model), csv_(csv), collision_(model), efforts_(HasLoads(model)) {
   csv_ << std::setprecision(17);
   WriteHeader(model_, csv_);
+  if (efforts_) WriteEffortHeader(model_, csv_);
+  csv_ << "\n";
 }
 
 void TrajectoryCsv::Write(const TrajectoryStep& step) {
@@ -67,6 +88,8 @@ void TrajectoryCsv::Write(const TrajectoryStep& step) {
     if (clearance.any && (!path_clearance_.any || clearance.min < path_clearance_.min)) path_clearance_ = clearance;
   }
   WriteRow(model_, collision_.enabled() ? &clearance : nullptr, step.state, step, csv_);
+  if (efforts_) WriteEffortCells(model_, step, csv_);
+  csv_ << "\n";
 }
 
 }  // namespace ccma::cli

@@ -1,6 +1,6 @@
 // The CSV of `ccma trajectory` and `ccma plan` (cli.md): one row per control
 // step, every column name carrying its unit; clearance columns only with
-// collision geometry.
+// collision geometry, effort columns only with masses or limits.
 #ifndef CCMA_APPS_TRAJECTORY_CSV_H_
 #define CCMA_APPS_TRAJECTORY_CSV_H_
 
@@ -23,6 +23,7 @@ class TrajectoryCsv {
   std::ostream& csv_;
   const CollisionModel collision_;
   ClearanceSummary path_clearance_;
+  const bool efforts_;  // statics columns (masses, payload or effort limits given)
 };
 
 }  // namespace ccma::cli

@@ -4,6 +4,7 @@
 // model with seeded masses, payloads and wrenches, the equilibrium of every
 // body from the reported reactions, limits, and the loader's keys.
 #include <cmath>
+#include <fstream>
 #include <random>
 #include <sstream>
 #include <string>
@@ -16,6 +17,7 @@
 #include "bundled_models.h"
 #include "formats/model_loader.h"
 #include "problems/forward_problem.h"
+#include "tool_run.h"
 
 namespace ccma {
 namespace {
@@ -222,6 +224,39 @@ TEST(Statics, LimitsAndLoaderKeys) {
     }
   }
   EXPECT_THROW(LoadModelFromString(Tripod(-1.0), "bad.yaml"), ModelError);
+}
+
+TEST(Statics, TrajectoryRowsCarryTheEfforts) {
+  const std::string dir = ::testing::TempDir();
+  {
+    std::ofstream(dir + "/tripod.yaml") << Tripod(3.0, ", effort_limits: [-20, 20]");
+    std::ofstream(dir + "/path.csv") << "time,x,y,z,roll,pitch,yaw\n1,0,0,1.05,0,0,0\n";
+  }
+  const testing::ToolRun run = testing::RunTool(
+      {"trajectory", "--model=" + dir + "/tripod.yaml", "--waypoints=" + dir + "/path.csv", "--out=" + dir + "/t.csv"});
+  ASSERT_EQ(run.status, 0) << run.err;
+  std::istringstream csv(testing::Slurp(dir + "/t.csv"));
+  std::string header, line, last;
+  std::getline(csv, header);
+  EXPECT_NE(header.find(",effort_leg0_N,effort_leg1_N,effort_leg2_N,within_limits"), std::string::npos) << header;
+  while (std::getline(csv, line)) last = line;
+  std::vector<std::string> cells;
+  std::stringstream row(last);
+  for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+  ASSERT_GE(cells.size(), 4u);
+  // Higher apex, steeper legs: each still carries W/3 vertically; along the
+  // leg W/3 * L / h, with L the leg's length and h = 1.05 m.
+  const double W = 3.0 * 9.81, L = std::hypot(1.0, 1.05);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(std::abs(std::stod(cells[cells.size() - 4 + i])), W / 3 * L / 1.05, 1e-6);
+  EXPECT_EQ(cells.back(), "1");
+  // Without masses or limits: no effort columns.
+  {
+    std::ofstream(dir + "/plain.yaml") << Tripod(0.0);
+  }
+  const testing::ToolRun plain = testing::RunTool(
+      {"trajectory", "--model=" + dir + "/plain.yaml", "--waypoints=" + dir + "/path.csv", "--out=" + dir + "/p.csv"});
+  ASSERT_EQ(plain.status, 0) << plain.err;
+  EXPECT_EQ(testing::Slurp(dir + "/p.csv").find("effort_"), std::string::npos);
 }
 
 }  // namespace
