@@ -226,6 +226,52 @@ TEST(Statics, LimitsAndLoaderKeys) {
   EXPECT_THROW(LoadModelFromString(Tripod(-1.0), "bad.yaml"), ModelError);
 }
 
+// The current world position of a joint's point.
+Eigen::Vector3d JointPoint(const Joint& joint, const State& s) {
+  return joint.body_a == kWorld ? joint.p_A : Eigen::Vector3d(s.R_WB(joint.body_a) * joint.p_A + s.p_WB(joint.body_a));
+}
+
+TEST(Statics, StewartLegForcesAreTheInverseTransposedJacobianOfTheWrench) {
+  // Leg i along n_i from its ground point to its platform point r_i: its
+  // length rate is n_i . (v + w x r_i), row i of J = [n_i^T, (r_i x n_i)^T]
+  // (r_i from the end-effector point). Virtual work: J^T efforts = -wrench.
+  const Model model = LoadModel(std::string(CCMA_MODELS_DIR) + "/stewart_gough_6ups.yaml");
+  ForwardProblem forward(model);
+  std::mt19937 rng(6);
+  std::uniform_real_distribution<double> leg(-0.05, 0.05), load(-50, 50);
+  for (int trial = 0; trial < 5; ++trial) {
+    Eigen::VectorXd u = model.home_controls();
+    for (int i = 0; i < u.size(); ++i) u[i] += trial == 0 ? 0.0 : leg(rng);
+    ASSERT_TRUE(forward.Assemble(u).assembled);
+    const State& s = forward.state();
+    ExternalWrench w;
+    w.force = Eigen::Vector3d(load(rng), load(rng), load(rng));
+    w.moment = Eigen::Vector3d(load(rng), load(rng), load(rng)) / 10;
+    const StaticsReport r = ComputeStatics(model, s, forward.controls(), w);
+    ASSERT_TRUE(r.determinate);
+    Eigen::Matrix<double, 6, 6> J;
+    Eigen::Matrix<double, 6, 1> efforts, wrench;
+    wrench << w.force, w.moment;
+    const Eigen::Vector3d p_WE = forward.end_effector().position;
+    int row = 0;
+    for (const Joint& joint : model.joints) {
+      if (!joint.actuated) continue;
+      Eigen::Vector3d ground, top;
+      for (const Joint& other : model.joints) {
+        if (other.body_b == joint.body_a) ground = JointPoint(other, s);
+        if (other.body_a == joint.body_b) top = JointPoint(other, s);
+      }
+      const Eigen::Vector3d n = (top - ground).normalized(), r_i = top - p_WE;
+      J.row(row) << n.transpose(), r_i.cross(n).transpose();
+      efforts[row] = r.actuators[static_cast<size_t>(row)].effort;
+      ++row;
+    }
+    ASSERT_EQ(row, 6);
+    const Eigen::Matrix<double, 6, 1> expected = -J.transpose().inverse() * wrench;
+    EXPECT_LT((efforts - expected).cwiseAbs().maxCoeff(), 1e-9 * (1 + expected.cwiseAbs().maxCoeff())) << trial;
+  }
+}
+
 TEST(Statics, TrajectoryRowsCarryTheEfforts) {
   const std::string dir = ::testing::TempDir();
   {
