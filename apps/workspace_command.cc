@@ -69,11 +69,19 @@ std::string Cell(double v) {
   return os.str();
 }
 
+// The end-effector's position standard deviation sqrt(trace Sigma_p) [m] at
+// a reached sample, from the bases' pose noise (the replay's defaults;
+// analyses/precision.h); 0 where dG/ds is singular.
+double PositionStd(const Model& model, const WorkspaceSample& s) {
+  const Eigen::Matrix<double, 6, 6> sigma = EndEffectorCovariance(model, s.state, s.controls, BasePoseNoise());
+  return sigma.allFinite() ? std::sqrt(std::max(0.0, sigma.topLeftCorner<3, 3>().trace())) : 0.0;
+}
+
 void WriteCsv(const Model& model, const WorkspaceResult& result, std::ostream& csv) {
   for (int c = 0; c < 6; ++c) {
     if (model.end_effector.controlled[static_cast<size_t>(c)]) csv << kEndEffectorComponentNames[static_cast<size_t>(c)] << ",";
   }
-  csv << "reachable,residual_energy,sigma_min,error,rcond,max_limit_violation,limited_by,wave,start";
+  csv << "reachable,residual_energy,sigma_min,error,rcond,max_limit_violation,limited_by,wave,start,ee_std_m";
   for (int k = 0; k < model.num_controls(); ++k) csv << ",u" << k;
   csv << "\n";
   for (const WorkspaceSample& s : result.samples) {
@@ -87,7 +95,7 @@ void WriteCsv(const Model& model, const WorkspaceResult& result, std::ostream& c
     }
     csv << (s.reachable ? 1 : 0) << "," << Cell(s.residual_energy) << "," << Cell(s.reachable ? s.sigma_min : 0.0)
         << "," << Cell(s.error) << "," << Cell(s.rcond) << "," << Cell(s.max_limit_violation) << "," << limited << ","
-        << s.wave << "," << s.start;
+        << s.wave << "," << s.start << "," << Cell(s.reachable ? PositionStd(model, s) : 0.0);
     for (int k = 0; k < model.num_controls(); ++k) {
       csv << ",";
       if (s.reachable) csv << Cell(s.controls[k]);

@@ -266,11 +266,11 @@ TEST(WorkspaceCli, CsvColumnsAndJsonSummary) {
   std::getline(csv, header);
   EXPECT_EQ(header,
             "x,y,z,yaw,reachable,residual_energy,sigma_min,error,rcond,max_limit_violation,limited_by,wave,start,"
-            "u0,u1,u2,u3,u4,u5,u6,u7,u8");
+            "ee_std_m,u0,u1,u2,u3,u4,u5,u6,u7,u8");
   std::vector<std::vector<std::string>> rows;
   while (std::getline(csv, line)) rows.push_back(Split(line));
   ASSERT_EQ(rows.size(), 3u);
-  for (const auto& row : rows) ASSERT_EQ(row.size(), 22u) << line;
+  for (const auto& row : rows) ASSERT_EQ(row.size(), 23u) << line;
   EXPECT_EQ(std::stod(rows[0][2]), 0.5);
   EXPECT_EQ(std::stod(rows[2][2]), 1.0);
   EXPECT_EQ(std::stod(rows[0][0]), 0.0);  // x, y, yaw at home
@@ -278,9 +278,13 @@ TEST(WorkspaceCli, CsvColumnsAndJsonSummary) {
   EXPECT_EQ(rows[2][4], "0");
   EXPECT_GT(std::stod(rows[0][6]), 0);
   EXPECT_EQ(std::stod(rows[2][6]), 0);     // sigma_min 0 when unreachable
-  EXPECT_FALSE(rows[0][13].empty());
-  EXPECT_TRUE(rows[2][13].empty());        // no controls when unreachable
-  EXPECT_TRUE(rows[2][21].empty());
+  // ee_std_m: a fraction of a millimetre-scale noise times the leverage; 0 when unreachable.
+  EXPECT_GT(std::stod(rows[0][13]), 1e-4);
+  EXPECT_LT(std::stod(rows[0][13]), 1e-2);
+  EXPECT_EQ(std::stod(rows[2][13]), 0);
+  EXPECT_FALSE(rows[0][14].empty());
+  EXPECT_TRUE(rows[2][14].empty());        // no controls when unreachable
+  EXPECT_TRUE(rows[2][22].empty());
   EXPECT_EQ(r.out.find("nan"), std::string::npos);
 }
 
