@@ -10,6 +10,7 @@
 
 #include <Eigen/Dense>
 
+#include "analyses/design_objective.h"
 #include "problems/internal/end_effector_error.h"
 
 namespace ccma {
@@ -25,6 +26,10 @@ bool DesignOptions::IsValid(std::string* why) const {
   if (!(max_change > 0 && max_change <= 100)) return fail("max_change must be in (0, 100]");
   if (!(min_length > 0 && min_length <= 100)) return fail("min_length must be in (0, 100]");
   if (!(max_iterations >= 1 && max_iterations <= 1000)) return fail("max_iterations must be in [1, 1000]");
+  if (!(noise.position_sigma >= 0 && noise.position_sigma <= 1 && noise.heading_sigma >= 0 &&
+        noise.heading_sigma <= 1)) {
+    return fail("the pose noise sigmas must be in [0, 1]");
+  }
   return true;
 }
 
@@ -263,6 +268,75 @@ std::string MarginStep(DesignLoop* loop) {
   return "no design step raises the smallest sigma_min while keeping every target reached";
 }
 
+// The worst objective value over the solved targets on design p (the
+// smallest payload, the largest push or std), and which target it is at.
+ObjectiveAtTarget WorstObjective(const DesignLoop& loop, const std::vector<SolvedTarget>& solved,
+                                 const Eigen::VectorXd& p, int* worst) {
+  const Model at_p = ApplyParameters(loop.model, loop.params, p);
+  ObjectiveAtTarget out;
+  const double sign = IsMaximised(loop.options.objective) ? -1.0 : 1.0;  // larger sign * value is worse
+  for (int t = 0; t < static_cast<int>(solved.size()); ++t) {
+    const ObjectiveAtTarget v =
+        EvaluateObjective(loop.options.objective, at_p, solved[t].s, solved[t].u, loop.options.noise);
+    if (!v.defined) return v;
+    if (t == 0 || sign * v.value > sign * out.value) {
+      out = v;
+      if (worst != nullptr) *worst = t;
+    }
+  }
+  return out;
+}
+
+// Phase 3, one iteration: a step of `*length` [m] along the objective's
+// gradient at the worst target (halved up to 6 times), accepted when every
+// target stays reached, sigma_min stays at or above the threshold and the
+// worst value improves. "" or why it stopped.
+std::string ObjectiveStep(DesignLoop* loop, double* length, ObjectiveAtTarget* current) {
+  int worst = 0;
+  *current = WorstObjective(*loop, loop->solved, loop->p, &worst);
+  if (!current->defined) return current->why;
+  Eigen::VectorXd g;
+  std::string why;
+  const SolvedTarget& t = loop->solved[worst];
+  if (!ObjectiveGradient(loop->options.objective, loop->model, loop->params, loop->p, t.s, t.u, loop->options.noise,
+                         &g, &why)) {
+    return why;
+  }
+  if (!(g.norm() > 0)) return "the objective does not change with the parameters";
+  const double sign = IsMaximised(loop->options.objective) ? 1.0 : -1.0;
+  const double margin = std::min(loop->options.min_singular_value, MinSigma(loop->solved));
+  for (int halving = 0; halving < 6; ++halving, *length /= 2) {
+    const Eigen::VectorXd p_trial = Clip(loop->params, loop->p0, loop->p + sign * *length * g / g.norm(), loop->options);
+    if ((p_trial - loop->p).norm() < 1e-12) continue;
+    std::vector<SolvedTarget> trial = SolveAll(loop->model, loop->params, p_trial, loop->targets, loop->options, true);
+    if (!AllReached(trial) || MinSigma(trial) < margin) continue;
+    const ObjectiveAtTarget v = WorstObjective(*loop, trial, p_trial, nullptr);
+    if (v.defined && sign * (v.value - current->value) > 1e-9 * (1 + std::abs(current->value))) {
+      loop->p = p_trial;
+      loop->solved = std::move(trial);
+      *current = v;
+      *length *= 1.5;
+      return "";
+    }
+  }
+  return "no design step improves the " + std::string(DesignObjectiveName(loop->options.objective)) +
+         " objective further (a local optimum, the bounds or the margin)";
+}
+
+// Phase 3: the objective, while every target stays reached with margin.
+void ImproveObjective(DesignLoop* loop, DesignResult* result) {
+  result->objective_before = WorstObjective(*loop, loop->solved, loop->p, nullptr);
+  result->objective_after = result->objective_before;
+  double length = 0.02;
+  for (int it = 0; it < loop->options.max_iterations; ++it) {
+    ObjectiveAtTarget current;
+    result->objective_message = ObjectiveStep(loop, &length, &current);
+    if (!result->objective_message.empty()) break;
+    result->objective_after = current;
+    result->objective_iterations = it + 1;
+  }
+}
+
 }  // namespace
 
 DesignResult Design(const Model& model, const DesignParameters& params, const std::vector<PoseTarget>& targets,
@@ -290,10 +364,11 @@ DesignResult Design(const Model& model, const DesignParameters& params, const st
     result.message = MarginStep(&loop);
     if (!result.message.empty()) break;
   }
+  result.converged = AllReached(loop.solved) && MinSigma(loop.solved) >= options.min_singular_value;
+  if (result.converged && options.objective != DesignObjective::kReach) ImproveObjective(&loop, &result);
   result.p = loop.p;
   result.iterations = it;
   result.final = Results(loop.solved);
-  result.converged = AllReached(loop.solved) && MinSigma(loop.solved) >= options.min_singular_value;
   if (result.converged) {
     result.message.clear();
   } else if (result.message.empty()) {

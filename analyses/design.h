@@ -30,6 +30,7 @@
 
 #include <Eigen/Core>
 
+#include "analyses/precision.h"
 #include "ccma/end_effector.h"
 #include "ccma/model.h"
 #include "ccma/state.h"
@@ -109,13 +110,26 @@ std::string PatchModelText(const std::string& text, const Model& original, const
                            const DesignParameters& params);
 
 // ---- The design loop ----------------------------------------------------
+// What is improved after reach and margin (design_objective.h).
+enum class DesignObjective { kReach, kPayload, kPeakPush, kEndEffectorStd };
+
+// An objective at one assembled target configuration.
+struct ObjectiveAtTarget {
+  bool defined = false;
+  double value = 0;      // kg, N or m
+  std::string limiting;  // the actuator or base that sets it ("" for ee_std)
+  std::string why;       // when !defined
+};
+
 struct DesignOptions {
   ControlOptions control;           // each target's control solve
   double target_tolerance = 1e-6;   // a target is reached within this [m or rad], in [1e-12, 1]
   double min_singular_value = 0.02; // required sigma_min of dX_c/du at every target, in [0, 100]
   double max_change = 0.5;          // |p_k - p_k0| bound [m], in (0, 100]
   double min_length = 0.02;         // lower bound on every varied length [m], in (0, 100]
-  int max_iterations = 30;          // outer iterations, in [1, 1000]
+  int max_iterations = 30;          // outer iterations per phase, in [1, 1000]
+  DesignObjective objective = DesignObjective::kReach;
+  BasePoseNoise noise;              // ee_std: the bases' pose noise, each sigma in [0, 1]
   bool IsValid(std::string* why) const;
 };
 
@@ -134,6 +148,12 @@ struct DesignResult {
   Eigen::VectorXd p0, p;    // parameters before and after [m]
   std::vector<DesignTargetResult> initial, final;
   std::string message;      // why not converged ("" when converged)
+  // With an objective: its worst value over the targets before and after
+  // (phase 3 starts once every target is reached with margin), and why it
+  // stopped improving.
+  ObjectiveAtTarget objective_before, objective_after;
+  int objective_iterations = 0;
+  std::string objective_message;
 };
 
 // Solves every target on `model` (each from home, along a path; the model's
@@ -147,7 +167,10 @@ std::vector<DesignTargetResult> EvaluateTargets(const Model& model, const std::v
 // trial re-solving every target on the new design (accepted when the summed
 // squared error falls); then, if some target's sigma_min is below the
 // threshold, steps on p raising the smallest sigma_min (its gradient in p by
-// central differences of re-solved targets) while all stay reached.
+// central differences of re-solved targets) while all stay reached; then,
+// with an objective, steps on p along its gradient at the worst target
+// (design_objective.h), each trial re-solving every target and accepted when
+// all stay reached, the margin holds and the worst value improves.
 // Throws std::invalid_argument for invalid options or no parameters/targets.
 DesignResult Design(const Model& model, const DesignParameters& params, const std::vector<PoseTarget>& targets,
                     const DesignOptions& options);

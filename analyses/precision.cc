@@ -12,7 +12,7 @@
 
 namespace ccma {
 
-Eigen::MatrixXd EndEffectorControlJacobian(const Model& model, const State& s, const Eigen::VectorXd& u) {
+Eigen::MatrixXd EndEffectorStateJacobian(const Model& model, const State& s) {
   // All six components, at the current pose: e = [p - p*, Log(R R*^T)] and
   // de/ds there is dX/ds.
   Model all = model;
@@ -22,13 +22,23 @@ Eigen::MatrixXd EndEffectorControlJacobian(const Model& model, const State& s, c
   Eigen::VectorXd e;
   Eigen::MatrixXd de_ds;
   error.Evaluate(s, {pose.position, pose.rpy}, &e, &de_ds);
+  return de_ds;
+}
+
+Eigen::MatrixXd StateControlSensitivity(const Model& model, const State& s, const Eigen::VectorXd& u) {
   const ConstraintSet constraints(model);
   std::vector<int> controls(static_cast<size_t>(model.num_controls()));
   std::iota(controls.begin(), controls.end(), 0);
   HessianSolver solver(constraints);
   const Sensitivity sensitivity(constraints, s, u, controls, &solver);
   if (sensitivity.singular()) return Eigen::MatrixXd();  // ds/du is not defined
-  return de_ds * sensitivity.StateSensitivity();
+  return sensitivity.StateSensitivity();
+}
+
+Eigen::MatrixXd EndEffectorControlJacobian(const Model& model, const State& s, const Eigen::VectorXd& u) {
+  const Eigen::MatrixXd ds_du = StateControlSensitivity(model, s, u);
+  if (ds_du.size() == 0 && model.num_controls() > 0) return Eigen::MatrixXd();
+  return EndEffectorStateJacobian(model, s) * ds_du;
 }
 
 Eigen::Matrix<double, 6, 6> EndEffectorCovariance(const Model& model, const State& s, const Eigen::VectorXd& u,

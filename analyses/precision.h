@@ -22,6 +22,12 @@ struct BasePoseNoise {
   double heading_sigma = 0.003;   // rad
 };
 
+// ds/du over all controls (state tangent x num_controls) at an assembled
+// (s, u); empty when dG/ds is singular there.
+Eigen::MatrixXd StateControlSensitivity(const Model& model, const State& s, const Eigen::VectorXd& u);
+// dX/ds (6 x state tangent) at s: position rows [m], rotation rows [rad].
+Eigen::MatrixXd EndEffectorStateJacobian(const Model& model, const State& s);
+
 // dX/du over all controls (6 x num_controls) at an assembled (s, u); empty
 // when dG/ds is singular there.
 Eigen::MatrixXd EndEffectorControlJacobian(const Model& model, const State& s, const Eigen::VectorXd& u);

@@ -9,15 +9,10 @@
 
 #include "ccma/end_effector.h"
 #include "ccma/internal/constraint_set.h"
+#include "problems/internal/equilibrium.h"
 
 namespace ccma {
 namespace {
-
-// [M; F] of a force F at world point p on body b (moment about its origin).
-void AddForce(const State& s, int body, const Eigen::Vector3d& p, const Eigen::Vector3d& F, Eigen::VectorXd* Q) {
-  Q->segment<3>(kPoseTangentSize * body) += (p - s.p_WB(body)).cross(F);
-  Q->segment<3>(kPoseTangentSize * body + 3) += F;
-}
 
 // The blocks of C that join joint j's bodies: the joint's, and its motor's.
 std::vector<std::vector<int>> JointBlocks(const Model& model) {
@@ -102,45 +97,22 @@ bool HasLoads(const Model& model) {
   return false;
 }
 
-Eigen::VectorXd GeneralizedLoads(const Model& model, const State& s, const ExternalWrench& wrench) {
-  Eigen::VectorXd Q = Eigen::VectorXd::Zero(s.tangent_size());
-  for (int b = 0; b < model.num_bodies(); ++b) {
-    const MassProperties& m = model.bodies[static_cast<size_t>(b)].inertia;
-    if (m.mass > 0) AddForce(s, b, s.R_WB(b) * m.com_B + s.p_WB(b), m.mass * model.gravity, &Q);
-  }
-  const int ee = model.end_effector.body;
-  const MassProperties& payload = model.end_effector.payload;
-  if (payload.mass > 0) AddForce(s, ee, s.R_WB(ee) * payload.com_B + s.p_WB(ee), payload.mass * model.gravity, &Q);
-  const Eigen::Vector3d p_WE = s.R_WB(ee) * model.end_effector.p_B + s.p_WB(ee);
-  AddForce(s, ee, p_WE, wrench.force, &Q);
-  Q.segment<3>(kPoseTangentSize * ee) += wrench.moment;
-  return Q;
-}
-
 StaticsReport ComputeStatics(const Model& model, const State& s, const Eigen::VectorXd& u,
                              const ExternalWrench& wrench) {
   const ConstraintSet set(model);
-  if (static_cast<long>(set.num_rows()) * set.state_size() > kMaxStaticsEntries) {
-    throw std::invalid_argument("statics: " + std::to_string(set.num_rows()) + " constraint rows x " +
-                                std::to_string(set.state_size()) + " state coordinates exceed " +
-                                std::to_string(kMaxStaticsEntries) + " entries");
-  }
-  Eigen::VectorXd C;
-  Eigen::MatrixXd J_s, J_u;
-  set.Evaluate(s, u, &C, &J_s, &J_u);
+  const Equilibrium equilibrium(set, s, u);
+  const Eigen::MatrixXd& J_s = equilibrium.J_s();
   const Eigen::VectorXd Q = GeneralizedLoads(model, s, wrench);
-  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(J_s.transpose());
-  cod.setThreshold(1e-10);
-  const Eigen::VectorXd lambda = cod.solve(-Q);
+  const Eigen::VectorXd lambda = equilibrium.Multipliers(Q);
   StaticsReport out;
-  out.determinate = cod.rank() == J_s.rows() || ReactionsDetermined(set, J_s, J_u);
+  out.determinate = equilibrium.rank() == J_s.rows() || ReactionsDetermined(set, J_s, equilibrium.J_u());
   out.residual = Q.size() > 0 ? (J_s.transpose() * lambda + Q).lpNorm<Eigen::Infinity>() : 0.0;
   out.balanced = out.residual <= 1e-8 * (1.0 + (Q.size() > 0 ? Q.lpNorm<Eigen::Infinity>() : 0.0));
   const std::vector<std::vector<int>> blocks = JointBlocks(model);
   for (size_t j = 0; j < model.joints.size(); ++j) {
     out.joints.push_back(Reaction(model, set, s, model.joints[j], blocks[j], J_s, lambda));
   }
-  const Eigen::VectorXd effort = -J_u.transpose() * lambda;
+  const Eigen::VectorXd effort = equilibrium.Efforts(lambda);
   for (int k = 0; k < model.num_bases(); ++k) {
     const std::string& name = model.mobile_bases[static_cast<size_t>(k)].name;
     out.actuators.push_back({name, ActuatorKind::kBaseX, effort[3 * k]});

@@ -23,17 +23,12 @@
 
 #include <Eigen/Core>
 
+#include "ccma/limits.h"
+#include "ccma/loads.h"
 #include "ccma/model.h"
 #include "ccma/state.h"
 
 namespace ccma {
-
-// On the end-effector body, world frame: a force at the end-effector point
-// and a moment [N, N*m].
-struct ExternalWrench {
-  Eigen::Vector3d force = Eigen::Vector3d::Zero();
-  Eigen::Vector3d moment = Eigen::Vector3d::Zero();
-};
 
 // What body between[0] exerts on body between[1] through a joint (its motor
 // included), world frame, the moment about the joint's current point.
@@ -70,16 +65,10 @@ struct StaticsReport {
 // payload, effort limits or a push limit.
 bool HasLoads(const Model& model);
 
-// The loads as a generalized force over the state tangent (n).
-Eigen::VectorXd GeneralizedLoads(const Model& model, const State& s, const ExternalWrench& wrench);
-
 // Statics at (s, u). Throws std::invalid_argument when the constraint
 // Jacobian would exceed kMaxStaticsEntries doubles.
 StaticsReport ComputeStatics(const Model& model, const State& s, const Eigen::VectorXd& u,
                              const ExternalWrench& wrench = {});
-
-// Bound on rows x state size of the dense equilibrium solve (64 MB).
-constexpr long kMaxStaticsEntries = 8000000;
 
 }  // namespace ccma
 

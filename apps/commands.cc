@@ -108,7 +108,8 @@ Command StaticsCommand() {
           "control must supply (N along a base's x or y, N*m about its heading, N*m or N at an actuated\n"
           "joint), analytic from the constraint Jacobians. Statically indeterminate mechanisms get the\n"
           "minimum-norm reactions (determinate: false); effort_limits and push_limit are checked\n"
-          "(within_limits, limiting). ee_covariance: the end-effector pose's 6x6 covariance from the bases'\n"
+          "(within_limits, limiting) and payload_capacity {mass [kg], limiting} is the largest payload they\n"
+          "allow here. ee_covariance: the end-effector pose's 6x6 covariance from the bases'\n"
           "pose noise (the replay's motion-capture model) through dX/du. Warns when not assembled,\n"
           "unbalanced, indeterminate or beyond a limit.",
           {"model", "controls", "wrench", "mocap_noise_m", "mocap_noise_rad", "obstacles"}, RunStatics};
@@ -213,16 +214,22 @@ Command DesignCommand() {
   return {"design", "move joint points or link lengths until every target pose is reachable",
           "ccma design --model=FILE --targets=FILE.csv --out=NEW.yaml [--vary=JOINT.x|.y|.z|.point,...]\n"
           "            [--vary_length=ANCHOR:JOINT,...] [--max_change=0.5] [--min_length=0.02]\n"
-          "            [--min_singular_value=0.02] [--target_tolerance=1e-6] [--design_iterations=30] [control flags]",
+          "            [--min_singular_value=0.02] [--target_tolerance=1e-6] [--design_iterations=30]\n"
+          "            [--objective=reach|payload|peak_push|ee_std] [--mocap_noise_m=0.001] [--mocap_noise_rad=0.003]\n"
+          "            [control flags]",
           "Adjusts the named geometry (joint points in world home coordinates [m], link lengths [m]) so that\n"
           "every target pose of the waypoint CSV (docs/waypoints.md; times ignored) is reachable with margin:\n"
           "control error below --target_tolerance, assembled, joint limits held, smallest singular value of\n"
           "dX/du at least --min_singular_value (docs/design.md). Writes the model file with only the named\n"
           "joints' point numbers changed (comments and layout kept) and prints {converged, reached (one\n"
           "boolean per target, in the written model), reached_before, changed (parameter, old, new [m]),\n"
-          "changed_points, targets, iterations}; a warning on stderr when not converged.",
+          "changed_points, targets, iterations}; a warning on stderr when not converged. With --objective,\n"
+          "once every target is reached with margin the design keeps moving to raise the payload the model\n"
+          "can hold within its effort_limits and push_limit, or to lower the largest base push or the\n"
+          "end-effector's standard deviation, at the worst target; JSON objective {name, unit, before,\n"
+          "after, iterations, stopped} (docs/statics.md).",
           Concat({"model", "targets", "out", "vary", "vary_length", "max_change", "min_length", "min_singular_value",
-                  "target_tolerance", "design_iterations"},
+                  "target_tolerance", "design_iterations", "objective", "mocap_noise_m", "mocap_noise_rad"},
                  kControlFlags),
           RunDesign};
 }

@@ -59,6 +59,9 @@ int RunExport(const std::vector<std::string>& args);
 // The control flags (method, max_step_m, max_step_rad, lambda) as options;
 // throws UsageError when ControlOptions::IsValid says no.
 ControlOptions ControlOptionsFromFlags();
+// The bases' pose noise of --mocap_noise_m, --mocap_noise_rad: the replay's
+// defaults unless given (apps/statics_command.cc); UsageError above 1.
+BasePoseNoise PoseNoiseFromFlags();
 
 // Singularity-aware control and redundancy resolution (secondary_flags.cc):
 // the flags' names (accepted by control and trajectory),

@@ -16,6 +16,7 @@
 #include "formats/model_loader.h"
 #include "formats/waypoints.h"
 #include "analyses/design.h"
+#include "analyses/design_objective.h"
 
 DEFINE_string(targets, "", "design: target poses, waypoint CSV (docs/waypoints.md; time is ignored) [path]");
 DEFINE_string(vary, "",
@@ -29,7 +30,11 @@ DEFINE_double(min_length, 0.02, "design: smallest allowed varied link length, (0
 DEFINE_double(min_singular_value, 0.02,
               "design: required smallest singular value of dX/du at every target, [0, 100] [m or rad per control unit]");
 DEFINE_double(target_tolerance, 1e-6, "design: a target is reached within this, [1e-12, 1] [m or rad]");
-DEFINE_int32(design_iterations, 30, "design: outer iterations, [1, 1000] [count]");
+DEFINE_int32(design_iterations, 30, "design: outer iterations per phase, [1, 1000] [count]");
+DEFINE_string(objective, "reach",
+              "design: what to improve once every target is reached with margin: reach (nothing more), payload "
+              "(largest payload within the effort and push limits), peak_push (smallest largest base push), ee_std "
+              "(smallest end-effector position standard deviation from --mocap_noise_m/_rad) [name]");
 
 namespace ccma::cli {
 namespace {
@@ -112,6 +117,11 @@ DesignOptions DesignOptionsFromFlags() {
   options.min_singular_value = FLAGS_min_singular_value;
   options.target_tolerance = FLAGS_target_tolerance;
   options.max_iterations = FLAGS_design_iterations;
+  if (!ParseDesignObjective(FLAGS_objective, &options.objective)) {
+    throw UsageError("ccma design: --objective must be reach, payload, peak_push or ee_std, got '" + FLAGS_objective +
+                     "'");
+  }
+  options.noise = PoseNoiseFromFlags();
   std::string why;
   if (!options.IsValid(&why)) throw UsageError("ccma design: " + why);
   return options;
@@ -143,6 +153,23 @@ void AddChanges(const Model& model, const Model& designed, const DesignParameter
                                   {"new_point", ToJson(Eigen::VectorXd(b))}});
   }
   (*out)["changed_points"] = points;
+}
+
+nlohmann::json ObjectiveValueJson(const ObjectiveAtTarget& v) {
+  if (!v.defined) return nullptr;
+  return {{"value", v.value}, {"limiting", v.limiting}};
+}
+
+// "objective": what phase 3 improved (null values where not defined).
+nlohmann::json ObjectiveJson(const DesignOptions& options, const DesignResult& result) {
+  nlohmann::json out = {{"name", DesignObjectiveName(options.objective)},
+                        {"unit", DesignObjectiveUnit(options.objective)},
+                        {"maximised", IsMaximised(options.objective)},
+                        {"before", ObjectiveValueJson(result.objective_before)},
+                        {"after", ObjectiveValueJson(result.objective_after)},
+                        {"iterations", result.objective_iterations},
+                        {"stopped", result.objective_message}};
+  return out;
 }
 
 }  // namespace
@@ -178,6 +205,14 @@ int RunDesign(const std::vector<std::string>& args) {
   out["targets"] = TargetsJson(final_check, false);
   out["iterations"] = result.iterations;
   AddChanges(model, designed, params, result, &out);
+  if (options.objective != DesignObjective::kReach) {
+    out["objective"] = ObjectiveJson(options, result);
+    if (converged && !result.objective_after.defined) {
+      out["warning"] = "the " + std::string(DesignObjectiveName(options.objective)) +
+                       " objective is not defined: " + result.objective_after.why;
+      std::cerr << "ccma design: warning: " << out["warning"].get<std::string>() << "\n";
+    }
+  }
   if (!converged) {
     const std::string message = result.message.empty() ? "not every target is reached with margin" : result.message;
     out["warning"] = message;

@@ -5,6 +5,7 @@
 #include <iostream>
 #include <string>
 
+#include "analyses/payload.h"
 #include "apps/cli.h"
 #include "apps/commands.h"
 #include "apps/flags.h"
@@ -19,10 +20,8 @@ DECLARE_double(mocap_noise_m);    // apps/replay_command.cc (the replay's noise 
 DECLARE_double(mocap_noise_rad);
 
 namespace ccma::cli {
-namespace {
 
-// The bases' pose noise: the replay's defaults unless given.
-BasePoseNoise NoiseFlags() {
+BasePoseNoise PoseNoiseFromFlags() {
   BasePoseNoise noise;
   const SimulationNoise replay;
   noise.position_sigma = FLAGS_mocap_noise_m >= 0 ? FLAGS_mocap_noise_m : replay.position_sigma;
@@ -32,6 +31,8 @@ BasePoseNoise NoiseFlags() {
   }
   return noise;
 }
+
+namespace {
 
 // Sigma_X as 6 rows, or null when dG/ds is singular (no first-order answer).
 nlohmann::json CovarianceJson(const Eigen::Matrix<double, 6, 6>& sigma) {
@@ -102,7 +103,7 @@ int RunStatics(const std::vector<std::string>& args) {
   ParseCommandFlags(args, "statics");
   const Model model = LoadModelOrThrow(RequireFlag(FLAGS_model, "model", "statics"));
   const ExternalWrench wrench = WrenchFlag();
-  const BasePoseNoise noise = NoiseFlags();
+  const BasePoseNoise noise = PoseNoiseFromFlags();
   const Eigen::VectorXd u = ControlsFlagOrHome(model);
   ForwardProblem forward(model);
   const ForwardResult assembly = forward.Assemble(u);
@@ -123,6 +124,12 @@ int RunStatics(const std::vector<std::string>& args) {
       CovarianceJson(EndEffectorCovariance(model, forward.state(), forward.controls(), noise));
   if (!covariance.is_null()) out["ee_covariance"] = covariance;
   out["noise"] = {{"mocap_noise_m", noise.position_sigma}, {"mocap_noise_rad", noise.heading_sigma}};
+  if (report.limits_given) {
+    const PayloadCapacity capacity = ComputePayloadCapacity(model, forward.state(), forward.controls());
+    if (capacity.defined && !capacity.unbounded) {
+      out["payload_capacity"] = {{"mass", capacity.mass}, {"limiting", capacity.limiting}};
+    }
+  }
   AddClearance(model, forward.state(), "statics", &out);
   const std::string warning = Warnings(report, assembly);
   if (!warning.empty()) {

@@ -59,6 +59,10 @@ constexpr long kMaxAssemblySubsteps = 100000;
 constexpr long kMaxReplayTicks = 10000000;
 constexpr long kMaxReplaySamples = 1000000;
 
+// Statics: constraint rows x state coordinates of the dense equilibrium
+// solve (64 MB), problems/internal/equilibrium.h.
+constexpr long kMaxStaticsEntries = 8000000;
+
 }  // namespace ccma
 
 #endif  // CCMA_LIMITS_H_

@@ -328,7 +328,7 @@ void ControlProblem::Finish(const PoseTarget& target, ControlStepResult* result)
   if (!constraints.empty()) constraints.Report(forward_.controls(), forward_.state(), workspace_->active, result);
   result->reached = result->assembled && result->error <= options_.target_tolerance &&
                     result->max_limit_violation <= 1e-9 && result->max_lateral_displacement <= 1e-9 &&
-                    result->max_clearance_violation <= 1e-9;
+                    result->max_clearance_violation <= 1e-9 && result->max_effort_violation <= 1e-6;
 }
 
 ControlResult ControlProblem::MoveTo(

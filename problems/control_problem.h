@@ -135,7 +135,10 @@ struct ControlStepResult {
   // below collision.margin at the returned controls (0; a pair that started
   // below keeps its starting clearance instead).
   double max_clearance_violation = 0;
-  std::string limited_by;  // also the pairs of shapes held at the margin
+  // Effort limits (model_format.md `effort_limits`, `push_limit`, with
+  // masses): how far [N or N*m] an effort or push is beyond its limit (0).
+  double max_effort_violation = 0;
+  std::string limited_by;  // also the pairs of shapes held at the margin, the efforts at a limit
   double time_ms = 0;
 };
 
@@ -159,6 +162,7 @@ struct ControlResult {
   double max_limit_violation = 0;       // worst over the path's steps
   double max_lateral_displacement = 0;  // worst over the path's steps
   double max_clearance_violation = 0;   // worst over the path's steps
+  double max_effort_violation = 0;      // worst over the path's steps [N or N*m]
   std::string limited_by;               // joints at a limit, pairs at the margin, when it stopped
   double solve_time_ms = 0;
   std::string warning;      // empty, or why the target was not reached

@@ -10,6 +10,7 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 #include <Eigen/SVD>
 
 #include "analyses/statics.h"
@@ -83,6 +84,66 @@ TEST(Statics, CrankHoldingTorqueIsWeightTimesLever) {
     // axis -y: q raises the arm; the motor holds it up against gravity.
     EXPECT_NEAR(r.actuators[0].effort, 2 * 9.81 * 0.4 * std::cos(q), 1e-9) << q;
     EXPECT_NEAR(r.joints[0].force.z(), 2 * 9.81, 1e-9);  // the ground carries the weight
+  }
+}
+
+// A planar four-bar in the x-z plane: ground pivots A = 0 and D = (0.6, 0, 0),
+// crank AB motorised (axis -y, as the crank above), coupler BC (1 kg at its
+// middle), rocker DC (2 kg at C). Closed form, independent of ccma: B(q) is
+// B0 turned by q about A, C(q) the intersection of the circles about B(q)
+// (radius |BC|) and D (radius |DC|) on the branch of C0, and by virtual work
+// the crank torque is tau = -sum m g . dp/dq over the two weights.
+struct FourBar {
+  Eigen::Vector3d A{0, 0, 0}, B0{0.1, 0, 0.173205081}, C0{0.669459271, 0, 0.393923101}, D{0.6, 0, 0};
+  Eigen::Vector3d B(double q) const { return Eigen::AngleAxisd(q, -Eigen::Vector3d::UnitY()) * (B0 - A) + A; }
+  Eigen::Vector3d C(double q) const {
+    const Eigen::Vector3d b = B(q);
+    const double r1 = (C0 - B0).norm(), r2 = (C0 - D).norm(), d = (D - b).norm();
+    const double along = (r1 * r1 - r2 * r2 + d * d) / (2 * d), off = std::sqrt(r1 * r1 - along * along);
+    const Eigen::Vector3d ex = (D - b) / d, ez = Eigen::Vector3d::UnitY().cross(ex);  // in-plane normal
+    const Eigen::Vector3d c1 = b + along * ex + off * ez, c2 = b + along * ex - off * ez;
+    return (c1 - C0).norm() < (c2 - C0).norm() ? c1 : c2;  // the branch of C0 (q stays small)
+  }
+  // The weights' potential derivative dV/dq = -(tau), by a central difference of the closed form.
+  double Torque(double q) const {
+    const double h = 1e-6, g = 9.81;
+    auto V = [&](double x) { return g * (1.0 * 0.5 * (B(x) + C(x)).z() + 2.0 * C(x).z()); };
+    return (V(q + h) - V(q - h)) / (2 * h);
+  }
+};
+
+TEST(Statics, FourBarCrankTorqueByVirtualWork) {
+  const FourBar bar;
+  std::ostringstream text;
+  const Eigen::Vector3d M = 0.5 * (bar.B0 + bar.C0), R = 0.5 * (bar.C0 + bar.D);
+  text.precision(12);
+  text << "name: four_bar\nbodies:\n"
+       << "  - {name: crank, position: [" << 0.5 * bar.B0.x() << ", 0, " << 0.5 * bar.B0.z() << "]}\n"
+       << "  - {name: coupler, position: [" << M.x() << ", 0, " << M.z() << "], mass: 1}\n"
+       << "  - {name: rocker, position: [" << R.x() << ", 0, " << R.z() << "], mass: 2, com: [" << bar.C0.x()
+       << ", 0, " << bar.C0.z() << "]}\njoints:\n"
+       << "  - {name: crank_motor, type: revolute, actuated: true, between: [world, crank], point: [0, 0, 0], axis: [0, -1, 0]}\n"
+       << "  - {type: revolute, between: [crank, coupler], point: [" << bar.B0.x() << ", 0, " << bar.B0.z()
+       << "], axis: [0, -1, 0]}\n"
+       << "  - {type: revolute, between: [coupler, rocker], point: [" << bar.C0.x() << ", 0, " << bar.C0.z()
+       << "], axis: [0, -1, 0]}\n"
+       << "  - {type: revolute, between: [world, rocker], point: [" << bar.D.x() << ", 0, " << bar.D.z()
+       << "], axis: [0, -1, 0]}\nend_effector: {body: rocker, point: [" << bar.C0.x() << ", 0, " << bar.C0.z()
+       << "], controlled: [x]}\n";
+  const Model model = LoadModelFromString(text.str(), "four_bar.yaml");
+  ForwardProblem forward(model);
+  for (double q : {0.0, 0.15, -0.2, 0.3}) {
+    Eigen::VectorXd u(1);
+    u << q;
+    ASSERT_TRUE(forward.Assemble(u).assembled) << q;
+    // ccma's mechanism is the closed form's: the rocker's point C where the closed form puts it.
+    const State& s = forward.state();
+    const int rocker = 2;
+    EXPECT_LT((s.R_WB(rocker) * model.bodies[rocker].inertia.com_B + s.p_WB(rocker) - bar.C(q)).norm(), 1e-9) << q;
+    const StaticsReport r = ComputeStatics(model, s, forward.controls());
+    const double tau = bar.Torque(q);
+    ASSERT_GT(std::abs(tau), 0.1);
+    EXPECT_NEAR(r.actuators[0].effort, tau, 1e-8 * std::abs(tau)) << q;
   }
 }
 

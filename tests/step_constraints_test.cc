@@ -137,7 +137,7 @@ TEST(StepConstraints, ActiveSetGrowsWithTheJointAStepWouldPushPastItsBound) {
   ASSERT_EQ(hinge.name, "hinge");
   Eigen::VectorXd d = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(effective.size()));
   ActiveSet active = constraints.NoneActive();
-  EXPECT_FALSE(constraints.Grow(forward.state(), ds_du, d, &active));  // no change: nothing crosses
+  EXPECT_FALSE(constraints.Grow(forward.controls(), forward.state(), ds_du, d, &active));  // no change: nothing crosses
   const Eigen::RowVectorXd dq_du = [&] {
     ActiveSet all = constraints.NoneActive();
     all.back() = {1};
@@ -145,9 +145,9 @@ TEST(StepConstraints, ActiveSetGrowsWithTheJointAStepWouldPushPastItsBound) {
   }();
   ASSERT_GT(dq_du.norm(), 0.5);
   d = 0.5 * dq_du.transpose() / dq_du.squaredNorm();  // q + 0.5 rad: past the upper bound 0.3
-  EXPECT_TRUE(constraints.Grow(forward.state(), ds_du, d, &active));
+  EXPECT_TRUE(constraints.Grow(forward.controls(), forward.state(), ds_du, d, &active));
   EXPECT_EQ(active.back(), std::vector<int>({1}));
-  EXPECT_FALSE(constraints.Grow(forward.state(), ds_du, d, &active));  // already held: no growth
+  EXPECT_FALSE(constraints.Grow(forward.controls(), forward.state(), ds_du, d, &active));  // already held: no growth
   // The report names it once the joint sits at its bound.
   ControlStepResult result;
   constraints.Report(forward.controls(), forward.state(), active, &result);

@@ -42,7 +42,7 @@ double ClearanceConstraint::MaxViolation(const Eigen::VectorXd& /*u*/, const Sta
   return worst;
 }
 
-std::vector<int> ClearanceConstraint::AtOrBeyond(const State& s, double tolerance) const {
+std::vector<int> ClearanceConstraint::AtOrBeyond(const Eigen::VectorXd& /*u*/, const State& s, double tolerance) const {
   std::vector<int> out;
   for (const PairClearance& p : Near(s, collision_.margin() + std::max(tolerance, 0.0))) {
     if (p.distance.distance <= Floor({p.a, p.b}) + tolerance) out.push_back(ItemOf(p.a, p.b));
@@ -83,7 +83,7 @@ void ClearanceConstraint::AppendRows(const Eigen::VectorXd& /*u*/, const State& 
   }
 }
 
-std::vector<int> ClearanceConstraint::WouldCross(const State& s, const SensitivityView& ds_du,
+std::vector<int> ClearanceConstraint::WouldCross(const Eigen::VectorXd& /*u*/, const State& s, const SensitivityView& ds_du,
                                                  const Eigen::VectorXd& d, double tolerance) const {
   // How far any shape can move in this step (first order): translation plus
   // rotation times the shapes' reach; pairs farther apart cannot cross.

@@ -37,9 +37,9 @@ class ClearanceConstraint final : public StepConstraint {
   // d(u + delta) = floor for each active pair.
   void AppendRows(const Eigen::VectorXd& u, const State& s, const SensitivityView& ds_du,
                   const std::vector<int>& active, int first_row, LinearConstraints* rows) const override;
-  std::vector<int> WouldCross(const State& s, const SensitivityView& ds_du, const Eigen::VectorXd& d,
+  std::vector<int> WouldCross(const Eigen::VectorXd& u, const State& s, const SensitivityView& ds_du, const Eigen::VectorXd& d,
                               double tolerance) const override;
-  std::vector<int> AtOrBeyond(const State& s, double tolerance) const override;
+  std::vector<int> AtOrBeyond(const Eigen::VectorXd& u, const State& s, double tolerance) const override;
   // d + a delta >= floor for the pairs within `watch` of their floor.
   void AppendInequalities(const Eigen::VectorXd& u, const State& s, const SensitivityView& ds_du, double watch,
                           std::vector<InequalityRow>* rows) const override;

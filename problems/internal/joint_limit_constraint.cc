@@ -61,7 +61,7 @@ double JointLimitConstraint::MaxViolation(const Eigen::VectorXd& /*u*/, const St
   return worst;
 }
 
-std::vector<int> JointLimitConstraint::AtOrBeyond(const State& s, double tolerance) const {
+std::vector<int> JointLimitConstraint::AtOrBeyond(const Eigen::VectorXd& /*u*/, const State& s, double tolerance) const {
   std::vector<int> out;
   for (int j : joints_) {
     const Joint& joint = model_.joints[j];
@@ -85,11 +85,11 @@ void JointLimitConstraint::AppendRows(const Eigen::VectorXd& /*u*/, const State&
   }
 }
 
-void JointLimitConstraint::AppendInequalities(const Eigen::VectorXd& /*u*/, const State& s,
+void JointLimitConstraint::AppendInequalities(const Eigen::VectorXd& u, const State& s,
                                               const SensitivityView& ds_du, double watch,
                                               std::vector<InequalityRow>* rows) const {
   Eigen::RowVectorXd dq_ds;
-  for (int j : AtOrBeyond(s, watch)) {
+  for (int j : AtOrBeyond(u, s, watch)) {
     const Joint& joint = model_.joints[j];
     const double q = JointCoordinateGradient(model_, joint, s, &dq_ds);
     const Eigen::RowVectorXd a = ds_du.RowTimes(dq_ds);
@@ -98,7 +98,7 @@ void JointLimitConstraint::AppendInequalities(const Eigen::VectorXd& /*u*/, cons
   }
 }
 
-std::vector<int> JointLimitConstraint::WouldCross(const State& s, const SensitivityView& ds_du,
+std::vector<int> JointLimitConstraint::WouldCross(const Eigen::VectorXd& /*u*/, const State& s, const SensitivityView& ds_du,
                                                   const Eigen::VectorXd& d, double tolerance) const {
   std::vector<int> out;
   Eigen::RowVectorXd dq_ds;
@@ -115,7 +115,7 @@ std::string JointLimitConstraint::Report(const Eigen::VectorXd& u, const State& 
                                          ControlStepResult* result) const {
   result->max_limit_violation = std::max(0.0, MaxViolation(u, s));
   // The active joints are named while any limited joint sits at a bound.
-  if (AtOrBeyond(s, 1e-8).empty()) return "";
+  if (AtOrBeyond(u, s, 1e-8).empty()) return "";
   std::string text;
   for (int j : active) {
     const Joint& joint = model_.joints[j];

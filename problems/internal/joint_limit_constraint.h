@@ -31,9 +31,9 @@ class JointLimitConstraint final : public StepConstraint {
   // current q, or the one it is beyond).
   void AppendRows(const Eigen::VectorXd& u, const State& s, const SensitivityView& ds_du,
                   const std::vector<int>& active, int first_row, LinearConstraints* rows) const override;
-  std::vector<int> WouldCross(const State& s, const SensitivityView& ds_du, const Eigen::VectorXd& d,
+  std::vector<int> WouldCross(const Eigen::VectorXd& u, const State& s, const SensitivityView& ds_du, const Eigen::VectorXd& d,
                               double tolerance) const override;
-  std::vector<int> AtOrBeyond(const State& s, double tolerance) const override;
+  std::vector<int> AtOrBeyond(const Eigen::VectorXd& u, const State& s, double tolerance) const override;
   // q + a d >= lower and -(q + a d) >= -upper for the bounds within `watch`.
   void AppendInequalities(const Eigen::VectorXd& u, const State& s, const SensitivityView& ds_du, double watch,
                           std::vector<InequalityRow>* rows) const override;

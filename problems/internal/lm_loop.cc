@@ -166,7 +166,7 @@ Eigen::VectorXd LmLoop::Step(const ControlLinearization& lin, double mu, ActiveS
                                                      : SensitivityView(*lin.sensitivity, lin.JtJ.cols());
   for (int pass = 0; pass <= constraints.max_passes(); ++pass) {
     step = ConstrainedLmStep(lin.JtJ, lin.Jtr, mu, constraints.Linearize(u, s, ds_du, *active), lin.eigen());
-    if (!constraints.Grow(s, ds_du, step, active)) break;
+    if (!constraints.Grow(u, s, ds_du, step, active)) break;
   }
   return step;
 }
@@ -178,7 +178,7 @@ void LmLoop::ProjectOntoStepConstraints(ControlStepResult* result) {
   for (int it = 0; it < 8; ++it) {
     if (StepConstraintsHold()) break;
     const Eigen::MatrixXd ds_du = p_.StateSensitivity();
-    const ActiveSet held = constraints.AtOrBeyond(forward.state(), p_.workspace_->active);
+    const ActiveSet held = constraints.AtOrBeyond(forward.controls(), forward.state(), p_.workspace_->active);
     const LinearConstraints rows = constraints.Linearize(forward.controls(), forward.state(), ds_du, held);
     const Eigen::MatrixXd none = Eigen::MatrixXd::Zero(ds_du.cols(), ds_du.cols());
     const Eigen::VectorXd d = ConstrainedLmStep(none, Eigen::VectorXd::Zero(ds_du.cols()), 1.0, rows);

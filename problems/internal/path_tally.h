@@ -52,6 +52,7 @@ struct PathTally {
     result.max_limit_violation = std::max(result.max_limit_violation, step.max_limit_violation);
     result.max_lateral_displacement = std::max(result.max_lateral_displacement, step.max_lateral_displacement);
     result.max_clearance_violation = std::max(result.max_clearance_violation, step.max_clearance_violation);
+    result.max_effort_violation = std::max(result.max_effort_violation, step.max_effort_violation);
     result.limited_by = step.limited_by;
     result.min_rcond = std::min(result.min_rcond, step.rcond);
     if (!turn_on_the_spot) {  // (a turn does not linearise)
@@ -78,6 +79,16 @@ struct PathTally {
   }
 };
 
+// What the step constraints that held a step back mean for its target.
+inline std::string WhyLimited(const std::string& limited_by) {
+  if (limited_by.empty()) return "the target may be outside the workspace or past a singularity";
+  if (limited_by.find("clearance") != std::string::npos) return "the target would need less clearance than the margin";
+  if (limited_by.find("effort of") != std::string::npos || limited_by.find("push of") != std::string::npos) {
+    return "the target would need an effort beyond its limits";
+  }
+  return "the target would need a joint beyond its limits";
+}
+
 // Why path step i of n was not reached, for ControlResult::warning.
 inline std::string StepNotReached(int i, int n, const ControlStepResult& step) {
   return "path step " + std::to_string(i) + " of " + std::to_string(n) + " not reached (error " +
@@ -85,9 +96,7 @@ inline std::string StepNotReached(int i, int n, const ControlStepResult& step) {
          (step.singular ? ", dG/ds singular" : "") +
          (step.branch_jumps_rejected > 0 ? ", trial steps landed on another assembly branch" : "") +
          (step.limited_by.empty() ? "" : ", stopped by " + step.limited_by) +
-         (step.limited_by.empty() ? "): the target may be outside the workspace or past a singularity"
-          : step.limited_by.find("clearance") == std::string::npos ? "): the target would need a joint beyond its limits"
-                                                                    : "): the target would need less clearance than the margin");
+         "): " + WhyLimited(step.limited_by);
 }
 
 

@@ -61,9 +61,9 @@ class StepConstraint {
   virtual void AppendRows(const Eigen::VectorXd& u, const State& s, const SensitivityView& ds_du,
                           const std::vector<int>& active, int first_row, LinearConstraints* rows) const = 0;
 
-  // Inequalities only: items that the control change d would push past a
-  // bound by more than `tolerance`, to first order.
-  virtual std::vector<int> WouldCross(const State& /*s*/, const SensitivityView& /*ds_du*/,
+  // Inequalities only: items that the control change d from (u, s) would
+  // push past a bound by more than `tolerance`, to first order.
+  virtual std::vector<int> WouldCross(const Eigen::VectorXd& /*u*/, const State& /*s*/, const SensitivityView& /*ds_du*/,
                                       const Eigen::VectorXd& /*d*/, double /*tolerance*/) const {
     return {};
   }
@@ -74,8 +74,10 @@ class StepConstraint {
   // Whether the constraint holds equalities in every step (a plan refuses it).
   virtual bool is_equality() const { return false; }
 
-  // Inequalities only: items beyond a bound, or within `tolerance` of one.
-  virtual std::vector<int> AtOrBeyond(const State& /*s*/, double /*tolerance*/) const { return {}; }
+  // Inequalities only: items beyond a bound at (u, s), or within `tolerance` of one.
+  virtual std::vector<int> AtOrBeyond(const Eigen::VectorXd& /*u*/, const State& /*s*/, double /*tolerance*/) const {
+    return {};
+  }
 
   // Writes this constraint's measure into `result` (for example
   // max_limit_violation) and returns what holds the step back, naming the

@@ -5,6 +5,7 @@
 
 #include "problems/internal/clearance_constraint.h"
 #include "problems/internal/differential_arc_constraint.h"
+#include "problems/internal/effort_limit_constraint.h"
 #include "problems/internal/joint_limit_constraint.h"
 
 namespace ccma {
@@ -19,12 +20,13 @@ StepConstraints::StepConstraints(const Model& model, const std::vector<int>& eff
   for (int j = 0; j < static_cast<int>(model.joints.size()); ++j) {
     if (model.joints[j].limited) limited.push_back(j);
   }
-  // The order of the rows: arcs, limits, clearance. A new kind: one line here.
+  // The order of the rows: arcs, limits, clearance, efforts. A new kind: one line here.
   if (!differential.empty()) {
     constraints_.push_back(std::make_unique<DifferentialArcConstraint>(model, differential, column_of));
   }
   if (!limited.empty()) constraints_.push_back(std::make_unique<JointLimitConstraint>(model, limited));
   if (model.collision.enabled) constraints_.push_back(std::make_unique<ClearanceConstraint>(model));
+  if (HasEffortLimits(model)) constraints_.push_back(std::make_unique<EffortLimitConstraint>(model, effective));
   for (const auto& c : constraints_) num_items_ += c->num_items();
 }
 
@@ -61,12 +63,12 @@ LinearConstraints StepConstraints::Linearize(const Eigen::VectorXd& u, const Sta
   return out;
 }
 
-bool StepConstraints::Grow(const State& s, const SensitivityView& ds_du, const Eigen::VectorXd& d,
+bool StepConstraints::Grow(const Eigen::VectorXd& u, const State& s, const SensitivityView& ds_du, const Eigen::VectorXd& d,
                            ActiveSet* active) const {
   bool grew = false;
   for (size_t c = 0; c < constraints_.size(); ++c) {
     std::vector<int>& items = (*active)[c];
-    for (int item : constraints_[c]->WouldCross(s, ds_du, d, 1e-12)) {
+    for (int item : constraints_[c]->WouldCross(u, s, ds_du, d, 1e-12)) {
       if (std::find(items.begin(), items.end(), item) == items.end()) {
         items.push_back(item);
         grew = true;
@@ -76,10 +78,10 @@ bool StepConstraints::Grow(const State& s, const SensitivityView& ds_du, const E
   return grew;
 }
 
-ActiveSet StepConstraints::AtOrBeyond(const State& s, const ActiveSet& active) const {
+ActiveSet StepConstraints::AtOrBeyond(const Eigen::VectorXd& u, const State& s, const ActiveSet& active) const {
   ActiveSet out = NoneActive();
   for (size_t c = 0; c < constraints_.size(); ++c) {
-    out[c] = constraints_[c]->AtOrBeyond(s, -1e-12);
+    out[c] = constraints_[c]->AtOrBeyond(u, s, -1e-12);
     for (int item : active[c]) {
       if (std::find(out[c].begin(), out[c].end(), item) == out[c].end()) out[c].push_back(item);
     }

@@ -1,5 +1,5 @@
 // The step constraints of one model (step_constraint.h), in a fixed order
-// (differential arcs, joint limits, clearance: the order of the rows), and the
+// (differential arcs, joint limits, clearance, effort limits: the order of the rows), and the
 // active set of their inequalities. Used by the control problem's LM loop.
 #ifndef CCMA_PROBLEMS_INTERNAL_STEP_CONSTRAINTS_H_
 #define CCMA_PROBLEMS_INTERNAL_STEP_CONSTRAINTS_H_
@@ -40,12 +40,12 @@ class StepConstraints {
   // All rows at (u, s): each constraint's, in order, for its active items.
   LinearConstraints Linearize(const Eigen::VectorXd& u, const State& s, const SensitivityView& ds_du,
                               const ActiveSet& active) const;
-  // Adds to `active` the items that the change d would push past a bound
+  // Adds to `active` the items that the change d from (u, s) would push past a bound
   // (tolerance 1e-12); returns whether it grew.
-  bool Grow(const State& s, const SensitivityView& ds_du, const Eigen::VectorXd& d, ActiveSet* active) const;
-  // The items at or beyond a bound at s (tolerance 1e-12 beyond), then
+  bool Grow(const Eigen::VectorXd& u, const State& s, const SensitivityView& ds_du, const Eigen::VectorXd& d, ActiveSet* active) const;
+  // The items at or beyond a bound at (u, s) (tolerance 1e-12 beyond), then
   // those of `active` not among them: what a projection must hold.
-  ActiveSet AtOrBeyond(const State& s, const ActiveSet& active) const;
+  ActiveSet AtOrBeyond(const Eigen::VectorXd& u, const State& s, const ActiveSet& active) const;
   // Every inequality's one-sided rows within `watch` of a bound at (u, s).
   std::vector<InequalityRow> Inequalities(const Eigen::VectorXd& u, const State& s, const SensitivityView& ds_du,
                                           double watch) const;

@@ -568,6 +568,9 @@ class ControlStepResult:
     def max_limit_violation(self) -> float:
         """Largest joint limit violation [rad or m]."""
     @property
+    def max_effort_violation(self) -> float:
+        """[N or N*m]"""
+    @property
     def max_clearance_violation(self) -> float:
         """How far a pair of shapes is below collision.margin [m] (0)."""
     @property
@@ -622,6 +625,9 @@ class ControlResult:
     @property
     def max_limit_violation(self) -> float:
         """The worst joint limit violation over the path's steps [rad or m]."""
+    @property
+    def max_effort_violation(self) -> float:
+        """[N or N*m]"""
     @property
     def max_clearance_violation(self) -> float:
         """The worst clearance below collision.margin over the path's steps [m] (0)."""
@@ -893,10 +899,15 @@ def design(
     min_singular_value: float = 0.02,
     target_tolerance: float = 1e-6,
     max_iterations: int = 30,
+    objective: str = "reach",
+    mocap_noise_m: float = 0.001,
+    mocap_noise_rad: float = 0.003,
 ) -> dict:
     """The design loop of `ccma design` on targets (N x 6: x, y, z [m], roll, pitch, yaw [rad]);
     keys converged, parameters, old, new [m], iterations, targets_before, targets (per target:
-    reached, error, min_singular_value, within_limits, controls), message, model (the designed Model)."""
+    reached, error, min_singular_value, within_limits, controls), message, model (the designed Model);
+    with objective 'payload', 'peak_push' or 'ee_std' (docs/statics.md) also objective {name, unit,
+    before, after ({value, limiting} or None), iterations, stopped}."""
 
 # ------------------------------------------------------------------ replay ----
 

@@ -166,6 +166,7 @@ void BindStepResult(py::module_& m) {
       .def_readonly("rcond", &ControlStepResult::rcond, "pivot ratio of dG/ds")
       .def_readonly("min_singular_value_dX_du", &ControlStepResult::min_singular_value_dX_du)
       .def_readonly("max_limit_violation", &ControlStepResult::max_limit_violation, "[rad or m]")
+      .def_readonly("max_effort_violation", &ControlStepResult::max_effort_violation, "[N or N*m]")
       .def_readonly("max_clearance_violation", &ControlStepResult::max_clearance_violation,
                     "how far a pair of shapes is below collision.margin [m] (0)")
       .def_readonly("max_lateral_displacement", &ControlStepResult::max_lateral_displacement, "[m]")
@@ -189,6 +190,7 @@ void BindResults(py::module_& m) {
       .def_readonly("min_rcond", &ControlSolution::min_rcond)
       .def_readonly("min_singular_value_dX_du", &ControlSolution::min_singular_value_dX_du)
       .def_readonly("max_limit_violation", &ControlSolution::max_limit_violation, "[rad or m]")
+      .def_readonly("max_effort_violation", &ControlSolution::max_effort_violation, "[N or N*m]")
       .def_readonly("max_clearance_violation", &ControlSolution::max_clearance_violation,
                     "worst over the path's steps [m] (0)")
       .def_readonly("max_lateral_displacement", &ControlSolution::max_lateral_displacement, "[m]")

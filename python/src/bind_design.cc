@@ -8,6 +8,7 @@
 #include <pybind11/stl.h>
 
 #include "analyses/design.h"
+#include "analyses/design_objective.h"
 #include "ccma/limits.h"
 #include "python/src/bindings.h"
 #include "python/src/pose_types.h"
@@ -107,9 +108,14 @@ py::list EvaluateDesign(const Model& model, const TargetArray& targets, const Ei
 
 py::dict RunDesign(const Model& model, const TargetArray& targets, const std::vector<std::string>& vary,
                    const std::vector<std::string>& vary_length, double max_change, double min_length,
-                   double min_singular_value, double target_tolerance, int max_iterations) {
+                   double min_singular_value, double target_tolerance, int max_iterations, const std::string& objective,
+                   double mocap_noise_m, double mocap_noise_rad) {
   const DesignParameters params = ParametersFrom(model, vary, vary_length);
   DesignOptions options;
+  if (!ParseDesignObjective(objective, &options.objective)) {
+    throw py::value_error("design: objective must be reach, payload, peak_push or ee_std, got '" + objective + "'");
+  }
+  options.noise = {mocap_noise_m, mocap_noise_rad};
   options.max_change = max_change;
   options.min_length = min_length;
   options.min_singular_value = min_singular_value;
@@ -133,6 +139,23 @@ py::dict RunDesign(const Model& model, const TargetArray& targets, const std::ve
   d["targets"] = TargetsList(r.final);
   d["message"] = r.message;
   d["model"] = ApplyParameters(model, params, r.p);
+  if (options.objective != DesignObjective::kReach) {
+    auto value = [](const ObjectiveAtTarget& v) -> py::object {
+      if (!v.defined) return py::none();
+      py::dict x;
+      x["value"] = v.value;
+      x["limiting"] = v.limiting;
+      return std::move(x);
+    };
+    py::dict o;
+    o["name"] = DesignObjectiveName(options.objective);
+    o["unit"] = DesignObjectiveUnit(options.objective);
+    o["before"] = value(r.objective_before);
+    o["after"] = value(r.objective_after);
+    o["iterations"] = r.objective_iterations;
+    o["stopped"] = r.objective_message;
+    d["objective"] = o;
+  }
   return d;
 }
 
@@ -153,8 +176,11 @@ void BindDesign(py::module_& m) {
   m.def("design", &RunDesign, py::arg("model"), py::arg("targets"), py::arg("vary") = none,
         py::arg("vary_length") = none, py::arg("max_change") = 0.5, py::arg("min_length") = 0.02,
         py::arg("min_singular_value") = 0.02, py::arg("target_tolerance") = 1e-6, py::arg("max_iterations") = 30,
+        py::arg("objective") = "reach", py::arg("mocap_noise_m") = 0.001, py::arg("mocap_noise_rad") = 0.003,
         "The design loop of `ccma design` (docs/design.md) on targets (N x 6: x, y, z, roll, pitch, yaw); "
-        "returns converged, parameters, old/new values [m], per-target results and the designed Model.");
+        "returns converged, parameters, old/new values [m], per-target results and the designed Model; with "
+        "objective 'payload', 'peak_push' or 'ee_std' (docs/statics.md) also objective {name, unit, before, "
+        "after, iterations, stopped}.");
 }
 
 }  // namespace ccma::python

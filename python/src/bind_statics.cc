@@ -55,6 +55,13 @@ py::dict Statics(const Model& model, const State& s, const Eigen::VectorXd& u,
   if (r.limits_given) {
     out["within_limits"] = r.within_limits;
     out["limiting"] = r.limiting;
+    const PayloadCapacity capacity = ComputePayloadCapacity(model, s, u);
+    if (capacity.defined && !capacity.unbounded) {
+      py::dict c;
+      c["mass"] = capacity.mass;
+      c["limiting"] = capacity.limiting;
+      out["payload_capacity"] = c;
+    }
   }
   const Eigen::Matrix<double, 6, 6> covariance = EndEffectorCovariance(model, s, u, noise);
   if (covariance.allFinite()) out["ee_covariance"] = Eigen::MatrixXd(covariance);

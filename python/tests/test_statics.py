@@ -33,3 +33,39 @@ def test_matches_the_command_line():
         assert a["name"] == b["name"] and a["kind"] == b["kind"]
         assert a["effort"] == pytest.approx(b["effort"], abs=1e-9)
     np.testing.assert_allclose(r["ee_covariance"], cli["ee_covariance"], atol=1e-15)
+
+
+PAYLOAD = ROOT / "examples" / "statics" / "4dof_payload.yaml"
+PAYLOAD_TARGETS = ROOT / "examples" / "statics" / "4dof_payload_targets.csv"
+
+
+def test_payload_capacity_puts_the_limiting_push_on_its_limit():
+    model = ccma.load_model(PAYLOAD)
+    r = ccma.statics(ccma.ForwardProblem(model))
+    capacity = r["payload_capacity"]
+    cli = run_tool("statics", f"--model={PAYLOAD}")
+    assert capacity["mass"] == pytest.approx(cli["payload_capacity"]["mass"], rel=1e-12)
+    assert capacity["limiting"] == cli["payload_capacity"]["limiting"]
+    # Pushes are linear in the payload: at the capacity the limiting base pushes exactly 60 N.
+    text = PAYLOAD.read_text().replace("payload: {mass: 4}", f"payload: {{mass: {capacity['mass']!r}}}")
+    at_capacity = ccma.statics(ccma.ForwardProblem(ccma.load_model_from_string(text, "at_capacity.yaml")))
+    pushes = {}
+    for a in at_capacity["actuators"]:
+        if a["kind"] in ("base_x", "base_y"):
+            pushes[a["name"]] = pushes.get(a["name"], 0.0) + a["effort"] ** 2
+    assert math.sqrt(pushes[capacity["limiting"]]) == pytest.approx(60.0, rel=1e-9)
+    assert max(math.sqrt(p) for p in pushes.values()) == pytest.approx(60.0, rel=1e-9)
+
+
+def test_design_raises_the_payload():
+    targets = np.array([[w.position[0], w.position[1], w.position[2], *w.rpy]
+                        for w in ccma.load_waypoints(str(PAYLOAD_TARGETS))])
+    r = ccma.design(ccma.load_model(PAYLOAD), targets,
+                    vary_length=["joint2:joint1", "joint5:joint4", "joint8:joint7"],
+                    max_change=0.3, objective="payload")
+    assert r["converged"]
+    o = r["objective"]
+    assert o["name"] == "payload" and o["unit"] == "kg"
+    assert o["after"]["value"] > o["before"]["value"] + 1.0
+    with pytest.raises(ValueError):
+        ccma.design(ccma.load_model(PAYLOAD), targets, vary_length=["joint2:joint1"], objective="stiffness")
