@@ -167,7 +167,7 @@ Command ReplayCommand() {
 Command ViewCommand() {
   return {"view", "write a self-contained 3D HTML view (animated for a trajectory or replay)",
           "ccma view --model=FILE [--trajectory=FILE.csv | --replay=DIR | --workspace=MAP.csv] [--meshes]\n"
-          "          [--obstacles=FILE.yaml] --out=FILE.html",
+          "          [--obstacles=FILE.yaml] [--color_by=body|load] --out=FILE.html",
           "Writes one self-contained HTML page (three.js inlined; it fetches nothing) that shows the\n"
           "mechanism in 3D: links as capsules between joint points, bases as discs with a heading arrow,\n"
           "joint markers by type, the end-effector's frame, the ground grid, orbit controls. With a\n"
@@ -187,8 +187,11 @@ Command ViewCommand() {
           "With collision geometry (`collision:`, `obstacles:` or --obstacles) the obstacles, bases' cylinders\n"
           "and link capsules are drawn see-through with each frame's clearance and pair; a frame below\n"
           "collision.margin reads \"below margin\", its pair turns red and it is flagged (JSON\n"
-          "clearance_below_margin_frames).",
-          {"model", "trajectory", "replay", "workspace", "meshes", "out", "obstacles"}, RunView};
+          "clearance_below_margin_frames). With --color_by=load each frame's statics is solved (gravity on\n"
+          "the masses and payload, no wrench) and each link is coloured by its load, the largest reaction\n"
+          "force of the joints that touch it [N], on a scale from 0 to the page's largest (JSON max_load,\n"
+          "unbalanced_frames, indeterminate_frames); statics beyond its bounds: exit 2.",
+          {"model", "trajectory", "replay", "workspace", "meshes", "color_by", "out", "obstacles"}, RunView};
 }
 
 Command WorkspaceCommand() {

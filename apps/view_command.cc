@@ -3,10 +3,12 @@
 // (viewer/), animated along a trajectory CSV or a replay directory, or at home
 // under the point cloud of a workspace map; with --meshes, the bodies' STL
 // meshes embedded and drawn; with collision geometry or --obstacles, the
-// shapes drawn and frames closer than the margin marked. Prints {"out",
-// "bytes", "frames", ...} on stdout.
+// shapes drawn and frames closer than the margin marked; with
+// --color_by=load, the links coloured by their joints' largest reaction force
+// in each frame's statics. Prints {"out", "bytes", "frames", ...} on stdout.
 #include <iostream>
 #include <optional>
+#include <stdexcept>
 
 #include <gflags/gflags.h>
 
@@ -29,6 +31,9 @@ DEFINE_string(workspace, "",
 DEFINE_bool(meshes, false,
             "draw the bodies' meshes (`meshes:` in the model; STL, at most 16 MiB per file and 64 MiB in all) "
             "[flag]");
+DEFINE_string(color_by, "body",
+              "what the links are coloured by: body (their kind) or load (the largest reaction force of the joints "
+              "that touch each link in every frame's statics, gravity on the masses and payload) [body|load]");
 
 namespace ccma::cli {
 
@@ -53,9 +58,23 @@ void WarnAboutFrames(const viewer::SceneSummary& summary, const std::string& sou
   }
 }
 
+// The stderr warning about frames whose statics is not balanced or not determinate.
+void WarnAboutLoads(const viewer::SceneSummary& summary, viewer::ColorBy color_by) {
+  if (color_by != viewer::ColorBy::kLoad) return;
+  if (summary.unbalanced_frames > 0) {
+    std::cerr << "ccma view: warning: " << summary.unbalanced_frames
+              << " frame(s) whose joints cannot hold the loads (unbalanced): their loads are a least-squares fit\n";
+  }
+  if (summary.indeterminate_frames > 0) {
+    std::cerr << "ccma view: warning: " << summary.indeterminate_frames
+              << " frame(s) statically indeterminate: coloured by the minimum-norm loads\n";
+  }
+}
+
 // The JSON on stdout (docs/cli.md, "ccma view").
 nlohmann::json Result(const std::string& out_path, std::size_t bytes, const viewer::SceneSummary& summary,
-                      const std::string& source, const viewer::MeshFiles* meshes, bool workspace, bool collision) {
+                      const std::string& source, const viewer::MeshFiles* meshes, bool workspace, bool collision,
+                      bool loads) {
   nlohmann::json result = {{"out", out_path},
                            {"bytes", bytes},
                            {"frames", summary.frames},
@@ -69,11 +88,23 @@ nlohmann::json Result(const std::string& out_path, std::size_t bytes, const view
     result["mesh_files"] = meshes->files.size();
     result["mesh_bytes"] = meshes->bytes_read;
   }
+  if (loads) {
+    result["max_load"] = summary.max_load;
+    result["unbalanced_frames"] = summary.unbalanced_frames;
+    result["indeterminate_frames"] = summary.indeterminate_frames;
+  }
   if (workspace) {
     result["workspace_points"] = summary.workspace_points;
     result["workspace_reachable"] = summary.workspace_reachable;
   }
   return result;
+}
+
+// --color_by: body (the default) or load.
+viewer::ColorBy ColorByFlag() {
+  if (FLAGS_color_by == "body") return viewer::ColorBy::kBody;
+  if (FLAGS_color_by == "load") return viewer::ColorBy::kLoad;
+  throw UsageError("ccma view: --color_by must be body or load, not '" + FLAGS_color_by + "'");
 }
 
 }  // namespace
@@ -89,6 +120,7 @@ int RunView(const std::vector<std::string>& args) {
   if (!FLAGS_workspace.empty() && (!FLAGS_trajectory.empty() || !FLAGS_replay.empty())) {
     throw UsageError("ccma view: --workspace goes alone, without --trajectory or --replay");
   }
+  const viewer::ColorBy color_by = ColorByFlag();
   const Model model = LoadModelOrThrow(model_path);
   std::vector<viewer::ViewFrame> frames;
   std::optional<viewer::WorkspaceCloud> workspace;
@@ -115,15 +147,21 @@ int RunView(const std::vector<std::string>& args) {
                              "found when it was built; install npm and rebuild)");
   }
   viewer::SceneSummary summary;
-  const std::string scene = viewer::BuildScene(model, frames, source, &summary, workspace ? &*workspace : nullptr,
-                                               meshes ? &*meshes : nullptr);
+  std::string scene;
+  try {
+    scene = viewer::BuildScene(model, frames, source, &summary, workspace ? &*workspace : nullptr,
+                               meshes ? &*meshes : nullptr, color_by);
+  } catch (const std::invalid_argument& e) {  // the statics of --color_by=load beyond their bounds
+    throw UsageError(std::string("ccma view: --color_by=load: ") + e.what());
+  }
   const std::string html = viewer::ViewerHtml(scene, model.name);
   OutputFile out(out_path, "out");
   out.stream() << html;
   out.Commit();
   WarnAboutFrames(summary, source, model.collision.margin);
+  WarnAboutLoads(summary, color_by);
   PrintJson(Result(out_path, html.size(), summary, source, meshes ? &*meshes : nullptr, workspace.has_value(),
-                   model.collision.enabled));
+                   model.collision.enabled, color_by == viewer::ColorBy::kLoad));
   return 0;
 }
 

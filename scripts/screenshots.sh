@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The viewer's screenshots in docs/viewer.md: `ccma view` of every bundled model, of a
-# replay, of a workspace map (a few seconds of `ccma workspace`) and of a model with meshes, opened in headless
+# replay, of a workspace map (a few seconds of `ccma workspace`), of a model with meshes and of
+# one coloured by load, opened in headless
 # Chromium by the browser test, which also checks
 # each page (no console error, no request, the mechanism drawn) before saving
 # docs/images/view_<name>.png; and the workspace slice map of docs/workspace.md (gnuplot).
@@ -34,6 +35,11 @@ echo "screenshots: docs/images/view_workspace_4dof_reduced.png"
 "$build"/apps/ccma view --model=tests/meshes/four_bar_meshes.yaml --meshes --out="$out/meshes.html" > /dev/null
 node viewer/js/test/browser_test.mjs --html "$out/meshes.html" --screenshot docs/images/viewer_meshes.png > /dev/null
 echo "screenshots: docs/images/viewer_meshes.png"
+# Links coloured by load (docs/viewer.md, "Colouring by load"): a Stewart platform with an off-centre payload.
+"$build"/apps/ccma view --model=examples/statics/stewart_gough_loaded.yaml --color_by=load \
+  --out="$out/loads.html" > /dev/null
+node viewer/js/test/browser_test.mjs --html "$out/loads.html" --screenshot docs/images/view_loads_stewart_gough.png > /dev/null
+echo "screenshots: docs/images/view_loads_stewart_gough.png"
 # An imported robot (docs/import.md): the five-bar of example-parallel-robots.
 robots=models/robots/example-parallel-robots
 "$build"/apps/ccma import --from=$robots/5bar_linkage/robot.urdf --closures=$robots/5bar_linkage/robot.yaml \

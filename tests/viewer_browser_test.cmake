@@ -2,9 +2,10 @@
 # (animated along a trajectory or a replay of WAYPOINTS when KIND says so;
 # with KIND=workspace, under the cloud of a small `ccma workspace` map over
 # x, y, z, reachable and unreachable points both; with KIND=meshes, with
-# `--meshes`; with KIND=collision, MODEL given capsules and obstacles) and opens it with
+# `--meshes`; with KIND=collision, MODEL given capsules and obstacles; with
+# KIND=load, `--color_by=load`) and opens it with
 # viewer/js/test/browser_test.mjs in headless Chromium.
-#   cmake -DTOOL=.. -DNODE=.. -DTEST_JS=.. -DMODEL=.. -DWORK=.. -DKIND=model|trajectory|replay|workspace|meshes|collision
+#   cmake -DTOOL=.. -DNODE=.. -DTEST_JS=.. -DMODEL=.. -DWORK=.. -DKIND=model|trajectory|replay|workspace|meshes|collision|load
 #         [-DWAYPOINTS=..] -P viewer_browser_test.cmake
 # Skipped (CTest's SKIP_REGULAR_EXPRESSION on "SKIPPED: chromium", with the
 # reason printed) only when Chromium is missing; never a silent pass.
@@ -53,6 +54,21 @@ collision:
   set(MODEL "${WORK}/model.yaml")
   set(source "--obstacles=${WORK}/obstacles.yaml" "--trajectory=${WORK}/path.csv")
   set(animation --expect-animation)
+elseif(KIND STREQUAL "load")
+  # --color_by=load (browser_test.mjs checks the colours, the legend and the
+  # bar's load line). With WAYPOINTS: MODEL given a 5 kg payload and animated
+  # along a trajectory (4dof_reduced's closed loops make every frame's
+  # statics indeterminate: "minimum-norm loads"); without: MODEL at home.
+  set(source --color_by=load)
+  if(WAYPOINTS)
+    file(READ "${MODEL}" model_text)
+    string(REPLACE "end_effector:\n" "end_effector:\n  payload: {mass: 5}\n" model_text "${model_text}")
+    file(WRITE "${WORK}/model.yaml" "${model_text}")
+    set(MODEL "${WORK}/model.yaml")
+    run("${TOOL}" trajectory "--model=${MODEL}" "--waypoints=${WAYPOINTS}" "--out=${WORK}/path.csv")
+    list(APPEND source "--trajectory=${WORK}/path.csv")
+    set(animation --expect-animation)
+  endif()
 elseif(KIND STREQUAL "workspace")
   run("${TOOL}" workspace "--model=${MODEL}" --x=-0.4:0.4 --y=-0.4:0.4 --z=0.45:1.0 --resolution=7 --threads=2
       "--out=${WORK}/map.csv")

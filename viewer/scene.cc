@@ -308,12 +308,13 @@ struct FrameColumns {
 // Re-assembles the frames in turn (scene.h), filling the columns, the
 // clearance and the summary's counts.
 void AddFrames(const Model& model, const std::vector<ViewFrame>& frames, FrameAssembler* assembler,
-               ClearanceColumns* clearance, FrameColumns* c, SceneSummary* s) {
+               ClearanceColumns* clearance, FrameLoads* loads, FrameColumns* c, SceneSummary* s) {
   const ForwardProblem& forward = assembler->forward();
   for (const ViewFrame& f : frames) {
     bool jump = false, beyond = false;
     const bool assembled = assembler->Assemble(f.controls, &jump, &beyond);
     const bool below = clearance->Add(forward.state());  // at the state drawn
+    if (loads != nullptr) loads->Add(forward.state(), forward.controls());
     const bool flagged = f.flagged || !assembled || jump || below;
     s->not_assembled += assembled ? 0 : 1;
     s->beyond_work_bound += beyond ? 1 : 0;
@@ -334,6 +335,24 @@ void AddFrames(const Model& model, const std::vector<ViewFrame>& frames, FrameAs
   }
 }
 
+// The "loads" object (scene_format.md) and its counts in the summary.
+json Loads(const FrameLoads& loads, SceneSummary* s) {
+  json per_frame = json::array(), balanced = json::array(), determinate = json::array();
+  for (std::size_t f = 0; f < loads.body_loads().size(); ++f) {
+    json row = json::array();
+    for (const double load : loads.body_loads()[f]) row.push_back(Round(load));
+    per_frame.push_back(std::move(row));
+    balanced.push_back(loads.balanced()[f] ? 1 : 0);
+    determinate.push_back(loads.determinate()[f] ? 1 : 0);
+    s->unbalanced_frames += loads.balanced()[f] ? 0 : 1;
+    s->indeterminate_frames += loads.determinate()[f] ? 0 : 1;
+  }
+  s->max_load = loads.max();
+  return {{"quantity", "joint_reaction_force"}, {"unit", "N"},           {"masses", loads.masses()},
+          {"max", Round(loads.max())},          {"body_loads", per_frame}, {"balanced", balanced},
+          {"determinate", determinate}};
+}
+
 }  // namespace
 
 double FlagEnergyFor(const std::string& source) {
@@ -341,26 +360,30 @@ double FlagEnergyFor(const std::string& source) {
 }
 
 std::string BuildScene(const Model& model, const std::vector<ViewFrame>& frames, const std::string& source,
-                       SceneSummary* summary, const WorkspaceCloud* workspace, const MeshFiles* meshes) {
+                       SceneSummary* summary, const WorkspaceCloud* workspace, const MeshFiles* meshes,
+                       ColorBy color_by) {
   const double scale = Scale(model, workspace);
   json scene = {{"format", "ccma-scene-1"}, {"model", model.name},    {"description", model.description},
                 {"scale", Round(scale)},     {"bodies", Bodies(model, scale, meshes)}, {"joints", Joints(model)},
                 {"end_effector", {{"body", model.end_effector.body}, {"point", Vec(model.end_effector.p_B)}}},
                 {"source", source}};
   SceneSummary s;
+  std::optional<FrameLoads> loads;  // bounded before any frame is assembled
+  if (color_by == ColorBy::kLoad) loads.emplace(model, frames.empty() ? 1 : static_cast<int>(frames.size()));
   FrameAssembler assembler(model, FlagEnergyFor(source));
   ClearanceColumns clearance(model, assembler.forward().state());
   FrameColumns c;
   for (int k = 0; k < model.num_bases(); ++k) c.bases.push_back(json::array());
   if (frames.empty()) {  // the model at home
     const bool below = clearance.Add(assembler.forward().state());
+    if (loads) loads->Add(assembler.forward().state(), assembler.forward().controls());
     c.time.push_back(0);
     c.poses.push_back(Poses(assembler.forward().state()));
     c.flags.push_back(below ? 1 : 0);
     s.clearance_below_margin += below ? 1 : 0;
     s.flagged_frames += below ? 1 : 0;
   }
-  AddFrames(model, frames, &assembler, &clearance, &c, &s);
+  AddFrames(model, frames, &assembler, &clearance, loads ? &*loads : nullptr, &c, &s);
   s.frames = static_cast<int>(c.time.size());
   scene["frames"] = {{"time", c.time}, {"poses", c.poses}, {"flags", c.flags}};
   clearance.WriteTo(&scene["frames"]);
@@ -370,6 +393,7 @@ std::string BuildScene(const Model& model, const std::vector<ViewFrame>& frames,
   }
   // No key without collision geometry: the scene of any other model is as it was.
   if (model.collision.enabled) scene["collision"] = Collision(model);
+  if (loads) scene["loads"] = Loads(*loads, &s);  // no key unless colouring by load
   if (workspace != nullptr) {
     scene["workspace"] = Workspace(*workspace);
     s.workspace_points = static_cast<long>(workspace->points.size());

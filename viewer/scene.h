@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "ccma/model.h"
+#include "viewer/frame_loads.h"
 #include "viewer/mesh_files.h"
 #include "viewer/view_frames.h"
 #include "viewer/workspace_cloud.h"
@@ -31,6 +32,11 @@ struct SceneSummary {
   int clearance_below_margin = 0;  // frames whose clearance is below collision.margin (collision geometry only)
   long workspace_points = 0;     // points of the workspace cloud (0 without one)
   long workspace_reachable = 0;  // of which reachable
+  // With ColorBy::kLoad (else 0): the largest load of the page [N], and the
+  // frames whose statics is not balanced or not determinate.
+  double max_load = 0;
+  int unbalanced_frames = 0;
+  int indeterminate_frames = 0;
 };
 
 // The residual energy E [m^2] above which a re-assembled frame counts as
@@ -51,12 +57,16 @@ double FlagEnergyFor(const std::string& source);
 // "replay" or "workspace". With `workspace`, the scene's "workspace" object
 // holds its cloud and the scale covers it. With `meshes` (ReadMeshFiles of
 // the same model), the scene carries the mesh files and each body its
-// meshes' poses; without, no mesh is mentioned. Returns the JSON text
+// meshes' poses; without, no mesh is mentioned. With ColorBy::kLoad, the
+// scene's "loads" object holds every frame's body loads (FrameLoads, at the
+// state drawn and its controls) and their maximum; throws
+// std::invalid_argument, before any frame is assembled, when the statics
+// are beyond FrameLoads's bounds. Returns the JSON text
 // (numbers rounded to 1e-7: display precision, a tenth of a micrometre;
 // never NaN).
 std::string BuildScene(const Model& model, const std::vector<ViewFrame>& frames, const std::string& source,
                        SceneSummary* summary, const WorkspaceCloud* workspace = nullptr,
-                       const MeshFiles* meshes = nullptr);
+                       const MeshFiles* meshes = nullptr, ColorBy color_by = ColorBy::kBody);
 
 }  // namespace ccma::viewer
 

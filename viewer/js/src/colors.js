@@ -5,7 +5,8 @@
 // frame the usual x red, y green, z blue; a workspace map's unreachable
 // points grey (its reachable ones take the sigma_min ramp of workspace.js);
 // obstacles see-through grey, the collision shapes of bases and links
-// see-through sky blue (the closest pair red when below the margin).
+// see-through sky blue (the closest pair red when below the margin). Links
+// coloured by load (`--color_by=load`) take the load map of loads.js instead.
 export const COLORS = {
   background: 0xf4f5f7,
   grid: 0xdadde2,
@@ -34,4 +35,19 @@ export const COLORS = {
 // CSS "#rrggbb" of a palette colour.
 export function css(color) {
   return '#' + color.toString(16).padStart(6, '0');
+}
+
+// sRGB [r, g, b] in 0..1 at t in [0, 1] along `stops` (evenly spaced sRGB
+// colours, linear between them): the colour maps of workspace.js and loads.js.
+export function rampAt(stops, t) {
+  const x = Math.min(Math.max(Number.isFinite(t) ? t : 0, 0), 1) * (stops.length - 1);
+  const i = Math.min(Math.floor(x), stops.length - 2), f = x - i;
+  const a = stops[i], b = stops[i + 1];
+  return [16, 8, 0].map((s) => (((a >> s) & 255) * (1 - f) + ((b >> s) & 255) * f) / 255);
+}
+
+// CSS linear-gradient of `stops`, left (low) to right (high).
+export function gradientOf(stops) {
+  const list = stops.map((c, i) => `${css(c)} ${((100 * i) / (stops.length - 1)).toFixed(0)}%`);
+  return `linear-gradient(to right, ${list.join(', ')})`;
 }

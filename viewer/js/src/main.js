@@ -6,6 +6,7 @@ import { Color, Object3D, Scene, Vector3, WebGLRenderer } from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { buildCollision, clearanceAt } from './collision.js';
 import { COLORS, css } from './colors.js';
+import { loadColors } from './loads.js';
 import { buildMechanism, sceneSize } from './mechanism.js';
 import { buildOverlay, showError } from './overlay.js';
 import { buildPaths } from './paths.js';
@@ -95,6 +96,10 @@ function start() {
     mechanism.pose(frames, current);
     if (collision) collision.pose(current);
     if (ui.clearance) ui.clearance(clearanceAt(scene, current));
+    if (scene.loads) {
+      mechanism.paint(loadColors(scene, current));
+      ui.load(current);
+    }
     ui.slider.value = String(current);
     ui.label.textContent = `t = ${frames.time[current].toFixed(2)} s (frame ${current + 1}/${n})`;
     ui.badge.style.visibility = frames.flags && frames.flags[current] === 1 ? 'visible' : 'hidden';
@@ -178,6 +183,11 @@ function start() {
     // The collision shapes: how many of each, shown or hidden (or shape i alone).
     collision: collision && collision.counts,
     showCollision: (visible, only = -1) => { if (collision) collision.setVisible(visible, only); render(); },
+    // Colouring by load: each body's colour as drawn and as the scene's
+    // loads at frame f give it (sRGB 0..255).
+    loads: scene.loads ? { max: scene.loads.max, masses: scene.loads.masses } : null,
+    bodyColors: () => mechanism.bodyColors(),
+    loadColorsAt: (f) => (scene.loads ? loadColors(scene, f).map((c) => c.map((x) => Math.round(255 * x))) : null),
   };
 }
 

@@ -4,7 +4,7 @@
 // the joint points alone (viewer/scene_format.md), so any model file can be
 // shown. Sizes are fractions of the scene's `scale` (its bounding radius), so
 // a 0.3 m planar robot and a 2 m Stewart platform look alike.
-import { BoxGeometry, CylinderGeometry, Group, Mesh, SphereGeometry, Vector3 } from 'three';
+import { BoxGeometry, CylinderGeometry, Group, Mesh, SphereGeometry, SRGBColorSpace, Vector3 } from 'three';
 import { COLORS } from './colors.js';
 import { addBodyMeshes, meshCentroidsWorld, meshesBox, meshGeometries } from './meshes.js';
 import { alongAxis, arrow, ball, capsule, material } from './shapes.js';
@@ -42,7 +42,9 @@ function baseShape(body, u) {
 }
 
 // A body's group; a body with meshes (`ccma view --meshes`) shows them
-// instead of its capsules, which are pushed onto `meshes`.
+// instead of its capsules, which are pushed onto `meshes`. The materials of
+// its capsules, balls and meshes (not a base's disc) are kept in
+// userData.materials: colouring by load recolours them.
 function bodyGroup(body, u, geometries, meshes) {
   const group = new Group();
   group.name = body.name;
@@ -56,6 +58,7 @@ function bodyGroup(body, u, geometries, meshes) {
     if (body.points[i] && body.points[j]) group.add(capsule(body.points[i], body.points[j], SIZE.link * u, mat));
   }
   for (const p of body.points) group.add(ball(p, SIZE.point * u, mat));
+  group.userData.materials = [...new Set([mat, ...own.map((m) => m.material)])];
   return group;
 }
 
@@ -148,6 +151,18 @@ export function buildMechanism(scene, root, u) {
         bodies[b].quaternion.set(qx, qy, qz, qw).normalize();
       });
       root.updateMatrixWorld(true);
+    },
+    // Colours each body's capsules, balls and meshes: colors[b] is sRGB
+    // [r, g, b] in 0..1 (loads.js); and each body's colour as drawn, sRGB
+    // 0..255 (the browser test compares them with the scene's loads).
+    paint(colors) {
+      bodies.forEach((g, b) => g.userData.materials.forEach((m) => m.color.setRGB(...colors[b], SRGBColorSpace)));
+    },
+    bodyColors() {
+      return bodies.map((g) => {
+        const c = g.userData.materials[0].color.clone().convertLinearToSRGB();
+        return [c.r, c.g, c.b].map((x) => Math.round(255 * x));
+      });
     },
     // Hides or shows the whole mechanism (the browser test compares the two pictures).
     setVisible(visible) {

@@ -2,8 +2,10 @@
 // here: the page has no stylesheet): title, legend, play/pause, the time
 // slider and label, a badge for flagged frames, the frame's clearance (with
 // collision geometry), the workspace cloud's colour scale and its
-// "unreachable" switch; and the error panel.
+// "unreachable" switch, the load scale and the frame's loads (colouring by
+// load, loads.js); and the error panel.
 import { COLORS, css } from './colors.js';
+import { loadLabel, loadLegend } from './loads.js';
 import { rampGradient } from './workspace.js';
 
 function el(tag, style, text) {
@@ -83,6 +85,7 @@ function workspaceLegend(panel, scene, cloud) {
 function legend(scene, gridStep, cloud) {
   const panel = el('div', { ...PANEL, top: '10px', right: '10px' });
   const toggle = cloud ? workspaceLegend(panel, scene, cloud) : null;
+  if (scene.loads) loadLegend(panel, scene);
   const item = (kind, colors, label) => {
     const row = el('div', { display: 'flex', alignItems: 'center', gap: '8px', margin: '3px 0' });
     row.append(swatch(kind, colors), el('span', {}, label));
@@ -93,8 +96,8 @@ function legend(scene, gridStep, cloud) {
   if (kinds.has('omni')) item('block', [COLORS.omni], 'omni base (arrow: heading)');
   if (kinds.has('differential')) item('block', [COLORS.differential], 'differential base (arrow: heading)');
   const withMeshes = scene.bodies.filter((b) => (b.meshes || []).length > 0).length;
-  if (withMeshes < scene.bodies.length) item('block', [COLORS.link], 'link');
-  if (withMeshes > 0) item('block', [COLORS.mesh], 'body mesh (STL)');
+  if (withMeshes < scene.bodies.length && !scene.loads) item('block', [COLORS.link], 'link');
+  if (withMeshes > 0 && !scene.loads) item('block', [COLORS.mesh], 'body mesh (STL)');
   if (joints.some((j) => !j.actuated)) item('block', [COLORS.joint], 'joint (passive)');
   if (joints.some((j) => j.actuated)) item('block', [COLORS.actuated], 'actuated joint');
   if (scene.end_effector) item('block', [COLORS.axisX, COLORS.axisY, COLORS.axisZ], 'end-effector frame x, y, z');
@@ -144,9 +147,10 @@ export function buildOverlay(scene, frames, gridStep, cloud = null) {
   }
   bar.append(play, slider, label);
   const clearance = scene.collision ? clearanceLabel(bar) : null;
+  const load = scene.loads ? loadLabel(bar, scene) : null;
   bar.append(badge);
   document.body.append(bar);
-  return { play, slider, label, badge, unreachable: toggle, clearance };
+  return { play, slider, label, badge, unreachable: toggle, clearance, load };
 }
 
 // The frame's clearance: its value and pair, and "below margin" in red.

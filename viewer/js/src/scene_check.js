@@ -2,8 +2,9 @@
 // drawn, so that a malformed page shows one readable message instead of a
 // half-built view or an exception from deep inside three.js. Returns a list
 // of problems (empty when the scene is usable). Optional parts (joints,
-// end_effector, paths, flags, workspace, meshes, collision) are checked only when present.
+// end_effector, paths, flags, workspace, meshes, collision, loads) are checked only when present.
 import { checkCollision } from './collision.js';
+import { checkLoads } from './loads.js';
 import { checkMeshes } from './meshes.js';
 
 const isVec = (v, n) => Array.isArray(v) && v.length === n && v.every(Number.isFinite);
@@ -71,5 +72,6 @@ export function checkScene(scene) {
   }
   problems.push(...checkMeshes(scene));
   problems.push(...checkCollision(scene));
+  problems.push(...checkLoads(scene));
   return problems;
 }

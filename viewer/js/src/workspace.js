@@ -7,7 +7,7 @@
 // the reachable volume reads as a solid and the rest as a haze around it.
 // One THREE.Points per class: a million points are two draw calls.
 import { BufferAttribute, BufferGeometry, CanvasTexture, Color, Points, PointsMaterial, SRGBColorSpace } from 'three';
-import { COLORS } from './colors.js';
+import { COLORS, gradientOf, rampAt } from './colors.js';
 
 // The sigma_min ramp, low to high: evenly spaced sRGB stops. Dark enough
 // at every stop to stand out on the light background (no pale yellow).
@@ -15,16 +15,12 @@ export const RAMP = [0xc62828, 0xef6c00, 0xd4a20a, 0x43a047, 0x1e88e5];
 
 // sRGB [r, g, b] in 0..1 at t in [0, 1] along the ramp (linear between stops).
 export function rampColor(t) {
-  const x = Math.min(Math.max(Number.isFinite(t) ? t : 0, 0), 1) * (RAMP.length - 1);
-  const i = Math.min(Math.floor(x), RAMP.length - 2), f = x - i;
-  const a = RAMP[i], b = RAMP[i + 1];
-  return [16, 8, 0].map((s) => (((a >> s) & 255) * (1 - f) + ((b >> s) & 255) * f) / 255);
+  return rampAt(RAMP, t);
 }
 
 // CSS linear-gradient of the ramp, left (low) to right (high).
 export function rampGradient() {
-  const stops = RAMP.map((c, i) => `#${c.toString(16).padStart(6, '0')} ${((100 * i) / (RAMP.length - 1)).toFixed(0)}%`);
-  return `linear-gradient(to right, ${stops.join(', ')})`;
+  return gradientOf(RAMP);
 }
 
 // The sigma_min range of the reachable points [m or rad per control unit]

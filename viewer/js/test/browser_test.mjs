@@ -23,6 +23,9 @@
 //      `--obstacles`) every shape drawn where the scene puts it, the overlay's
 //      clearance and "below margin" per frame, the closest pair in red:
 //      test/collision_checks.mjs;
+//   m, n, o. (pages coloured by load, `ccma view --color_by=load`) the load
+//      legend, each body in its load's colour, the bar's load line:
+//      test/load_checks.mjs;
 //   f. (--screenshot OUT.png) saves the 1200x800 picture at frame 0 (or at
 //      --screenshot-frame N), also of a failed page.
 // Prints one JSON line; exit 0 when every check passes, 1 otherwise, 77 when
@@ -34,6 +37,7 @@ import { resolve } from 'node:path';
 import { pathToFileURL } from 'node:url';
 import { chromium } from 'playwright-core';
 import { checkCollision } from './collision_checks.mjs';
+import { checkLoads } from './load_checks.mjs';
 import { checkMeshes } from './mesh_checks.mjs';
 import { decodePng } from './png.mjs';
 
@@ -188,6 +192,11 @@ try {
     if (await page.evaluate(() => Boolean(window.ccmaView.collision))) {
       failures.push(...await checkCollision(page, shot, drawnNear, result));
     }
+
+    // m, n, o. The links coloured by load, the legend and the bar's line.
+    // (Asked of the scene, not of the page: a page that ignores the loads fails.)
+    const hasLoads = await page.evaluate(() => Boolean(JSON.parse(document.getElementById('ccma-scene').textContent).loads));
+    if (hasLoads) failures.push(...await checkLoads(page, shot, result));
 
     // e. The slider (through the UI) and play move the end-effector.
     if (args.includes('--expect-animation') && view.frames < 2) {
