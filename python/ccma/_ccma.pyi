@@ -1038,6 +1038,9 @@ class _ViewInfo(TypedDict):
     beyond_work_bound_frames: NotRequired[int]  # only when some: frames not attempted (the work bound)
     workspace_points: NotRequired[int]     # only with workspace=: rows drawn
     workspace_reachable: NotRequired[int]  # of which reachable
+    max_load: NotRequired[float]           # only with color_by='load': the largest joint load [N]
+    unbalanced_frames: NotRequired[int]    # only with color_by='load'
+    indeterminate_frames: NotRequired[int] # only with color_by='load'
 
 def viewer_available() -> bool:
     """Whether this build carries the viewer's JavaScript (else view_html raises RuntimeError)."""
@@ -1048,6 +1051,7 @@ def view_html(
     replay: Optional[str] = None,
     workspace: Optional[str] = None,
     meshes: bool = False,
+    color_by: str = "body",
 ) -> Tuple[str, _ViewInfo]:
     """(html, info): the self-contained page of `ccma view`, animated along a trajectory CSV or a replay
     directory, or with a `ccma workspace` CSV drawn as a point cloud (at most one of the three);

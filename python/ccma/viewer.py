@@ -68,7 +68,8 @@ def _write_replacing(path, data):
         raise
 
 
-def view(model, trajectory=None, replay=None, out=None, height=600, workspace=None, meshes=False):
+def view(model, trajectory=None, replay=None, out=None, height=600, workspace=None, meshes=False,
+         color_by="body"):
     """Shows `model` (a ccma.Model or a model file path) in 3D.
 
     trajectory: a CSV written by `ccma trajectory` (or ControlProblem.follow
@@ -78,6 +79,8 @@ def view(model, trajectory=None, replay=None, out=None, height=600, workspace=No
     by sigma_min, unreachable ones grey). Give at most one of the three.
     meshes: draw the bodies' STL meshes (`meshes:` in the model; files
     relative to the folder of the model's file), as `ccma view --meshes`.
+    color_by: "load" colours the links by their largest joint reaction force
+    under the model's masses and payload, as `ccma view --color_by=load`.
     out: write the self-contained HTML page there and return its path.
     Without `out`, inside Jupyter the page is displayed inline (an iframe,
     `height` pixels); elsewhere the HTML text is returned.
@@ -89,7 +92,7 @@ def view(model, trajectory=None, replay=None, out=None, height=600, workspace=No
                                   None if trajectory is None else _os.fspath(trajectory),
                                   None if replay is None else _os.fspath(replay),
                                   None if workspace is None else _os.fspath(workspace),
-                                  bool(meshes))
+                                  bool(meshes), str(color_by))
     if out is not None:
         out = _os.fspath(out)
         _write_replacing(out, page.encode("utf-8"))

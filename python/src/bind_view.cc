@@ -26,10 +26,14 @@ void BindView(py::module_& m) {
   m.def(
       "view_html",
       [](const Model& model, std::optional<std::string> trajectory, std::optional<std::string> replay,
-         std::optional<std::string> workspace, bool meshes) {
+         std::optional<std::string> workspace, bool meshes, const std::string& color_by) {
         if (int(bool(trajectory)) + int(bool(replay)) + int(bool(workspace)) > 1) {
           throw py::value_error("give one of trajectory, replay or workspace");
         }
+        if (color_by != "body" && color_by != "load") {
+          throw py::value_error("color_by must be 'body' or 'load', not '" + color_by + "'");
+        }
+        const viewer::ColorBy colors = color_by == "load" ? viewer::ColorBy::kLoad : viewer::ColorBy::kBody;
         std::string html;
         viewer::SceneSummary summary;
         std::string source = "model";
@@ -52,7 +56,7 @@ void BindView(py::module_& m) {
           }
           html = viewer::ViewerHtml(
               viewer::BuildScene(model, frames, source, &summary, cloud ? &*cloud : nullptr,
-                                 mesh_files ? &*mesh_files : nullptr),
+                                 mesh_files ? &*mesh_files : nullptr, colors),
               model.name);
         }
         py::dict info;
@@ -62,6 +66,11 @@ void BindView(py::module_& m) {
         info["branch_jumps"] = summary.branch_jumps;
         info["source"] = source;
         if (summary.beyond_work_bound > 0) info["beyond_work_bound_frames"] = summary.beyond_work_bound;
+        if (colors == viewer::ColorBy::kLoad) {
+          info["max_load"] = summary.max_load;
+          info["unbalanced_frames"] = summary.unbalanced_frames;
+          info["indeterminate_frames"] = summary.indeterminate_frames;
+        }
         if (workspace) {
           info["workspace_points"] = summary.workspace_points;
           info["workspace_reachable"] = summary.workspace_reachable;
@@ -69,10 +78,12 @@ void BindView(py::module_& m) {
         return py::make_tuple(html, info);
       },
       py::arg("model"), py::arg("trajectory") = py::none(), py::arg("replay") = py::none(),
-      py::arg("workspace") = py::none(), py::arg("meshes") = false,
+      py::arg("workspace") = py::none(), py::arg("meshes") = false, py::arg("color_by") = "body",
       "(html, info): the self-contained page of `ccma view` for the model, animated along a "
       "trajectory CSV or a replay directory, or with a `ccma workspace` CSV as a point cloud; "
-      "meshes=True draws the bodies' STL meshes (`ccma view --meshes`); "
+      "meshes=True draws the bodies' STL meshes (`ccma view --meshes`); color_by='load' colours "
+      "the links by joint load (`ccma view --color_by=load`; info gains max_load [N], "
+      "unbalanced_frames, indeterminate_frames); "
       "raises ccma.ViewInputError on a bad file.");
 }
 

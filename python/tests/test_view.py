@@ -148,3 +148,17 @@ def test_view_draws_meshes_like_the_cli(tmp_path):
     lonely.write_text(model.read_text())  # no STL files beside this copy
     with pytest.raises(ccma.ViewInputError, match=r"four_bar_meshes.yaml:11: body 'crank': mesh 'box.stl'"):
         ccma.view(lonely, meshes=True)
+
+
+def test_view_colours_by_load_like_the_cli(tmp_path):
+    """ccma.view(color_by="load") writes the page of `ccma view --color_by=load`;
+    view_html reports the largest load: the tripod's legs carry W sqrt(2) / 3."""
+    model = ROOT / "examples" / "statics" / "tripod.yaml"
+    cli = run_tool("view", "--model=%s" % model, "--color_by=load", "--out=%s" % (tmp_path / "cli.html"))
+    ccma.view(model, color_by="load", out=tmp_path / "py.html")
+    assert (tmp_path / "py.html").read_bytes() == (tmp_path / "cli.html").read_bytes()
+    _page, info = ccma.view_html(ccma.load_model(str(model)), color_by="load")
+    assert info["max_load"] == pytest.approx(3 * 9.81 * 2 ** 0.5 / 3, rel=1e-6)
+    assert info["max_load"] == pytest.approx(cli["max_load"], rel=1e-12)
+    with pytest.raises(ValueError, match="color_by"):
+        ccma.view_html(ccma.load_model(str(model)), color_by="stress")
