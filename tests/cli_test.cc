@@ -386,7 +386,8 @@ TEST(Cli, EachCommandHasItsOwnHelpWithUnits) {
       {"workspace", {"model", "out", "x", "y", "z", "roll", "pitch", "yaw", "resolution", "samples", "seed",
                      "threads", "plot", "obstacles", "method", "max_step_m", "max_step_rad", "lambda"}},
       {"design", {"model", "targets", "out", "vary", "vary_length", "max_change", "min_length", "min_singular_value",
-                  "target_tolerance", "design_iterations", "method", "max_step_m", "max_step_rad", "lambda"}},
+                  "target_tolerance", "design_iterations", "objective", "mocap_noise_m", "mocap_noise_rad", "method",
+                  "max_step_m", "max_step_rad", "lambda"}},
       {"export", {"model", "format", "out"}}};
   for (const auto& [command, expected] : flags) {
     const ToolRun r = Ccma(command + " --help");

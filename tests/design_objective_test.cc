@@ -11,6 +11,7 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "analyses/design.h"
 #include "analyses/design_objective.h"
@@ -20,6 +21,7 @@
 #include "formats/model_loader.h"
 #include "problems/control_problem.h"
 #include "problems/internal/end_effector_error.h"
+#include "tests/tool_run.h"
 
 namespace ccma {
 namespace {
@@ -135,7 +137,7 @@ TEST_P(ObjectiveGradients, MatchReSolvedCentralDifferences) {
     const double scale = numeric.cwiseAbs().maxCoeff();
     EXPECT_GT(scale, objective == DesignObjective::kEndEffectorStd ? 1e-5 : 1e-2) << "the design must change the objective for the check to mean anything";
     const double error = (g - numeric).cwiseAbs().maxCoeff() / scale;
-    RecordProperty("relative_error_seed" + std::to_string(seed), testing::PrintToString(error));
+    RecordProperty("relative_error_seed" + std::to_string(seed), ::testing::PrintToString(error));
     EXPECT_LT(error, kTolerance)
         << GetParam().model << " seed " << seed << "\nanalytic " << g.transpose() << "\nnumeric  " << numeric.transpose();
     // The same check rejects a 0.1 % error.
@@ -173,6 +175,47 @@ TEST(PayloadCapacity, PutsTheLimitingEffortOnItsLimit) {
     ASSERT_EQ(beyond.limiting.size(), 1u) << name;
     EXPECT_EQ(beyond.limiting[0], c.limiting) << name;
   }
+}
+
+// The command line: the example raises its payload by shortening the links
+// (docs/statics.md), and statics on the written model reports more at
+// home as well; an unknown objective is bad input (exit 2, nothing on
+// stdout); an objective the model cannot define is a warning, not a value.
+TEST(DesignObjectiveCommand, RaisesThePayloadOfTheExample) {
+  const std::string examples = std::string(CCMA_MODELS_DIR) + "/../examples/statics/";
+  const std::string out = ::testing::TempDir() + "/payload_designed.yaml";
+  const testing::ToolRun run = testing::RunTool(
+      {"design", "--model=" + examples + "4dof_payload.yaml", "--targets=" + examples + "4dof_payload_targets.csv",
+       "--out=" + out, "--objective=payload", "--vary_length=joint2:joint1,joint5:joint4,joint8:joint7",
+       "--max_change=0.3"});
+  ASSERT_EQ(run.status, 0) << run.err;
+  const nlohmann::json j = nlohmann::json::parse(run.out);
+  EXPECT_TRUE(j["converged"].get<bool>());
+  const double before = j["objective"]["before"]["value"], after = j["objective"]["after"]["value"];
+  EXPECT_GT(after, before + 1.0);
+  for (const auto& target : j["targets"]) EXPECT_TRUE(target["reached"].get<bool>());
+  // The written model carries more at home too, by statics alone.
+  const testing::ToolRun statics_before = testing::RunTool({"statics", "--model=" + examples + "4dof_payload.yaml"});
+  const testing::ToolRun statics_after = testing::RunTool({"statics", "--model=" + out});
+  ASSERT_EQ(statics_after.status, 0) << statics_after.err;
+  EXPECT_GT(nlohmann::json::parse(statics_after.out)["payload_capacity"]["mass"].get<double>(),
+            nlohmann::json::parse(statics_before.out)["payload_capacity"]["mass"].get<double>() + 1.0);
+
+  const testing::ToolRun bad = testing::RunTool(
+      {"design", "--model=" + examples + "4dof_payload.yaml", "--targets=" + examples + "4dof_payload_targets.csv",
+       "--out=" + out, "--objective=stiffness", "--vary_length=joint2:joint1"});
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_TRUE(bad.out.empty());
+  EXPECT_NE(bad.err.find("--objective"), std::string::npos) << bad.err;
+
+  const testing::ToolRun undefined = testing::RunTool(
+      {"design", "--model=" + std::string(CCMA_MODELS_DIR) + "/4dof_reduced.yaml",
+       "--targets=" + examples + "4dof_payload_targets.csv", "--out=" + out, "--objective=payload",
+       "--vary_length=joint2:joint1"});
+  ASSERT_EQ(undefined.status, 0) << undefined.err;
+  const nlohmann::json u = nlohmann::json::parse(undefined.out);
+  EXPECT_TRUE(u["objective"]["after"].is_null());
+  EXPECT_NE(u["warning"].get<std::string>().find("effort_limits"), std::string::npos) << u["warning"];
 }
 
 }  // namespace

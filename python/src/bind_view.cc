@@ -15,6 +15,64 @@ namespace py = pybind11;
 
 namespace ccma::python {
 
+namespace {
+
+// view_html: the page and the summary `ccma view` prints (see BindView).
+py::tuple ViewHtml(const Model& model, std::optional<std::string> trajectory, std::optional<std::string> replay,
+                   std::optional<std::string> workspace, bool meshes, const std::string& color_by) {
+  if (int(bool(trajectory)) + int(bool(replay)) + int(bool(workspace)) > 1) {
+    throw py::value_error("give one of trajectory, replay or workspace");
+  }
+  if (color_by != "body" && color_by != "load") {
+    throw py::value_error("color_by must be 'body' or 'load', not '" + color_by + "'");
+  }
+  const viewer::ColorBy colors = color_by == "load" ? viewer::ColorBy::kLoad : viewer::ColorBy::kBody;
+  std::string html;
+  viewer::SceneSummary summary;
+  std::string source = "model";
+  {
+    py::gil_scoped_release release;
+    std::vector<viewer::ViewFrame> frames;
+    std::optional<viewer::WorkspaceCloud> cloud;
+    std::optional<viewer::MeshFiles> mesh_files;
+    if (meshes) mesh_files = viewer::ReadMeshFiles(model);  // relative to model.source's folder
+    if (workspace) {
+      // Drawn over the model at home, as `ccma view --workspace` does.
+      cloud = viewer::CloudFromWorkspaceCsv(model, *workspace);
+      source = "workspace";
+    } else if (trajectory) {
+      frames = viewer::FramesFromTrajectory(model, *trajectory);
+      source = "trajectory";
+    } else if (replay) {
+      frames = viewer::FramesFromReplay(model, *replay);
+      source = "replay";
+    }
+    html = viewer::ViewerHtml(
+        viewer::BuildScene(model, frames, source, &summary, cloud ? &*cloud : nullptr,
+                           mesh_files ? &*mesh_files : nullptr, colors),
+        model.name);
+  }
+  py::dict info;
+  info["frames"] = summary.frames;
+  info["flagged_frames"] = summary.flagged_frames;
+  info["not_assembled_frames"] = summary.not_assembled;
+  info["branch_jumps"] = summary.branch_jumps;
+  info["source"] = source;
+  if (summary.beyond_work_bound > 0) info["beyond_work_bound_frames"] = summary.beyond_work_bound;
+  if (colors == viewer::ColorBy::kLoad) {
+    info["max_load"] = summary.max_load;
+    info["unbalanced_frames"] = summary.unbalanced_frames;
+    info["indeterminate_frames"] = summary.indeterminate_frames;
+  }
+  if (workspace) {
+    info["workspace_points"] = summary.workspace_points;
+    info["workspace_reachable"] = summary.workspace_reachable;
+  }
+  return py::make_tuple(html, info);
+}
+
+}  // namespace
+
 void BindView(py::module_& m) {
   py::register_exception<viewer::ViewInputError>(m, "ViewInputError", PyExc_ValueError).attr("__doc__") =
       "Raised by view and view_html when the trajectory CSV, replay directory or workspace CSV "
@@ -24,60 +82,7 @@ void BindView(py::module_& m) {
       "(str(e), e.args[0]). A subclass of ValueError.";
   m.def("viewer_available", &viewer::HasBundle, "whether this build carries the viewer's JavaScript");
   m.def(
-      "view_html",
-      [](const Model& model, std::optional<std::string> trajectory, std::optional<std::string> replay,
-         std::optional<std::string> workspace, bool meshes, const std::string& color_by) {
-        if (int(bool(trajectory)) + int(bool(replay)) + int(bool(workspace)) > 1) {
-          throw py::value_error("give one of trajectory, replay or workspace");
-        }
-        if (color_by != "body" && color_by != "load") {
-          throw py::value_error("color_by must be 'body' or 'load', not '" + color_by + "'");
-        }
-        const viewer::ColorBy colors = color_by == "load" ? viewer::ColorBy::kLoad : viewer::ColorBy::kBody;
-        std::string html;
-        viewer::SceneSummary summary;
-        std::string source = "model";
-        {
-          py::gil_scoped_release release;
-          std::vector<viewer::ViewFrame> frames;
-          std::optional<viewer::WorkspaceCloud> cloud;
-          std::optional<viewer::MeshFiles> mesh_files;
-          if (meshes) mesh_files = viewer::ReadMeshFiles(model);  // relative to model.source's folder
-          if (workspace) {
-            // Drawn over the model at home, as `ccma view --workspace` does.
-            cloud = viewer::CloudFromWorkspaceCsv(model, *workspace);
-            source = "workspace";
-          } else if (trajectory) {
-            frames = viewer::FramesFromTrajectory(model, *trajectory);
-            source = "trajectory";
-          } else if (replay) {
-            frames = viewer::FramesFromReplay(model, *replay);
-            source = "replay";
-          }
-          html = viewer::ViewerHtml(
-              viewer::BuildScene(model, frames, source, &summary, cloud ? &*cloud : nullptr,
-                                 mesh_files ? &*mesh_files : nullptr, colors),
-              model.name);
-        }
-        py::dict info;
-        info["frames"] = summary.frames;
-        info["flagged_frames"] = summary.flagged_frames;
-        info["not_assembled_frames"] = summary.not_assembled;
-        info["branch_jumps"] = summary.branch_jumps;
-        info["source"] = source;
-        if (summary.beyond_work_bound > 0) info["beyond_work_bound_frames"] = summary.beyond_work_bound;
-        if (colors == viewer::ColorBy::kLoad) {
-          info["max_load"] = summary.max_load;
-          info["unbalanced_frames"] = summary.unbalanced_frames;
-          info["indeterminate_frames"] = summary.indeterminate_frames;
-        }
-        if (workspace) {
-          info["workspace_points"] = summary.workspace_points;
-          info["workspace_reachable"] = summary.workspace_reachable;
-        }
-        return py::make_tuple(html, info);
-      },
-      py::arg("model"), py::arg("trajectory") = py::none(), py::arg("replay") = py::none(),
+      "view_html", &ViewHtml, py::arg("model"), py::arg("trajectory") = py::none(), py::arg("replay") = py::none(),
       py::arg("workspace") = py::none(), py::arg("meshes") = false, py::arg("color_by") = "body",
       "(html, info): the self-contained page of `ccma view` for the model, animated along a "
       "trajectory CSV or a replay directory, or with a `ccma workspace` CSV as a point cloud; "
