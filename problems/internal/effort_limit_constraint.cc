@@ -28,11 +28,12 @@ EffortLimitConstraint::EffortLimitConstraint(const Model& model, std::vector<int
     : model_(model), set_(model), effective_(std::move(effective)) {
   for (int k = 0; k < model.num_bases(); ++k) {
     const MobileBase& base = model.mobile_bases[static_cast<size_t>(k)];
-    if (base.push_limit > 0) items_.push_back({base.name, true, 3 * k, 0.0, base.push_limit});
+    if (base.push_limit > 0) items_.push_back({base.name, true, 3 * k, 0.0, base.push_limit, " N"});
   }
   for (const Joint& joint : model.joints) {
     if (joint.actuated && joint.effort.given) {
-      items_.push_back({joint.name, false, joint.control, joint.effort.lower, joint.effort.upper});
+      items_.push_back({joint.name, false, joint.control, joint.effort.lower, joint.effort.upper,
+                        joint.type == JointType::kRevolute ? " N*m" : " N"});
     }
   }
 }
@@ -165,7 +166,7 @@ std::string EffortLimitConstraint::Report(const Eigen::VectorXd& u, const State&
     const bool upper = r.bound == item.upper;
     text += std::string(text.empty() ? "" : ", ") + (item.push ? "push of '" : "effort of '") + item.name +
             (item.push ? "' at its limit " : upper ? "' at its upper limit " : "' at its lower limit ") +
-            FormatG(r.bound) + (item.push ? " N" : "");
+            FormatG(r.bound) + item.unit;
   }
   return text;
 }

@@ -47,8 +47,8 @@ class EffortLimitConstraint final : public StepConstraint {
   std::vector<int> AtOrBeyond(const Eigen::VectorXd& u, const State& s, double tolerance) const override;
   void AppendInequalities(const Eigen::VectorXd& u, const State& s, const SensitivityView& ds_du, double watch,
                           std::vector<InequalityRow>* rows) const override;
-  // Sets result->max_effort_violation [N]; names the active items ("effort
-  // of 'leg0' at its upper limit 30", "push of 'base1' at its limit 60").
+  // Sets result->max_effort_violation [N or N*m]; names the active items
+  // ("effort of 'leg0' at its upper limit 30 N", "push of 'base1' at its limit 60 N").
   std::string Report(const Eigen::VectorXd& u, const State& s, const std::vector<int>& active,
                      ControlStepResult* result) const override;
 
@@ -58,6 +58,7 @@ class EffortLimitConstraint final : public StepConstraint {
     bool push = false;   // a base's |e_xy| (control, control + 1), else a joint's e_control
     int control = 0;
     double lower = 0, upper = 0;  // a push: upper = push_limit
+    const char* unit = " N";      // of the limits: N, or N*m for a revolute motor
   };
   // One item's value at the efforts e [N or N*m], the bound it is held at
   // (the nearer, or the one it is beyond) and the weight w with d value = w . d e.
