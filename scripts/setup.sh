@@ -30,6 +30,7 @@ PACKAGES=(g++ make cmake pkg-config
           pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module and its tests
           python3-matplotlib  # the Python trajectory example's plot
           python3-distributed  # ccma.workspace on a Dask cluster (and its local-cluster test)
+          python3-zarr python3-tqdm  # sweeps: finished chunks kept for resuming; the progress bar
           liburdfdom-dev libsdformat-dev  # ccma import: URDF and SDFormat robot files
           libfcl-dev)  # tests: FCL's distances, the independent check of ccma's clearances
 # The viewer's JavaScript is bundled with npm (three.js from the npm registry).
