@@ -21,6 +21,7 @@ one exactly. Reference: docs/workspace.md, docs/python.md.
 import hashlib
 import heapq
 import os
+import pickle
 import time
 
 import numpy as _np
@@ -39,13 +40,20 @@ def _model_on_worker(text):
 
 
 def _evaluate_tiles(text, args, control_kw, tiles, inputs):
-    """Runs on a worker: whole tiles, one thread; one dict per tile (with states).
-    inputs[k]: the results of the tiles that tiles[k] depends on."""
+    """Runs on a worker: whole tiles, one thread. inputs[k]: the results of the
+    tiles that tiles[k] depends on. Results and inputs travel pickled (one dict
+    per tile, with states): Dask passes bytes through without walking them, and
+    the client forwards a result to the tiles that need it without pickling it
+    again."""
     model = _model_on_worker(text)
     control = _ccma.ControlOptions(**control_kw)
     ranges, resolution, samples, seed, wave_size, tile_size = args
-    return [_ccma._workspace_tile(model, ranges, resolution, samples, seed, wave_size, control, tile_size, t, given)
-            for t, given in zip(tiles, inputs)]
+    out = []
+    for t, given in zip(tiles, inputs):
+        result = _ccma._workspace_tile(model, ranges, resolution, samples, seed, wave_size, control, tile_size,
+                                       t, [pickle.loads(g) for g in given])
+        out.append(pickle.dumps(result, protocol=pickle.HIGHEST_PROTOCOL))
+    return out
 
 
 def _place(out, rows, part, n):
@@ -121,15 +129,17 @@ def _on_cluster(client, path, model, args, control, chunk, window, progress):
     def submit_ready():
         while len(group_of) < window and schedule.ready:
             group, inputs = schedule.take(chunk)
-            future = client.submit(_evaluate_tiles, text_future, args, dict(control), group, inputs, pure=False)
+            # Tiles nearer home first: more tiles wait for them.
+            future = client.submit(_evaluate_tiles, text_future, args, dict(control), group, inputs, pure=False,
+                                   priority=-tiles[group[0]]["order"])
             group_of[future.key] = group
             running.add(future)
 
     submit_ready()
     for future in running:
-        for t, part in zip(group_of.pop(future.key), future.result()):
-            _place(out, tiles[t]["rows"], part, n)
-            schedule.finish(t, part)
+        for t, blob in zip(group_of.pop(future.key), future.result()):
+            _place(out, tiles[t]["rows"], pickle.loads(blob), n)
+            schedule.finish(t, blob)
             done += len(tiles[t]["rows"])
         if progress is not None:
             progress(done, n)
@@ -154,7 +164,7 @@ def workspace(model, ranges, resolution=11, samples=0, seed=1, threads=1, wave_s
     `tile_size`: cells per range of a tile (0: 16 for one or two ranges, fewer for more);
     part of the map's definition. `threads`: local worker threads (ignored with a client).
     `chunk_size`: tiles per task on a client; `max_in_flight`: tasks in flight at once
-    (default twice the workers' threads).
+    (default four times the workers' threads, at least 4).
     `progress`: called as progress(done_samples, total) as samples finish.
     `control`: ControlOptions fields (max_step_m, lambda_, ...). The results do not
     depend on threads, client, chunk_size or max_in_flight.
@@ -184,5 +194,5 @@ def workspace(model, ranges, resolution=11, samples=0, seed=1, threads=1, wave_s
     if client is None:
         return _ccma._workspace_compute(model, range_list, int(resolution), int(samples), int(seed),
                                         int(threads), int(wave_size), options, int(tile_size), progress)
-    window = int(max_in_flight) if max_in_flight is not None else max(2, 2 * sum(client.nthreads().values()))
+    window = int(max_in_flight) if max_in_flight is not None else max(4, 4 * sum(client.nthreads().values()))
     return _on_cluster(client, path, model, args, control, int(chunk_size), window, progress)
