@@ -197,7 +197,8 @@ Command ViewCommand() {
 Command WorkspaceCommand() {
   return {"workspace", "map the reachable end-effector poses and their conditioning",
           "ccma workspace --model=FILE --out=FILE.csv [--x=lo:hi] [--y=..] [--z=..] [--roll=..] [--pitch=..] [--yaw=..]\n"
-          "               [--resolution=11 | --samples=N --seed=1] [--threads=1] [--plot=DIR] [control flags]",
+          "               [--resolution=11 | --samples=N --seed=1] [--threads=1] [--tile_size=0] [--plot=DIR]\n"
+          "               [control flags]",
           "Workspace map: samples end-effector poses over the given ranges of controlled components (a grid\n"
           "with --resolution points per range, or --samples seeded uniform draws; components not sampled keep\n"
           "their home value) and reaches each by continuation from the nearest already reached sample (or\n"
@@ -205,10 +206,12 @@ Command WorkspaceCommand() {
           "Writes one CSV row per sample: the controlled components, reachable (1/0), residual_energy [m^2],\n"
           "sigma_min (smallest singular value of dX/du, 0 when unreachable), error [m or rad], rcond (pivot\n"
           "ratio of dG/ds), joint limits, u0, u1, ... (empty when unreachable).\n"
-          "Results do not depend on --threads. --plot writes reachability and sigma_min maps over the first\n"
-          "two ranges. Prints {samples, reachable, seconds, ...}; a percentage bar on stderr at a terminal.",
+          "The map is computed in tiles of --tile_size cells per range (each continued from the tiles nearer\n"
+          "home); results do not depend on --threads. --plot writes reachability and sigma_min maps over the\n"
+          "first two ranges. Prints {samples, reachable, tiles, seconds, ...}; a percentage bar on stderr at a\n"
+          "terminal.",
           Concat({"model", "out", "x", "y", "z", "roll", "pitch", "yaw", "resolution", "samples", "seed", "threads",
-                  "plot", "obstacles"},
+                  "tile_size", "plot", "obstacles"},
                  kControlFlags),
           RunWorkspace};
 }

@@ -1,5 +1,5 @@
 // `ccma workspace --model=FILE --out=FILE.csv [--x=lo:hi ...] [--resolution=N | --samples=N --seed=S]
-//                 [--threads=N] [--plot=DIR]`:
+//                 [--threads=N] [--tile_size=N] [--plot=DIR]`:
 // reachability map over the controlled components (analyses/workspace.h);
 // one CSV row per sample, optional gnuplot slice maps, JSON summary on stdout.
 #include <unistd.h>
@@ -30,6 +30,9 @@ DEFINE_string(yaw, "", "workspace: sample yaw over lo:hi [rad]");
 DEFINE_int32(resolution, 11, "workspace grid: points per sampled range, ends included, 1..10000 [points]");
 DEFINE_int32(samples, 0, "workspace: seeded uniform samples instead of the grid, 1..100000 (default: the grid) [samples]");
 DEFINE_int32(threads, 1, "worker threads, 1..256 (the results do not depend on it) [threads]");
+DEFINE_int32(tile_size, 0,
+             "workspace: tile side, 0..10000, 0 = 16 for one or two ranges, 6 for three, 4, 3, 2 for four, five, six "
+             "(part of the map: it decides where samples start) [cells per range]");
 DEFINE_string(plot, "", "workspace: folder for reachability and sigma_min maps over the first two ranges (gnuplot) [path]");
 
 namespace ccma::cli {
@@ -130,10 +133,14 @@ WorkspaceOptions OptionsFromFlags(const Model& model) {
   if (FLAGS_threads < 1 || FLAGS_threads > 256) {
     throw UsageError("--threads: must lie in [1, 256], got " + std::to_string(FLAGS_threads));
   }
+  if (FLAGS_tile_size < 0 || FLAGS_tile_size > 10000) {
+    throw UsageError("--tile_size: must lie in [0, 10000], got " + std::to_string(FLAGS_tile_size));
+  }
   options.resolution = FLAGS_resolution;
   options.random_samples = FLAGS_samples;
   options.seed = static_cast<std::uint64_t>(FLAGS_seed);
   options.threads = FLAGS_threads;
+  options.tile_size = FLAGS_tile_size;
   options.control = ControlOptionsFromFlags();
   std::string why;
   if (!options.IsValid(model, &why)) throw UsageError("ccma workspace: " + why);
@@ -163,6 +170,8 @@ nlohmann::json SummaryJson(const Model& model, const WorkspaceOptions& options, 
   out["reachable"] = result.reachable;
   out["seconds"] = result.seconds;
   out["threads"] = options.threads;
+  out["tiles"] = result.tiles;
+  out["tile_size"] = options.TileSide();
   out["mode"] = options.random_samples > 0 ? "random" : "grid";
   nlohmann::json components = nlohmann::json::array();
   for (int c : result.components) components.push_back(kEndEffectorComponentNames[static_cast<size_t>(c)]);

@@ -3,6 +3,7 @@
 // the sample grid, option bounds, the CSV contract and hostile flags.
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <functional>
@@ -88,48 +89,121 @@ TEST(Workspace, ReachabilityMatchesClosedFormLegSolutions) {
   EXPECT_EQ(result.reachable, reachable);
 }
 
+// Every tile evaluated alone (EvaluateWorkspaceTile, what a Dask worker
+// runs), in another order than the local threads take them: the order of
+// decreasing tile index among the tiles whose dependencies are finished.
+std::vector<WorkspaceSample> TileByTile(const Model& model, const WorkspaceOptions& options) {
+  const std::vector<WorkspaceTile> tiles = WorkspaceTiles(model, options);
+  std::vector<WorkspaceTileResult> results(tiles.size());
+  std::vector<bool> finished(tiles.size(), false);
+  std::vector<WorkspaceSample> map(static_cast<size_t>(options.SampleCount()));
+  for (size_t left = tiles.size(); left > 0; --left) {
+    int next = -1;
+    for (int t = static_cast<int>(tiles.size()) - 1; t >= 0 && next < 0; --t) {
+      bool ready = !finished[static_cast<size_t>(t)];
+      for (int d : tiles[static_cast<size_t>(t)].depends_on) ready = ready && finished[static_cast<size_t>(d)];
+      if (ready) next = t;
+    }
+    EXPECT_GE(next, 0);
+    if (next < 0) break;
+    std::vector<WorkspaceTileResult> inputs;
+    for (int d : tiles[static_cast<size_t>(next)].depends_on) inputs.push_back(results[static_cast<size_t>(d)]);
+    results[static_cast<size_t>(next)] = EvaluateWorkspaceTile(model, options, next, inputs);
+    finished[static_cast<size_t>(next)] = true;
+    const WorkspaceTile& tile = tiles[static_cast<size_t>(next)];
+    for (size_t k = 0; k < tile.rows.size(); ++k) map[static_cast<size_t>(tile.rows[k])] = results[static_cast<size_t>(next)].samples[k];
+  }
+  return map;
+}
+
+void ExpectSameSamples(const std::vector<WorkspaceSample>& a, const std::vector<WorkspaceSample>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].reachable, b[i].reachable) << i;
+    EXPECT_EQ(a[i].start, b[i].start) << i;
+    EXPECT_EQ(a[i].wave, b[i].wave) << i;
+    EXPECT_EQ(a[i].tile, b[i].tile) << i;
+    EXPECT_EQ(a[i].controls, b[i].controls) << i;  // bit for bit
+    EXPECT_EQ(a[i].sigma_min, b[i].sigma_min) << i;
+    EXPECT_EQ(a[i].residual_energy, b[i].residual_energy) << i;
+    EXPECT_EQ(a[i].pose.position, b[i].pose.position) << i;
+  }
+}
+
 TEST(Workspace, ThreadCountDoesNotChangeResults) {
   const Model model = LoadModel(ModelFile("4dof_reduced"));
   WorkspaceOptions options;
   options.ranges = {{kX, -0.3, 0.3}, {kY, -0.3, 0.3}, {kZ, 0.4, 0.95}};
-  options.random_samples = 24;
+  options.random_samples = 200;
   options.wave_size = 5;
   options.seed = 7;
+  options.tile_size = 2;  // draws as a 6 x 6 x 6 grid: bins of 3 x 3 x 3 tiles
   const WorkspaceResult one = ComputeWorkspace(model, options);
   options.threads = 2;
   const WorkspaceResult two = ComputeWorkspace(model, options);
-  // The same waves handed to an outside evaluator (what the Dask path does).
-  int batches = 0;
-  const WorkspaceResult outside = ComputeWorkspace(
-      model, options, nullptr, [&](const std::vector<PoseTarget>& poses, const std::vector<WorkspaceStart>& starts) {
-        ++batches;
-        return EvaluateWorkspacePoses(model, options, poses, starts);
-      });
-  EXPECT_EQ(batches, 5);  // 24 draws in waves of 5
-  ASSERT_EQ(one.samples.size(), two.samples.size());
-  ASSERT_EQ(one.samples.size(), outside.samples.size());
-  for (size_t i = 0; i < one.samples.size(); ++i) {
-    EXPECT_EQ(one.samples[i].reachable, outside.samples[i].reachable) << i;
-    EXPECT_EQ(one.samples[i].controls, outside.samples[i].controls) << i;
-    EXPECT_EQ(one.samples[i].start, outside.samples[i].start) << i;
-  }
-  EXPECT_GT(one.reachable, 0);
-  EXPECT_LT(one.reachable, 24);  // some draws above z = 0.85
-  for (size_t i = 0; i < one.samples.size(); ++i) {
-    const WorkspaceSample& a = one.samples[i];
-    const WorkspaceSample& b = two.samples[i];
-    EXPECT_EQ(a.reachable, b.reachable) << i;
-    EXPECT_EQ(a.start, b.start) << i;
-    EXPECT_EQ(a.wave, b.wave) << i;
-    EXPECT_EQ(a.controls, b.controls) << i;  // bit for bit
-    EXPECT_EQ(a.sigma_min, b.sigma_min) << i;
-    EXPECT_EQ(a.residual_energy, b.residual_energy) << i;
-    // Reachability of random draws also matches the closed form (the edge is z = 0.85).
+  EXPECT_EQ(one.tiles, 27);
+  ExpectSameSamples(one.samples, two.samples);
+  ExpectSameSamples(one.samples, TileByTile(model, options));
+  EXPECT_GT(one.reachable, 100);
+  EXPECT_LT(one.reachable, 200);  // some draws above z = 0.85
+  for (const WorkspaceSample& a : one.samples) {
+    // Reachability of random draws matches the closed form (the edge is z = 0.85).
     std::vector<Eigen::Vector3d> bases;
     if (std::abs(a.pose.position.z() - 0.85) > 0.01) {
-      EXPECT_EQ(a.reachable, ClosedFormReachable(model, a.pose, &bases)) << i << " z " << a.pose.position.z();
+      EXPECT_EQ(a.reachable, ClosedFormReachable(model, a.pose, &bases)) << " z " << a.pose.position.z();
     }
   }
+}
+
+// A grid in tiles of 4 x 4 cells (with partial tiles at the far ends):
+// the same map on 1 and 3 threads and tile by tile; every row in exactly
+// one tile; the tiles, their seeds and their dependencies come from the
+// options and the home pose alone.
+TEST(Workspace, TilesCoverTheGridOnceAndMapsDoNotDependOnThreads) {
+  const Model model = LoadModel(ModelFile("4dof_reduced"));
+  WorkspaceOptions options;
+  options.ranges = {{kX, -0.4, 0.4}, {kZ, 0.3, 1.2}};
+  options.resolution = 18;  // 5 x 5 tiles of up to 4 x 4 cells
+  options.tile_size = 4;
+  const std::vector<WorkspaceTile> tiles = WorkspaceTiles(model, options);
+  ASSERT_EQ(tiles.size(), 25u);
+  std::vector<int> seen(18 * 18, 0);
+  for (const WorkspaceTile& t : tiles) {
+    for (long long row : t.rows) ++seen[static_cast<size_t>(row)];
+    EXPECT_TRUE(std::is_sorted(t.rows.begin(), t.rows.end()));
+    for (int d : t.depends_on) EXPECT_LT(tiles[static_cast<size_t>(d)].order, t.order);
+  }
+  for (int count : seen) EXPECT_EQ(count, 1);
+  EXPECT_EQ(tiles[24].rows.size(), 4u);  // the corner tile: 2 x 2 cells
+  // Home (x 0, z 0.6) is nearest cell (9, 6) (x = +0.0235 by rounding): tile
+  // (2, 1) = 11 has order 0; tile 0 = (0, 0) has order 2 + 1 and depends on
+  // (0, 1), (1, 0) and (1, 1).
+  EXPECT_EQ(tiles[11].order, 0);
+  EXPECT_TRUE(tiles[11].depends_on.empty());
+  EXPECT_EQ(tiles[0].order, 3);
+  EXPECT_EQ(tiles[0].depends_on, (std::vector<int>{1, 5, 6}));
+  WorkspaceOptions three = options;
+  three.threads = 3;
+  const std::vector<WorkspaceTile> again = WorkspaceTiles(model, three);
+  for (size_t t = 0; t < tiles.size(); ++t) {
+    EXPECT_EQ(again[t].rows, tiles[t].rows);
+    EXPECT_EQ(again[t].depends_on, tiles[t].depends_on);
+  }
+  const WorkspaceResult one = ComputeWorkspace(model, options);
+  const WorkspaceResult threaded = ComputeWorkspace(model, three);
+  ExpectSameSamples(one.samples, threaded.samples);
+  ExpectSameSamples(one.samples, TileByTile(model, options));
+  EXPECT_EQ(one.samples[9 * 18 + 6].start, -1);  // home's cell starts from home
+  EXPECT_EQ(one.samples[9 * 18 + 6].wave, 0);
+  EXPECT_EQ(one.samples[9 * 18 + 6].tile, 11);
+  // The same reachable count as one tile (the global wave continuation):
+  // 192 of 324 (z up to 0.85 m, from 0.3 m, where the legs pass horizontal).
+  EXPECT_EQ(one.reachable, 192);
+  WorkspaceOptions single = options;
+  single.tile_size = 18;
+  const WorkspaceResult global = ComputeWorkspace(model, single);
+  EXPECT_EQ(global.tiles, 1);
+  EXPECT_EQ(global.reachable, 192);
 }
 
 TEST(Workspace, PosesOnTheGridAndOthersAtHome) {
@@ -227,6 +301,8 @@ TEST(Workspace, OptionsAreBounded) {
   bad([](WorkspaceOptions& o) { o.threads = 0; }, "threads");
   bad([](WorkspaceOptions& o) { o.threads = 257; }, "threads");
   bad([](WorkspaceOptions& o) { o.wave_size = 0; }, "wave_size");
+  bad([](WorkspaceOptions& o) { o.tile_size = -1; }, "tile_size");
+  bad([](WorkspaceOptions& o) { o.tile_size = 10001; }, "tile_size");
   bad([](WorkspaceOptions& o) { o.control.lambda = 2; }, "control.lambda");
 }
 

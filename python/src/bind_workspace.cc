@@ -1,10 +1,13 @@
 // Workspace maps (analyses/workspace.h) for ccma.workspace (python/ccma/workspace.py):
-//   _workspace_compute(model, ranges, ..., evaluate_batch=None) -> dict of arrays
-//   _workspace_evaluate(model, ranges, poses, states, controls, ...) -> dict of arrays
-// Private: the public call is ccma.workspace, which adds the Dask path by
-// passing an `evaluate_batch` that sends each wave to the workers in chunks,
-// where _workspace_evaluate runs. States cross as (bodies x 7) arrays copied
-// bit for bit, so a distributed run gives the same numbers as a local one.
+//   _workspace_compute(model, ranges, ..., progress=None) -> dict of arrays (local threads)
+//   _workspace_tiles(model, ranges, ...) -> list of tiles (rows, order, depends_on)
+//   _workspace_tile(model, ranges, ..., tile, inputs) -> dict of arrays with states
+// Private: the public call is ccma.workspace, which adds the Dask path: one
+// task per tile (or group of tiles), submitted when the tiles it depends on
+// are finished, their results (with states) passed as `inputs`. States cross
+// as arrays copied bit for bit, so a distributed run gives the same numbers
+// as a local one.
+#include <algorithm>
 #include <cstdint>
 #include <tuple>
 #include <string>
@@ -42,8 +45,10 @@ std::vector<WorkspaceRange> Ranges(const RangeList& ranges) {
 }
 
 WorkspaceOptions Options(const Model& model, const RangeList& ranges, int resolution, int samples,
-                         std::uint64_t seed, int threads, int wave_size, const ControlOptions& control) {
+                         std::uint64_t seed, int threads, int wave_size, const ControlOptions& control,
+                         int tile_size = 0) {
   WorkspaceOptions o;
+  o.tile_size = tile_size;
   o.ranges = Ranges(ranges);
   o.resolution = resolution;
   o.random_samples = samples;
@@ -91,10 +96,10 @@ py::dict SamplesDict(const Model& model, const std::vector<WorkspaceSample>& sam
   Eigen::Matrix<bool, Eigen::Dynamic, 1> reachable(n), converged(n), assembled(n);
   RowMatrix controls(n, model.num_controls());
   Eigen::VectorXd energy(n), error(n), sigma(n), rcond(n), violation(n);
-  Eigen::VectorXi wave(n), steps(n);
+  Eigen::VectorXi wave(n), steps(n), tile(n);
   Eigen::Matrix<long long, Eigen::Dynamic, 1> start(n);
   std::vector<std::string> limited_by, warning;
-  py::list states;
+  StateArray states(with_states ? n * model.num_bodies() : 0, 7);
   for (Eigen::Index i = 0; i < n; ++i) {
     const WorkspaceSample& s = samples[static_cast<size_t>(i)];
     poses.push_back(s.pose);
@@ -108,11 +113,12 @@ py::dict SamplesDict(const Model& model, const std::vector<WorkspaceSample>& sam
     rcond[i] = s.rcond;
     violation[i] = s.max_limit_violation;
     wave[i] = s.wave;
+    tile[i] = s.tile;
     steps[i] = s.steps;
     start[i] = s.start;
     limited_by.push_back(s.limited_by);
     warning.push_back(s.warning);
-    if (with_states) states.append(ToArray(s.state));
+    if (with_states) states.middleRows(i * model.num_bodies(), model.num_bodies()) = ToArray(s.state);
   }
   py::dict d;
   d["poses"] = PosesArray(poses);
@@ -128,15 +134,35 @@ py::dict SamplesDict(const Model& model, const std::vector<WorkspaceSample>& sam
   d["wave"] = wave;
   d["start"] = start;
   d["steps"] = steps;
+  d["tile"] = tile;
   d["limited_by"] = limited_by;
   d["warning"] = warning;
   if (with_states) d["states"] = states;
   return d;
 }
 
-// The inverse of SamplesDict (with states), for results coming back from workers.
-std::vector<WorkspaceSample> SamplesFromDict(const Model& model, const py::dict& d, size_t expected) {
+// The per-sample arrays of a SamplesDict (with states) have n rows; throws otherwise.
+void CheckShapes(const Model& model, const py::dict& d, Eigen::Index n) {
+  bool ok = d["controls"].cast<RowMatrix>().rows() == n && d["controls"].cast<RowMatrix>().cols() == model.num_controls() &&
+            d["states"].cast<StateArray>().rows() == n * model.num_bodies() &&
+            d["limited_by"].cast<std::vector<std::string>>().size() == static_cast<size_t>(n) &&
+            d["warning"].cast<std::vector<std::string>>().size() == static_cast<size_t>(n);
+  for (const char* key : {"reachable", "converged", "assembled"}) {
+    ok = ok && d[key].cast<Eigen::Matrix<bool, Eigen::Dynamic, 1>>().size() == n;
+  }
+  for (const char* key : {"residual_energy", "error", "sigma_min", "rcond", "max_limit_violation"}) {
+    ok = ok && d[key].cast<Eigen::VectorXd>().size() == n;
+  }
+  for (const char* key : {"steps", "wave", "tile"}) ok = ok && d[key].cast<Eigen::VectorXi>().size() == n;
+  ok = ok && d["start"].cast<Eigen::Matrix<long long, Eigen::Dynamic, 1>>().size() == n;
+  if (!ok) throw std::invalid_argument("workspace: a tile's input has arrays of the wrong shape");
+}
+
+// The inverse of SamplesDict (with states), for a tile's inputs.
+std::vector<WorkspaceSample> SamplesFromDict(const Model& model, const py::dict& d) {
   const auto reachable = d["reachable"].cast<Eigen::Matrix<bool, Eigen::Dynamic, 1>>();
+  const Eigen::Index n = reachable.size();
+  CheckShapes(model, d, n);
   const auto converged = d["converged"].cast<Eigen::Matrix<bool, Eigen::Dynamic, 1>>();
   const auto assembled = d["assembled"].cast<Eigen::Matrix<bool, Eigen::Dynamic, 1>>();
   const auto controls = d["controls"].cast<RowMatrix>();
@@ -146,19 +172,18 @@ std::vector<WorkspaceSample> SamplesFromDict(const Model& model, const py::dict&
   const auto rcond = d["rcond"].cast<Eigen::VectorXd>();
   const auto violation = d["max_limit_violation"].cast<Eigen::VectorXd>();
   const auto steps = d["steps"].cast<Eigen::VectorXi>();
+  const auto wave = d["wave"].cast<Eigen::VectorXi>();
+  const auto tile = d["tile"].cast<Eigen::VectorXi>();
+  const auto start = d["start"].cast<Eigen::Matrix<long long, Eigen::Dynamic, 1>>();
   const auto limited_by = d["limited_by"].cast<std::vector<std::string>>();
   const auto warning = d["warning"].cast<std::vector<std::string>>();
-  const auto states = d["states"].cast<std::vector<StateArray>>();
-  const auto n = static_cast<Eigen::Index>(expected);
-  if (reachable.size() != n || converged.size() != n || assembled.size() != n || controls.rows() != n ||
-      controls.cols() != model.num_controls() || energy.size() != n || error.size() != n || sigma.size() != n ||
-      rcond.size() != n || violation.size() != n || steps.size() != n || limited_by.size() != expected ||
-      warning.size() != expected || states.size() != expected) {
-    throw std::runtime_error("workspace: the batch evaluator returned arrays of the wrong shape");
-  }
-  std::vector<WorkspaceSample> out(expected);
+  const auto states = d["states"].cast<StateArray>();
+  const auto poses = d["poses"].cast<RowMatrix>();
+  std::vector<WorkspaceSample> out(static_cast<size_t>(n));
   for (Eigen::Index i = 0; i < n; ++i) {
     WorkspaceSample& s = out[static_cast<size_t>(i)];
+    s.pose.position = poses.row(i).head<3>().transpose();
+    s.pose.rpy = poses.row(i).tail<3>().transpose();
     s.reachable = reachable[i];
     s.converged = converged[i];
     s.assembled = assembled[i];
@@ -169,76 +194,94 @@ std::vector<WorkspaceSample> SamplesFromDict(const Model& model, const py::dict&
     s.rcond = rcond[i];
     s.max_limit_violation = violation[i];
     s.steps = steps[i];
+    s.wave = wave[i];
+    s.start = start[i];
+    s.tile = tile[i];
     s.limited_by = limited_by[static_cast<size_t>(i)];
     s.warning = warning[static_cast<size_t>(i)];
-    s.state = FromArray(model, states[static_cast<size_t>(i)]);
+    s.state = FromArray(model, states.middleRows(i * model.num_bodies(), model.num_bodies()));
   }
   return out;
 }
 
-// Sends each wave to Python's `evaluate_batch(poses, states, controls)` (the
-// Dask path of ccma.workspace) and reads its dict of arrays back. Captures
-// by reference (no Python object is copied while the GIL is released); both
-// outlive the map's computation.
-WorkspaceBatchEvaluator PythonBatchEvaluator(const Model& model, const py::object& evaluate_batch) {
-  return [&model, &evaluate_batch](const std::vector<PoseTarget>& poses, const std::vector<WorkspaceStart>& starts) {
+// Python's progress(done, total), called with the GIL at most about 1000
+// times per map (and always at the end); none when `progress` is None. Holds
+// a reference: `progress` outlives the computation.
+WorkspaceProgress PythonProgress(const py::object& progress) {
+  if (progress.is_none()) return nullptr;
+  return [&progress, last = 0LL](long long done, long long total) mutable {
+    if (done != total && done - last < std::max<long long>(1, total / 1000)) return;
+    last = done;
     py::gil_scoped_acquire gil;
-    py::list states;
-    RowMatrix controls(static_cast<Eigen::Index>(starts.size()), model.num_controls());
-    for (size_t k = 0; k < starts.size(); ++k) {
-      states.append(ToArray(starts[k].state));
-      controls.row(static_cast<Eigen::Index>(k)) = starts[k].controls.transpose();
-    }
-    const py::dict result = evaluate_batch(PosesArray(poses), states, controls);
-    return SamplesFromDict(model, result, poses.size());
+    progress(done, total);
   };
 }
 
 py::dict WorkspaceCompute(const Model& model, const RangeList& ranges, int resolution, int samples,
                           std::uint64_t seed, int threads, int wave_size, const ControlOptions& control,
-                          const py::object& evaluate_batch) {
-  const WorkspaceOptions o = Options(model, ranges, resolution, samples, seed, threads, wave_size, control);
-  WorkspaceBatchEvaluator batch;
-  if (!evaluate_batch.is_none()) batch = PythonBatchEvaluator(model, evaluate_batch);
+                          int tile_size, const py::object& progress) {
+  const WorkspaceOptions o = Options(model, ranges, resolution, samples, seed, threads, wave_size, control, tile_size);
+  const WorkspaceProgress report = PythonProgress(progress);
   WorkspaceResult r;
   {
     py::gil_scoped_release release;
-    r = ComputeWorkspace(model, o, nullptr, batch);
+    r = ComputeWorkspace(model, o, report);
   }
   py::dict d = SamplesDict(model, r.samples, false);
   std::vector<std::string> components;
   for (int c : r.components) components.emplace_back(kEndEffectorComponentNames[static_cast<size_t>(c)]);
   d["components"] = components;
   d["seconds"] = r.seconds;
+  d["tiles"] = r.tiles;
   return d;
 }
 
-py::dict WorkspaceEvaluate(const Model& model, const RangeList& ranges, const RowMatrix& poses,
-                           const std::vector<StateArray>& states, const RowMatrix& controls, int threads,
-                           const ControlOptions& control) {
-  const WorkspaceOptions o = Options(model, ranges, 1, 0, 1, threads, 64, control);
-  if (poses.cols() != 6 || poses.rows() > WorkspaceOptions::kMaxSamples || !poses.allFinite()) {
-    throw std::invalid_argument("workspace: poses must be n x 6 finite numbers, n <= 1e6");
+py::list WorkspaceTilesList(const Model& model, const RangeList& ranges, int resolution, int samples,
+                            std::uint64_t seed, int wave_size, int tile_size) {
+  const WorkspaceOptions o = Options(model, ranges, resolution, samples, seed, 1, wave_size, ControlOptions(), tile_size);
+  py::list out;
+  for (const WorkspaceTile& t : WorkspaceTiles(model, o)) {
+    py::dict d;
+    d["rows"] = Eigen::Matrix<long long, Eigen::Dynamic, 1>(
+        Eigen::Map<const Eigen::Matrix<long long, Eigen::Dynamic, 1>>(t.rows.data(), static_cast<Eigen::Index>(t.rows.size())));
+    d["order"] = t.order;
+    d["depends_on"] = t.depends_on;
+    out.append(d);
   }
-  std::vector<PoseTarget> targets(static_cast<size_t>(poses.rows()));
-  for (Eigen::Index i = 0; i < poses.rows(); ++i) {
-    targets[static_cast<size_t>(i)].position = poses.row(i).head<3>().transpose();
-    targets[static_cast<size_t>(i)].rpy = poses.row(i).tail<3>().transpose();
-  }
-  if (states.size() != targets.size() || controls.rows() != poses.rows() ||
-      controls.cols() != model.num_controls()) {
-    throw std::invalid_argument("workspace: one start state and one row of controls per pose");
-  }
-  std::vector<WorkspaceStart> starts;
-  for (size_t i = 0; i < states.size(); ++i) {
-    starts.push_back({FromArray(model, states[i]), controls.row(static_cast<Eigen::Index>(i)).transpose()});
-  }
-  std::vector<WorkspaceSample> samples;
+  return out;
+}
+
+// A tile's result as a dict: its samples with states, and "carried" (the
+// same, for the carried samples) with "carried_rows".
+py::dict TileResultDict(const Model& model, const WorkspaceTileResult& r) {
+  py::dict d = SamplesDict(model, r.samples, true);
+  d["carried"] = SamplesDict(model, r.carried, true);
+  d["carried_rows"] = r.carried_rows;
+  return d;
+}
+
+WorkspaceTileResult TileResultFromDict(const Model& model, const py::dict& d) {
+  WorkspaceTileResult r;
+  r.samples = SamplesFromDict(model, d);
+  r.carried = SamplesFromDict(model, d["carried"].cast<py::dict>());
+  r.carried_rows = d["carried_rows"].cast<std::vector<long long>>();
+  return r;
+}
+
+// One tile on the calling thread. `inputs`: the results of _workspace_tile
+// for the tiles it depends on, in depends_on order.
+py::dict WorkspaceTileEvaluate(const Model& model, const RangeList& ranges, int resolution, int samples,
+                               std::uint64_t seed, int wave_size, const ControlOptions& control, int tile_size,
+                               int tile, const std::vector<py::dict>& inputs) {
+  const WorkspaceOptions o = Options(model, ranges, resolution, samples, seed, 1, wave_size, control, tile_size);
+  std::vector<WorkspaceTileResult> given;
+  for (const py::dict& d : inputs) given.push_back(TileResultFromDict(model, d));
+  WorkspaceTileResult out;
   {
     py::gil_scoped_release release;
-    samples = EvaluateWorkspacePoses(model, o, targets, starts);
+    out = EvaluateWorkspaceTile(model, o, tile, given);
   }
-  return SamplesDict(model, samples, true);
+  return TileResultDict(model, out);
 }
 
 }  // namespace
@@ -246,11 +289,15 @@ py::dict WorkspaceEvaluate(const Model& model, const RangeList& ranges, const Ro
 void BindWorkspace(py::module_& m) {
   m.def("_workspace_compute", &WorkspaceCompute, py::arg("model"), py::arg("ranges"), py::arg("resolution"),
         py::arg("samples"), py::arg("seed"), py::arg("threads"), py::arg("wave_size"), py::arg("control"),
-        py::arg("evaluate_batch") = py::none(),
-        "Internal: ccma.workspace's map (analyses/workspace.h ComputeWorkspace).");
-  m.def("_workspace_evaluate", &WorkspaceEvaluate, py::arg("model"), py::arg("ranges"), py::arg("poses"),
-        py::arg("states"), py::arg("controls"), py::arg("threads"), py::arg("control"),
-        "Internal: one chunk of a distributed workspace map (EvaluateWorkspacePoses).");
+        py::arg("tile_size") = 0, py::arg("progress") = py::none(),
+        "Internal: ccma.workspace's map on local threads (analyses/workspace.h ComputeWorkspace).");
+  m.def("_workspace_tiles", &WorkspaceTilesList, py::arg("model"), py::arg("ranges"), py::arg("resolution"),
+        py::arg("samples"), py::arg("seed"), py::arg("wave_size"), py::arg("tile_size"),
+        "Internal: the map's tiles (WorkspaceTiles).");
+  m.def("_workspace_tile", &WorkspaceTileEvaluate, py::arg("model"), py::arg("ranges"), py::arg("resolution"),
+        py::arg("samples"), py::arg("seed"), py::arg("wave_size"), py::arg("control"), py::arg("tile_size"),
+        py::arg("tile"), py::arg("inputs"),
+        "Internal: one tile of a distributed workspace map (EvaluateWorkspaceTile).");
 }
 
 }  // namespace ccma::python

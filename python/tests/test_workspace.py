@@ -51,24 +51,56 @@ def test_bad_arguments_raise():
         ccma.workspace(ccma.load_model(MODEL), {"z": (0.4, 0.5)}, client=object())
 
 
+KEYS = ("reachable", "controls", "residual_energy", "sigma_min", "rcond", "start", "wave", "tile", "steps", "poses")
+
+
+def assert_same_map(a, b):
+    for key in KEYS:
+        np.testing.assert_array_equal(a[key], b[key], err_msg=key)
+    assert a["warning"] == b["warning"] and a["limited_by"] == b["limited_by"]
+    assert a["tiles"] == b["tiles"]
+
+
 def test_dask_local_cluster_gives_the_local_results():
     distributed = pytest.importorskip("distributed")
-    kwargs = dict(samples=30, seed=3, wave_size=8)
-    ranges = {"x": (-0.3, 0.3), "y": (-0.3, 0.3), "z": (0.45, 0.95)}
-    local = ccma.workspace(MODEL, ranges, threads=1, **kwargs)
+    # A grid in 16 tiles of 4 x 4 cells, and draws binned into 27 tiles.
+    grid = dict(ranges={"x": (-0.4, 0.4), "z": (0.3, 1.2)}, resolution=16, tile_size=4)
+    draws = dict(ranges={"x": (-0.3, 0.3), "y": (-0.3, 0.3), "z": (0.45, 0.95)}, samples=60, seed=3,
+                 wave_size=8, tile_size=2)
+    local = {name: ccma.workspace(MODEL, threads=1, **kw) for name, kw in (("grid", grid), ("draws", draws))}
+    assert local["grid"]["tiles"] == 16 and local["draws"]["tiles"] > 4
+    seen = []
+    two = ccma.workspace(MODEL, threads=2, progress=lambda done, total: seen.append((done, total)), **grid)
+    assert_same_map(local["grid"], two)
+    assert seen[-1] == (256, 256) and all(a[0] <= b[0] for a, b in zip(seen, seen[1:]))
     with distributed.LocalCluster(n_workers=2, processes=True, threads_per_worker=1,
                                   dashboard_address=None) as cluster, distributed.Client(cluster) as client:
-        remote = ccma.workspace(MODEL, ranges, client=client, chunk_size=3, **kwargs)
-        # A second call on the same client (the model text is scattered again).
-        again = ccma.workspace(MODEL, ranges, client=client, chunk_size=7, **kwargs)
-        np.testing.assert_array_equal(again["controls"], remote["controls"])
+        progress = []
+        remote = ccma.workspace(MODEL, client=client, progress=lambda d, t: progress.append((d, t)), **grid)
+        assert_same_map(local["grid"], remote)
+        assert progress[-1] == (256, 256) and len(progress) == 16  # one call per tile
+        # Groups of tiles per task and one task in flight: the same map.
+        grouped = ccma.workspace(MODEL, client=client, chunk_size=3, max_in_flight=1, **grid)
+        assert_same_map(local["grid"], grouped)
+        # A second call on the same client (the model text is scattered again), on draws.
+        assert_same_map(local["draws"], ccma.workspace(MODEL, client=client, chunk_size=2, **draws))
         # Each worker process loaded the model at most once.
         loaded = client.run(lambda: len(__import__("sys").modules["ccma.workspace"]._MODELS))
         assert sorted(loaded.values()) in ([0, 1], [1, 1])
-    assert 0 < local["reachable"].sum() < 30
-    for key in ("reachable", "controls", "residual_energy", "sigma_min", "rcond", "start", "wave", "poses"):
-        np.testing.assert_array_equal(local[key], remote[key], err_msg=key)
-    assert local["warning"] == remote["warning"]
+    # z up to the legs' reach (0.85 m); the same count as one tile, the global continuation.
+    assert local["grid"]["reachable"].sum() == 156
+    single = ccma.workspace(MODEL, **dict(grid, tile_size=16))
+    assert single["tiles"] == 1 and single["reachable"].sum() == 156
+    assert 0 < local["draws"]["reachable"].sum() < 60
+
+
+def test_progress_and_chunk_arguments_are_checked():
+    with pytest.raises(TypeError, match="progress"):
+        ccma.workspace(MODEL, {"z": (0.4, 0.5)}, progress=3)
+    with pytest.raises(ValueError, match="tile_size"):
+        ccma.workspace(MODEL, {"z": (0.4, 0.5)}, tile_size=-1)
+    with pytest.raises(ValueError, match="max_in_flight"):
+        ccma.workspace(MODEL, {"z": (0.4, 0.5)}, max_in_flight=0)
 
 
 def test_samples_too_many_path_steps_away_are_unreachable_not_an_error():
