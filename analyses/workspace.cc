@@ -268,8 +268,35 @@ WorkspaceTileResult EvaluateWorkspaceTile(const Model& model, const WorkspaceOpt
   return result;
 }
 
+namespace {
+
+// A tile read back from `cache` into the map: false when it is not kept or
+// does not fit the tile (then it is computed).
+bool LoadTile(WorkspaceTileCache* cache, int t, const WorkspaceTile& tile, std::vector<WorkspaceSample>* samples,
+              std::vector<long long>* carried) {
+  WorkspaceTileResult kept;
+  if (cache == nullptr || !cache->Load(t, &kept) || kept.samples.size() != tile.rows.size()) return false;
+  for (long long row : kept.carried_rows) {
+    if (row < 0 || row >= static_cast<long long>(samples->size())) return false;
+  }
+  for (size_t k = 0; k < tile.rows.size(); ++k) (*samples)[static_cast<size_t>(tile.rows[k])] = std::move(kept.samples[k]);
+  *carried = std::move(kept.carried_rows);
+  return true;
+}
+
+// A computed tile handed to `cache`: its samples and the carried ones.
+void SaveTile(WorkspaceTileCache* cache, int t, const std::vector<WorkspaceSample>& samples,
+              const std::vector<long long>& carried_rows, const std::vector<WorkspaceSample>& map) {
+  if (cache == nullptr) return;
+  WorkspaceTileResult result{samples, carried_rows, {}};
+  for (long long row : carried_rows) result.carried.push_back(map[static_cast<size_t>(row)]);
+  cache->Save(t, result);
+}
+
+}  // namespace
+
 WorkspaceResult ComputeWorkspace(const Model& model, const WorkspaceOptions& options,
-                                 const WorkspaceProgress& progress) {
+                                 const WorkspaceProgress& progress, WorkspaceTileCache* cache) {
   const auto clock_start = std::chrono::steady_clock::now();
   internal::CheckWorkspaceOptions(model, options);
   const WorkspaceTiling tiling(model, options);
@@ -293,6 +320,11 @@ WorkspaceResult ComputeWorkspace(const Model& model, const WorkspaceOptions& opt
     try {
       for (int t = queue.Next(); t >= 0; t = queue.Next()) {
         const WorkspaceTile& tile = tiles[static_cast<size_t>(t)];
+        if (LoadTile(cache, t, tile, &result.samples, &carried[static_cast<size_t>(t)])) {
+          report(static_cast<long long>(tile.rows.size()));
+          queue.Finished(t);
+          continue;
+        }
         std::map<long long, const WorkspaceSample*> outside;  // finished: no longer written
         for (int d : tile.depends_on) {
           for (long long row : tiles[static_cast<size_t>(d)].rows) AddOutside(&outside, row, &result.samples[static_cast<size_t>(row)]);
@@ -301,6 +333,7 @@ WorkspaceResult ComputeWorkspace(const Model& model, const WorkspaceOptions& opt
         std::vector<WorkspaceSample> samples =
             TileWith(control, model, options, tiling, t, tile, {outside.begin(), outside.end()}, report);
         carried[static_cast<size_t>(t)] = CarriedRows(tile, samples);
+        SaveTile(cache, t, samples, carried[static_cast<size_t>(t)], result.samples);
         for (size_t k = 0; k < tile.rows.size(); ++k) result.samples[static_cast<size_t>(tile.rows[k])] = std::move(samples[k]);
         queue.Finished(t);
       }

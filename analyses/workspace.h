@@ -173,11 +173,25 @@ WorkspaceTileResult EvaluateWorkspaceTile(const Model& model, const WorkspaceOpt
                                           const std::vector<WorkspaceTileResult>& inputs,
                                           const WorkspaceProgress& progress = nullptr);
 
+// Where finished tiles are kept between runs (`ccma workspace --store`,
+// apps/workspace_store.h): ComputeWorkspace reads a tile back instead of
+// computing it when Load() finds it (its samples and carried_rows are
+// used), and hands every tile it computes to Save() as it finishes. Both are
+// called from the worker threads, each for its own tile.
+class WorkspaceTileCache {
+ public:
+  virtual ~WorkspaceTileCache() = default;
+  // True and `out` filled when tile `tile` was kept; false: compute it.
+  virtual bool Load(int tile, WorkspaceTileResult* out) = 0;
+  virtual void Save(int tile, const WorkspaceTileResult& result) = 0;
+};
+
 // The whole map (see the file comment) on options.threads threads, each
-// taking whole tiles. Throws std::invalid_argument if the options are not
-// valid for the model.
+// taking whole tiles; with `cache`, kept tiles are read back (a tile read
+// back must have its tile's sample count, else it is computed). Throws
+// std::invalid_argument if the options are not valid for the model.
 WorkspaceResult ComputeWorkspace(const Model& model, const WorkspaceOptions& options,
-                                 const WorkspaceProgress& progress = nullptr);
+                                 const WorkspaceProgress& progress = nullptr, WorkspaceTileCache* cache = nullptr);
 
 // An explicit list of poses, each reached independently from its start
 // (`starts[i]`, a state and all controls, e.g. a reached sample's; or home

@@ -198,7 +198,7 @@ Command WorkspaceCommand() {
   return {"workspace", "map the reachable end-effector poses and their conditioning",
           "ccma workspace --model=FILE --out=FILE.csv [--x=lo:hi] [--y=..] [--z=..] [--roll=..] [--pitch=..] [--yaw=..]\n"
           "               [--resolution=11 | --samples=N --seed=1] [--threads=1] [--tile_size=0] [--plot=DIR]\n"
-          "               [control flags]",
+          "               [--store=DIR] [control flags]",
           "Workspace map: samples end-effector poses over the given ranges of controlled components (a grid\n"
           "with --resolution points per range, or --samples seeded uniform draws; components not sampled keep\n"
           "their home value) and reaches each by continuation from the nearest already reached sample (or\n"
@@ -208,10 +208,11 @@ Command WorkspaceCommand() {
           "ratio of dG/ds), joint limits, u0, u1, ... (empty when unreachable).\n"
           "The map is computed in tiles of --tile_size cells per range (each continued from the tiles nearer\n"
           "home); results do not depend on --threads. --plot writes reachability and sigma_min maps over the\n"
-          "first two ranges. Prints {samples, reachable, tiles, seconds, ...}; a percentage bar on stderr at a\n"
-          "terminal.",
+          "first two ranges. --store=DIR keeps every finished tile there as it completes: the same command\n"
+          "run again (after Ctrl-C, say) reads them back and computes only the rest; the map is the same.\n"
+          "Prints {samples, reachable, tiles, seconds, ...}; a percentage bar on stderr at a terminal.",
           Concat({"model", "out", "x", "y", "z", "roll", "pitch", "yaw", "resolution", "samples", "seed", "threads",
-                  "tile_size", "plot", "obstacles"},
+                  "tile_size", "plot", "obstacles", "store"},
                  kControlFlags),
           RunWorkspace};
 }

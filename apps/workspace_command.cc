@@ -10,6 +10,7 @@
 #include <iomanip>
 #include <iostream>
 #include <limits>
+#include <memory>
 
 #include <gflags/gflags.h>
 
@@ -19,6 +20,8 @@
 #include "apps/json_output.h"
 #include "apps/output_file.h"
 #include "apps/plots.h"
+#include "apps/workspace_store.h"
+#include "formats/model_loader.h"
 #include "ccma/internal/format.h"
 
 DEFINE_string(x, "", "workspace: sample x over lo:hi [m] (e.g. -0.2:0.2)");
@@ -34,6 +37,9 @@ DEFINE_int32(tile_size, 0,
              "workspace: tile side, 0..10000, 0 = 16 for one or two ranges, 6 for three, 4, 3, 2 for four, five, six "
              "(part of the map: it decides where samples start) [cells per range]");
 DEFINE_string(plot, "", "workspace: folder for reachability and sigma_min maps over the first two ranges (gnuplot) [path]");
+DEFINE_string(store, "",
+              "workspace: folder that keeps every finished tile; the same command run again resumes from it "
+              "(docs/workspace.md) [path]");
 
 namespace ccma::cli {
 namespace {
@@ -161,6 +167,27 @@ WorkspaceProgress TerminalProgress() {
   };
 }
 
+// What names a map in a store: the model file's text and every option
+// that changes a sample (threads, --out and --plot do not).
+std::string StoreKey(const std::string& model_path, const WorkspaceOptions& options) {
+  std::string text, error;
+  if (!internal::ReadRegularFile(model_path, kMaxModelFileBytes, "model file", &text, &error)) throw ModelError(error);
+  nlohmann::json key = {{"resolution", options.resolution}, {"samples", options.random_samples},
+                        {"seed", options.seed}, {"tile_size", options.TileSide()}, {"wave_size", options.wave_size}};
+  for (const WorkspaceRange& r : options.ranges) key["ranges"].push_back({r.component, r.lo, r.hi});
+  for (const char* flag : {"method", "max_step_m", "max_step_rad", "lambda", "obstacles"}) {
+    std::string value;
+    gflags::GetCommandLineOption(flag, &value);
+    key[flag] = value;
+  }
+  std::string obstacles;
+  if (!FLAGS_obstacles.empty() &&
+      !internal::ReadRegularFile(FLAGS_obstacles, kMaxModelFileBytes, "obstacles file", &obstacles, &error)) {
+    throw UsageError(error);
+  }
+  return text + "\n" + obstacles + "\n" + key.dump();
+}
+
 nlohmann::json SummaryJson(const Model& model, const WorkspaceOptions& options, const WorkspaceResult& result,
                            const std::string& out_path) {
   nlohmann::json out;
@@ -193,11 +220,17 @@ int RunWorkspace(const std::vector<std::string>& args) {
     if (!std::filesystem::is_directory(FLAGS_plot)) throw UsageError("--plot: cannot create folder '" + FLAGS_plot + "'");
   }
   OutputFile file(out_path, "out");  // checked before the long run
-  const WorkspaceResult result = ComputeWorkspace(model, options, TerminalProgress());
+  std::unique_ptr<WorkspaceStore> store;
+  if (!FLAGS_store.empty()) {
+    store = std::make_unique<WorkspaceStore>(FLAGS_store, model, StoreKey(model_path, options),
+                                             static_cast<int>(WorkspaceTiles(model, options).size()));
+  }
+  const WorkspaceResult result = ComputeWorkspace(model, options, TerminalProgress(), store.get());
   WriteCsv(model, result, file.stream());
   file.Commit();
 
   nlohmann::json out = SummaryJson(model, options, result, out_path);
+  if (store) out["tiles_from_store"] = store->loaded();
   if (!FLAGS_plot.empty()) {
     std::string warning;
     out["plots"] = PlotWorkspaceMaps(model, options, result, FLAGS_plot, &warning);

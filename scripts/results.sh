@@ -142,6 +142,11 @@ TEXT
     echo
     cat "$out/workspace.md"
   fi
+  # The client's memory on a cluster (benchmarks/workspace_memory.py), when it has been run.
+  if [[ -f "$out/workspace_memory.md" ]]; then
+    echo
+    cat "$out/workspace_memory.md"
+  fi
   # Build and test times of the first hour, measured by hand (build_times.md).
   if [[ -f "$out/build_times.md" ]]; then
     echo

@@ -384,7 +384,7 @@ TEST(Cli, EachCommandHasItsOwnHelpWithUnits) {
                   "max_step_rad", "lambda"}},
       {"view", {"model", "trajectory", "replay", "workspace", "meshes", "color_by", "out", "obstacles"}},
       {"workspace", {"model", "out", "x", "y", "z", "roll", "pitch", "yaw", "resolution", "samples", "seed",
-                     "threads", "tile_size", "plot", "obstacles", "method", "max_step_m", "max_step_rad", "lambda"}},
+                     "threads", "tile_size", "plot", "obstacles", "store", "method", "max_step_m", "max_step_rad", "lambda"}},
       {"design", {"model", "targets", "out", "vary", "vary_length", "max_change", "min_length", "min_singular_value",
                   "target_tolerance", "design_iterations", "objective", "mocap_noise_m", "mocap_noise_rad", "method",
                   "max_step_m", "max_step_rad", "lambda"}},

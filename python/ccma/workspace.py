@@ -72,10 +72,14 @@ def _place(out, rows, part, n):
 
 class _Schedule:
     """Which tiles are ready (the tiles they depend on finished), nearest home
-    first, and the finished tiles' results that a tile not yet sent needs."""
+    first, and the finished tiles' results that a tile not yet sent needs.
+    Tiles in `preloaded` (read back from a store) finish as soon as they are
+    ready, without being sent."""
 
-    def __init__(self, tiles):
+    def __init__(self, tiles, preloaded=None, on_preloaded=None):
         self.tiles = tiles
+        self.preloaded = dict(preloaded or {})
+        self.on_preloaded = on_preloaded
         self.waiting = [len(t["depends_on"]) for t in tiles]
         self.users = [[] for _ in tiles]
         for t, tile in enumerate(tiles):
@@ -87,16 +91,23 @@ class _Schedule:
         self.results = {}  # finished tile -> its result, while a tile that needs it is unsent
 
     def take(self, count):
-        """Up to `count` ready tiles and, for each, the results of the tiles it depends on."""
+        """Up to `count` ready tiles to compute and, for each, the results of the
+        tiles it depends on (ready preloaded tiles are finished on the way)."""
         group, inputs = [], []
         while self.ready and len(group) < count:
             _, t = heapq.heappop(self.ready)
-            group.append(t)
-            inputs.append([self.results[d] for d in self.tiles[t]["depends_on"]])
+            given = [self.results[d] for d in self.tiles[t]["depends_on"]]
             for d in self.tiles[t]["depends_on"]:
                 self.unsent_users[d] -= 1
                 if self.unsent_users[d] == 0:
                     del self.results[d]
+            if t in self.preloaded:
+                blob = self.preloaded.pop(t)
+                self.on_preloaded(t, blob)
+                self.finish(t, blob)
+                continue
+            group.append(t)
+            inputs.append(given)
         return group, inputs
 
     def finish(self, t, result):
@@ -108,73 +119,208 @@ class _Schedule:
                 heapq.heappush(self.ready, (self.tiles[u]["order"], u))
 
 
-def _on_cluster(client, path, model, args, control, chunk, window, progress):
-    """The map on a Dask client: tiles as tasks, sent when the tiles they depend
-    on are finished, at most `window` in flight, placed in map order."""
-    start = time.perf_counter()
-    ranges, resolution, samples, seed, wave_size, tile_size = args
-    from distributed import as_completed
-    with open(path, encoding="utf-8") as f:
-        text = f.read()
-    # hash=False: a fresh key per call (a hashed key shared with an earlier
-    # call would be released, and its tasks cancelled, when that call's
-    # future is dropped).
-    text_future = client.scatter(text, broadcast=True, hash=False)
-    tiles = _ccma._workspace_tiles(model, ranges, resolution, samples, seed, wave_size, tile_size)
-    n = sum(len(t["rows"]) for t in tiles)
-    schedule = _Schedule(tiles)
-    group_of, out, done = {}, {}, 0
-    running = as_completed()
+class _LocalRunner:
+    """Tile groups on a local thread pool (the C++ side releases the GIL)."""
+
+    def __init__(self, threads, text, args, control):
+        from concurrent.futures import ThreadPoolExecutor
+        self._pool = ThreadPoolExecutor(max_workers=threads)
+        self._call = (text, args, dict(control))
+
+    def submit(self, group, inputs, priority):
+        del priority  # a pool has no priorities: groups run in the order sent
+        return self._pool.submit(_evaluate_tiles, *self._call, group, inputs)
+
+    def next_done(self, pending):
+        from concurrent.futures import FIRST_COMPLETED, wait
+        done, _ = wait(list(pending), return_when=FIRST_COMPLETED)
+        future = next(iter(done))
+        return future, future.result()
+
+    def close(self):
+        self._pool.shutdown(wait=True, cancel_futures=True)
+
+
+class _DaskRunner:
+    """Tile groups as Dask tasks; a lost worker's tasks are retried by Dask."""
+
+    def __init__(self, client, text, args, control):
+        from distributed import as_completed
+        self._client = client
+        # hash=False: a fresh key per call (a hashed key shared with an earlier
+        # call would be released, and its tasks cancelled, when that call's
+        # future is dropped).
+        self._text = client.scatter(text, broadcast=True, hash=False)
+        self._call = (args, dict(control))
+        self._completed = as_completed()
+
+    def submit(self, group, inputs, priority):
+        future = self._client.submit(_evaluate_tiles, self._text, *self._call, group, inputs, pure=False,
+                                     priority=priority)
+        self._completed.add(future)
+        return future.key
+
+    def next_done(self, pending):
+        del pending
+        future = next(self._completed)
+        return future.key, future.result()
+
+    def close(self):
+        pass
+
+
+def _drive(runner, tiles, schedule, window, chunk, on_tile):
+    """Sends ready tiles (at most `window` groups in flight) until every tile
+    is finished; on_tile(t, blob) as each completes."""
+    pending = {}
 
     def submit_ready():
-        while len(group_of) < window and schedule.ready:
+        while len(pending) < window and schedule.ready:
             group, inputs = schedule.take(chunk)
+            if not group:
+                continue
             # Tiles nearer home first: more tiles wait for them.
-            future = client.submit(_evaluate_tiles, text_future, args, dict(control), group, inputs, pure=False,
-                                   priority=-tiles[group[0]]["order"])
-            group_of[future.key] = group
-            running.add(future)
+            pending[runner.submit(group, inputs, -tiles[group[0]]["order"])] = group
 
     submit_ready()
-    for future in running:
-        for t, blob in zip(group_of.pop(future.key), future.result()):
-            _place(out, tiles[t]["rows"], pickle.loads(blob), n)
+    while pending:
+        token, blobs = runner.next_done(pending)
+        for t, blob in zip(pending.pop(token), blobs):
+            on_tile(t, blob)
             schedule.finish(t, blob)
-            done += len(tiles[t]["rows"])
-        if progress is not None:
-            progress(done, n)
         submit_ready()
+
+
+def _flatten(part):
+    """A tile's result as flat arrays and string lists (what a store keeps)."""
+    flat = {}
+    for key, value in part.items():
+        if key == "carried":
+            flat.update({"carried." + k: v for k, v in value.items()})
+        elif key == "carried_rows":
+            flat[key] = _np.asarray(value, dtype=_np.int64)
+        else:
+            flat[key] = value
+    return flat
+
+
+def _unflatten(flat):
+    part, carried = {}, {}
+    for key, value in flat.items():
+        if key.startswith("carried."):
+            carried[key[len("carried."):]] = value
+        elif key == "carried_rows":
+            part[key] = [int(r) for r in value]
+        else:
+            part[key] = value
+    part["carried"] = carried
+    return part
+
+
+class _Progress:
+    """progress=: None/False nothing, True a bar (tqdm.auto: terminal or
+    Jupyter; samples/s), or a callable progress(done, total)."""
+
+    def __init__(self, progress):
+        self._call = progress if callable(progress) else None
+        self._want_bar = progress is True
+        self._bar = None
+        self._done = 0
+
+    def __call__(self, done, total):
+        if self._call is not None:
+            self._call(done, total)
+        if self._want_bar and self._bar is None:
+            self._want_bar = False
+            try:
+                from tqdm.auto import tqdm  # Debian's python3-tqdm; without it, no bar
+                self._bar = tqdm(total=total, unit="sample", unit_scale=True, desc="workspace", smoothing=0.1)
+            except ImportError:
+                pass
+        if self._bar is not None:
+            self._bar.update(done - self._done)
+        self._done = done
+
+    def close(self):
+        if self._bar is not None:
+            self._bar.close()
+
+
+def _by_tiles(runner, model, text, args, control, chunk, window, store, progress):
+    """The map tile by tile on `runner` (local threads or Dask): ready tiles
+    sent at once, at most `window` groups in flight, each finished tile placed
+    in map order and, with a store, written there; tiles already in the store
+    are read back, not computed."""
+    start = time.perf_counter()
+    ranges, resolution, samples, seed, wave_size, tile_size = args
+    tiles = _ccma._workspace_tiles(model, ranges, resolution, samples, seed, wave_size, tile_size)
+    n = sum(len(t["rows"]) for t in tiles)
+    out, counts = {}, {"done": 0, "stored": 0}
+    kept = None
+    if store is not None:
+        from .map_store import MapStore
+        key = {"map": "ccma.workspace", "model": text, "args": args, "control": dict(control), "tiles": len(tiles)}
+        kept = MapStore(store, key, len(tiles))
+    preloaded = {}
+    for t in sorted(kept.done()) if kept is not None else ():
+        flat = kept.read(t)
+        if flat is not None:
+            preloaded[t] = pickle.dumps(_unflatten(flat), protocol=pickle.HIGHEST_PROTOCOL)
+
+    def place(t, blob, write):
+        part = pickle.loads(blob)
+        if write and kept is not None:
+            kept.write(t, _flatten(part))
+        _place(out, tiles[t]["rows"], part, n)
+        counts["done"] += len(tiles[t]["rows"])
+        counts["stored"] += 0 if write else 1
+        progress(counts["done"], n)
+
+    schedule = _Schedule(tiles, preloaded, lambda t, blob: place(t, blob, False))
+    try:
+        _drive(runner, tiles, schedule, window, chunk, lambda t, blob: place(t, blob, True))
+    finally:
+        runner.close()
     out["components"] = [r[0] for r in ranges]
     out["seconds"] = time.perf_counter() - start
     out["tiles"] = len(tiles)
+    out["tiles_from_store"] = counts["stored"]
     return out
 
 
 def workspace(model, ranges, resolution=11, samples=0, seed=1, threads=1, wave_size=64,
-              client=None, chunk_size=1, tile_size=0, progress=None, max_in_flight=None, **control):
+              client=None, chunk_size=1, tile_size=0, progress=None, max_in_flight=None, store=None, **control):
     """Reachability map over `ranges` ({"z": (lo, hi), ...}; names x y z roll pitch yaw,
     metres and radians, the model's controlled components): a grid of `resolution` points
     per range, or `samples` seeded uniform draws. Returns a dict of NumPy arrays, one entry
     per sample: poses (n x 6), reachable, converged, assembled, controls (n x controls),
     residual_energy [m^2], error [m or rad], sigma_min, rcond, max_limit_violation, wave,
-    start, steps, tile; lists limited_by and warning; and components, seconds, tiles.
+    start, steps, tile; lists limited_by and warning; and components, seconds, tiles
+    (with a client or a store also tiles_from_store).
 
     `model`: a path (str or os.PathLike) or a ccma.Model; with a Dask `client`
-    (distributed.Client) it must be a path, whose text is sent to each worker once.
+    (distributed.Client) or a `store` it must be a path (its text is sent to the workers
+    and names the map in the store).
     `tile_size`: cells per range of a tile (0: 16 for one or two ranges, fewer for more);
     part of the map's definition. `threads`: local worker threads (ignored with a client).
     `chunk_size`: tiles per task on a client; `max_in_flight`: tasks in flight at once
     (default four times the workers' threads, at least 4).
-    `progress`: called as progress(done_samples, total) as samples finish.
+    `store`: a directory (Zarr, Debian's python3-zarr) where every finished tile is
+    written as it completes; a call with the same arguments and store resumes: tiles
+    already there are read back, not computed; a damaged or half-written tile is
+    computed again; a store of another map is refused (ValueError).
+    `progress`: True draws a bar with samples/s (tqdm, terminal or Jupyter), or a
+    callable progress(done_samples, total) is called as samples finish.
     `control`: ControlOptions fields (max_step_m, lambda_, ...). The results do not
-    depend on threads, client, chunk_size or max_in_flight.
+    depend on threads, client, chunk_size, max_in_flight, store or interruptions.
     """
     path = None
     if isinstance(model, (str, os.PathLike)):
         path = os.fspath(model)
         model = _ccma.load_model(path)
-    elif client is not None:
-        raise TypeError("workspace: with a client, pass the model file's path (its text is sent to the workers)")
+    elif client is not None or store is not None:
+        raise TypeError("workspace: with a client or a store, pass the model file's path (its text is sent to "
+                        "the workers and names the map)")
     range_list = [(str(name), float(lo), float(hi)) for name, (lo, hi) in dict(ranges).items()]
     options = _ccma.ControlOptions(**control)
     for name, value in (("resolution", resolution), ("samples", samples), ("seed", seed),
@@ -186,13 +332,27 @@ def workspace(model, ranges, resolution=11, samples=0, seed=1, threads=1, wave_s
         raise ValueError(f"workspace: chunk_size must lie in [1, 100000], got {chunk_size}")
     if max_in_flight is not None and not 1 <= int(max_in_flight) <= 100000:
         raise ValueError(f"workspace: max_in_flight must lie in [1, 100000], got {max_in_flight}")
+    if not 1 <= int(threads) <= 1024:
+        raise ValueError(f"workspace: threads must lie in [1, 1024], got {threads}")
     if int(seed) < 0:
         raise ValueError(f"workspace: seed must be >= 0, got {seed}")
-    if progress is not None and not callable(progress):
-        raise TypeError("workspace: progress must be callable as progress(done, total)")
+    if progress is not None and progress is not True and progress is not False and not callable(progress):
+        raise TypeError("workspace: progress must be True, False, None or callable as progress(done, total)")
     args = (range_list, int(resolution), int(samples), int(seed), int(wave_size), int(tile_size))
-    if client is None:
-        return _ccma._workspace_compute(model, range_list, int(resolution), int(samples), int(seed),
-                                        int(threads), int(wave_size), options, int(tile_size), progress)
-    window = int(max_in_flight) if max_in_flight is not None else max(4, 4 * sum(client.nthreads().values()))
-    return _on_cluster(client, path, model, args, control, int(chunk_size), window, progress)
+    report = _Progress(progress)
+    try:
+        if client is None and store is None:
+            return _ccma._workspace_compute(model, range_list, int(resolution), int(samples), int(seed),
+                                            int(threads), int(wave_size), options, int(tile_size),
+                                            report if progress else None)
+        with open(path, encoding="utf-8") as f:
+            text = f.read()
+        if client is None:
+            runner, window = _LocalRunner(int(threads), text, args, control), 2 * int(threads)
+        else:
+            runner = _DaskRunner(client, text, args, control)
+            window = max(4, 4 * sum(client.nthreads().values()))
+        window = int(max_in_flight) if max_in_flight is not None else window
+        return _by_tiles(runner, model, text, args, control, int(chunk_size), window, store, report)
+    finally:
+        report.close()
