@@ -9,8 +9,11 @@ grid in the order given, the last name fastest) is evaluated by
 ccma.evaluate_design: every target solved from home on the changed model.
 With a client the model text is scattered to every worker once and loaded
 there once per worker process (the cache of ccma.workspace), and candidates
-are submitted in chunks; every candidate is solved from the same start either
-way, so the results equal the local run exactly.
+are submitted in chunks, at most `max_in_flight` at a time (a lost worker's
+chunks are run again by Dask); every candidate is solved from the same start
+either way, so the results equal the local run exactly. With `store=` (a Zarr
+directory, python/ccma/map_store.py) every finished chunk is written there as
+it completes, and the same call again resumes from it.
 """
 import itertools
 import os
@@ -44,8 +47,60 @@ def _evaluate_candidates(text, names, targets, candidates, target_tolerance):
     return out
 
 
+_FIELDS = ("reached", "error", "min_singular_value", "within_limits")
+
+
+def _as_arrays(part):
+    """One chunk's results (per candidate, per target) as candidates x targets arrays."""
+    return {k: _np.array([[r[k] for r in results] for results in part]) for k in _FIELDS}
+
+
+def _run_chunks(chunks, evaluate, client, text, window, store, progress):
+    """Every chunk's arrays, in order: read back from `store` or computed (locally, or
+    on `client` with at most `window` chunks in flight), each written to the store and
+    reported to progress(done_candidates, total) as it completes."""
+    parts, total, done = [None] * len(chunks), sum(len(c) for c in chunks), 0
+    for i in (store.done() if store is not None else ()):
+        parts[i] = store.read(i)
+    todo = [i for i, p in enumerate(parts) if p is None]
+
+    def finished(i, arrays):
+        nonlocal done
+        parts[i] = arrays
+        if store is not None:
+            store.write(i, arrays)
+        done += len(chunks[i])
+        if progress is not None:
+            progress(done, total)
+
+    done = sum(len(chunks[i]) for i, p in enumerate(parts) if p is not None)
+    if client is None:
+        for i in todo:
+            finished(i, _as_arrays(evaluate(text, chunks[i])))
+        return parts
+    from distributed import as_completed
+    # hash=False, as in ccma.workspace: a fresh key per call. A key hashed
+    # from the text would be shared with an earlier call on this client, and
+    # releasing that call's future would cancel this call's tasks.
+    text_future = client.scatter(text, broadcast=True, hash=False)
+    pending, running, queue = {}, as_completed(), list(reversed(todo))
+
+    def submit():
+        while queue and len(pending) < window:
+            i = queue.pop()
+            future = client.submit(evaluate, text_future, chunks[i], pure=False)
+            pending[future.key] = i
+            running.add(future)
+
+    submit()
+    for future in running:
+        finished(pending.pop(future.key), _as_arrays(future.result()))
+        submit()
+    return parts
+
+
 def design_sweep(model, parameter_grid, targets, client=None, chunk_size=8, target_tolerance=1e-6,
-                 min_singular_value=0.02):
+                 min_singular_value=0.02, store=None, progress=None, max_in_flight=None):
     """Evaluates every candidate design of `parameter_grid` ({name: [values in m]}, names as in
     ccma.design: 'JOINT.z', 'ANCHOR:JOINT') on `targets` (N x 6).
 
@@ -53,6 +108,10 @@ def design_sweep(model, parameter_grid, targets, client=None, chunk_size=8, targ
     Returns a list, one dict per candidate in grid order: `values` ({name: value}), `reached`
     (one boolean per target), `all_reached`, `min_singular_value` (smallest over the targets, 0
     when one is unreachable), `feasible` (all reached with min_singular_value >= the threshold).
+    `store`: a Zarr directory keeping every finished chunk; the same call again resumes from
+    it (a store of another sweep raises ValueError). `progress`: called as
+    progress(done_candidates, total). `max_in_flight`: chunks in flight on a client (default
+    four per worker thread).
     """
     if not isinstance(model, (str, os.PathLike)):
         raise TypeError("design_sweep: pass the model file's path (its text is sent to the workers)")
@@ -71,21 +130,28 @@ def design_sweep(model, parameter_grid, targets, client=None, chunk_size=8, targ
     if not isinstance(chunk_size, int) or not 1 <= chunk_size <= 10000:
         raise ValueError("design_sweep: chunk_size must be an integer in [1, 10000]")
     chunks = [candidates[i:i + chunk_size] for i in range(0, len(candidates), chunk_size)]
-    if client is None:
-        parts = [_evaluate_candidates(text, names, targets, c, target_tolerance) for c in chunks]
-    else:
-        # hash=False, as in ccma.workspace: a fresh key per call. A key hashed
-        # from the text would be shared with an earlier call on this client, and
-        # releasing that call's future would cancel this call's tasks.
-        text_future = client.scatter(text, broadcast=True, hash=False)
-        futures = [client.submit(_evaluate_candidates, text_future, names, targets, c, target_tolerance,
-                                 pure=False) for c in chunks]
-        parts = client.gather(futures)
+    if progress is not None and not callable(progress):
+        raise TypeError("design_sweep: progress must be callable as progress(done, total)")
+    if max_in_flight is not None and (not isinstance(max_in_flight, int) or not 1 <= max_in_flight <= 100000):
+        raise ValueError("design_sweep: max_in_flight must be an integer in [1, 100000]")
+    kept = None
+    if store is not None:
+        from .map_store import MapStore
+        key = {"batch": "ccma.design_sweep", "model": text, "names": names, "grid": grids,
+               "targets": targets.tolist(), "chunk_size": chunk_size, "target_tolerance": target_tolerance}
+        kept = MapStore(store, key, len(chunks))
+    window = max_in_flight or (max(4, 4 * sum(client.nthreads().values())) if client is not None else 1)
+
+    def evaluate(text_or_future, chunk):
+        return _evaluate_candidates(text_or_future, names, targets, chunk, target_tolerance)
+
+    parts = _run_chunks(chunks, evaluate, client, text, window, kept, progress)
     out = []
-    for values, results in zip(candidates, [r for part in parts for r in part]):
-        reached = [bool(r["reached"]) for r in results]
-        sigma = min(r["min_singular_value"] if r["reached"] else 0.0 for r in results)
-        out.append({"values": dict(zip(names, values)), "reached": reached, "all_reached": all(reached),
-                    "min_singular_value": sigma,
-                    "feasible": all(reached) and sigma >= min_singular_value})
+    for i, chunk in enumerate(chunks):
+        for k, values in enumerate(chunk):
+            reached = [bool(x) for x in parts[i]["reached"][k]]
+            sigma = min(float(v) if r else 0.0 for v, r in zip(parts[i]["min_singular_value"][k], reached))
+            out.append({"values": dict(zip(names, values)), "reached": reached, "all_reached": all(reached),
+                        "min_singular_value": sigma,
+                        "feasible": all(reached) and sigma >= min_singular_value})
     return out
