@@ -78,23 +78,22 @@ def _run_chunks(chunks, evaluate, client, text, window, store, progress):
         for i in todo:
             finished(i, _as_arrays(evaluate(text, chunks[i])))
         return parts
-    from distributed import as_completed
+    from ._dask_tasks import DaskTasks
     # hash=False, as in ccma.workspace: a fresh key per call. A key hashed
     # from the text would be shared with an earlier call on this client, and
     # releasing that call's future would cancel this call's tasks.
     text_future = client.scatter(text, broadcast=True, hash=False)
-    pending, running, queue = {}, as_completed(), list(reversed(todo))
+    tasks, pending, queue = DaskTasks(client), {}, list(reversed(todo))
 
     def submit():
         while queue and len(pending) < window:
             i = queue.pop()
-            future = client.submit(evaluate, text_future, chunks[i], pure=False)
-            pending[future.key] = i
-            running.add(future)
+            pending[tasks.submit(evaluate, text_future, chunks[i])] = i
 
     submit()
-    for future in running:
-        finished(pending.pop(future.key), _as_arrays(future.result()))
+    while pending:
+        token, result = tasks.next_done()
+        finished(pending.pop(token), _as_arrays(result))
         submit()
     return parts
 

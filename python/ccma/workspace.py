@@ -142,28 +142,23 @@ class _LocalRunner:
 
 
 class _DaskRunner:
-    """Tile groups as Dask tasks; a lost worker's tasks are retried by Dask."""
+    """Tile groups as Dask tasks; a lost worker's tasks run again (_dask_tasks)."""
 
     def __init__(self, client, text, args, control):
-        from distributed import as_completed
-        self._client = client
+        from ._dask_tasks import DaskTasks
         # hash=False: a fresh key per call (a hashed key shared with an earlier
         # call would be released, and its tasks cancelled, when that call's
         # future is dropped).
         self._text = client.scatter(text, broadcast=True, hash=False)
         self._call = (args, dict(control))
-        self._completed = as_completed()
+        self._tasks = DaskTasks(client)
 
     def submit(self, group, inputs, priority):
-        future = self._client.submit(_evaluate_tiles, self._text, *self._call, group, inputs, pure=False,
-                                     priority=priority)
-        self._completed.add(future)
-        return future.key
+        return self._tasks.submit(_evaluate_tiles, self._text, *self._call, group, inputs, priority=priority)
 
     def next_done(self, pending):
         del pending
-        future = next(self._completed)
-        return future.key, future.result()
+        return self._tasks.next_done()
 
     def close(self):
         pass
