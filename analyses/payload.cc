@@ -1,9 +1,11 @@
 #include "analyses/payload.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
 
+#include "ccma/internal/format.h"
 #include "ccma/loads.h"
 #include "problems/internal/equilibrium.h"
 
@@ -52,7 +54,41 @@ Bound PushBound(double limit, int c, const Eigen::VectorXd& e0, const Eigen::Vec
   return out;
 }
 
+// The first limit broken with no payload (efforts e0), as a note; "" when none.
+// A limit counts as broken beyond a relative 1e-9, the solve's own noise.
+std::string BrokenUnloaded(const Model& model, const Eigen::VectorXd& e0, std::string* name) {
+  for (int k = 0; k < model.num_bases(); ++k) {
+    const MobileBase& base = model.mobile_bases[static_cast<size_t>(k)];
+    const double push = e0.segment<2>(3 * k).norm();
+    if (base.push_limit > 0 && push > base.push_limit * (1 + 1e-9)) {
+      *name = base.name;
+      return "the mechanism breaks the push limit of " + Quote(base.name) + " with no payload (" + FormatG(push) +
+             " N against " + FormatG(base.push_limit) + " N): no payload is within the limits";
+    }
+  }
+  for (const Joint& joint : model.joints) {
+    if (!joint.actuated || !joint.effort.given) continue;
+    const double e = e0[joint.control], tolerance = 1e-9 * (1 + std::abs(e));
+    if (e > joint.effort.upper + tolerance || e < joint.effort.lower - tolerance) {
+      const char* unit = joint.type == JointType::kRevolute ? " N*m" : " N";
+      *name = joint.name;
+      return "the mechanism breaks the effort limits of " + Quote(joint.name) + " with no payload (" + FormatG(e) +
+             unit + " outside [" + FormatG(joint.effort.lower) + ", " + FormatG(joint.effort.upper) + "]" + unit +
+             "): no payload is within the limits";
+    }
+  }
+  return "";
+}
+
 }  // namespace
+
+double ReportedMass(const PayloadCapacity& capacity) {
+  return capacity.broken_unloaded.empty() ? std::max(0.0, capacity.mass) : 0.0;
+}
+
+bool Reportable(const PayloadCapacity& capacity) {
+  return !capacity.broken_unloaded.empty() || (capacity.defined && !capacity.unbounded);
+}
 
 Model WithoutPayload(const Model& model) {
   Model out = model;
@@ -98,9 +134,12 @@ PayloadCapacity ComputePayloadCapacity(const Model& model, const State& s, const
     if (b.second.m < best->second.m) best = &b;
   }
   if (best->second.m == -std::numeric_limits<double>::infinity()) {
-    out.why = "the push limit of '" + best->first + "' is exceeded at every payload";
+    out.why = "the push limit of " + Quote(best->first) + " is exceeded at every payload";
+    out.broken_unloaded = best->first;
+    out.note = out.why;
     return out;
   }
+  out.note = BrokenUnloaded(model, e0, &out.broken_unloaded);
   out.unbounded = std::isinf(best->second.m);
   out.mass = out.unbounded ? 0.0 : best->second.m;
   out.limiting = best->first;

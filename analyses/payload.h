@@ -30,11 +30,24 @@ struct PayloadCapacity {
   bool defined = false;    // some limit is given and the loads are balanced
   bool determinate = true; // the limiting efforts are unique (else: of the minimum-norm reactions, as statics reports)
   double mass = 0;         // kg; negative when the mechanism's own weight already exceeds a limit
+                           // (the design objective follows it below 0; reports use ReportedMass)
   bool unbounded = false;  // no limited effort grows with the payload (mass is then 0 and meaningless)
   std::string limiting;    // the actuator (joint or base) whose limit sets `mass`
   Eigen::VectorXd weight_own, weight_kg;  // num_controls each (see above)
   std::string why;         // when !defined
+  // The first limit the mechanism breaks with no payload at all ("" when none):
+  // its own weight (and the wrench) already exceed it, so no payload is safe.
+  std::string broken_unloaded;
+  std::string note;        // a sentence naming that limit and by how much, for reports
 };
+
+// What a report prints as the capacity [kg]: `mass`, or 0 when the unloaded
+// mechanism already breaks a limit (never negative).
+double ReportedMass(const PayloadCapacity& capacity);
+
+// Whether a report prints the capacity: defined and bounded, or 0 because
+// the unloaded mechanism already breaks a limit.
+bool Reportable(const PayloadCapacity& capacity);
 
 // The model with its payload removed, and with only a 1 kg payload (every
 // other mass zero) at the payload's com or the end-effector point.

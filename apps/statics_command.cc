@@ -126,8 +126,13 @@ int RunStatics(const std::vector<std::string>& args) {
   out["noise"] = {{"mocap_noise_m", noise.position_sigma}, {"mocap_noise_rad", noise.heading_sigma}};
   if (report.limits_given) {
     const PayloadCapacity capacity = ComputePayloadCapacity(model, forward.state(), forward.controls());
-    if (capacity.defined && !capacity.unbounded) {
-      out["payload_capacity"] = {{"mass", capacity.mass}, {"limiting", capacity.limiting}};
+    if (Reportable(capacity)) {
+      const std::string limiting = capacity.broken_unloaded.empty() ? capacity.limiting : capacity.broken_unloaded;
+      out["payload_capacity"] = {{"mass", ReportedMass(capacity)}, {"limiting", limiting}};
+      if (!capacity.note.empty()) {
+        out["payload_capacity"]["note"] = capacity.note;
+        std::cerr << "ccma statics: warning: " << capacity.note << "\n";
+      }
     }
   }
   AddClearance(model, forward.state(), "statics", &out);

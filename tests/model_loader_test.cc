@@ -19,6 +19,8 @@
 #include "ccma/limits.h"
 #include "formats/model_generator.h"
 #include "formats/model_loader.h"
+#include "formats/closure_file.h"
+#include "formats/obstacles_file.h"
 #include "ccma/rotation.h"
 #include "bundled_models.h"
 
@@ -233,6 +235,39 @@ TEST(ModelLoader, UnreadableFile) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent/dir/model.yaml"), std::string::npos);
   }
   EXPECT_THROW(LoadModel(CCMA_MODELS_DIR), ModelError);  // a directory
+}
+
+// yaml-cpp keeps both pairs of a repeated key and a lookup takes the first:
+// every repeat is an error naming both lines, in model, obstacles and
+// closure files alike, at any depth, and a repeat through an alias too.
+TEST(ModelLoader, RepeatedKeysNameBothLines) {
+  EXPECT_EQ(ErrorOf(Replace(kValid, "name: tiny\n", "name: tiny\nname: other\n")),
+            "bad.yaml:2: key 'name' given twice in one mapping (first at line 1); remove one");
+  EXPECT_EQ(ErrorOf(Replace(kValid, "  - name: post\n", "  - name: post\n    name: pole\n")),
+            "bad.yaml:5: key 'name' given twice in one mapping (first at line 4); remove one");
+  const std::string obstacles = "obstacles:\n  - {type: cylinder, name: a, center: [3, 3], radius: 0.1, height: 1}\n";
+  const std::string twice = ErrorOf(std::string(kValid) + obstacles + obstacles);
+  EXPECT_NE(twice.find("key 'obstacles' given twice in one mapping"), std::string::npos) << twice;
+  EXPECT_EQ(ErrorOf(Replace(kValid, "axis: [0, 0, 2]", "axis: [0, 0, 2]\n    axis: [1, 0, 0]")),
+            "bad.yaml:19: key 'axis' given twice in one mapping (first at line 18); remove one");
+  EXPECT_NE(ErrorOf(std::string(kValid) + "x-anchor: &a {k: 1, k: 2}\nx-alias: *a\n").find("key 'k' given twice"),
+            std::string::npos);
+  const std::string dir = ::testing::TempDir();
+  std::ofstream(dir + "/twice_obstacles.yaml") << obstacles << obstacles;
+  Model model = LoadModelFromString(kValid, "tiny.yaml");
+  try {
+    AddObstaclesFromFile(dir + "/twice_obstacles.yaml", &model);
+    ADD_FAILURE() << "a repeated key was accepted";
+  } catch (const ModelError& e) {
+    EXPECT_NE(std::string(e.what()).find("twice_obstacles.yaml:3: key 'obstacles' given twice"), std::string::npos)
+        << e.what();
+  }
+  try {
+    ParseClosureFile("name_mot: [a]\nname_mot: [b]\n", "robot.closures.yaml");
+    ADD_FAILURE() << "a repeated key was accepted";
+  } catch (const ModelError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("robot.closures.yaml:2: key 'name_mot' given twice", 0), 0u) << e.what();
+  }
 }
 
 TEST(ModelLoader, EmptyFile) { EXPECT_NE(ErrorOf("").find("empty"), std::string::npos); }

@@ -10,11 +10,13 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <Eigen/Geometry>
 #include <Eigen/SVD>
 
 #include "analyses/statics.h"
 #include "ccma/internal/constraint_set.h"
+#include "ccma/internal/format.h"
 #include "bundled_models.h"
 #include "formats/model_loader.h"
 #include "problems/forward_problem.h"
@@ -331,6 +333,31 @@ TEST(Statics, StewartLegForcesAreTheInverseTransposedJacobianOfTheWrench) {
     const Eigen::Matrix<double, 6, 1> expected = -J.transpose().inverse() * wrench;
     EXPECT_LT((efforts - expected).cwiseAbs().maxCoeff(), 1e-9 * (1 + expected.cwiseAbs().maxCoeff())) << trial;
   }
+}
+
+// The tripod's own 3 kg apex loads each leg with W/3 sqrt(2) = 13.87 N,
+// beyond a 10 N limit: no payload is safe. The capacity is 0 (never
+// negative), names the leg it breaks and says by how much.
+TEST(Statics, PayloadCapacityIsZeroWhenTheUnloadedMechanismBreaksALimit) {
+  const std::string dir = ::testing::TempDir();
+  std::ofstream(dir + "/heavy_tripod.yaml") << Tripod(3.0, ", effort_limits: [-10, 10]");
+  const testing::ToolRun run = testing::RunTool({"statics", "--model=" + dir + "/heavy_tripod.yaml"});
+  ASSERT_EQ(run.status, 0) << run.err;
+  const nlohmann::json capacity = nlohmann::json::parse(run.out)["payload_capacity"];
+  EXPECT_EQ(capacity["mass"].get<double>(), 0.0);
+  EXPECT_EQ(capacity["limiting"].get<std::string>(), "leg0");
+  const std::string note = capacity["note"].get<std::string>();
+  const double per_leg = 3.0 * 9.81 / 3 * std::sqrt(2.0);
+  EXPECT_NE(note.find("'leg0'"), std::string::npos) << note;
+  EXPECT_NE(note.find(FormatG(per_leg)), std::string::npos) << note << " (expected " << FormatG(per_leg) << ")";
+  EXPECT_NE(run.err.find(note), std::string::npos) << run.err;
+  // Within its limits unloaded: a positive capacity and no note.
+  std::ofstream(dir + "/light_tripod.yaml") << Tripod(3.0, ", effort_limits: [-20, 20]");
+  const testing::ToolRun light = testing::RunTool({"statics", "--model=" + dir + "/light_tripod.yaml"});
+  ASSERT_EQ(light.status, 0) << light.err;
+  const nlohmann::json ok = nlohmann::json::parse(light.out)["payload_capacity"];
+  EXPECT_GT(ok["mass"].get<double>(), 0.0);
+  EXPECT_FALSE(ok.contains("note"));
 }
 
 TEST(Statics, TrajectoryRowsCarryTheEfforts) {

@@ -1,9 +1,15 @@
 // ParseYamlText: nesting guard, then yaml-cpp (yaml_document.h).
 #include "formats/internal/yaml_document.h"
 
+#include <set>
 #include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
 
 #include <yaml-cpp/depthguard.h>
+
+#include "ccma/internal/format.h"
 
 #include "formats/model_loader.h"
 
@@ -44,6 +50,38 @@ void CheckFlowNesting(const std::string& text, const std::string& source) {
   }
 }
 
+// Throws when a mapping names a key twice: yaml-cpp keeps both pairs and a
+// lookup silently takes the first, so a repeated `obstacles:` or `name:` would
+// be ignored without a word. Walks with an explicit stack; an aliased node
+// (the same mark) is walked once, so anchors cannot multiply the work.
+void CheckDuplicateKeys(const YAML::Node& root, const std::string& source) {
+  std::set<std::pair<int, int>> walked;  // (position, type) of collections seen
+  std::vector<YAML::Node> stack = {root};
+  while (!stack.empty()) {
+    const YAML::Node node = stack.back();
+    stack.pop_back();
+    if (!node.IsMap() && !node.IsSequence()) continue;
+    if (!walked.insert({node.Mark().pos, static_cast<int>(node.Type())}).second) continue;
+    std::unordered_map<std::string, int> first_line;
+    for (auto it = node.begin(); it != node.end(); ++it) {
+      if (node.IsSequence()) {
+        stack.push_back(*it);
+        continue;
+      }
+      stack.push_back(it->first);
+      stack.push_back(it->second);
+      if (!it->first.IsScalar()) continue;
+      const int line = it->first.Mark().line + 1;
+      const auto [at, inserted] = first_line.emplace(it->first.Scalar(), line);
+      if (!inserted) {
+        throw ModelError(WithLine(source, it->first.Mark()) + ": key " + Quote(it->first.Scalar()) +
+                         " given twice in one mapping (first at line " + std::to_string(at->second) +
+                         "); remove one");
+      }
+    }
+  }
+}
+
 }  // namespace
 
 std::string WithLine(const std::string& source, const YAML::Mark& mark) {
@@ -53,7 +91,9 @@ std::string WithLine(const std::string& source, const YAML::Mark& mark) {
 YAML::Node ParseYamlText(const std::string& text, const std::string& source) {
   CheckFlowNesting(text, source);
   try {
-    return YAML::Load(text);
+    const YAML::Node root = YAML::Load(text);
+    CheckDuplicateKeys(root, source);
+    return root;
   } catch (const YAML::DeepRecursion& e) {
     throw ModelError(WithLine(source, e.mark) + ": not valid YAML: nested too deeply (" +
                      std::to_string(e.depth()) + " levels)");

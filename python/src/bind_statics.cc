@@ -56,10 +56,11 @@ py::dict Statics(const Model& model, const State& s, const Eigen::VectorXd& u,
     out["within_limits"] = r.within_limits;
     out["limiting"] = r.limiting;
     const PayloadCapacity capacity = ComputePayloadCapacity(model, s, u);
-    if (capacity.defined && !capacity.unbounded) {
+    if (Reportable(capacity)) {
       py::dict c;
-      c["mass"] = capacity.mass;
-      c["limiting"] = capacity.limiting;
+      c["mass"] = ReportedMass(capacity);
+      c["limiting"] = capacity.broken_unloaded.empty() ? capacity.limiting : capacity.broken_unloaded;
+      if (!capacity.note.empty()) c["note"] = capacity.note;
       out["payload_capacity"] = c;
     }
   }
