@@ -132,6 +132,23 @@ TEST(Stl, MalformedFilesSayWhatAndWhere) {
   EXPECT_EQ(ErrorOf(ascii.substr(0, ascii.size() - 15)), "ASCII STL, line 30: expected 'facet' or 'endsolid', got the end of the file");
 }
 
+// The count at byte 80 is believed only as far as the bytes go: a header
+// claiming 1e9 triangles (50 GB) allocates nothing. (Already so before the
+// trust-boundary work; kept as the STL fuzzer's seeds are: fuzz/corpus_stl/.)
+TEST(Stl, ClaimedTriangleCountIsBoundedByTheSize) {
+  std::string claim = BinaryStl(Tetrahedron(1.0f));
+  const std::uint32_t billion = 1000000000;
+  std::memcpy(&claim[80], &billion, 4);
+  claim.replace(0, 5, "xxxxx");  // not "solid": only binary could read it
+  EXPECT_NE(ErrorOf(claim).find("neither a binary STL"), std::string::npos) << ErrorOf(claim);
+  EXPECT_NE(ErrorOf(claim.substr(0, 84)).find("neither a binary STL"), std::string::npos);
+  std::vector<StlTriangle> bad = Tetrahedron(1.0f);
+  bad[0][0][2] = INFINITY;
+  EXPECT_EQ(ErrorOf(BinaryStl(bad)), "binary STL: triangle 1 has a vertex that is not a finite number");
+  EXPECT_EQ(ErrorOf("solid x\nfacet normal 0 0 0\nouter loop\nvertex nan 0 0\n").rfind(
+                "ASCII STL, line 4: expected a finite number, got 'nan'", 0), 0u);
+}
+
 // A grounded post and arm (the arm turned) and an omni base; the arm and the
 // base carry meshes given by `arm` and `base`, relative to the model's folder.
 std::string WriteMeshModel(const std::string& dir, const std::string& arm, const std::string& base) {
