@@ -4,10 +4,12 @@
 #include "analyses/robot_import.h"
 
 #include <cmath>
+#include <filesystem>
 
 #include <Eigen/Geometry>
 #include <string>
 
+#include "analyses/internal/import_mesh_paths.h"
 #include "analyses/internal/robot_model_builder.h"
 #include "ccma/internal/constraint_set.h"
 #include "ccma/internal/format.h"
@@ -185,6 +187,10 @@ ImportedRobot ImportRobot(const RobotDescription& robot, const ImportOptions& op
   Model home = Rehome(built, assembled, motors_held);
   CheckLimits(home, robot.source);
   ImportedRobot out;
+  const std::string folder = options.model_folder.empty()
+                                 ? std::filesystem::absolute(robot.source).parent_path().string()
+                                 : options.model_folder;
+  const std::string outside = internal::RelateMeshPaths(folder, robot.source, &home);
   out.yaml = WriteModelYaml(home, "Written by `ccma import` from " + robot.source +
                                       ". Joint positions q equal the source's (q_home).");
   out.model = LoadModelFromString(out.yaml, robot.source + " (imported)");
@@ -200,6 +206,7 @@ ImportedRobot ImportRobot(const RobotDescription& robot, const ImportOptions& op
   // an edge to the ground): the closure file's pairs for a URDF, the loops an
   // SDFormat file closes itself.
   out.closures = static_cast<int>(home.joints.size()) + home.num_bases() - home.num_bodies();
+  if (!outside.empty()) out.warnings.push_back(outside);
   return out;
 }
 

@@ -35,10 +35,16 @@ struct ImportOptions {
   // Controlled components (x y z roll pitch yaw); empty: the stored ones or all six.
   std::vector<std::string> controlled;
   std::string model_name;  // name of the written model; empty: the robot's
+  // The folder the model file will be written to: mesh paths are written
+  // relative to it (analyses/internal/import_mesh_paths.h), so that the model
+  // and its meshes can be moved together. Empty: the robot file's folder,
+  // against which ImportedRobot::model's source also resolves them.
+  std::string model_folder;
 };
 
 struct ImportedRobot {
-  Model model;          // as loaded back from `yaml` (validated by the loader)
+  Model model;          // as loaded back from `yaml` (validated by the loader); mesh paths
+                        // relative to ImportOptions::model_folder
   std::string yaml;     // the model file text
   double residual_energy = 0;  // E at home of `model` [m^2]
   int closures = 0;  // independent loops (joints + bases - bodies)

@@ -182,8 +182,11 @@ Command ViewCommand() {
           "[m or rad per control unit], the others grey. With --meshes, the bodies' meshes (`meshes:` in\n"
           "the model: binary or ASCII STL, paths absolute or relative to the model file's folder) are read,\n"
           "embedded and drawn at their pose on each body instead of its capsules; at most 16 MiB per file and\n"
-          "64 MiB for all distinct files. A mesh file missing, unreadable, too large or not a valid STL:\n"
-          "exit 2, naming the model file and line, the body and the mesh file (JSON mesh_files, mesh_bytes).\n"
+          "64 MiB for all distinct files. Meshes are read only from inside the model file's folder (symlinks\n"
+          "resolved) and the folders given with --mesh_root; the page names them relative to the model's\n"
+          "folder (or by file name), never by an absolute path. A mesh file outside, missing, unreadable,\n"
+          "too large or not a valid STL: exit 2, naming the model file and line, the body and the mesh file\n"
+          "(JSON mesh_files, mesh_bytes).\n"
           "With collision geometry (`collision:`, `obstacles:` or --obstacles) the obstacles, bases' cylinders\n"
           "and link capsules are drawn see-through with each frame's clearance and pair; a frame below\n"
           "collision.margin reads \"below margin\", its pair turns red and it is flagged (JSON\n"
@@ -191,7 +194,8 @@ Command ViewCommand() {
           "the masses and payload, no wrench) and each link is coloured by its load, the largest reaction\n"
           "force of the joints that touch it [N], on a scale from 0 to the page's largest (JSON max_load,\n"
           "unbalanced_frames, indeterminate_frames); statics beyond its bounds: exit 2.",
-          {"model", "trajectory", "replay", "workspace", "meshes", "color_by", "out", "obstacles"}, RunView};
+          {"model", "trajectory", "replay", "workspace", "meshes", "mesh_root", "color_by", "out", "obstacles"},
+          RunView};
 }
 
 Command WorkspaceCommand() {

@@ -2,6 +2,7 @@
 //  --end_effector=LINK[:px,py,pz] [--controlled=x,y,z,...] --out=MODEL.yaml`:
 // a robot described elsewhere -> a model file assembled at home
 // (analyses/robot_import.h, docs/import.md).
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -74,6 +75,8 @@ int RunImport(const std::vector<std::string>& args) {
   options.controlled = SplitNames(FLAGS_controlled, "controlled");
   if (!FLAGS_end_effector.empty()) ParseEndEffector(FLAGS_end_effector, &options);
   OutputFile out(out_path, "out");  // checked before the work
+  // Mesh paths relative to the model file: the two can be moved together.
+  options.model_folder = std::filesystem::absolute(out_path).parent_path().string();
   const RobotDescription robot = sdf ? ReadSdformat(from, options.actuated) : ReadUrdf(from, FLAGS_closures);
   for (const std::string& warning : robot.warnings) std::cerr << "ccma import: warning: " << warning << "\n";
   const ImportedRobot imported = ImportRobot(robot, options);

@@ -2,7 +2,8 @@
 // --out=FILE.html`: one self-contained HTML page showing the mechanism in 3D
 // (viewer/), animated along a trajectory CSV or a replay directory, or at home
 // under the point cloud of a workspace map; with --meshes, the bodies' STL
-// meshes embedded and drawn; with collision geometry or --obstacles, the
+// meshes embedded and drawn (only from the model file's folder and the
+// --mesh_root folders); with collision geometry or --obstacles, the
 // shapes drawn and frames closer than the margin marked; with
 // --color_by=load, the links coloured by their joints' largest reaction force
 // in each frame's statics. Prints {"out", "bytes", "frames", ...} on stdout.
@@ -31,6 +32,10 @@ DEFINE_string(workspace, "",
 DEFINE_bool(meshes, false,
             "draw the bodies' meshes (`meshes:` in the model; STL, at most 16 MiB per file and 64 MiB in all) "
             "[flag]");
+DEFINE_string(mesh_root, "",
+              "with --meshes: folders, comma-separated, that meshes may come from besides the model file's own "
+              "folder (by default a mesh outside that folder, symlinks resolved, is refused with status 2) "
+              "[folders]");
 DEFINE_string(color_by, "body",
               "what the links are coloured by: body (their kind) or load (the largest reaction force of the joints "
               "that touch each link in every frame's statics, gravity on the masses and payload) [body|load]");
@@ -100,6 +105,21 @@ nlohmann::json Result(const std::string& out_path, std::size_t bytes, const view
   return result;
 }
 
+// --mesh_root: the folders, comma-separated (an empty item is an error).
+std::vector<std::string> MeshRoots() {
+  std::vector<std::string> roots;
+  if (FLAGS_mesh_root.empty()) return roots;
+  std::size_t from = 0;
+  for (std::size_t comma; (comma = FLAGS_mesh_root.find(',', from)) != std::string::npos; from = comma + 1) {
+    roots.push_back(FLAGS_mesh_root.substr(from, comma - from));
+  }
+  roots.push_back(FLAGS_mesh_root.substr(from));
+  for (const std::string& root : roots) {
+    if (root.empty()) throw UsageError("ccma view: --mesh_root: an empty folder in '" + FLAGS_mesh_root + "'");
+  }
+  return roots;
+}
+
 // --color_by: body (the default) or load.
 viewer::ColorBy ColorByFlag() {
   if (FLAGS_color_by == "body") return viewer::ColorBy::kBody;
@@ -121,13 +141,15 @@ int RunView(const std::vector<std::string>& args) {
     throw UsageError("ccma view: --workspace goes alone, without --trajectory or --replay");
   }
   const viewer::ColorBy color_by = ColorByFlag();
+  const std::vector<std::string> mesh_roots = MeshRoots();
+  if (!mesh_roots.empty() && !FLAGS_meshes) throw UsageError("ccma view: --mesh_root goes with --meshes");
   const Model model = LoadModelOrThrow(model_path);
   std::vector<viewer::ViewFrame> frames;
   std::optional<viewer::WorkspaceCloud> workspace;
   std::optional<viewer::MeshFiles> meshes;
   std::string source = "model";
   try {
-    if (FLAGS_meshes) meshes = viewer::ReadMeshFiles(model);
+    if (FLAGS_meshes) meshes = viewer::ReadMeshFiles(model, mesh_roots);
     if (!FLAGS_workspace.empty()) {
       workspace = viewer::CloudFromWorkspaceCsv(model, FLAGS_workspace);
       source = "workspace";

@@ -99,6 +99,102 @@ TEST_F(ImportCli, PlanarJointMakesAMobileBaseAndControlsFollowTheSource) {
   EXPECT_LT((problem.end_effector().position - expected).norm(), 1e-9);
 }
 
+// kArmOnBase with mesh visuals: `base` on the base link, each of `upper` on the upper arm.
+std::string ArmWithMeshes(const std::string& base, const std::vector<std::string>& upper) {
+  const auto visual = [](const std::string& file) {
+    return "<visual><geometry><mesh filename=\"" + file + "\"/></geometry></visual>";
+  };
+  std::string text = kArmOnBase;
+  text.replace(text.find("<link name=\"base\"/>"), 19, "<link name=\"base\">" + visual(base) + "</link>");
+  std::string visuals;
+  for (const std::string& file : upper) visuals += visual(file);
+  text.replace(text.find("<link name=\"upper\"/>"), 20, "<link name=\"upper\">" + visuals + "</link>");
+  return text;
+}
+
+void WriteStl(const std::filesystem::path& path) {
+  std::filesystem::create_directories(path.parent_path());
+  std::ofstream(path) << "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 0.1 0 0\nvertex 0 0.1 0\n"
+                         "endloop\nendfacet\nendsolid t\n";
+}
+
+// The `file` of every mesh of the model file at `path`, in order.
+std::vector<std::string> MeshFilesOf(const std::string& path) {
+  std::vector<std::string> files;
+  for (const Body& body : LoadModel(path).bodies) {
+    for (const BodyMesh& mesh : body.meshes) files.push_back(mesh.file);
+  }
+  return files;
+}
+
+const std::vector<std::string> kArmFlags = {"--actuated=drive,shoulder", "--end_effector=upper:0.5,0,0",
+                                            "--controlled=x,y,z"};
+
+TEST_F(ImportCli, MeshPathsAreWrittenRelativeToTheModelFileNeverAbsolute) {
+  // A relative uri, file:// (absolute) and package://PKG/../../ (out of the package).
+  const std::filesystem::path robot = dir_ / "ws" / "robot";
+  WriteStl(robot / "meshes" / "base.stl");
+  WriteStl(dir_ / "elsewhere" / "upper.stl");
+  WriteStl(dir_ / "stolen.stl");
+  std::filesystem::create_directories(robot);
+  std::ofstream(robot / "arm.urdf") << ArmWithMeshes(
+      "meshes/base.stl", {"file://" + (dir_ / "elsewhere" / "upper.stl").string(), "package://robot/../../stolen.stl"});
+  std::filesystem::create_directories(dir_ / "out");
+  const std::string out = (dir_ / "out" / "arm.yaml").string();
+  std::vector<std::string> args = {"import", "--from=" + (robot / "arm.urdf").string(), "--out=" + out};
+  args.insert(args.end(), kArmFlags.begin(), kArmFlags.end());
+  const ToolRun r = RunTool(args);
+  ASSERT_EQ(r.status, 0) << r.err;
+  // The bodies in model order: the arm, then the base.
+  EXPECT_EQ(MeshFilesOf(out), (std::vector<std::string>{"../elsewhere/upper.stl", "../stolen.stl",
+                                                         "../ws/robot/meshes/base.stl"}));
+  const std::string text = testing::Slurp(out);
+  for (std::size_t at = text.find("file: "); at != std::string::npos; at = text.find("file: ", at + 1)) {
+    const std::string line = text.substr(at, text.find('\n', at) - at);
+    EXPECT_EQ(line.find(dir_.string()), std::string::npos) << line;
+    EXPECT_EQ(line.find("file://"), std::string::npos) << line;
+  }
+  EXPECT_NE(r.err.find("ccma import: warning: " + (robot / "arm.urdf").string() +
+                       ": 3 mesh file(s) lie outside the model file's folder (the first: "
+                       "'../elsewhere/upper.stl'): `ccma view --meshes` reads them only with --mesh_root"),
+            std::string::npos) << r.err;
+  // As the warning says: view refuses them, and reads them with their folder given.
+  const std::string page = (dir_ / "out" / "arm.html").string();
+  EXPECT_EQ(RunTool({"view", "--model=" + out, "--meshes", "--out=" + page}).status, 2);
+  const ToolRun view = RunTool({"view", "--model=" + out, "--meshes", "--mesh_root=" + dir_.string(), "--out=" + page});
+  ASSERT_EQ(view.status, 0) << view.err;
+  EXPECT_EQ(nlohmann::json::parse(view.out)["mesh_files"], 3);
+  EXPECT_EQ(testing::Slurp(page).find(dir_.string()), std::string::npos);
+}
+
+TEST_F(ImportCli, ModelImportedBesideItsRobotViewsItsMeshesAndMovesWithThem) {
+  // `ccma import --from=robot/arm.urdf --out=arm.yaml` and --out=robot/arm.yaml:
+  // both hold the meshes in their folder, with no flag.
+  const std::filesystem::path robot = dir_ / "robot";
+  WriteStl(robot / "meshes" / "base.stl");
+  WriteStl(robot / "meshes" / "upper.stl");
+  std::ofstream(robot / "arm.urdf") << ArmWithMeshes("meshes/base.stl", {"package://robot/meshes/upper.stl"});
+  for (const std::filesystem::path& out : {dir_ / "arm.yaml", robot / "arm.yaml"}) {
+    std::vector<std::string> args = {"import", "--from=" + (robot / "arm.urdf").string(), "--out=" + out.string()};
+    args.insert(args.end(), kArmFlags.begin(), kArmFlags.end());
+    const ToolRun r = RunTool(args);
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err.find("mesh"), std::string::npos) << r.err;
+  }
+  EXPECT_EQ(MeshFilesOf((dir_ / "arm.yaml").string()),
+            (std::vector<std::string>{"robot/meshes/upper.stl", "robot/meshes/base.stl"}));
+  EXPECT_EQ(MeshFilesOf((robot / "arm.yaml").string()),
+            (std::vector<std::string>{"meshes/upper.stl", "meshes/base.stl"}));
+  // Moved elsewhere with its meshes, the model still finds them.
+  const std::filesystem::path moved = dir_ / "moved";
+  std::filesystem::rename(robot, moved);
+  const std::string page = (dir_ / "arm.html").string();
+  const ToolRun view = RunTool({"view", "--model=" + (moved / "arm.yaml").string(), "--meshes", "--out=" + page});
+  ASSERT_EQ(view.status, 0) << view.err;
+  EXPECT_EQ(nlohmann::json::parse(view.out)["mesh_files"], 2);
+  EXPECT_EQ(testing::Slurp(page).find(dir_.string()), std::string::npos);
+}
+
 TEST_F(ImportCli, FiveBarJsonAsTheContractSays) {
   const ToolRun r = RunTool({"import", "--from=" + kRobots + "5bar_linkage/robot.urdf",
                              "--closures=" + kRobots + "5bar_linkage/robot.yaml", "--end_effector=effector",

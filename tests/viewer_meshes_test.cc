@@ -16,6 +16,7 @@
 #include "tests/tool_run.h"
 #include "viewer/html.h"
 #include "viewer/mesh_files.h"
+#include "viewer/mesh_folders.h"
 #include "viewer/scene.h"
 #include "viewer/stl.h"
 #include "viewer/view_frames.h"
@@ -131,6 +132,23 @@ TEST(Stl, MalformedFilesSayWhatAndWhere) {
   EXPECT_EQ(ErrorOf(ascii.substr(0, ascii.size() - 15)), "ASCII STL, line 30: expected 'facet' or 'endsolid', got the end of the file");
 }
 
+// The count at byte 80 is believed only as far as the bytes go: a header
+// claiming 1e9 triangles (50 GB) allocates nothing. (Already so before the
+// trust-boundary work; kept as the STL fuzzer's seeds are: fuzz/corpus_stl/.)
+TEST(Stl, ClaimedTriangleCountIsBoundedByTheSize) {
+  std::string claim = BinaryStl(Tetrahedron(1.0f));
+  const std::uint32_t billion = 1000000000;
+  std::memcpy(&claim[80], &billion, 4);
+  claim.replace(0, 5, "xxxxx");  // not "solid": only binary could read it
+  EXPECT_NE(ErrorOf(claim).find("neither a binary STL"), std::string::npos) << ErrorOf(claim);
+  EXPECT_NE(ErrorOf(claim.substr(0, 84)).find("neither a binary STL"), std::string::npos);
+  std::vector<StlTriangle> bad = Tetrahedron(1.0f);
+  bad[0][0][2] = INFINITY;
+  EXPECT_EQ(ErrorOf(BinaryStl(bad)), "binary STL: triangle 1 has a vertex that is not a finite number");
+  EXPECT_EQ(ErrorOf("solid x\nfacet normal 0 0 0\nouter loop\nvertex nan 0 0\n").rfind(
+                "ASCII STL, line 4: expected a finite number, got 'nan'", 0), 0u);
+}
+
 // A grounded post and arm (the arm turned) and an omni base; the arm and the
 // base carry meshes given by `arm` and `base`, relative to the model's folder.
 std::string WriteMeshModel(const std::string& dir, const std::string& arm, const std::string& base) {
@@ -158,6 +176,92 @@ TEST(MeshFiles, PathsResolveAgainstTheModelsFolder) {
   EXPECT_EQ(ResolveMeshPath("", "a.stl"), "a.stl");
 }
 
+// A model's folder and, beside it, a folder it must not reach unless allowed:
+//   DIR/model/inside.stl, DIR/outside/secret.stl,
+//   DIR/model/link.stl -> DIR/outside/secret.stl (a symlink shipped with the model),
+//   DIR/model/linked -> DIR/outside (a symlinked folder),
+//   DIR/model/good_link.stl -> inside.stl (a symlink that stays inside).
+struct Planted {
+  std::string dir, model_dir, outside;
+};
+
+Planted PlantOutside(const std::string& name) {
+  Planted p;
+  p.dir = Scratch(name);
+  p.model_dir = p.dir + "/model";
+  p.outside = p.dir + "/outside";
+  fs::remove_all(p.dir);
+  fs::create_directories(p.model_dir);
+  fs::create_directories(p.outside);
+  std::ofstream(p.model_dir + "/inside.stl", std::ios::binary) << BinaryStl(Tetrahedron(0.1f));
+  std::ofstream(p.outside + "/secret.stl", std::ios::binary) << BinaryStl(Tetrahedron(0.3f));
+  fs::create_symlink(p.outside + "/secret.stl", p.model_dir + "/link.stl");
+  fs::create_directory_symlink(p.outside, p.model_dir + "/linked");
+  fs::create_symlink("inside.stl", p.model_dir + "/good_link.stl");
+  return p;
+}
+
+std::string ReadError(const Model& model, const std::vector<std::string>& roots = {}) {
+  try {
+    ReadMeshFiles(model, roots);
+  } catch (const ViewInputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Each way out of the model's folder (an absolute path is added where the
+// folder is known): ../, a symlink to a file, a symlinked folder, ../
+// through a folder that does not exist. With the name the page gives each
+// when allowed: as written when it is relative and stays inside lexically.
+const std::vector<std::pair<std::string, std::string>> kOutsideEntries = {
+    {"{file: ../outside/secret.stl}", "secret.stl"},
+    {"{file: link.stl}", "link.stl"},
+    {"{file: linked/secret.stl}", "linked/secret.stl"},
+    {"{file: nothing/../../outside/secret.stl}", "secret.stl"}};
+
+TEST(MeshFolders, MeshesOutsideTheModelsFolderAreNotRead) {
+  const Planted p = PlantOutside("confined");
+  std::vector<std::pair<std::string, std::string>> entries = kOutsideEntries;
+  entries.emplace_back("{file: " + p.outside + "/secret.stl}", "secret.stl");
+  for (const auto& [entry, page_path] : entries) {
+    const Model model = LoadModel(WriteMeshModel(p.model_dir, entry, "{file: inside.stl}"));
+    const std::string error = ReadError(model);
+    EXPECT_EQ(error.rfind(p.model_dir + "/meshy.yaml:5: body 'arm': mesh '", 0), 0u) << entry << ": " << error;
+    EXPECT_NE(error.find(": outside the model file's folder '" + fs::canonical(p.model_dir).string() +
+                         "' (symlinks resolved): not read; to allow it, give its folder with --mesh_root=DIR"),
+              std::string::npos) << entry << ": " << error;
+    // Allowed with the folder as a root: read, and named by its file name.
+    const MeshFiles files = ReadMeshFiles(model, {p.outside});
+    ASSERT_EQ(files.files.size(), 2u) << entry;
+    EXPECT_EQ(ReadStl(files.files[0].stl), Tetrahedron(0.3f)) << entry;
+    EXPECT_EQ(files.files[0].page_path, page_path) << entry;
+  }
+  EXPECT_NE(ReadError(LoadModel(WriteMeshModel(p.model_dir, kOutsideEntries[0].first, "")), {p.dir + "/model"})
+                .find("and the mesh roots (symlinks resolved): not read"), std::string::npos);
+  EXPECT_EQ(ReadError(LoadModel(WriteMeshModel(p.model_dir, "{file: inside.stl}", "")), {p.dir + "/nope"}),
+            "mesh root '" + p.dir + "/nope': not an existing folder");
+}
+
+TEST(MeshFolders, MeshesInsideTheModelsFolderAreReadAsBefore) {
+  const Planted p = PlantOutside("inside");
+  const Model model = LoadModel(WriteMeshModel(
+      p.model_dir, "{file: inside.stl}, {file: good_link.stl}", "{file: " + p.model_dir + "/./inside.stl}"));
+  const MeshFiles files = ReadMeshFiles(model);
+  ASSERT_EQ(files.files.size(), 3u);
+  EXPECT_EQ(files.files[1].page_path, "good_link.stl");
+  EXPECT_EQ(files.files[2].page_path, "inside.stl");  // absolute: the file name alone
+  for (const MeshFiles::File& f : files.files) EXPECT_EQ(ReadStl(f.stl), Tetrahedron(0.1f));
+}
+
+TEST(MeshFolders, PagePathsAreNeverAbsolute) {
+  EXPECT_EQ(PageMeshPath("meshes/a.stl"), "meshes/a.stl");
+  EXPECT_EQ(PageMeshPath("./meshes//a.stl"), "meshes/a.stl");
+  EXPECT_EQ(PageMeshPath("/home/someone/robot/a.stl"), "a.stl");
+  EXPECT_EQ(PageMeshPath("../robot/a.stl"), "a.stl");
+  EXPECT_EQ(PageMeshPath("sub/../../robot/a.stl"), "a.stl");
+}
+
 TEST(MeshFiles, EachFileIsReadOnceAndShared) {
   const std::string dir = Scratch("shared");
   fs::create_directories(dir + "/meshes");
@@ -169,6 +273,10 @@ TEST(MeshFiles, EachFileIsReadOnceAndShared) {
   ASSERT_EQ(files.files.size(), 3u);  // "./meshes/tetra.stl" is another spelling, read again
   EXPECT_EQ(files.files[0].path, dir + "/meshes/tetra.stl");
   EXPECT_EQ(files.files[1].path, dir + "/ascii.stl");
+  // The page's names: relative to the model's folder, an absolute one by its file name.
+  EXPECT_EQ(files.files[0].page_path, "meshes/tetra.stl");
+  EXPECT_EQ(files.files[1].page_path, "ascii.stl");
+  EXPECT_EQ(files.files[2].page_path, "meshes/tetra.stl");
   EXPECT_EQ(files.files[0].triangles, 4u);
   EXPECT_EQ(ReadStl(files.files[1].stl), Tetrahedron(0.2f));
   EXPECT_EQ(files.file_of, (std::vector<std::vector<int>>{{}, {0, 1}, {2, 0}}));
@@ -226,6 +334,8 @@ TEST(ViewCli, MeshesAreEmbeddedAndSummarised) {
   EXPECT_EQ(scene["meshes"][0]["stl_base64"], Base64(WriteBinaryStl(Tetrahedron(0.1f))));
   EXPECT_EQ(scene["bodies"][1]["meshes"].size(), 1u);
   EXPECT_EQ(scene["bodies"][2]["meshes"].size(), 1u);
+  EXPECT_EQ(scene["meshes"][0]["path"], "tetra.stl");
+  EXPECT_EQ(ccma::testing::Slurp(out).find(dir), std::string::npos) << "the page names the folder " << dir;
   // Without --meshes: no file is opened (it is gone), no mesh in the page.
   fs::remove(dir + "/tetra.stl");
   const ToolRun plain = RunTool({"view", "--model=" + model, "--out=" + out});
@@ -234,6 +344,36 @@ TEST(ViewCli, MeshesAreEmbeddedAndSummarised) {
   const nlohmann::json plain_scene = SceneOf(out);
   EXPECT_FALSE(plain_scene.contains("meshes"));
   for (const auto& body : plain_scene["bodies"]) EXPECT_FALSE(body.contains("meshes"));
+}
+
+TEST(ViewCli, MeshOutsideTheModelsFolderExitsTwoUnlessItsFolderIsGiven) {
+  const Planted p = PlantOutside("cli_confined");
+  const std::string out = p.dir + "/page.html";
+  for (const auto& [entry, page_path] : kOutsideEntries) {
+    const std::string model = WriteMeshModel(p.model_dir, entry, "{file: inside.stl}");
+    const ToolRun r = RunTool({"view", "--model=" + model, "--meshes", "--out=" + out});
+    EXPECT_EQ(r.status, 2) << entry << ": " << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+    EXPECT_NE(r.err.find("ccma view: " + model + ":5: body 'arm': mesh '"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("outside the model file's folder"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out));
+    const ToolRun allowed =
+        RunTool({"view", "--model=" + model, "--meshes", "--mesh_root=" + p.dir + "/nope," + p.outside, "--out=" + out});
+    EXPECT_EQ(allowed.status, 2) << allowed.err;  // a root that does not exist
+    EXPECT_NE(allowed.err.find("mesh root '" + p.dir + "/nope': not an existing folder"), std::string::npos);
+    const ToolRun ok = RunTool({"view", "--model=" + model, "--meshes", "--mesh_root=" + p.outside, "--out=" + out});
+    ASSERT_EQ(ok.status, 0) << entry << ": " << ok.err;
+    EXPECT_EQ(nlohmann::json::parse(ok.out)["mesh_files"], 2);
+    const nlohmann::json scene = SceneOf(out);
+    EXPECT_EQ(scene["meshes"][0]["path"], page_path);
+    EXPECT_EQ(scene["meshes"][1]["path"], "inside.stl");
+    EXPECT_EQ(ccma::testing::Slurp(out).find(p.dir), std::string::npos) << "the page names the folder " << p.dir;
+    fs::remove(out);
+  }
+  const ToolRun lone = RunTool({"view", "--model=" + WriteMeshModel(p.model_dir, "", ""),
+                                "--mesh_root=" + p.outside, "--out=" + out});
+  EXPECT_EQ(lone.status, 2);
+  EXPECT_NE(lone.err.find("--mesh_root goes with --meshes"), std::string::npos) << lone.err;
 }
 
 TEST(ViewCli, MeshesFlagChangesNothingForModelsWithoutMeshes) {
@@ -253,10 +393,10 @@ TEST(ViewCli, BadMeshFilesExitTwoNamingModelBodyAndFile) {
   fs::resize_file(dir + "/huge.stl", kMaxMeshFileBytes + 1);
   const std::string out = Scratch("bad.html");
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {"{file: nope.stl}", "meshy.yaml:5: body 'arm': mesh 'nope.stl': " + dir + "/nope.stl: cannot open the mesh file (no such file)"},
-      {"{file: folder.stl}", "meshy.yaml:5: body 'arm': mesh 'folder.stl': " + dir + "/folder.stl: not a regular file (a directory)"},
-      {"{file: text.stl}", "meshy.yaml:5: body 'arm': mesh 'text.stl': " + dir + "/text.stl: not a valid STL: neither a binary STL"},
-      {"{file: huge.stl}", "meshy.yaml:5: body 'arm': mesh 'huge.stl': " + dir + "/huge.stl: larger than 16 MiB (the limit for a mesh file)"},
+      {"{file: nope.stl}", "meshy.yaml:5: body 'arm': mesh 'nope.stl': cannot open the mesh file (no such file)"},
+      {"{file: folder.stl}", "meshy.yaml:5: body 'arm': mesh 'folder.stl': not a regular file (a directory)"},
+      {"{file: text.stl}", "meshy.yaml:5: body 'arm': mesh 'text.stl': not a valid STL: neither a binary STL"},
+      {"{file: huge.stl}", "meshy.yaml:5: body 'arm': mesh 'huge.stl': larger than 16 MiB (the limit for a mesh file)"},
   };
   for (const auto& [entry, expected] : cases) {
     const ToolRun r = RunTool({"view", "--model=" + WriteMeshModel(dir, entry, ""), "--meshes", "--out=" + out});

@@ -19,7 +19,8 @@ constexpr std::size_t kMaxMeshTotalBytes = std::size_t{64} << 20;
 
 struct MeshFiles {
   struct File {
-    std::string path;  // as resolved: absolute, or relative to the model file's folder
+    std::string path;       // as resolved: absolute, or relative to the working directory
+    std::string page_path;  // what the page records (PageMeshPath, viewer/mesh_folders.h): never absolute
     std::string stl;   // canonical binary STL (WriteBinaryStl)
     std::size_t triangles = 0;
   };
@@ -33,11 +34,14 @@ struct MeshFiles {
 // folder of `model_source` (Model::source; the working directory when empty).
 std::string ResolveMeshPath(const std::string& model_source, const std::string& file);
 
-// Reads every body's meshes. Throws ViewInputError (viewer/view_frames.h)
-// "MODEL:LINE: body 'NAME': mesh 'FILE': what" for a file missing, unreadable,
-// not a regular file, over kMaxMeshFileBytes, not a valid STL (viewer/stl.h),
-// or past kMaxMeshTotalBytes in all.
-MeshFiles ReadMeshFiles(const Model& model);
+// Reads every body's meshes, each only from inside the model file's folder
+// or one of `mesh_roots` (symlinks resolved; viewer/mesh_folders.h). Throws
+// ViewInputError (viewer/view_frames.h) "MODEL:LINE: body 'NAME': mesh
+// 'FILE': what" (names quoted) for a file outside those folders, missing,
+// unreadable, not a regular file, over kMaxMeshFileBytes, not a valid STL
+// (viewer/stl.h), or past kMaxMeshTotalBytes in all; "mesh root 'DIR': ..."
+// for a root that is not an existing folder.
+MeshFiles ReadMeshFiles(const Model& model, const std::vector<std::string>& mesh_roots = {});
 
 }  // namespace ccma::viewer
 

@@ -116,11 +116,12 @@ json BodyMeshes(const Body& body, const std::vector<int>& file_of) {
   return meshes;
 }
 
-// The scene's "meshes": each distinct file once, as base64 binary STL.
+// The scene's "meshes": each distinct file once, as base64 binary STL, named
+// by its page path (never absolute: the page is passed on to others).
 json MeshList(const MeshFiles& files) {
   json list = json::array();
   for (const MeshFiles::File& f : files.files) {
-    list.push_back({{"path", f.path}, {"triangles", f.triangles}, {"stl_base64", Base64(f.stl)}});
+    list.push_back({{"path", f.page_path}, {"triangles", f.triangles}, {"stl_base64", Base64(f.stl)}});
   }
   return list;
 }

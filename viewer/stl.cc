@@ -42,7 +42,14 @@ bool IsBinary(const std::string& bytes) {
 }
 
 std::vector<StlTriangle> ReadBinary(const std::string& bytes) {
-  const std::size_t count = ReadU32(bytes, 80);
+  const std::uint64_t count = ReadU32(bytes, 80);
+  // The claimed count is trusted only as far as the bytes go (IsBinary checks
+  // the same; kept here so that this function is safe on its own): a header
+  // claiming 1e9 triangles in a short file allocates nothing.
+  if (bytes.size() < kHeaderBytes || (bytes.size() - kHeaderBytes) / kTriangleBytes < count) {
+    throw StlError("binary STL: the header claims " + std::to_string(count) + " triangles, the file holds " +
+                   std::to_string(bytes.size() < kHeaderBytes ? 0 : (bytes.size() - kHeaderBytes) / kTriangleBytes));
+  }
   std::vector<StlTriangle> triangles(count);
   for (std::size_t t = 0; t < count; ++t) {
     const std::size_t at = kHeaderBytes + kTriangleBytes * t + 12;  // past the normal, which is recomputed

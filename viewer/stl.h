@@ -25,7 +25,11 @@ using StlTriangle = std::array<std::array<float, 3>, 3>;
 // else ASCII ("solid NAME", then "facet normal n n n / outer loop / vertex x y z
 // (3x) / endloop / endfacet" per triangle, "endsolid"; several solids may
 // follow one another). Throws StlError when it is neither, when a number is
-// not finite, or when there is no triangle.
+// not finite (NaN, inf, or beyond float), or when there is no triangle.
+// Bounded by `bytes` itself: a binary count is believed only when the size
+// matches it, and an ASCII triangle takes far more bytes than the 36 it is
+// stored in, so memory stays below about twice the input's size. Reads from
+// memory only (the caller bounds and reads the file; fuzz/stl_fuzzer.cc).
 std::vector<StlTriangle> ReadStl(const std::string& bytes);
 
 // The binary STL of `triangles`: an 80-byte header, the count, and per

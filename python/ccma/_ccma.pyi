@@ -5,6 +5,7 @@ Type stub of the extension module `ccma._ccma` (python/src/*.cc), re-exported by
 package `ccma`. Checked against the built module by python/tests/test_stub.py.
 Reference: docs/python.md.
 """
+import os
 from typing import Any, Literal, NotRequired, Optional, Sequence, Tuple, TypedDict, overload
 
 import numpy as np
@@ -1052,8 +1053,10 @@ def view_html(
     workspace: Optional[str] = None,
     meshes: bool = False,
     color_by: str = "body",
+    mesh_root: Optional[str | os.PathLike[str] | Sequence[str | os.PathLike[str]]] = None,
 ) -> Tuple[str, _ViewInfo]:
     """(html, info): the self-contained page of `ccma view`, animated along a trajectory CSV or a replay
     directory, or with a `ccma workspace` CSV drawn as a point cloud (at most one of the three);
     meshes=True draws the bodies' STL meshes (`ccma view --meshes`; files relative to the folder of
-    the model's file)."""
+    the model's file), read only from inside that folder (symlinks resolved) and the folders of
+    mesh_root, a folder or a list (`--mesh_root`); the page never holds an absolute path."""

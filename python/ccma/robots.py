@@ -1,4 +1,6 @@
 """Robots described elsewhere: ccma.import_robot (docs/import.md)."""
+import os as _os
+
 from . import _ccma
 from .viewer import _write_replacing
 
@@ -14,9 +16,14 @@ def import_robot(path, closures=None, actuated=(), end_effector="", point=(0.0, 
     point its controlled point in that link's frame [m]; controlled: components among
     x, y, z, roll, pitch, yaw (default all six). out: also write the model file there
     (replaced atomically, never through a planted link). Every joint's q equals the
-    source's joint position (q_home). Raises ccma.ModelError naming the file, the element
+    source's joint position (q_home). Mesh paths are written relative to the folder of
+    `out` (without `out`: of the robot file), so that the model and its meshes move
+    together; `ccma.view(meshes=True)` reads meshes outside the model's folder only with
+    mesh_root=. Raises ccma.ModelError naming the file, the element
     and the name."""
-    model, text = _ccma._import_robot(path, closures, list(actuated), end_effector, point, list(controlled))
+    folder = None if out is None else _os.path.dirname(_os.path.abspath(_os.fspath(out)))
+    model, text = _ccma._import_robot(path, closures, list(actuated), end_effector, point, list(controlled),
+                                      folder)
     if out is None:
         return model
     _write_replacing(out, text.encode("utf-8"))

@@ -69,7 +69,7 @@ def _write_replacing(path, data):
 
 
 def view(model, trajectory=None, replay=None, out=None, height=600, workspace=None, meshes=False,
-         color_by="body"):
+         color_by="body", mesh_root=None):
     """Shows `model` (a ccma.Model or a model file path) in 3D.
 
     trajectory: a CSV written by `ccma trajectory` (or ControlProblem.follow
@@ -79,12 +79,17 @@ def view(model, trajectory=None, replay=None, out=None, height=600, workspace=No
     by sigma_min, unreachable ones grey). Give at most one of the three.
     meshes: draw the bodies' STL meshes (`meshes:` in the model; files
     relative to the folder of the model's file), as `ccma view --meshes`.
+    They are read only from inside the model file's folder (symlinks
+    resolved); mesh_root: a folder, or a list of folders, that meshes may
+    also come from (`--mesh_root`). The page names each mesh relative to
+    the model's folder, or by its file name, never by an absolute path.
     color_by: "load" colours the links by their largest joint reaction force
     under the model's masses and payload, as `ccma view --color_by=load`.
     out: write the self-contained HTML page there and return its path.
     Without `out`, inside Jupyter the page is displayed inline (an iframe,
     `height` pixels); elsewhere the HTML text is returned.
-    Raises ccma.ViewInputError on a bad trajectory, replay, workspace or mesh file.
+    Raises ccma.ViewInputError on a bad trajectory, replay, workspace or mesh
+    file, a mesh outside the allowed folders, or a mesh_root that is not a folder.
     """
     if isinstance(model, (str, _os.PathLike)):
         model = _ccma.load_model(_os.fspath(model))
@@ -92,7 +97,7 @@ def view(model, trajectory=None, replay=None, out=None, height=600, workspace=No
                                   None if trajectory is None else _os.fspath(trajectory),
                                   None if replay is None else _os.fspath(replay),
                                   None if workspace is None else _os.fspath(workspace),
-                                  bool(meshes), str(color_by))
+                                  bool(meshes), str(color_by), mesh_root)
     if out is not None:
         out = _os.fspath(out)
         _write_replacing(out, page.encode("utf-8"))

@@ -26,7 +26,8 @@ bool EndsWith(const std::string& text, const std::string& suffix) {
 // (model, model file text); the Python wrapper (ccma/robots.py) writes `out`.
 py::tuple ImportRobotFile(const std::filesystem::path& from, const std::optional<std::filesystem::path>& closures,
                           const std::vector<std::string>& actuated, const std::string& end_effector,
-                          const Eigen::Vector3d& point, const std::vector<std::string>& controlled) {
+                          const Eigen::Vector3d& point, const std::vector<std::string>& controlled,
+                          const std::optional<std::filesystem::path>& model_folder) {
   const std::string path = from.string();
   const bool sdf = EndsWith(path, ".sdf") || EndsWith(path, ".world");
   if (sdf && closures) throw py::value_error("closures is for URDF (SDFormat holds its loops)");
@@ -36,6 +37,7 @@ py::tuple ImportRobotFile(const std::filesystem::path& from, const std::optional
   options.end_effector_link = end_effector;
   options.end_effector_point_L = point;
   options.controlled = controlled;
+  if (model_folder) options.model_folder = model_folder->string();  // mesh paths relative to it
   ImportedRobot imported;
   {
     py::gil_scoped_release release;
@@ -51,11 +53,13 @@ void BindImport(py::module_& m) {
   m.def("_import_robot", &ImportRobotFile, py::arg("path"), py::arg("closures") = py::none(),
         py::arg("actuated") = std::vector<std::string>{}, py::arg("end_effector") = "",
         py::arg("point") = Eigen::Vector3d::Zero(), py::arg("controlled") = std::vector<std::string>{},
+        py::arg("model_folder") = py::none(),
         "Private: ccma.import_robot. Converts a URDF (with its closure file, the example-parallel-robots convention) or an "
         "SDFormat file into a Model assembled at home, as `ccma import` (docs/import.md): "
         "actuated: joint names (URDF default: the closure file's name_mot); end_effector: the "
         "link carrying it and point its controlled point in that link's frame [m]; controlled: "
-        "components (default all six). Returns (Model, model file text). Every joint's q "
+        "components (default all six); model_folder: the folder the model file will be written to "
+        "(mesh paths are written relative to it; default the robot file's folder). Returns (Model, model file text). Every joint's q "
         "equals the source's joint position (q_home). Raises ccma.ModelError naming the file, "
         "the element and the name.");
 }

@@ -17,9 +17,25 @@ namespace ccma::python {
 
 namespace {
 
+// mesh_root=: None, one folder (str or os.PathLike) or an iterable of them.
+std::vector<std::string> MeshRoots(const py::object& mesh_root) {
+  std::vector<std::string> roots;
+  if (mesh_root.is_none()) return roots;
+  const py::object fspath = py::module_::import("os").attr("fspath");
+  if (py::isinstance<py::str>(mesh_root) || py::hasattr(mesh_root, "__fspath__")) {
+    roots.push_back(fspath(mesh_root).cast<std::string>());
+    return roots;
+  }
+  for (const py::handle root : mesh_root) roots.push_back(fspath(root).cast<std::string>());
+  return roots;
+}
+
 // view_html: the page and the summary `ccma view` prints (see BindView).
 py::tuple ViewHtml(const Model& model, std::optional<std::string> trajectory, std::optional<std::string> replay,
-                   std::optional<std::string> workspace, bool meshes, const std::string& color_by) {
+                   std::optional<std::string> workspace, bool meshes, const std::string& color_by,
+                   const py::object& mesh_root) {
+  const std::vector<std::string> roots = MeshRoots(mesh_root);
+  if (!roots.empty() && !meshes) throw py::value_error("mesh_root goes with meshes=True");
   if (int(bool(trajectory)) + int(bool(replay)) + int(bool(workspace)) > 1) {
     throw py::value_error("give one of trajectory, replay or workspace");
   }
@@ -35,7 +51,7 @@ py::tuple ViewHtml(const Model& model, std::optional<std::string> trajectory, st
     std::vector<viewer::ViewFrame> frames;
     std::optional<viewer::WorkspaceCloud> cloud;
     std::optional<viewer::MeshFiles> mesh_files;
-    if (meshes) mesh_files = viewer::ReadMeshFiles(model);  // relative to model.source's folder
+    if (meshes) mesh_files = viewer::ReadMeshFiles(model, roots);  // confined to model.source's folder and roots
     if (workspace) {
       // Drawn over the model at home, as `ccma view --workspace` does.
       cloud = viewer::CloudFromWorkspaceCsv(model, *workspace);
@@ -79,14 +95,18 @@ void BindView(py::module_& m) {
       "to draw cannot be read or is malformed (a missing column, an empty or out-of-range "
       "value, files of a replay that disagree). Carries one argument, the message naming the "
       "file, and the line and column where there is one, e.g. 'file:line: column 'name': what' "
-      "(str(e), e.args[0]). A subclass of ValueError.";
+      "(str(e), e.args[0]); with meshes=True, also a mesh file outside the allowed folders, "
+      "missing or not a valid STL. A subclass of ValueError.";
   m.def("viewer_available", &viewer::HasBundle, "whether this build carries the viewer's JavaScript");
   m.def(
       "view_html", &ViewHtml, py::arg("model"), py::arg("trajectory") = py::none(), py::arg("replay") = py::none(),
       py::arg("workspace") = py::none(), py::arg("meshes") = false, py::arg("color_by") = "body",
+      py::arg("mesh_root") = py::none(),
       "(html, info): the self-contained page of `ccma view` for the model, animated along a "
       "trajectory CSV or a replay directory, or with a `ccma workspace` CSV as a point cloud; "
-      "meshes=True draws the bodies' STL meshes (`ccma view --meshes`); color_by='load' colours "
+      "meshes=True draws the bodies' STL meshes (`ccma view --meshes`), read only from inside the "
+      "model file's folder (symlinks resolved) and the folders of mesh_root (a folder or a list: "
+      "`--mesh_root`); color_by='load' colours "
       "the links by joint load (`ccma view --color_by=load`; info gains max_load [N], "
       "unbalanced_frames, indeterminate_frames); "
       "raises ccma.ViewInputError on a bad file.");

@@ -31,3 +31,22 @@ def test_unknown_actuated_joint_raises_model_error():
     with pytest.raises(ccma.ModelError, match="mot9"):
         ccma.import_robot(os.path.join(folder, "robot.urdf"), closures=os.path.join(folder, "robot.yaml"),
                           actuated=["mot9"], end_effector="effector")
+
+
+def test_mesh_paths_are_written_relative_to_the_model_file(tmp_path):
+    """import_robot(out=) names meshes relative to the model file's folder, never by an
+    absolute path (package:///, file://, package://PKG/../ are all resolved first), so that
+    the model and its meshes move together; a mesh outside that folder gets ../ parts."""
+    import re
+    import shutil
+    robot = tmp_path / "robot"
+    shutil.copytree(os.path.join(ROBOTS, "5bar_linkage"), robot)
+    options = dict(closures=str(robot / "robot.yaml"), end_effector="effector")
+    (tmp_path / "elsewhere").mkdir()
+    for out, prefix in ((robot / "5bar.yaml", ""), (tmp_path / "5bar.yaml", "robot/"),
+                        (tmp_path / "elsewhere" / "5bar.yaml", "../robot/")):
+        ccma.import_robot(str(robot / "robot.urdf"), out=str(out), **options)
+        files = re.findall(r'\{file: "([^"]*)"', out.read_text())
+        assert files and all(f.startswith(prefix) and not f[len(prefix):].startswith("../") for f in files), files
+        assert str(tmp_path) not in " ".join(files)
+        assert prefix + "built.stl" in files

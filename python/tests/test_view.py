@@ -150,6 +150,36 @@ def test_view_draws_meshes_like_the_cli(tmp_path):
         ccma.view(lonely, meshes=True)
 
 
+def test_view_reads_meshes_only_inside_the_models_folder_or_mesh_root(tmp_path):
+    """A mesh reached through a symlink shipped beside the model (pointing outside its
+    folder) raises ccma.ViewInputError naming the file, line, body and mesh, as
+    `ccma view --meshes` exits 2; mesh_root= (a folder or a list) allows its folder,
+    as --mesh_root does, and the page holds no absolute path."""
+    source = ROOT / "tests" / "meshes"
+    folder, outside = tmp_path / "model", tmp_path / "outside"
+    folder.mkdir()
+    outside.mkdir()
+    model = folder / "four_bar_meshes.yaml"
+    model.write_text((source / "four_bar_meshes.yaml").read_text())
+    (folder / "box.stl").write_bytes((source / "box.stl").read_bytes())
+    (outside / "tetra.stl").write_bytes((source / "tetra.stl").read_bytes())
+    (folder / "tetra.stl").symlink_to(outside / "tetra.stl")
+    with pytest.raises(ccma.ViewInputError, match=r"four_bar_meshes.yaml:14: body 'coupler': mesh 'tetra.stl': "
+                                                  r"outside the model file's folder"):
+        ccma.view(model, meshes=True)
+    cli = run_tool("view", "--model=%s" % model, "--meshes", "--mesh_root=%s" % outside,
+                   "--out=%s" % (tmp_path / "cli.html"))
+    assert cli["mesh_files"] == 2
+    for roots in (outside, str(outside), [outside]):
+        ccma.view(model, meshes=True, mesh_root=roots, out=tmp_path / "py.html")
+        assert (tmp_path / "py.html").read_bytes() == (tmp_path / "cli.html").read_bytes()
+        assert str(tmp_path) not in (tmp_path / "py.html").read_text(encoding="utf-8")
+    with pytest.raises(ccma.ViewInputError, match="mesh root '.*nope': not an existing folder"):
+        ccma.view(model, meshes=True, mesh_root=tmp_path / "nope")
+    with pytest.raises(ValueError, match="mesh_root goes with meshes=True"):
+        ccma.view_html(ccma.load_model(str(model)), mesh_root=[str(outside)])
+
+
 def test_view_colours_by_load_like_the_cli(tmp_path):
     """ccma.view(color_by="load") writes the page of `ccma view --color_by=load`;
     view_html reports the largest load: the tripod's legs carry W sqrt(2) / 3."""
