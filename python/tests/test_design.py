@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 import ccma
-from conftest import ROOT
+from conftest import ROOT, plant_pickled_array
 
 MODEL_PATH = ROOT / "models" / "4dof_reduced.yaml"
 POST_TOP = "point: [0, 0.583012702, 0.35]"  # joint1, the top of post0
@@ -104,6 +104,19 @@ def test_design_sweep_called_again_and_again_on_one_client():
         for _ in range(10):
             assert ccma.design_sweep(str(MODEL_PATH), grid, targets, client=client, chunk_size=1) == local
     assert [c["values"]["joint1.z"] for c in local] == [0.35, 0.6]
+
+
+def test_design_sweep_refuses_a_store_with_a_pickled_array(tmp_path):
+    """issue 34: design_sweep reads its store as data: a pickled object array
+    is refused (ValueError naming the store and the array), never unpickled."""
+    pytest.importorskip("zarr")
+    store, marker = tmp_path / "sweep.zarr", tmp_path / "marker"
+    grid = {"joint1.z": [0.35, 0.6]}
+    ccma.design_sweep(str(MODEL_PATH), grid, high_targets()[:1], chunk_size=1, store=str(store))
+    plant_pickled_array(store, 1, "reached", marker)
+    with pytest.raises(ValueError, match=r"sweep\.zarr': array chunks/1/reached: dtype '\|O'"):
+        ccma.design_sweep(str(MODEL_PATH), grid, high_targets()[:1], chunk_size=1, store=str(store))
+    assert not marker.exists()
 
 
 def test_design_sweep_resumes_from_its_store_and_survives_a_lost_worker(tmp_path):
