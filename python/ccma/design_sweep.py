@@ -55,6 +55,28 @@ def _as_arrays(part):
     return {k: _np.array([[r[k] for r in results] for results in part]) for k in _FIELDS}
 
 
+# Bounds checked before the grid is expanded (ccma/limits.h; `ccma design --targets`).
+_MAX_CANDIDATES = 1000000
+_MAX_TARGETS = 1000
+_MAX_MAGNITUDE = 1e4
+
+
+def _check_grid(names, grids):
+    """ValueError unless the grid has at most _MAX_CANDIDATES candidates (counted
+    before itertools.product builds them) of finite values within 1e4 m."""
+    count = 1
+    for g in grids:
+        count *= len(g)
+    if count > _MAX_CANDIDATES:
+        raise ValueError(f"design_sweep: the grid has {count} candidates; at most {_MAX_CANDIDATES} are allowed")
+    for name, g in zip(names, grids):
+        for v in g:
+            if isinstance(v, bool) or not isinstance(v, (int, float, _np.integer, _np.floating)) or \
+                    not abs(float(v)) <= _MAX_MAGNITUDE:
+                raise ValueError(f"design_sweep: parameter_grid[{str(name)[:64]!r}]: {str(v)[:40]!r} is not a "
+                                 "finite number within [-1e4, 1e4] (m)")
+
+
 def _run_chunks(chunks, evaluate, client, text, window, store, progress):
     """Every chunk's arrays, in order: read back from `store` or computed (locally, or
     on `client` with at most `window` chunks in flight), each written to the store and
@@ -122,10 +144,14 @@ def design_sweep(model, parameter_grid, targets, client=None, chunk_size=8, targ
     grids = [list(parameter_grid[n]) for n in names]
     if any(len(g) == 0 for g in grids):
         raise ValueError("design_sweep: every parameter needs at least one value")
+    _check_grid(names, grids)
     candidates = [list(c) for c in itertools.product(*grids)]
     targets = _np.atleast_2d(_np.asarray(targets, dtype=float))
-    if targets.shape[1] != 6:
+    if targets.ndim != 2 or targets.shape[1] != 6:
         raise ValueError("design_sweep: targets must be N x 6 (x, y, z, roll, pitch, yaw)")
+    if not 1 <= len(targets) <= _MAX_TARGETS or not _np.all(_np.abs(targets) <= _MAX_MAGNITUDE):
+        raise ValueError(f"design_sweep: targets must be 1 to {_MAX_TARGETS} rows of finite numbers within "
+                         f"[-1e4, 1e4], got {len(targets)} rows")
     if not isinstance(chunk_size, int) or not 1 <= chunk_size <= 10000:
         raise ValueError("design_sweep: chunk_size must be an integer in [1, 10000]")
     chunks = [candidates[i:i + chunk_size] for i in range(0, len(candidates), chunk_size)]

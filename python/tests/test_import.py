@@ -31,3 +31,18 @@ def test_unknown_actuated_joint_raises_model_error():
     with pytest.raises(ccma.ModelError, match="mot9"):
         ccma.import_robot(os.path.join(folder, "robot.urdf"), closures=os.path.join(folder, "robot.yaml"),
                           actuated=["mot9"], end_effector="effector")
+
+
+def test_repeated_or_unknown_controlled_components_are_refused():
+    """issue 34: controlled=["x", "x"] is a typo, refused as `ccma import
+    --controlled=x,x` is (the same check, analyses/internal/robot_model_builder.cc)."""
+    folder = os.path.join(ROBOTS, "5bar_linkage")
+    args = dict(closures=os.path.join(folder, "robot.yaml"), end_effector="effector")
+    with pytest.raises(ccma.ModelError, match=r"controlled component 'x' given twice"):
+        ccma.import_robot(os.path.join(folder, "robot.urdf"), controlled=["x", "x"], **args)
+    with pytest.raises(ccma.ModelError, match=r"unknown controlled component 'w'"):
+        ccma.import_robot(os.path.join(folder, "robot.urdf"), controlled=["x", "w"], **args)
+    with pytest.raises(ValueError, match=r"controlled: empty or overlong name"):
+        ccma.import_robot(os.path.join(folder, "robot.urdf"), controlled=["x" * 300], **args)
+    with pytest.raises(ValueError, match=r"actuated: empty or overlong name"):
+        ccma.import_robot(os.path.join(folder, "robot.urdf"), actuated=[""], **args)
