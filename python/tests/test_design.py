@@ -160,3 +160,23 @@ def test_design_sweep_resumes_from_its_store_and_survives_a_lost_worker(tmp_path
         remote = ccma.design_sweep(str(MODEL_PATH), GRID, high_targets(), client=client, chunk_size=1,
                                    progress=kill_a_worker)
     assert killed and remote == local
+
+
+def test_design_inputs_beyond_the_cli_bounds_are_refused(tmp_path):
+    """issue 34: targets are held to `ccma design --targets` (1 to 1000 rows within
+    1e4), and a sweep's grid is counted before it is expanded (at most 1e6
+    candidates of finite values): refused before anything runs."""
+    import math
+    model = ccma.load_model(str(MODEL_PATH))
+    far = np.array([[0, 0, 1e5, 0, 0, 0]])
+    with pytest.raises(ValueError, match=r"targets: N x 6 finite numbers within \[-1e4, 1e4\]"):
+        ccma.evaluate_design(model, far, [0.5], vary=["joint1.z"])
+    with pytest.raises(ValueError, match=r"1 <= N <= 1000 \(got 1001 rows\)"):
+        ccma.design(model, np.zeros((1001, 6)), vary=["joint1.z"])
+    with pytest.raises(ValueError, match=r"the grid has 1000000000000 candidates; at most 1000000"):
+        ccma.design_sweep(str(MODEL_PATH), {f"joint{i}.z": np.linspace(0.3, 0.6, 1000) for i in (1, 4, 7, 10)},
+                          high_targets())
+    with pytest.raises(ValueError, match=r"parameter_grid\['joint1.z'\]: 'nan' is not a finite number"):
+        ccma.design_sweep(str(MODEL_PATH), {"joint1.z": [0.35, math.nan]}, high_targets())
+    with pytest.raises(ValueError, match=r"design_sweep: targets must be 1 to 1000 rows"):
+        ccma.design_sweep(str(MODEL_PATH), {"joint1.z": [0.35]}, far)
