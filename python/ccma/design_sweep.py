@@ -136,6 +136,7 @@ def design_sweep(model, parameter_grid, targets, client=None, chunk_size=8, targ
     """
     if not isinstance(model, (str, os.PathLike)):
         raise TypeError("design_sweep: pass the model file's path (its text is sent to the workers)")
+    _ccma.load_model(os.fspath(model))  # a regular file within the model bound, valid, before reading its text
     with open(model, "r", encoding="utf-8") as f:
         text = f.read()
     if not parameter_grid:

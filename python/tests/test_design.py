@@ -180,3 +180,31 @@ def test_design_inputs_beyond_the_cli_bounds_are_refused(tmp_path):
         ccma.design_sweep(str(MODEL_PATH), {"joint1.z": [0.35, math.nan]}, high_targets())
     with pytest.raises(ValueError, match=r"design_sweep: targets must be 1 to 1000 rows"):
         ccma.design_sweep(str(MODEL_PATH), {"joint1.z": [0.35]}, far)
+
+
+def test_design_sweep_reads_its_model_through_the_bounded_reader(tmp_path):
+    """A FIFO given as the model is refused (ModelError, 'not a regular file')
+    instead of being opened, which blocked until a writer came."""
+    import os
+    import threading
+    fifo = tmp_path / "model.yaml"
+    os.mkfifo(fifo)
+
+    def feed():  # what a writer would send, should the FIFO be opened for reading
+        for _ in range(300):
+            try:
+                fd = os.open(fifo, os.O_WRONLY | os.O_NONBLOCK)
+            except OSError:  # no reader yet
+                threading.Event().wait(0.01)
+                continue
+            with os.fdopen(fd, "w") as f:
+                f.write(MODEL_PATH.read_text())
+            return
+
+    writer = threading.Thread(target=feed)
+    writer.start()
+    try:
+        with pytest.raises(ccma.ModelError, match="not a regular file"):
+            ccma.design_sweep(str(fifo), {"joint1.z": [0.35]}, high_targets()[:1])
+    finally:
+        writer.join()
