@@ -93,9 +93,13 @@ def real_directory(path, store, what):
     return True
 
 
-def check_group(path, store, what):
-    """A group folder: a real directory whose .zgroup, if any, says format 2."""
-    if not real_directory(path, store, what):
+def check_group(path, store, what, root=False):
+    """A group folder: a real directory (the `root` the user named may be a link
+    to one) whose .zgroup, if any, says format 2."""
+    if root:
+        if not os.path.isdir(path):
+            raise HostileStore(f"store {store!r} is not a directory")
+    elif not real_directory(path, store, what):
         return False
     meta = read_json(os.path.join(path, ".zgroup"), MAX_META_BYTES, store, what + "/.zgroup")
     if meta is not None and meta != {"zarr_format": 2}:

@@ -77,13 +77,26 @@ def _check_grid(names, grids):
                                  "finite number within [-1e4, 1e4] (m)")
 
 
-def _run_chunks(chunks, evaluate, client, text, window, store, progress):
+def _read_back(store, i, rows, columns):
+    """Chunk i from the store, or None; ValueError when its arrays (which passed
+    their sha256, so were written so on purpose) are not candidates x targets."""
+    part = store.read(i)
+    if part is None:
+        return None
+    shapes = {_np.shape(part.get(k)) for k in _FIELDS}
+    if shapes != {(rows, columns)}:
+        raise ValueError(f"store {store.path!r}: chunk {i} does not hold {rows} candidates x {columns} targets in "
+                         f"{', '.join(_FIELDS)}; ccma writes no such chunk")
+    return part
+
+
+def _run_chunks(chunks, evaluate, client, text, window, store, progress, columns):
     """Every chunk's arrays, in order: read back from `store` or computed (locally, or
     on `client` with at most `window` chunks in flight), each written to the store and
     reported to progress(done_candidates, total) as it completes."""
     parts, total, done = [None] * len(chunks), sum(len(c) for c in chunks), 0
     for i in (store.done() if store is not None else ()):
-        parts[i] = store.read(i)
+        parts[i] = _read_back(store, i, len(chunks[i]), columns)
     todo = [i for i, p in enumerate(parts) if p is None]
 
     def finished(i, arrays):
@@ -171,7 +184,7 @@ def design_sweep(model, parameter_grid, targets, client=None, chunk_size=8, targ
     def evaluate(text_or_future, chunk):
         return _evaluate_candidates(text_or_future, names, targets, chunk, target_tolerance)
 
-    parts = _run_chunks(chunks, evaluate, client, text, window, kept, progress)
+    parts = _run_chunks(chunks, evaluate, client, text, window, kept, progress, len(targets))
     out = []
     for i, chunk in enumerate(chunks):
         for k, values in enumerate(chunk):

@@ -82,9 +82,7 @@ class MapStore:
         chunks folder are checked (_store_files.check_group)."""
         if not os.path.exists(self.path):
             return {}
-        if not os.path.isdir(self.path):  # the root may be a link the user made, to a folder
-            raise ValueError(f"store {self.path!r} is not a directory")
-        _files.check_group(self.path, self.path, ".")
+        _files.check_group(self.path, self.path, ".", root=True)
         _files.check_group(os.path.join(self.path, "chunks"), self.path, "chunks")
         attrs = _files.read_json(os.path.join(self.path, ".zattrs"), _files.MAX_META_BYTES, self.path, ".zattrs")
         if attrs is None and os.path.lexists(os.path.join(self.path, ".zattrs")):

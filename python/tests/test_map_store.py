@@ -36,6 +36,14 @@ def test_a_chunk_round_trips_exactly(tmp_path):
     assert again.read(0) is None and again.read(2) is None
 
 
+def test_a_store_reached_through_a_link_the_user_made_resumes(tmp_path):
+    store = MapStore(tmp_path / "s.zarr", {"k": 1}, num_chunks=1)
+    store.write(0, chunk(11))
+    (tmp_path / "link.zarr").symlink_to(tmp_path / "s.zarr")
+    again = MapStore(tmp_path / "link.zarr", {"k": 1}, num_chunks=1)
+    assert again.done() == {0} and np.array_equal(again.read(0)["poses"], chunk(11)["poses"])
+
+
 def test_a_half_written_chunk_is_not_done(tmp_path):
     store = MapStore(tmp_path / "s.zarr", {"k": 1}, num_chunks=2)
     store.write(0, chunk(2))
