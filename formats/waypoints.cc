@@ -17,6 +17,29 @@ std::string FormatBoundG(double x) { return FormatG(x, 15); }  // 10000, 1000000
 
 constexpr const char* kHeader = "time,x,y,z,roll,pitch,yaw";
 constexpr int kColumns = 7;
+
+// The columns of a waypoint and the bound of each, shared by the file's
+// parser and WaypointListError so that a file and a list obey one rule.
+struct Column {
+  const char* name;
+  double max;
+  const char* unit;
+};
+constexpr Column kColumnRules[kColumns] = {{"time", kMaxTime, "s"},      {"x", kMaxMagnitude, "m"},
+                                           {"y", kMaxMagnitude, "m"},    {"z", kMaxMagnitude, "m"},
+                                           {"roll", kMaxMagnitude, "rad"}, {"pitch", kMaxMagnitude, "rad"},
+                                           {"yaw", kMaxMagnitude, "rad"}};
+
+// False for NaN and infinities too.
+bool WithinBound(double v, const Column& column) { return std::abs(v) <= column.max; }
+
+// Times may repeat (a leg done in no time) but never decrease.
+bool GoesBackwards(const Waypoint& w, const Waypoint& previous) { return w.time < previous.time; }
+
+double ValueOf(const Waypoint& w, int column) {
+  return column == 0 ? w.time : column <= 3 ? w.position[column - 1] : w.rpy[column - 4];
+}
+
 // Parses one row of the file, in memory, line by line.
 class WaypointParser {
  public:
@@ -62,13 +85,12 @@ class WaypointParser {
     w.time = values[0];
     w.position = Eigen::Vector3d(values[1], values[2], values[3]);
     w.rpy = Eigen::Vector3d(values[4], values[5], values[6]);
-    if (!waypoints_.empty() && w.time < waypoints_.back().time) Fail("time goes backwards");
+    if (!waypoints_.empty() && GoesBackwards(w, waypoints_.back())) Fail("time goes backwards");
     waypoints_.push_back(w);
   }
 
   // The 7 numbers of a row, each checked against its range.
   std::vector<double> Values(const std::string& line) const {
-    static const char* const kNames[kColumns] = {"time", "x", "y", "z", "roll", "pitch", "yaw"};
     std::vector<double> values;
     std::size_t start = 0;
     for (;;) {
@@ -79,8 +101,7 @@ class WaypointParser {
       }
       const std::string item = line.substr(start, end - start);
       const int column = static_cast<int>(values.size());
-      values.push_back(Number(item, kNames[column], column == 0 ? kMaxTime : kMaxMagnitude,
-                              column == 0 ? "s" : column <= 3 ? "m" : "rad"));
+      values.push_back(Number(item, kColumnRules[column]));
       if (end == line.size()) break;
       start = end + 1;
     }
@@ -91,7 +112,7 @@ class WaypointParser {
     return values;
   }
 
-  double Number(const std::string& item, const char* name, double max, const char* unit) const {
+  double Number(const std::string& item, const Column& column) const {
     char* end = nullptr;
     errno = 0;
     const double v = std::strtod(item.c_str(), &end);
@@ -101,11 +122,11 @@ class WaypointParser {
     // (a subnormal such as 4.9e-324) is a number; overflow gives inf.
     const bool decimal = item.find_first_not_of("0123456789+-.eE \t") == std::string::npos;
     if (end == item.c_str() || end != last || !decimal || !std::isfinite(v)) {
-      Fail(Quote(item) + " is not a finite number (" + name + ")");
+      Fail(Quote(item) + " is not a finite number (" + column.name + ")");
     }
-    if (!(std::abs(v) <= max)) {
-      Fail(Quote(item) + " must lie in [" + FormatBoundG(-max) + ", " + FormatBoundG(max) + "] (" +
-           name + ", " + unit + ")");
+    if (!WithinBound(v, column)) {
+      Fail(Quote(item) + " must lie in [" + FormatBoundG(-column.max) + ", " + FormatBoundG(column.max) + "] (" +
+           column.name + ", " + column.unit + ")");
     }
     return v;
   }
@@ -125,6 +146,29 @@ std::vector<Waypoint> LoadWaypoints(const std::string& path) {
     throw WaypointError(error);
   }
   return WaypointParser(path).Parse(text);
+}
+
+std::string WaypointListError(const std::vector<Waypoint>& waypoints) {
+  if (waypoints.size() > static_cast<std::size_t>(kMaxWaypoints)) {
+    return "waypoints: " + std::to_string(waypoints.size()) + " of them; at most " + std::to_string(kMaxWaypoints) +
+           " are allowed";
+  }
+  for (std::size_t i = 0; i < waypoints.size(); ++i) {
+    const std::string name = "waypoints[" + std::to_string(i) + "]";
+    for (int c = 0; c < kColumns; ++c) {
+      const Column& column = kColumnRules[c];
+      const double v = ValueOf(waypoints[i], c);
+      if (!WithinBound(v, column)) {
+        return name + "." + column.name + " (" + FormatG(v) + ") must be a finite number in [" + FormatG(-column.max) +
+               ", " + FormatG(column.max) + "] (" + column.unit + ")";
+      }
+    }
+    if (i > 0 && GoesBackwards(waypoints[i], waypoints[i - 1])) {
+      return name + ".time (" + FormatG(waypoints[i].time) + ") is smaller than waypoints[" + std::to_string(i - 1) +
+             "].time (" + FormatG(waypoints[i - 1].time) + "): time goes backwards";
+    }
+  }
+  return "";
 }
 
 }  // namespace ccma

@@ -36,6 +36,17 @@ class WaypointError : public std::runtime_error {
 // Reads and validates the waypoint file at `path`; throws WaypointError.
 std::vector<Waypoint> LoadWaypoints(const std::string& path);
 
+// What breaks the file's rules in `waypoints` given in memory (Python's
+// follow, plan and replay take lists and arrays, not files): more than
+// kMaxWaypoints of them, a value that is not finite or beyond its bound (the
+// same bounds as the file's columns), or a time smaller than the one before
+// (equal times are allowed). Returns "" when they keep every rule, else a
+// message naming the first bad waypoint and value, e.g.
+//   waypoints[2].time (0.5) is smaller than waypoints[1].time (1): time goes backwards
+//   waypoints[0].y (nan) must be a finite number in [-10000, 10000] (m)
+// No waypoints at all is not an error here (a path with nothing to do).
+std::string WaypointListError(const std::vector<Waypoint>& waypoints);
+
 }  // namespace ccma
 
 #endif  // CCMA_WAYPOINTS_H_

@@ -244,6 +244,10 @@ TEST_F(ImportCli, HostileSourcesAreRefusedWithFileLineAndName) {
   ExpectRefused({"import", "--from=" + five + "robot.urdf", "--closures=" + five + "robot.yaml",
                  "--end_effector=nolink", "--out=" + Out()},
                 "end-effector link 'nolink'");
+  // A controlled component given twice is a typo, not a request (issue 34).
+  ExpectRefused({"import", "--from=" + five + "robot.urdf", "--closures=" + five + "robot.yaml",
+                 "--end_effector=effector", "--controlled=x,y,x", "--out=" + Out()},
+                "controlled component 'x' given twice");
   // The base welded to the effector cannot be assembled with both motors held.
   const std::string impossible = Write("i.yaml", "closed_loop: [['built', 'effector']]\ntype: ['6d']\n"
                                                  "name_mot: ['mot1', 'mot2']\n");

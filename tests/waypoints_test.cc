@@ -195,5 +195,25 @@ TEST_F(WaypointFiles, RandomTextIsRejectedOrLoaded) {
   EXPECT_LT(loaded, 500);
 }
 
+// The rules a file is held to, for waypoints given in memory (Python's follow,
+// plan and replay): every file LoadWaypoints accepts passes, and every value
+// it refuses is named with its waypoint and column.
+TEST(WaypointList, HoldsListsToTheRulesOfTheFile) {
+  const Eigen::Vector3d p(0, 0, 0.6);
+  EXPECT_EQ(WaypointListError({}), "");
+  EXPECT_EQ(WaypointListError({{0, p, {}}, {1, p, {}}, {1, p, {0, 0, 0.1}}}), "");
+  EXPECT_EQ(WaypointListError({{kMaxTime, p, {}}, {kMaxTime, {kMaxMagnitude, 0, -kMaxMagnitude}, {}}}), "");
+  EXPECT_EQ(WaypointListError({{0, p, {}}, {std::nan(""), p, {}}}),
+            "waypoints[1].time (nan) must be a finite number in [-1e+06, 1e+06] (s)");
+  EXPECT_EQ(WaypointListError({{1, p, {}}, {0.5, p, {}}}),
+            "waypoints[1].time (0.5) is smaller than waypoints[0].time (1): time goes backwards");
+  EXPECT_EQ(WaypointListError({{0, {0, HUGE_VAL, 0}, {}}}),
+            "waypoints[0].y (inf) must be a finite number in [-10000, 10000] (m)");
+  EXPECT_EQ(WaypointListError({{0, p, {0, 2e4, 0}}}),
+            "waypoints[0].pitch (20000) must be a finite number in [-10000, 10000] (rad)");
+  EXPECT_EQ(WaypointListError(std::vector<Waypoint>(static_cast<std::size_t>(kMaxWaypoints) + 1)),
+            "waypoints: 1000001 of them; at most 1000000 are allowed");
+}
+
 }  // namespace
 }  // namespace ccma

@@ -8,6 +8,7 @@
 #include <set>
 #include <string>
 
+#include "ccma/internal/format.h"
 #include "ccma/limits.h"
 #include "ccma/rotation.h"
 #include "formats/joint_geometry.h"
@@ -208,7 +209,10 @@ void SetEndEffector(const RobotDescription& robot, const ImportOptions& options,
     if (it == kEndEffectorComponentNames.end()) {
       Fail(robot, 0, "unknown controlled component '" + name + "' (x, y, z, roll, pitch, yaw)");
     }
-    ee.controlled[it - kEndEffectorComponentNames.begin()] = true;
+    bool& component = ee.controlled[it - kEndEffectorComponentNames.begin()];
+    // As an actuated joint named twice: a repeated component is a typo, not a request.
+    if (component) Fail(robot, 0, "controlled component " + Quote(name) + " given twice");
+    component = true;
   }
 }
 

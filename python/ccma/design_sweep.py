@@ -55,13 +55,48 @@ def _as_arrays(part):
     return {k: _np.array([[r[k] for r in results] for results in part]) for k in _FIELDS}
 
 
-def _run_chunks(chunks, evaluate, client, text, window, store, progress):
+# Bounds checked before the grid is expanded (ccma/limits.h; `ccma design --targets`).
+_MAX_CANDIDATES = 1000000
+_MAX_TARGETS = 1000
+_MAX_MAGNITUDE = 1e4
+
+
+def _check_grid(names, grids):
+    """ValueError unless the grid has at most _MAX_CANDIDATES candidates (counted
+    before itertools.product builds them) of finite values within 1e4 m."""
+    count = 1
+    for g in grids:
+        count *= len(g)
+    if count > _MAX_CANDIDATES:
+        raise ValueError(f"design_sweep: the grid has {count} candidates; at most {_MAX_CANDIDATES} are allowed")
+    for name, g in zip(names, grids):
+        for v in g:
+            if isinstance(v, bool) or not isinstance(v, (int, float, _np.integer, _np.floating)) or \
+                    not abs(float(v)) <= _MAX_MAGNITUDE:
+                raise ValueError(f"design_sweep: parameter_grid[{str(name)[:64]!r}]: {str(v)[:40]!r} is not a "
+                                 "finite number within [-1e4, 1e4] (m)")
+
+
+def _read_back(store, i, rows, columns):
+    """Chunk i from the store, or None; ValueError when its arrays (which passed
+    their sha256, so were written so on purpose) are not candidates x targets."""
+    part = store.read(i)
+    if part is None:
+        return None
+    shapes = {_np.shape(part.get(k)) for k in _FIELDS}
+    if shapes != {(rows, columns)}:
+        raise ValueError(f"store {store.path!r}: chunk {i} does not hold {rows} candidates x {columns} targets in "
+                         f"{', '.join(_FIELDS)}; ccma writes no such chunk")
+    return part
+
+
+def _run_chunks(chunks, evaluate, client, text, window, store, progress, columns):
     """Every chunk's arrays, in order: read back from `store` or computed (locally, or
     on `client` with at most `window` chunks in flight), each written to the store and
     reported to progress(done_candidates, total) as it completes."""
     parts, total, done = [None] * len(chunks), sum(len(c) for c in chunks), 0
     for i in (store.done() if store is not None else ()):
-        parts[i] = store.read(i)
+        parts[i] = _read_back(store, i, len(chunks[i]), columns)
     todo = [i for i, p in enumerate(parts) if p is None]
 
     def finished(i, arrays):
@@ -114,6 +149,7 @@ def design_sweep(model, parameter_grid, targets, client=None, chunk_size=8, targ
     """
     if not isinstance(model, (str, os.PathLike)):
         raise TypeError("design_sweep: pass the model file's path (its text is sent to the workers)")
+    _ccma.load_model(os.fspath(model))  # a regular file within the model bound, valid, before reading its text
     with open(model, "r", encoding="utf-8") as f:
         text = f.read()
     if not parameter_grid:
@@ -122,10 +158,14 @@ def design_sweep(model, parameter_grid, targets, client=None, chunk_size=8, targ
     grids = [list(parameter_grid[n]) for n in names]
     if any(len(g) == 0 for g in grids):
         raise ValueError("design_sweep: every parameter needs at least one value")
+    _check_grid(names, grids)
     candidates = [list(c) for c in itertools.product(*grids)]
     targets = _np.atleast_2d(_np.asarray(targets, dtype=float))
-    if targets.shape[1] != 6:
+    if targets.ndim != 2 or targets.shape[1] != 6:
         raise ValueError("design_sweep: targets must be N x 6 (x, y, z, roll, pitch, yaw)")
+    if not 1 <= len(targets) <= _MAX_TARGETS or not _np.all(_np.abs(targets) <= _MAX_MAGNITUDE):
+        raise ValueError(f"design_sweep: targets must be 1 to {_MAX_TARGETS} rows of finite numbers within "
+                         f"[-1e4, 1e4], got {len(targets)} rows")
     if not isinstance(chunk_size, int) or not 1 <= chunk_size <= 10000:
         raise ValueError("design_sweep: chunk_size must be an integer in [1, 10000]")
     chunks = [candidates[i:i + chunk_size] for i in range(0, len(candidates), chunk_size)]
@@ -144,7 +184,7 @@ def design_sweep(model, parameter_grid, targets, client=None, chunk_size=8, targ
     def evaluate(text_or_future, chunk):
         return _evaluate_candidates(text_or_future, names, targets, chunk, target_tolerance)
 
-    parts = _run_chunks(chunks, evaluate, client, text, window, kept, progress)
+    parts = _run_chunks(chunks, evaluate, client, text, window, kept, progress, len(targets))
     out = []
     for i, chunk in enumerate(chunks):
         for k, values in enumerate(chunk):

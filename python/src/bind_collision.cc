@@ -10,14 +10,13 @@
 
 #include "ccma/ccma.h"
 #include "python/src/bindings.h"
+#include "python/src/conversions.h"
 #include "python/src/usage_guard.h"
 
 namespace py = pybind11;
 
 namespace ccma::python {
 namespace {
-
-using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
 // {"min", "pair", "margin", "below_margin"}, or None without collision geometry.
 py::object ClearanceAt(const Model& model, const State& s) {
@@ -97,6 +96,7 @@ void BindCollision(py::module_& m) {
         options.max_iterations = max_iterations;
         std::string why;
         if (!options.IsValid(&why)) throw py::value_error("plan: " + why);
+        CheckWaypoints(waypoints);
         return Plan(p, waypoints, options);
       },
       py::arg("problem"), py::arg("waypoints"), py::arg("path_weight") = 1e-2, py::arg("smoothness_weight") = 1.0,
@@ -105,7 +105,9 @@ void BindCollision(py::module_& m) {
       "returns a dict: converged, used ('plan' or 'greedy'), note, iterations, greedy and plan "
       "(reached_waypoints, travel_m, min_clearance_m), and per step time [s], controls, reached "
       "(x y z [m] roll pitch yaw [rad]) and clearance [m] (inf without collision geometry). "
-      "Raises ValueError for differential bases, the bfgs method or options out of range.");
+      "Raises ValueError for differential bases, the bfgs method, options out of range or waypoints the "
+      "waypoint CSV refuses (a value not finite or out of range, a time smaller than the one before; the "
+      "message names the waypoint).");
 }
 
 }  // namespace ccma::python

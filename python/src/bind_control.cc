@@ -235,7 +235,7 @@ ControlSolution MoveTo(ControlProblem& p, const Eigen::VectorXd& values) {
 }
 
 TrajectorySolution Follow(ControlProblem& p, const std::vector<Waypoint>& waypoints) {
-  CheckWaypointTimes(waypoints);
+  CheckWaypoints(waypoints);
   const UsageGuard guard(p);
   std::vector<TrajectoryStep> steps;
   TrajectorySolution s;
@@ -299,8 +299,9 @@ void BindSolves(ProblemClass& c) {
                .c_str())
       .def("follow", &Follow, py::arg("waypoints"), py::call_guard<py::gil_scoped_release>(),
            "Follows a list of ccma.Waypoint (e.g. ccma.load_waypoints(path)); stops at the first "
-           "waypoint it cannot reach. ValueError (naming the waypoint) on a time not finite, beyond 1e6 s "
-           "or smaller than the one before.")
+           "waypoint it cannot reach. ValueError (naming the waypoint) on a value the waypoint CSV refuses: "
+           "a time not finite, beyond 1e6 s or smaller than the one before, a position or angle not finite "
+           "or beyond 1e4, more than 1e6 waypoints.")
       .def(
           "follow",
           [](ControlProblem& p, const Eigen::Ref<const RowMatrix>& a) {

@@ -54,9 +54,18 @@ py::list TargetsList(const std::vector<DesignTargetResult>& results) {
 
 using TargetArray = Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::RowMajor>;
 
-// Rows x, y, z [m], roll, pitch, yaw [rad] -> targets (at least one, finite).
+// The most targets `ccma design --targets` takes (apps/design_command.cc):
+// each costs a control solve per design trial.
+constexpr Eigen::Index kMaxDesignTargets = 1000;
+
+// Rows x, y, z [m], roll, pitch, yaw [rad] -> targets: 1 to kMaxDesignTargets
+// rows of finite numbers within kMaxMagnitude, as a --targets CSV holds.
 std::vector<PoseTarget> PoseTargets(const TargetArray& targets) {
-  if (targets.rows() == 0 || !targets.allFinite()) throw py::value_error("targets: N x 6 finite numbers, N >= 1");
+  if (targets.rows() == 0 || targets.rows() > kMaxDesignTargets || !targets.allFinite() ||
+      targets.cwiseAbs().maxCoeff() > kMaxMagnitude) {
+    throw py::value_error("targets: N x 6 finite numbers within [-1e4, 1e4], 1 <= N <= " +
+                          std::to_string(kMaxDesignTargets) + " (got " + std::to_string(targets.rows()) + " rows)");
+  }
   std::vector<PoseTarget> poses;
   for (int i = 0; i < targets.rows(); ++i) {
     poses.push_back({targets.row(i).head<3>().transpose(), targets.row(i).tail<3>().transpose()});

@@ -10,6 +10,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include "analyses/robot_import.h"
+#include "ccma/internal/format.h"
 #include "formats/sdformat_reader.h"
 #include "formats/urdf_reader.h"
 #include "python/src/bindings.h"
@@ -23,6 +24,16 @@ bool EndsWith(const std::string& text, const std::string& suffix) {
   return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
+// The bounds `ccma import` puts on its --actuated and --controlled names
+// (apps/import_command.cc): none empty, none longer than 256 bytes.
+void CheckNames(const std::vector<std::string>& names, const char* what) {
+  for (const std::string& name : names) {
+    if (name.empty() || name.size() > 256) {
+      throw py::value_error(std::string(what) + ": empty or overlong name " + Quote(name));
+    }
+  }
+}
+
 // (model, model file text); the Python wrapper (ccma/robots.py) writes `out`.
 py::tuple ImportRobotFile(const std::filesystem::path& from, const std::optional<std::filesystem::path>& closures,
                           const std::vector<std::string>& actuated, const std::string& end_effector,
@@ -31,6 +42,9 @@ py::tuple ImportRobotFile(const std::filesystem::path& from, const std::optional
   const std::string path = from.string();
   const bool sdf = EndsWith(path, ".sdf") || EndsWith(path, ".world");
   if (sdf && closures) throw py::value_error("closures is for URDF (SDFormat holds its loops)");
+  CheckNames(actuated, "actuated");
+  CheckNames(controlled, "controlled");
+  if (end_effector.size() > 256) throw py::value_error("end_effector: overlong name " + Quote(end_effector));
   if (!point.allFinite() || point.cwiseAbs().maxCoeff() > 1e4) throw py::value_error("point must be finite, within 1e4 m");
   ImportOptions options;
   options.actuated = actuated;

@@ -23,6 +23,7 @@ struct ReplaySolution {
 };
 
 ReplaySolution Run(const Model& model, const std::vector<Waypoint>& waypoints, const ReplayOptions& options) {
+  CheckWaypoints(waypoints);  // positions and angles too, with the messages of follow and plan
   std::string why;
   if (!IsValidReplay(waypoints, options, &why)) throw std::invalid_argument(why);
   ReplaySolution s;

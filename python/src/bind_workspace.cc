@@ -38,7 +38,7 @@ std::vector<WorkspaceRange> Ranges(const RangeList& ranges) {
     for (int c = 0; c < 6; ++c) {
       if (name == kEndEffectorComponentNames[static_cast<size_t>(c)]) component = c;
     }
-    if (component < 0) throw std::invalid_argument("ranges: '" + name + "' is not one of x y z roll pitch yaw");
+    if (component < 0) throw std::invalid_argument("ranges: " + Quote(name) + " is not one of x y z roll pitch yaw");
     out.push_back({component, lo, hi});
   }
   return out;

@@ -1,9 +1,8 @@
 // Conversions shared by the binding files: options from keyword arguments,
-// waypoints from an (N x 7) array and the check of their times.
+// waypoints from an (N x 7) array and the check of their values.
 #ifndef CCMA_PYTHON_SRC_CONVERSIONS_H_
 #define CCMA_PYTHON_SRC_CONVERSIONS_H_
 
-#include <cmath>
 #include <string>
 #include <vector>
 
@@ -40,6 +39,10 @@ inline std::vector<Waypoint> WaypointsFromArray(const Eigen::Ref<const RowMatrix
     throw pybind11::value_error("waypoints: expected N x 7 rows [time, x, y, z, roll, pitch, yaw], got " +
                                 std::to_string(a.cols()) + " columns");
   }
+  if (a.rows() > kMaxWaypoints) {  // before allocating them
+    throw pybind11::value_error("waypoints: " + std::to_string(a.rows()) + " rows; at most " +
+                                std::to_string(kMaxWaypoints) + " are allowed");
+  }
   std::vector<Waypoint> w(a.rows());
   for (Eigen::Index i = 0; i < a.rows(); ++i) {
     w[i].time = a(i, 0);
@@ -49,23 +52,14 @@ inline std::vector<Waypoint> WaypointsFromArray(const Eigen::Ref<const RowMatrix
   return w;
 }
 
-// The times of waypoints given to ControlProblem.follow, held to the rules of
-// the waypoint CSV (docs/waypoints.md): each finite and within
-// [-kMaxTime, kMaxTime] s, none smaller than the one before (equal times are
-// allowed, as in the CSV). A breach is a ValueError naming the waypoint's index.
-inline void CheckWaypointTimes(const std::vector<Waypoint>& waypoints) {
-  for (std::size_t i = 0; i < waypoints.size(); ++i) {
-    const double t = waypoints[i].time;
-    const std::string name = "waypoints[" + std::to_string(i) + "].time";
-    if (!(std::abs(t) <= kMaxTime)) {
-      throw pybind11::value_error(name + " (" + FormatG(t) + ") must be a finite number in [-" + FormatG(kMaxTime) +
-                                  ", " + FormatG(kMaxTime) + "] (s)");
-    }
-    if (i > 0 && t < waypoints[i - 1].time) {
-      throw pybind11::value_error(name + " (" + FormatG(t) + ") is smaller than waypoints[" + std::to_string(i - 1) +
-                                  "].time (" + FormatG(waypoints[i - 1].time) + "): time goes backwards");
-    }
-  }
+// Waypoints given to follow, plan or replay, held to the rules of the
+// waypoint CSV (formats/waypoints.h WaypointListError, docs/waypoints.md):
+// at most kMaxWaypoints, every value finite and within its bound, no time
+// smaller than the one before (equal times are allowed). A breach is a
+// ValueError naming the waypoint's index and value.
+inline void CheckWaypoints(const std::vector<Waypoint>& waypoints) {
+  const std::string why = WaypointListError(waypoints);
+  if (!why.empty()) throw pybind11::value_error(why);
 }
 
 }  // namespace ccma::python

@@ -30,3 +30,29 @@ def csv_numbers(values):
 @pytest.fixture(params=MODELS, ids=[m.stem for m in MODELS])
 def model_path(request):
     return str(request.param)
+
+
+# A hostile store (issue 34): an array that runs code when zarr decodes it.
+class _Touch:
+    """Unpickling this creates `marker`: what a pickled payload could run."""
+
+    def __init__(self, marker):
+        self.marker = marker
+
+    def __reduce__(self):
+        return pathlib.Path.touch, (pathlib.Path(self.marker),)
+
+
+def plant_pickled_array(store_path, index, field, marker):
+    """Replaces chunk `index`'s array `field` by an object array whose pickle
+    filter (zarr's object_codec) would run _Touch on decoding."""
+    import numcodecs
+    import numpy as np
+    import zarr
+    group = zarr.open_group(str(store_path / "chunks" / str(index)), mode="a")
+    del group[field]
+    payload = np.empty(5, dtype=object)
+    payload[:] = [_Touch(marker)] * 5
+    group.array(field, payload, dtype=object, object_codec=numcodecs.Pickle(), chunks=(5,))
+    meta = json.loads((store_path / "chunks" / str(index) / field / ".zarray").read_text())
+    assert meta["dtype"] == "|O" and meta["filters"] == [{"id": "pickle", "protocol": 5}]

@@ -49,3 +49,27 @@ def test_plan_goes_round_the_pillar():
     np.testing.assert_allclose(result["reached"][-1, :3], [1.0, 0.0, 0.6], atol=1e-9)
     with pytest.raises(ValueError):
         ccma.plan(control, waypoints, path_weight=-1)
+
+
+def test_plan_refuses_waypoints_the_csv_refuses():
+    """issue 34: plan holds its waypoints to the waypoint CSV's rules (as follow
+    and replay do): a NaN or decreasing time, a position or angle that is not
+    finite or beyond 1e4. It returned time rows of NaN or -1e299 before."""
+    model = ccma.load_model(EXAMPLES / "pillar_detour.yaml")
+    control = ccma.ControlProblem(model)
+    p = model.end_effector.p_W_home
+    good = ccma.Waypoint(0.0, p)
+    cases = [
+        ([good, ccma.Waypoint(math.nan, p)], r"^waypoints\[1\]\.time \(nan\) must be a finite number in "
+                                            r"\[-1e\+06, 1e\+06\] \(s\)$"),
+        ([ccma.Waypoint(1.0, p), ccma.Waypoint(-1e299, p)], r"^waypoints\[1\]\.time \(-1e\+299\) must be"),
+        ([ccma.Waypoint(1.0, p), ccma.Waypoint(0.5, p)],
+         r"^waypoints\[1\]\.time \(0\.5\) is smaller than waypoints\[0\]\.time \(1\): time goes backwards$"),
+        ([good, ccma.Waypoint(1.0, [p[0], math.inf, p[2]])], r"^waypoints\[1\]\.y \(inf\) must be a finite number in "
+                                                             r"\[-10000, 10000\] \(m\)$"),
+        ([ccma.Waypoint(0.0, p, [0, 2e4, 0])], r"^waypoints\[0\]\.pitch \(20000\) must be a finite number"),
+    ]
+    for waypoints, message in cases:
+        with pytest.raises(ValueError, match=message):
+            ccma.plan(control, waypoints)
+    np.testing.assert_array_equal(control.controls, model.home_controls)  # nothing moved

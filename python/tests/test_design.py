@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 import ccma
-from conftest import ROOT
+from conftest import ROOT, plant_pickled_array
 
 MODEL_PATH = ROOT / "models" / "4dof_reduced.yaml"
 POST_TOP = "point: [0, 0.583012702, 0.35]"  # joint1, the top of post0
@@ -106,6 +106,29 @@ def test_design_sweep_called_again_and_again_on_one_client():
     assert [c["values"]["joint1.z"] for c in local] == [0.35, 0.6]
 
 
+def test_design_sweep_refuses_a_store_with_a_pickled_array(tmp_path):
+    """issue 34: design_sweep reads its store as data: a pickled object array
+    is refused (ValueError naming the store and the array), never unpickled."""
+    pytest.importorskip("zarr")
+    store, marker = tmp_path / "sweep.zarr", tmp_path / "marker"
+    grid = {"joint1.z": [0.35, 0.6]}
+    ccma.design_sweep(str(MODEL_PATH), grid, high_targets()[:1], chunk_size=1, store=str(store))
+    plant_pickled_array(store, 1, "reached", marker)
+    with pytest.raises(ValueError, match=r"sweep\.zarr': array chunks/1/reached: dtype '\|O'"):
+        ccma.design_sweep(str(MODEL_PATH), grid, high_targets()[:1], chunk_size=1, store=str(store))
+    assert not marker.exists()
+    # A chunk of plain arrays whose sha256 matches but whose shape is not the
+    # sweep's (1 candidate x 1 target): written on purpose, refused.
+    import zarr
+    from ccma.map_store import MapStore
+    forged = MapStore.__new__(MapStore)
+    forged.path, forged.num_chunks = str(store), 2
+    forged._chunks = zarr.open_group(str(store / "chunks"), mode="a")
+    forged.write(1, {k: np.zeros((1, 3)) for k in ("reached", "error", "min_singular_value", "within_limits")})
+    with pytest.raises(ValueError, match=r"sweep\.zarr': chunk 1 does not hold 1 candidates x 1 targets"):
+        ccma.design_sweep(str(MODEL_PATH), grid, high_targets()[:1], chunk_size=1, store=str(store))
+
+
 def test_design_sweep_resumes_from_its_store_and_survives_a_lost_worker(tmp_path):
     """An interrupted sweep resumes from its store (the chunks done are not run
     again); a worker killed mid-sweep is survived; both equal the local run."""
@@ -147,3 +170,51 @@ def test_design_sweep_resumes_from_its_store_and_survives_a_lost_worker(tmp_path
         remote = ccma.design_sweep(str(MODEL_PATH), GRID, high_targets(), client=client, chunk_size=1,
                                    progress=kill_a_worker)
     assert killed and remote == local
+
+
+def test_design_inputs_beyond_the_cli_bounds_are_refused(tmp_path):
+    """issue 34: targets are held to `ccma design --targets` (1 to 1000 rows within
+    1e4), and a sweep's grid is counted before it is expanded (at most 1e6
+    candidates of finite values): refused before anything runs."""
+    import math
+    model = ccma.load_model(str(MODEL_PATH))
+    far = np.array([[0, 0, 1e5, 0, 0, 0]])
+    with pytest.raises(ValueError, match=r"targets: N x 6 finite numbers within \[-1e4, 1e4\]"):
+        ccma.evaluate_design(model, far, [0.5], vary=["joint1.z"])
+    with pytest.raises(ValueError, match=r"1 <= N <= 1000 \(got 1001 rows\)"):
+        ccma.design(model, np.zeros((1001, 6)), vary=["joint1.z"])
+    with pytest.raises(ValueError, match=r"the grid has 1000000000000 candidates; at most 1000000"):
+        ccma.design_sweep(str(MODEL_PATH), {f"joint{i}.z": np.linspace(0.3, 0.6, 1000) for i in (1, 4, 7, 10)},
+                          high_targets())
+    with pytest.raises(ValueError, match=r"parameter_grid\['joint1.z'\]: 'nan' is not a finite number"):
+        ccma.design_sweep(str(MODEL_PATH), {"joint1.z": [0.35, math.nan]}, high_targets())
+    with pytest.raises(ValueError, match=r"design_sweep: targets must be 1 to 1000 rows"):
+        ccma.design_sweep(str(MODEL_PATH), {"joint1.z": [0.35]}, far)
+
+
+def test_design_sweep_reads_its_model_through_the_bounded_reader(tmp_path):
+    """A FIFO given as the model is refused (ModelError, 'not a regular file')
+    instead of being opened, which blocked until a writer came."""
+    import os
+    import threading
+    fifo = tmp_path / "model.yaml"
+    os.mkfifo(fifo)
+
+    def feed():  # what a writer would send, should the FIFO be opened for reading
+        for _ in range(300):
+            try:
+                fd = os.open(fifo, os.O_WRONLY | os.O_NONBLOCK)
+            except OSError:  # no reader yet
+                threading.Event().wait(0.01)
+                continue
+            with os.fdopen(fd, "w") as f:
+                f.write(MODEL_PATH.read_text())
+            return
+
+    writer = threading.Thread(target=feed)
+    writer.start()
+    try:
+        with pytest.raises(ccma.ModelError, match="not a regular file"):
+            ccma.design_sweep(str(fifo), {"joint1.z": [0.35]}, high_targets()[:1])
+    finally:
+        writer.join()

@@ -50,3 +50,18 @@ def test_mesh_paths_are_written_relative_to_the_model_file(tmp_path):
         assert files and all(f.startswith(prefix) and not f[len(prefix):].startswith("../") for f in files), files
         assert str(tmp_path) not in " ".join(files)
         assert prefix + "built.stl" in files
+
+
+def test_repeated_or_unknown_controlled_components_are_refused():
+    """issue 34: controlled=["x", "x"] is a typo, refused as `ccma import
+    --controlled=x,x` is (the same check, analyses/internal/robot_model_builder.cc)."""
+    folder = os.path.join(ROBOTS, "5bar_linkage")
+    args = dict(closures=os.path.join(folder, "robot.yaml"), end_effector="effector")
+    with pytest.raises(ccma.ModelError, match=r"controlled component 'x' given twice"):
+        ccma.import_robot(os.path.join(folder, "robot.urdf"), controlled=["x", "x"], **args)
+    with pytest.raises(ccma.ModelError, match=r"unknown controlled component 'w'"):
+        ccma.import_robot(os.path.join(folder, "robot.urdf"), controlled=["x", "w"], **args)
+    with pytest.raises(ValueError, match=r"controlled: empty or overlong name"):
+        ccma.import_robot(os.path.join(folder, "robot.urdf"), controlled=["x" * 300], **args)
+    with pytest.raises(ValueError, match=r"actuated: empty or overlong name"):
+        ccma.import_robot(os.path.join(folder, "robot.urdf"), actuated=[""], **args)

@@ -48,3 +48,22 @@ def test_replay_rejects_bad_input():
         ccma.replay(model, [])
     with pytest.raises(ValueError):
         ccma.ReplayOptions(noise="loud")
+
+
+def test_replay_and_follow_refuse_positions_the_csv_refuses():
+    """issue 34: a waypoint's position or angle must be finite and within 1e4,
+    as in the waypoint CSV; the message names the waypoint and the column."""
+    import math
+    import pytest
+    model = ccma.load_model(str(ROOT / "models" / "4dof_reduced.yaml"))
+    p = model.end_effector.p_W_home
+    rows = np.array([[0, p[0], p[1], p[2], 0, 0, 0], [1, p[0], p[1], math.nan, 0, 0, 0]])
+    with pytest.raises(ValueError, match=r"^waypoints\[1\]\.z \(nan\) must be a finite number in \[-10000, 10000\] "
+                                         r"\(m\)$"):
+        ccma.replay(model, rows)
+    rows[1, 3], rows[1, 6] = p[2], -1e5
+    with pytest.raises(ValueError, match=r"^waypoints\[1\]\.yaw \(-100000\) must be a finite number in "
+                                         r"\[-10000, 10000\] \(rad\)$"):
+        ccma.ControlProblem(model).follow(rows)
+    with pytest.raises(ValueError, match=r"^waypoints: 1000001 rows; at most 1000000 are allowed$"):
+        ccma.ControlProblem(model).follow(np.zeros((1000001, 7)))

@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 import ccma
-from conftest import ROOT
+from conftest import ROOT, plant_pickled_array
 
 pytest.importorskip("zarr")
 MODEL = str(ROOT / "models" / "4dof_reduced.yaml")
@@ -68,6 +68,18 @@ def test_a_client_killed_mid_run_resumes_from_its_store(tmp_path, reference):
     again = ccma.workspace(MODEL, threads=1, store=store, **MAP)
     assert again["tiles_from_store"] == 16
     assert_same_map(reference, again)
+
+
+def test_a_store_with_a_pickled_array_is_refused_without_running_it(tmp_path, reference):
+    """issue 34: a tile whose array is a pickled object array (zarr would
+    unpickle it on reading, running its code) stops the resume with a
+    ValueError naming the store and the array; the code never runs."""
+    store, marker = tmp_path / "map.zarr", tmp_path / "marker"
+    ccma.workspace(MODEL, threads=1, store=str(store), **MAP)
+    plant_pickled_array(store, 3, "reachable", marker)
+    with pytest.raises(ValueError, match=r"map\.zarr': array chunks/3/reachable: dtype '\|O'"):
+        ccma.workspace(MODEL, threads=1, store=str(store), **MAP)
+    assert not marker.exists()
 
 
 def test_a_damaged_tile_is_computed_again(tmp_path, reference):
