@@ -4,7 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "apps/workspace_tile_file.h"
+#include "apps/fnv1a.h"
 #include "ccma/internal/format.h"
 
 namespace ccma::cli {

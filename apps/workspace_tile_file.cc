@@ -222,12 +222,6 @@ bool Reader::CarriedRows(std::vector<long long>* rows) {
 
 }  // namespace
 
-std::uint64_t Fnv1a(const std::string& bytes) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : bytes) h = (h ^ c) * 1099511628211ull;
-  return h;
-}
-
 WorkspaceTileLimits WorkspaceTileLimitsFor(const Model& model, const std::vector<WorkspaceTile>& tiles, int tile) {
   WorkspaceTileLimits limits;
   limits.tile = tile;

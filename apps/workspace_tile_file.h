@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "analyses/workspace.h"
+#include "apps/fnv1a.h"
 #include "ccma/model.h"
 
 namespace ccma::cli {
@@ -48,9 +49,6 @@ struct WorkspaceTileLimits {
 // sample per sample: each starts from one) of `model`'s size, with
 // kTileTextBytesPerSample of text each, plus the carried rows and framing.
 WorkspaceTileLimits WorkspaceTileLimitsFor(const Model& model, const std::vector<WorkspaceTile>& tiles, int tile);
-
-// FNV-1a (64 bits) of `bytes`: the tile checksum, and the store's key.
-std::uint64_t Fnv1a(const std::string& bytes);
 
 // The file's bytes for a finished tile.
 std::string EncodeWorkspaceTile(const WorkspaceTileResult& result);

@@ -7,7 +7,9 @@
 // fuzz/corpus_workspace_tile/ come from). A decode either refuses with a
 // reason or returns a tile that keeps every limit and encodes back to the
 // same bytes; anything else (an exception, a crash, a sanitizer report, an
-// allocation beyond the input's size) aborts.
+// allocation beyond the input's size) aborts. Each input is also tried with
+// its FNV-1a checksum appended, so that mutations reach the checks behind
+// the checksum (the unsealed_* seeds are tiles without their checksum).
 // The model is found at $CCMA_FUZZ_MODEL, else CCMA_SOURCE_DIR/models/...,
 // else models/4dof_reduced.yaml under the working directory.
 #include <cmath>
@@ -66,22 +68,33 @@ void CheckAccepted(const std::string& bytes, const ccma::WorkspaceTileResult& ti
   if (ccma::cli::EncodeWorkspaceTile(tile) != bytes) Fail("an accepted tile does not encode back to its bytes");
 }
 
+// Decodes `bytes` as each tile of the map.
+void DecodeAsEveryTile(const std::string& bytes) {
+  static const std::vector<ccma::WorkspaceTile> tiles = FuzzTiles();
+  for (int t = 0; t < static_cast<int>(tiles.size()); ++t) {
+    const ccma::cli::WorkspaceTileLimits limits = ccma::cli::WorkspaceTileLimitsFor(FuzzModel(), tiles, t);
+    std::string why;
+    const auto tile = ccma::cli::DecodeWorkspaceTile(bytes, FuzzModel(), limits, &why);
+    if (tile) {
+      CheckAccepted(bytes, *tile, limits);
+    } else if (why.empty()) {
+      Fail("refused without a reason");
+    }
+  }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string bytes(reinterpret_cast<const char*>(data), size);
   try {
-    static const std::vector<ccma::WorkspaceTile> tiles = FuzzTiles();
-    for (int t = 0; t < static_cast<int>(tiles.size()); ++t) {
-      const ccma::cli::WorkspaceTileLimits limits = ccma::cli::WorkspaceTileLimitsFor(FuzzModel(), tiles, t);
-      std::string why;
-      const auto tile = ccma::cli::DecodeWorkspaceTile(bytes, FuzzModel(), limits, &why);
-      if (tile) {
-        CheckAccepted(bytes, *tile, limits);
-      } else if (why.empty()) {
-        Fail("refused without a reason");
-      }
-    }
+    DecodeAsEveryTile(bytes);
+    // The same bytes with their checksum appended: a mutation gets past the
+    // checksum to the checks behind it (a forger can compute FNV-1a too).
+    std::string sealed = bytes;
+    const std::uint64_t sum = ccma::cli::Fnv1a(bytes);
+    sealed.append(reinterpret_cast<const char*>(&sum), sizeof sum);
+    DecodeAsEveryTile(sealed);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "workspace_tile_fuzzer: unexpected exception: %s\n", e.what());
     std::abort();
