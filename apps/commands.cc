@@ -214,6 +214,8 @@ Command WorkspaceCommand() {
           "home); results do not depend on --threads. --plot writes reachability and sigma_min maps over the\n"
           "first two ranges. --store=DIR keeps every finished tile there as it completes: the same command\n"
           "run again (after Ctrl-C, say) reads them back and computes only the rest; the map is the same.\n"
+          "A tile file that is not one ccma wrote (a link, FIFO or folder, too large, a bad value) is computed\n"
+          "again; a store.json that is not this map's manifest is refused (status 2).\n"
           "Prints {samples, reachable, tiles, seconds, ...}; a percentage bar on stderr at a terminal.",
           Concat({"model", "out", "x", "y", "z", "roll", "pitch", "yaw", "resolution", "samples", "seed", "threads",
                   "tile_size", "plot", "obstacles", "store"},

@@ -28,7 +28,9 @@ int RunExport(const std::vector<std::string>& args) {
     const UrdfExport urdf = WriteUrdf(model);
     const std::string closure_path = ClosureFilePath(out_path);
     OutputFile out(out_path, "out");
-    OutputFile closures(closure_path, "out");
+    // A name derived from --out, not given: an entry planted there (a link
+    // to someone's file) is replaced, never written through.
+    OutputFile closures(closure_path, "out", ExistingName::kReplace);
     out.stream() << urdf.urdf;
     closures.stream() << urdf.closures;
     closures.Commit();

@@ -92,10 +92,12 @@ void RemoveStale(const fs::path& dir, const std::string& prefix) {
 }
 
 // The mode a new output gets: that of the file it replaces, else 0666 less
-// the umask (what open(O_CREAT) would have given it).
-mode_t ModeFor(const std::string& target) {
+// the umask (what open(O_CREAT) would have given it). `follow`: through a
+// link at `target` (never for a name whose link is replaced).
+mode_t ModeFor(const std::string& target, bool follow) {
   struct stat info;
-  if (::stat(target.c_str(), &info) == 0 && S_ISREG(info.st_mode)) return info.st_mode & 07777;
+  const int got = follow ? ::stat(target.c_str(), &info) : ::lstat(target.c_str(), &info);
+  if (got == 0 && S_ISREG(info.st_mode)) return info.st_mode & 07777;
   const mode_t mask = ::umask(0);
   ::umask(mask);
   return 0666 & ~mask;
@@ -125,32 +127,45 @@ std::string FinalTarget(const std::string& path, const std::string& flag) {
 
 }  // namespace
 
-OutputFile::OutputFile(const std::string& path, const std::string& flag) : path_(path) {
+OutputFile::OutputFile(const std::string& path, const std::string& flag, ExistingName existing) : path_(path) {
   if (path.empty()) throw UsageError("--" + flag + ": empty path");
-  target_ = FinalTarget(path, flag);
-  std::error_code ec;
-  const fs::file_status status = fs::status(target_, ec);
-  if (fs::is_directory(status)) throw UsageError("--" + flag + ": '" + path + "' is a directory");
-  const bool special = fs::exists(status) && !fs::is_regular_file(status);
-  if (special) {
-    fd_ = ::open(target_.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
+  if (existing == ExistingName::kReplace) {
+    target_ = path;  // the entry itself, whatever it is
+    struct stat info;
+    if (::lstat(path.c_str(), &info) == 0 && S_ISDIR(info.st_mode)) {
+      throw UsageError("--" + flag + ": '" + path + "' is a directory");
+    }
+    OpenTemporary(false);
   } else {
-    const fs::path target(target_);
-    const std::string prefix = "." + target.filename().string() + ".ccma-tmp-";
-    RemoveStale(target.parent_path(), prefix);
-    std::string name = Unique(target.parent_path(), prefix);
-    // mkostemp opens with O_CREAT | O_EXCL (mode 0600), retrying names.
-    fd_ = ::mkostemp(name.data(), O_CLOEXEC | O_NOFOLLOW);
-    if (fd_ >= 0) temporary_ = name;
-    if (fd_ >= 0 && ::fchmod(fd_, ModeFor(target_)) != 0) {
-      ::close(fd_);
-      ::unlink(temporary_.c_str());
-      fd_ = -1;
+    target_ = FinalTarget(path, flag);
+    std::error_code ec;
+    const fs::file_status status = fs::status(target_, ec);
+    if (fs::is_directory(status)) throw UsageError("--" + flag + ": '" + path + "' is a directory");
+    if (fs::exists(status) && !fs::is_regular_file(status)) {
+      fd_ = ::open(target_.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);  // a device or FIFO
+    } else {
+      OpenTemporary(true);
     }
   }
   if (fd_ < 0) throw UsageError("--" + flag + ": cannot write '" + path + "'");
   buffer_ = std::make_unique<FdBuffer>(fd_);
   stream_.rdbuf(buffer_.get());
+}
+
+void OutputFile::OpenTemporary(bool follow) {
+  const fs::path target(target_);
+  const std::string prefix = "." + target.filename().string() + ".ccma-tmp-";
+  RemoveStale(target.parent_path(), prefix);
+  std::string name = Unique(target.parent_path(), prefix);
+  // mkostemp opens with O_CREAT | O_EXCL (mode 0600), retrying names.
+  fd_ = ::mkostemp(name.data(), O_CLOEXEC | O_NOFOLLOW);
+  if (fd_ >= 0) temporary_ = name;
+  if (fd_ >= 0 && ::fchmod(fd_, ModeFor(target_, follow)) != 0) {
+    ::close(fd_);
+    ::unlink(temporary_.c_str());
+    temporary_.clear();
+    fd_ = -1;
+  }
 }
 
 OutputFile::~OutputFile() {

@@ -12,6 +12,11 @@
 //  * a device, FIFO or socket (/dev/null, /dev/stdout): written in place,
 //    never replaced by a plain file;
 //  * a directory: refused (UsageError, exit 2).
+// That is for a name the user gave (--out). A name ccma makes up itself (a
+// store's files, the closure file beside `export --out`) is opened with
+// ExistingName::kReplace: whatever entry is at the name (a planted link,
+// FIFO or device included) is replaced by the new file, never followed or
+// written into; only a directory is refused.
 // Without Commit() (an exception on the way), the temporary file is removed.
 // Replacing NAME gives it a new inode: other hard links to the old file keep
 // the old content.
@@ -30,11 +35,17 @@ namespace ccma::cli {
 // longer runs counts as a killed run's.
 constexpr long kStaleTemporarySeconds = 600;
 
+// What OutputFile does with an entry already at the name (see above).
+enum class ExistingName {
+  kFollow,   // a name the user gave: a link is followed, a device written in place
+  kReplace,  // a name ccma derives: any entry but a directory is replaced
+};
+
 class OutputFile {
  public:
   // `flag` names the flag in messages (e.g. "out"). Throws UsageError when
   // the path cannot be written.
-  OutputFile(const std::string& path, const std::string& flag);
+  OutputFile(const std::string& path, const std::string& flag, ExistingName existing = ExistingName::kFollow);
   ~OutputFile();
   OutputFile(const OutputFile&) = delete;
   OutputFile& operator=(const OutputFile&) = delete;
@@ -52,6 +63,8 @@ class OutputFile {
   std::unique_ptr<std::streambuf> buffer_;
   std::ostream stream_{nullptr};
   bool committed_ = false;
+
+  void OpenTemporary(bool follow);  // fd_ and temporary_, beside target_
 };
 
 // A fresh private folder `DIR/.ccma-plot-<pid>-XXXXXX` (mode 0700) for files that

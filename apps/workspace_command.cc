@@ -223,7 +223,7 @@ int RunWorkspace(const std::vector<std::string>& args) {
   std::unique_ptr<WorkspaceStore> store;
   if (!FLAGS_store.empty()) {
     store = std::make_unique<WorkspaceStore>(FLAGS_store, model, StoreKey(model_path, options),
-                                             static_cast<int>(WorkspaceTiles(model, options).size()));
+                                             WorkspaceTiles(model, options));
   }
   const WorkspaceResult result = ComputeWorkspace(model, options, TerminalProgress(), store.get());
   WriteCsv(model, result, file.stream());

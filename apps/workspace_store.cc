@@ -1,221 +1,124 @@
 #include "apps/workspace_store.h"
 
-#include <cstdint>
+#include <sys/stat.h>
+
+#include <cerrno>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
-#include <sstream>
-
-#include <nlohmann/json.hpp>
+#include <optional>
+#include <stdexcept>
 
 #include "apps/cli.h"
+#include "apps/output_file.h"
+#include "apps/workspace_store_manifest.h"
+#include "apps/workspace_tile_file.h"
+#include "formats/model_loader.h"
 
 namespace ccma::cli {
 namespace {
 
-constexpr char kMagic[8] = {'C', 'C', 'M', 'A', 'W', 'T', '0', '1'};
-// Bounds on what a tile file may claim before anything is allocated.
-constexpr std::uint64_t kMaxTileSamples = 100000000;
-constexpr std::uint64_t kMaxTextBytes = 1 << 20;
-
-std::uint64_t Fnv1a(const std::string& bytes) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : bytes) h = (h ^ c) * 1099511628211ull;
-  return h;
+// Why the entry at `path` is not a store file ccma could have written
+// ("" when it is a regular file of at most `max_bytes`); `absent` is set
+// when there is no entry. Looks with lstat: a link is never followed, a
+// FIFO never opened, a folder never read.
+std::string NotAStoreFile(const std::string& path, std::size_t max_bytes, bool* absent) {
+  struct stat info;
+  *absent = false;
+  if (::lstat(path.c_str(), &info) != 0) {
+    *absent = errno == ENOENT;
+    return std::strerror(errno);
+  }
+  if (S_ISLNK(info.st_mode)) return "a symbolic link; ccma writes regular files";
+  if (S_ISDIR(info.st_mode)) return "a directory";
+  if (!S_ISREG(info.st_mode)) return "not a regular file";
+  if (static_cast<std::uintmax_t>(info.st_size) > max_bytes) {
+    return std::to_string(info.st_size) + " bytes, more than the " + std::to_string(max_bytes) + " it can take";
+  }
+  return "";
 }
 
-std::string Hex(std::uint64_t x) {
-  std::ostringstream out;
-  out << std::hex << x;
-  return out.str();
+// Writes `bytes` to `path` as OutputFile does, replacing whatever entry is
+// there. Throws UsageError or std::runtime_error when it cannot.
+void WriteStoreFile(const std::string& path, const std::string& bytes) {
+  OutputFile out(path, "store", ExistingName::kReplace);
+  out.stream().write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  out.Commit();  // checks every write, fsyncs, then renames into place
 }
 
-// ---- writing -------------------------------------------------------------
-class Writer {
- public:
-  template <class T>
-  void Raw(const T& x) { bytes_.append(reinterpret_cast<const char*>(&x), sizeof x); }
-  void Text(const std::string& s) {
-    Raw<std::uint64_t>(s.size());
-    bytes_ += s;
+// The manifest at `path` read back and compared with `want`; throws
+// UsageError unless it names the same map.
+void CheckManifestFile(const std::string& dir, const std::string& path, const std::string& want) {
+  const std::string fix = ": delete the folder '" + dir + "' to start again, or use a new one";
+  bool absent = false;
+  std::string why = NotAStoreFile(path, kMaxStoreManifestBytes, &absent), text;
+  if (why.empty() && !internal::ReadRegularFile(path, kMaxStoreManifestBytes, "store manifest", &text, &why)) {
+    throw UsageError("--store: " + why + fix);
   }
-  void Doubles(const double* x, std::uint64_t n) {
-    Raw(n);
-    if (n > 0) bytes_.append(reinterpret_cast<const char*>(x), n * sizeof(double));
+  if (why.empty() && CheckStoreManifest(text, want, &why) == ManifestMatch::kOtherMap) {
+    throw UsageError("--store: '" + dir + "' holds another map (other model, ranges or options): use a new "
+                     "directory, or delete this one to start again");
   }
-  void Sample(const WorkspaceSample& s) {
-    Doubles(s.pose.position.data(), 3);
-    Doubles(s.pose.rpy.data(), 3);
-    Raw<std::uint8_t>(s.reachable);
-    Raw<std::uint8_t>(s.converged);
-    Raw<std::uint8_t>(s.assembled);
-    Doubles(s.controls.data(), static_cast<std::uint64_t>(s.controls.size()));
-    for (double v : {s.residual_energy, s.error, s.sigma_min, s.rcond, s.max_limit_violation}) Raw(v);
-    Text(s.limited_by);
-    Raw<std::int64_t>(s.wave);
-    Raw<std::int64_t>(s.start);
-    Raw<std::int64_t>(s.tile);
-    Raw<std::int64_t>(s.steps);
-    Text(s.warning);
-    Doubles(s.state.pose(0), static_cast<std::uint64_t>(s.state.num_bodies()) * kPoseAmbientSize);
-  }
-  void Samples(const std::vector<WorkspaceSample>& samples) {
-    Raw<std::uint64_t>(samples.size());
-    for (const WorkspaceSample& s : samples) Sample(s);
-  }
-  std::string Finish() {
-    Raw(Fnv1a(bytes_));
-    return std::move(bytes_);
-  }
-
- private:
-  std::string bytes_ = std::string(kMagic, sizeof kMagic);
-};
-
-// ---- reading: every claim checked against the model and the bounds --------
-class Reader {
- public:
-  Reader(const std::string& bytes, const Model& model) : bytes_(bytes), model_(model) {}
-  template <class T>
-  bool Raw(T* x) {
-    if (at_ + sizeof(T) > bytes_.size()) return false;
-    std::memcpy(x, bytes_.data() + at_, sizeof(T));
-    at_ += sizeof(T);
-    return true;
-  }
-  bool Text(std::string* s) {
-    std::uint64_t n = 0;
-    if (!Raw(&n) || n > kMaxTextBytes || at_ + n > bytes_.size()) return false;
-    s->assign(bytes_.data() + at_, n);
-    at_ += n;
-    return true;
-  }
-  bool Doubles(double* x, std::uint64_t expected) {
-    std::uint64_t n = 0;
-    if (!Raw(&n) || n != expected || at_ + n * sizeof(double) > bytes_.size()) return false;
-    if (n > 0) std::memcpy(x, bytes_.data() + at_, n * sizeof(double));
-    at_ += n * sizeof(double);
-    return true;
-  }
-  bool Sample(WorkspaceSample* s) {
-    std::uint8_t flags[3];
-    std::int64_t ints[4];
-    s->controls.resize(model_.num_controls());
-    s->state = State(model_.num_bodies());
-    bool ok = Doubles(s->pose.position.data(), 3) && Doubles(s->pose.rpy.data(), 3) && Raw(&flags[0]) &&
-              Raw(&flags[1]) && Raw(&flags[2]) &&
-              Doubles(s->controls.data(), static_cast<std::uint64_t>(model_.num_controls()));
-    for (double* v : {&s->residual_energy, &s->error, &s->sigma_min, &s->rcond, &s->max_limit_violation}) {
-      ok = ok && Raw(v);
-    }
-    ok = ok && Text(&s->limited_by) && Raw(&ints[0]) && Raw(&ints[1]) && Raw(&ints[2]) && Raw(&ints[3]) &&
-         Text(&s->warning) &&
-         Doubles(s->state.pose(0), static_cast<std::uint64_t>(model_.num_bodies()) * kPoseAmbientSize);
-    s->reachable = flags[0] != 0;
-    s->converged = flags[1] != 0;
-    s->assembled = flags[2] != 0;
-    s->wave = static_cast<int>(ints[0]);
-    s->start = ints[1];
-    s->tile = static_cast<int>(ints[2]);
-    s->steps = static_cast<int>(ints[3]);
-    return ok;
-  }
-  bool Samples(std::vector<WorkspaceSample>* samples) {
-    std::uint64_t n = 0;
-    if (!Raw(&n) || n > kMaxTileSamples) return false;
-    samples->resize(n);
-    for (WorkspaceSample& s : *samples) {
-      if (!Sample(&s)) return false;
-    }
-    return true;
-  }
-  std::size_t at() const { return at_; }
-
- private:
-  const std::string& bytes_;
-  const Model& model_;
-  std::size_t at_ = sizeof kMagic;
-};
-
-bool Parse(const std::string& bytes, const Model& model, WorkspaceTileResult* out) {
-  if (bytes.size() < sizeof kMagic + sizeof(std::uint64_t) || bytes.compare(0, sizeof kMagic, kMagic, sizeof kMagic) != 0) {
-    return false;
-  }
-  std::uint64_t sum = 0;
-  std::memcpy(&sum, bytes.data() + bytes.size() - sizeof sum, sizeof sum);
-  const std::string body = bytes.substr(0, bytes.size() - sizeof sum);
-  if (Fnv1a(body) != sum) return false;
-  Reader in(body, model);
-  std::uint64_t carried = 0;
-  if (!in.Samples(&out->samples) || !in.Raw(&carried) || carried > kMaxTileSamples) return false;
-  out->carried_rows.resize(carried);
-  for (long long& row : out->carried_rows) {
-    std::int64_t r = 0;
-    if (!in.Raw(&r)) return false;
-    row = r;
-  }
-  return in.Samples(&out->carried) && in.at() == body.size();
+  if (!why.empty()) throw UsageError("--store: '" + path + "' is not a workspace store manifest (" + why + ")" + fix);
 }
 
 }  // namespace
 
-WorkspaceStore::WorkspaceStore(const std::string& dir, const Model& model, const std::string& key_text, int tiles)
-    : dir_(dir), model_(model) {
+WorkspaceStore::WorkspaceStore(const std::string& dir, const Model& model, const std::string& key_text,
+                               const std::vector<WorkspaceTile>& tiles)
+    : dir_(dir), model_(model), tiles_(tiles) {
   namespace fs = std::filesystem;
   std::error_code ec;
   fs::create_directories(dir_, ec);
-  if (ec || !fs::is_directory(dir_)) throw UsageError("--store: cannot create the directory '" + dir_ + "'");
-  const nlohmann::json want = {{"ccma_workspace_store", 1}, {"key", Hex(Fnv1a(key_text))}, {"tiles", tiles}};
+  if (!fs::is_directory(dir_, ec)) throw UsageError("--store: cannot create the directory '" + dir_ + "'");
+  const std::string want = StoreManifestText(key_text, static_cast<int>(tiles_.size()));
   const std::string manifest = dir_ + "/store.json";
-  if (fs::exists(manifest)) {
-    std::ifstream in(manifest);
-    const nlohmann::json have = nlohmann::json::parse(in, nullptr, false);
-    if (have != want) {
-      throw UsageError("--store: '" + dir_ + "' holds another map (other model, ranges or options): use a new "
-                       "directory, or delete this one to start again");
+  struct stat info;
+  if (::lstat(manifest.c_str(), &info) != 0 && errno == ENOENT) {
+    try {
+      WriteStoreFile(manifest, want);
+    } catch (const std::exception&) {
+      throw UsageError("--store: cannot write '" + manifest + "'");
     }
-    return;
   }
-  std::ofstream out(manifest + ".tmp");
-  out << want.dump() << "\n";
-  out.close();
-  fs::rename(manifest + ".tmp", manifest, ec);
-  if (!out || ec) throw UsageError("--store: cannot write '" + manifest + "'");
+  // Read back even after writing it: another run may have written its own.
+  CheckManifestFile(dir_, manifest, want);
 }
 
 std::string WorkspaceStore::TilePath(int tile) const { return dir_ + "/tile_" + std::to_string(tile) + ".bin"; }
 
+void WorkspaceStore::Warn(const std::string& line) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::cerr << "ccma workspace: --store: " << line << "\n";
+}
+
 bool WorkspaceStore::Load(int tile, WorkspaceTileResult* out) {
-  std::ifstream in(TilePath(tile), std::ios::binary);
-  if (!in) return false;
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (!Parse(bytes, model_, out)) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    std::cerr << "ccma workspace: --store: " << TilePath(tile) << " is damaged; computing the tile again\n";
+  if (tile < 0 || tile >= static_cast<int>(tiles_.size())) return false;
+  const std::string path = TilePath(tile);
+  const WorkspaceTileLimits limits = WorkspaceTileLimitsFor(model_, tiles_, tile);
+  bool absent = false;
+  std::string why = NotAStoreFile(path, limits.max_bytes, &absent), bytes;
+  if (absent) return false;  // not computed yet
+  std::optional<WorkspaceTileResult> kept;
+  if (why.empty() && internal::ReadRegularFile(path, limits.max_bytes, "tile file", &bytes, &why)) {
+    kept = DecodeWorkspaceTile(bytes, model_, limits, &why);
+  }
+  if (!kept) {
+    Warn("'" + path + "' is damaged (" + why + "); computing the tile again");
     return false;
   }
+  *out = std::move(*kept);
   std::lock_guard<std::mutex> lock(mutex_);
   ++loaded_;
   return true;
 }
 
 void WorkspaceStore::Save(int tile, const WorkspaceTileResult& result) {
-  Writer w;
-  w.Samples(result.samples);
-  w.Raw<std::uint64_t>(result.carried_rows.size());
-  for (long long row : result.carried_rows) w.Raw<std::int64_t>(row);
-  w.Samples(result.carried);
-  const std::string bytes = w.Finish();
-  const std::string path = TilePath(tile), tmp = path + ".tmp";
-  std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-  out.close();
-  std::error_code ec;
-  if (out) std::filesystem::rename(tmp, path, ec);
-  if (!out || ec) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    std::cerr << "ccma workspace: --store: could not write " << path << " (the map goes on without it)\n";
+  const std::string path = TilePath(tile);
+  try {
+    WriteStoreFile(path, EncodeWorkspaceTile(result));
+  } catch (const std::exception&) {
+    Warn("could not write '" + path + "' (the map goes on without it)");
   }
 }
 

@@ -3,20 +3,26 @@
 // resumes where it stopped: a tile found there is not computed again, and
 // the map is identical to one computed in one go.
 //
-// DIR/store.json   {"ccma_workspace_store": 1, "key": "<hex>", "tiles": N}
-// DIR/tile_<k>.bin one finished tile (analyses/workspace.h
-//                  WorkspaceTileResult), written to a temporary name and
-//                  renamed, so a file is whole or absent; it ends with a
-//                  64-bit FNV-1a checksum of everything before it.
-// The key hashes the model file's text and every option that defines the
-// map; a store of another map is refused (UsageError naming DIR). A tile
-// file that is truncated, damaged or of another shape is ignored (one line
-// on stderr) and the tile computed again.
+// DIR/store.json   the map's name (apps/workspace_store_manifest.h); a
+//                  store of another map is refused, and so is a store.json
+//                  that is not a regular file, is larger than
+//                  kMaxStoreManifestBytes or is not a manifest (UsageError
+//                  naming the file and what is wrong).
+// DIR/tile_<k>.bin one finished tile (apps/workspace_tile_file.h).
+// Files are written as OutputFile writes (a fresh temporary name beside
+// them made with O_EXCL | O_NOFOLLOW, fsync, rename), replacing whatever
+// entry has the name, never writing through a link: a file is whole or
+// absent, and several processes may write one store at once.
+// A tile is read only when it is a regular file (not a link, FIFO, device
+// or folder) of at most the size a tile of this map can take, through the
+// bounded reader, and every value is checked (DecodeWorkspaceTile); any
+// other tile file is computed again, with one line on stderr naming it.
 #ifndef CCMA_APPS_WORKSPACE_STORE_H_
 #define CCMA_APPS_WORKSPACE_STORE_H_
 
 #include <mutex>
 #include <string>
+#include <vector>
 
 #include "analyses/workspace.h"
 #include "ccma/model.h"
@@ -25,10 +31,12 @@ namespace ccma::cli {
 
 class WorkspaceStore final : public WorkspaceTileCache {
  public:
-  // Opens or creates DIR for the map of (model_text, key_text); `tiles` the
-  // map's tile count. Throws UsageError when DIR holds another map or
-  // cannot be created.
-  WorkspaceStore(const std::string& dir, const Model& model, const std::string& key_text, int tiles);
+  // Opens or creates DIR for the map of (model, key_text) cut into `tiles`
+  // (WorkspaceTiles). Throws UsageError when DIR holds another map, its
+  // store.json cannot be read or is not a manifest, or DIR cannot be
+  // created or written.
+  WorkspaceStore(const std::string& dir, const Model& model, const std::string& key_text,
+                 const std::vector<WorkspaceTile>& tiles);
 
   bool Load(int tile, WorkspaceTileResult* out) override;
   void Save(int tile, const WorkspaceTileResult& result) override;
@@ -37,8 +45,10 @@ class WorkspaceStore final : public WorkspaceTileCache {
 
  private:
   std::string TilePath(int tile) const;
+  void Warn(const std::string& line);  // one line on stderr, whole
   const std::string dir_;
   const Model& model_;
+  const std::vector<WorkspaceTile> tiles_;
   int loaded_ = 0;
   std::mutex mutex_;
 };

@@ -7,6 +7,7 @@
 // body frames and joint axes are the model's, limits round-trip exactly.
 // Imported again (`ccma import`), both give back the same mechanism.
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <random>
@@ -502,6 +503,23 @@ TEST(ExportCommand, WritesUrdfWithClosureFileAndSdf) {
   EXPECT_TRUE(json["closures"].is_null());
   EXPECT_EQ(json["loops"], 2);
   EXPECT_EQ(testing::Slurp(sdf_path), WriteSdformat(model).sdf);
+}
+
+// The closure file's name is made from --out, not given: a link planted
+// there (to someone else's file) is replaced, never written through.
+TEST(ExportCommand, ALinkPlantedAtTheClosureFileIsReplaced) {
+  const std::string urdf_path = testing::ScratchPath("export_link", "robot.urdf");
+  const std::string closures = testing::ScratchPath("export_link", "robot.closures.yaml");
+  const std::string victim = testing::ScratchPath("export_link", "victim.txt");
+  std::filesystem::remove(closures);
+  std::ofstream(victim, std::ios::trunc) << "precious\n";
+  std::filesystem::create_symlink(victim, closures);
+  const testing::ToolRun run = testing::RunTool({"export", "--model=" + testing::ModelPath("hybrid_ccma"),
+                                                 "--format=urdf", "--out=" + urdf_path});
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_EQ(testing::Slurp(victim), "precious\n");
+  EXPECT_TRUE(std::filesystem::is_regular_file(std::filesystem::symlink_status(closures)));
+  EXPECT_EQ(testing::Slurp(closures), WriteUrdf(LoadModel(testing::ModelPath("hybrid_ccma"))).closures);
 }
 
 TEST(ExportCommand, BadInputExitsTwoWithNothingOnStdout) {
