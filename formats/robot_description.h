@@ -23,6 +23,13 @@ namespace ccma {
 // an SDFormat joint's parent `world`).
 constexpr const char* kRobotWorld = "world";
 
+// Links, joints and closures of a robot that ccma imports, each. The model
+// file `ccma import` writes (about 0.6 KB per body and joint) must fit the
+// loader's 4 MiB (ccma/limits.h); real robots have tens to hundreds.
+constexpr int kMaxRobotLinks = 2000;
+constexpr int kMaxRobotJoints = 2000;
+constexpr int kMaxRobotClosures = 2000;
+
 // A visual mesh of a link (URDF <visual><geometry><mesh>, SDFormat <visual>).
 struct RobotMesh {
   std::string file;          // absolute path of the mesh file (resolved by the reader)
