@@ -36,7 +36,7 @@
 // formats/internal/robot_xml.h with one <sdf> root (at most 100 deep, 100,000
 // elements), any <include> (the only element that makes libsdformat open a
 // file), and a file whose elements would take libsdformat more than
-// kMaxSdformatMegabytes (formats/internal/sdformat_cost.h: about 850 links).
+// kMaxSdformatMegabytes (formats/internal/sdformat_cost.h: about 700 links).
 //
 // Errors: ModelError. libsdformat's rejections are quoted (its first three),
 //   FILE: libsdformat: <message> [line N]; ...
