@@ -57,7 +57,7 @@ std::string WorstClosure(const internal::RobotModel& built, const State& s) {
     const double gap = (p_W - q_W).norm();
     if (gap > largest) {
       largest = gap;
-      worst = "closure '" + joint.name + "' (its frames' origins " + FormatG(gap) + " m apart)";
+      worst = "closure " + Quote(joint.name) + " (its frames' origins " + FormatG(gap) + " m apart)";
     }
   }
   return worst;
@@ -96,7 +96,7 @@ void CheckLimits(const Model& model, const std::string& source) {
     if (!joint.limited) continue;
     const double q = LimitCoordinate(joint, joint.q_home);
     if (q < joint.lower - 1e-9 || q > joint.upper + 1e-9) {
-      throw ModelError(source + ": joint '" + joint.name + "': its position at home, " + FormatG(joint.q_home) +
+      throw ModelError(source + ": joint " + Quote(joint.name) + ": its position at home, " + FormatG(joint.q_home) +
                        ", is outside its limits [" + FormatG(joint.lower) + ", " + FormatG(joint.upper) + "]");
     }
   }

@@ -11,6 +11,7 @@
 #include <gflags/gflags.h>
 
 #include "analyses/robot_import.h"
+#include "ccma/internal/format.h"
 #include "apps/cli.h"
 #include "apps/commands.h"
 #include "apps/flags.h"
@@ -34,7 +35,7 @@ std::vector<std::string> SplitNames(const std::string& text, const std::string& 
   std::vector<std::string> names;
   std::istringstream in(text);
   for (std::string item; std::getline(in, item, ',');) {
-    if (item.empty() || item.size() > 256) throw UsageError("--" + flag + ": empty or overlong name in '" + text + "'");
+    if (item.empty() || item.size() > 256) throw UsageError("--" + flag + ": empty or overlong name in " + Quote(text));
     names.push_back(item);
   }
   if (!text.empty() && text.back() == ',') throw UsageError("--" + flag + ": trailing comma");

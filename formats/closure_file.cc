@@ -3,6 +3,7 @@
 #include <set>
 #include <string>
 
+#include "ccma/internal/format.h"
 #include "ccma/limits.h"
 #include "ccma/model.h"
 #include "formats/internal/yaml_checks.h"
@@ -14,7 +15,7 @@ namespace {
 
 // A closure file is a few lines; this bounds hostile ones.
 constexpr std::size_t kMaxClosureFileBytes = std::size_t{1} << 20;
-constexpr std::size_t kMaxClosureEntries = 10000;
+constexpr std::size_t kMaxClosureEntries = kMaxRobotClosures;
 
 // A frame or joint name as URDF writes it: any printable text without
 // control characters, at most kMaxNameLength * 4 bytes (the importer maps
@@ -55,7 +56,7 @@ void ReadLoops(const internal::YamlReader& r, const YAML::Node& root, ClosureFil
       // The collection writes both cases (its loader reads "3d" and "3D").
       const std::string type = types[i] == "3D" ? "3d" : types[i] == "6D" ? "6d" : types[i];
       if (type != "6d" && type != "3d") {
-        r.Fail(root["type"][i], internal::Indexed("type", i), "must be '6d' or '3d', got '" + types[i] + "'");
+        r.Fail(root["type"][i], internal::Indexed("type", i), "must be '6d' or '3d', got " + Quote(types[i]));
       }
       loop.six_d = type == "6d";
     }
@@ -75,8 +76,8 @@ void ReadOverrides(const internal::YamlReader& r, const YAML::Node& root, Closur
   for (std::size_t i = 0; i < joints.size(); ++i) {
     if (kTypes.count(types[i]) == 0) {
       r.Fail(root["joint_type"][i], internal::Indexed("joint_type", i),
-             "unknown joint type '" + types[i] +
-                 "' (SPHERICAL, FIXED, UJOINT_XY, UJOINT_YZ, UJOINT_ZX or UJOINT_ZY)");
+             "unknown joint type " + Quote(types[i]) +
+                 " (SPHERICAL, FIXED, UJOINT_XY, UJOINT_YZ, UJOINT_ZX or UJOINT_ZY)");
     }
     file->overrides.push_back({joints[i], types[i], root["joint_name"][i].Mark().line + 1});
   }

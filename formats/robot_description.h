@@ -23,6 +23,14 @@ namespace ccma {
 // an SDFormat joint's parent `world`).
 constexpr const char* kRobotWorld = "world";
 
+// Links, joints and closures of a robot that ccma imports, each: generous
+// (real robots have tens to hundreds) and well inside what the loader takes
+// back (4 MiB, ccma/limits.h; a 2,000-link chain writes 0.34 MB, and
+// imports in 2 s and 53 MB from a 98,000-element URDF).
+constexpr int kMaxRobotLinks = 2000;
+constexpr int kMaxRobotJoints = 2000;
+constexpr int kMaxRobotClosures = 2000;
+
 // A visual mesh of a link (URDF <visual><geometry><mesh>, SDFormat <visual>).
 struct RobotMesh {
   std::string file;          // absolute path of the mesh file (resolved by the reader)

@@ -25,9 +25,11 @@
 #include <sdf/Visual.hh>
 #include <sdf/World.hh>
 
+#include "ccma/internal/format.h"
 #include "ccma/limits.h"
 #include "formats/internal/mesh_paths.h"
-#include "formats/internal/xml_nesting.h"
+#include "formats/internal/robot_xml.h"
+#include "formats/internal/sdformat_cost.h"
 #include "formats/model_loader.h"
 
 namespace ccma {
@@ -40,9 +42,10 @@ struct Context {
   Eigen::Isometry3d X_WM = Eigen::Isometry3d::Identity();  // the model frame in W
 };
 
-// Text from the file quoted in a message: printable ASCII, at most 200
-// characters (libsdformat quotes whole documents in some messages).
-std::string Quote(const std::string& text) {
+// libsdformat's message text (which may quote the file) for a message:
+// printable ASCII, at most 200 characters (it quotes whole documents in
+// some messages). Names from the file go through ccma::Quote.
+std::string LibraryText(const std::string& text) {
   std::string out;
   for (char c : text) {
     if (out.size() >= 200) return out + "...";
@@ -67,7 +70,7 @@ int LineOf(const sdf::ElementPtr& element) {
   const std::size_t shown = std::min<std::size_t>(errors.size(), 3);
   for (std::size_t i = 0; i < shown; ++i) {
     if (i > 0) message += "; ";
-    message += Quote(errors[i].Message());
+    message += LibraryText(errors[i].Message());
     if (errors[i].LineNumber())
       message += " [line " + std::to_string(*errors[i].LineNumber()) + "]";
   }
@@ -96,40 +99,51 @@ Eigen::Isometry3d PoseInWorld(const Context& context, const ignition::math::Pose
 
 // ------------------------------------------------------------- the XML ------
 
-// <include> makes libsdformat open other files named by the input: refused.
-void RejectIncludes(const TiXmlElement* element, const std::string& source) {
-  for (const TiXmlElement* e = element->FirstChildElement(); e; e = e->NextSiblingElement()) {
-    if (e->ValueStr() == "include") {
-      throw ModelError(
-          source + ":" + std::to_string(e->Row()) +
-          ": <include> is not supported: put the included model's links and joints in the file");
-    }
-    RejectIncludes(e, source);
+// libsdformat's memory for the file (formats/internal/sdformat_cost.h),
+// refused beyond kMaxSdformatMegabytes naming the costliest element.
+void CheckMemory(const internal::RobotXmlSummary& summary, const std::string& source) {
+  const double megabytes = internal::SdformatMegabytes(summary);
+  if (megabytes <= internal::kMaxSdformatMegabytes) return;
+  std::string costliest;
+  double most = -1;
+  for (const auto& [name, counted] : summary.names) {
+    const double cost = internal::SdformatMegabytes(name, counted.count);
+    if (cost > most) most = cost, costliest = std::to_string(counted.count) + " <" + Printable(name) + "> elements";
   }
+  throw ModelError(source + ": too large for libsdformat: its " + std::to_string(summary.elements) +
+                   " elements (" + costliest + ") would take about " + std::to_string(static_cast<long>(megabytes)) +
+                   " MB, more than the " + std::to_string(static_cast<long>(internal::kMaxSdformatMegabytes)) +
+                   " MB allowed (docs/import.md)");
 }
 
-// Well-formed XML with an <sdf version="1.7 or later"> root, before
-// libsdformat (which reports malformed XML without a line) sees it.
+// The file as ccma accepts it before libsdformat sees it: the plain XML of
+// formats/internal/robot_xml.h with an <sdf> root (libsdformat, when it
+// cannot read an <sdf>, reads the text again as a URDF and follows what that
+// says), no <include> (libsdformat would open the files it names: the only
+// place where it opens a file of its own), within kMaxSdformatMegabytes of
+// libsdformat's memory, and an `sdf version` of 1.7 or later.
 void CheckXml(const std::string& text, const std::string& source) {
-  internal::CheckXmlNesting(text, source);  // TinyXML parses recursively
-  TiXmlDocument document;
+  const internal::RobotXmlSummary summary = internal::CheckRobotXml(text, source, "sdf", "an SDFormat file");
+  const auto include = summary.names.find("include");
+  if (include != summary.names.end()) {
+    throw ModelError(source + ":" + std::to_string(include->second.first_line) +
+                     ": <include> is not supported: put the included model's links and joints in the file");
+  }
+  CheckMemory(summary, source);
+  TiXmlDocument document;  // safe now: TinyXML reads the same elements, at most 100 deep
   document.Parse(text.c_str(), nullptr, TIXML_ENCODING_UTF8);
   if (document.Error()) {
     throw ModelError(source + ":" + std::to_string(document.ErrorRow()) +
                      ": not valid XML: " + document.ErrorDesc());
   }
   const TiXmlElement* root = document.RootElement();
-  if (root == nullptr || root->ValueStr() != "sdf") {
-    throw ModelError(source + ": not an SDFormat file (its root element is not <sdf>)");
-  }
   const char* version = root->Attribute("version");
   int major = 0, minor = 0;
   if (version == nullptr || std::sscanf(version, "%d.%d", &major, &minor) != 2 || major < 1 ||
       (major == 1 && minor < 7)) {
-    throw ModelError(source + ":" + std::to_string(root->Row()) + ": sdf version '" +
-                     Quote(version ? version : "") + "': SDFormat 1.7 or later is needed");
+    throw ModelError(source + ":" + std::to_string(root->Row()) + ": sdf version " +
+                     Quote(version ? version : "") + ": SDFormat 1.7 or later is needed");
   }
-  RejectIncludes(root, source);
 }
 
 // libsdformat's errors, less the one it reports for each `planar` joint
@@ -152,8 +166,8 @@ void ReadMeshes(const sdf::Link& link, const Context& context, RobotLink* out) {
     const sdf::Geometry* geometry = visual->Geom();
     if (geometry == nullptr || geometry->MeshShape() == nullptr) continue;
     const sdf::Mesh& mesh = *geometry->MeshShape();
-    const std::string where = Where(context, visual->Element()) + ": visual '" +
-                              Quote(visual->Name()) + "' of link '" + Quote(link.Name()) + "'";
+    const std::string where = Where(context, visual->Element()) + ": visual " +
+                              Quote(visual->Name()) + " of link " + Quote(link.Name());
     ignition::math::Pose3d pose;
     const sdf::Errors errors = visual->SemanticPose().Resolve(pose, "__model__");
     if (!errors.empty()) ThrowSdfErrors(errors, where);
@@ -173,7 +187,7 @@ RobotLink ReadLink(const sdf::Link& link, const Context& context) {
   RobotLink out;
   out.name = link.Name();
   out.line = LineOf(link.Element());
-  const std::string where = Where(context, link.Element()) + ": link '" + Quote(link.Name()) + "'";
+  const std::string where = Where(context, link.Element()) + ": link " + Quote(link.Name());
   ignition::math::Pose3d pose;
   const sdf::Errors errors = link.SemanticPose().Resolve(pose, "__model__");
   if (!errors.empty()) ThrowSdfErrors(errors, where);
@@ -202,8 +216,8 @@ RobotJointType JointTypeOf(const sdf::Joint& joint, const std::string& where) {
   }
   const std::string type = joint.Element() ? joint.Element()->Get<std::string>("type") : "";
   if (type == "planar") return RobotJointType::kPlanar;
-  throw ModelError(where + ": type '" + Quote(type) +
-                   "' is not supported (revolute, continuous, prismatic, fixed, ball, universal, "
+  throw ModelError(where + ": type " + Quote(type) +
+                   " is not supported (revolute, continuous, prismatic, fixed, ball, universal, "
                    "or planar from world)");
 }
 
@@ -269,7 +283,7 @@ RobotJoint ReadJoint(const sdf::Joint& joint, const Context& context) {
   out.name = joint.Name();
   out.line = LineOf(joint.Element());
   const std::string where =
-      Where(context, joint.Element()) + ": joint '" + Quote(joint.Name()) + "'";
+      Where(context, joint.Element()) + ": joint " + Quote(joint.Name());
   out.type = JointTypeOf(joint, where);
   out.parent = AttachedLink(joint, true, where);
   out.child = AttachedLink(joint, false, where);
@@ -313,7 +327,7 @@ std::vector<double> Numbers(const std::string& text, const std::string& where, s
         return std::isfinite(v) && std::abs(v) <= kMaxMagnitude;
       })) {
     throw ModelError(where + ": expected " + std::to_string(count) +
-                     " finite numbers within 1e4, got '" + Quote(text) + "'");
+                     " finite numbers within 1e4, got " + Quote(text));
   }
   return values;
 }
@@ -342,8 +356,8 @@ void ReadEndEffector(const sdf::Model& model, const Context& context, RobotDescr
   };
   out->end_effector.link = attribute("link");
   if (out->end_effector.link != kRobotWorld && out->FindLink(out->end_effector.link) < 0) {
-    throw ModelError(where + ": link '" + Quote(out->end_effector.link) +
-                     "' is not a link of the model");
+    throw ModelError(where + ": link " + Quote(out->end_effector.link) +
+                     " is not a link of the model");
   }
   if (element->HasAttribute("point")) {
     const std::vector<double> p = Numbers(attribute("point"), where + " point", 3);
@@ -356,8 +370,8 @@ void ReadEndEffector(const sdf::Model& model, const Context& context, RobotDescr
         std::find(out->end_effector.controlled.begin(), out->end_effector.controlled.end(), name) !=
         out->end_effector.controlled.end();
     if (!known.count(name) || repeated) {
-      throw ModelError(where + " controlled: '" + Quote(name) +
-                       "' is not one of x y z roll pitch yaw (each once)");
+      throw ModelError(where + " controlled: " + Quote(name) +
+                       " is not one of x y z roll pitch yaw (each once)");
     }
     out->end_effector.controlled.push_back(name);
   }
@@ -374,13 +388,14 @@ const sdf::Model& TheModel(const sdf::Root& root, const std::string& source) {
     throw ModelError(source + ": the file must hold one <model> (or one <world> with one model)");
   if (model->ModelCount() > 0) {
     throw ModelError(Where(Context{source, "", {}}, model->ModelByIndex(0)->Element()) +
-                     ": model '" + Quote(model->ModelByIndex(0)->Name()) +
-                     "': nested models are not supported");
+                     ": model " + Quote(model->ModelByIndex(0)->Name()) +
+                     ": nested models are not supported");
   }
-  if (model->LinkCount() > static_cast<uint64_t>(kMaxBodies) ||
-      model->JointCount() > static_cast<uint64_t>(kMaxJoints)) {
-    throw ModelError(source + ": more than " + std::to_string(kMaxBodies) + " links or " +
-                     std::to_string(kMaxJoints) + " joints");
+  if (model->LinkCount() > static_cast<uint64_t>(kMaxRobotLinks) ||
+      model->JointCount() > static_cast<uint64_t>(kMaxRobotJoints)) {
+    throw ModelError(source + ": " + std::to_string(model->LinkCount()) + " links and " +
+                     std::to_string(model->JointCount()) + " joints: ccma imports at most " +
+                     std::to_string(kMaxRobotLinks) + " links and " + std::to_string(kMaxRobotJoints) + " joints");
   }
   return *model;
 }

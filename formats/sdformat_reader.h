@@ -31,6 +31,13 @@
 // package://NAME/rest searched from the file's folder upwards; not found ->
 // the file's folder/rest, which the viewer reports missing).
 //
+// Refused before libsdformat sees the file (it would otherwise read another
+// file or run out of memory): anything but the plain XML of
+// formats/internal/robot_xml.h with one <sdf> root (at most 100 deep, 100,000
+// elements), any <include> (the only element that makes libsdformat open a
+// file), and a file whose elements would take libsdformat more than
+// kMaxSdformatMegabytes (formats/internal/sdformat_cost.h: about 700 links).
+//
 // Errors: ModelError. libsdformat's rejections are quoted (its first three),
 //   FILE: libsdformat: <message> [line N]; ...
 // the reader's own findings name file, line and element:

@@ -11,10 +11,11 @@
 #include <tinyxml.h>
 #include <urdf_parser/urdf_parser.h>
 
+#include "ccma/internal/format.h"
 #include "ccma/limits.h"
 #include "formats/closure_file.h"
 #include "formats/internal/mesh_paths.h"
-#include "formats/internal/xml_nesting.h"
+#include "formats/internal/robot_xml.h"
 #include "formats/model_loader.h"
 
 namespace ccma {
@@ -48,10 +49,11 @@ XmlIndex IndexXml(const std::string& text, const std::string& source) {
       index.ranged.insert(name);
     }
   }
-  if (index.links.size() > static_cast<std::size_t>(kMaxBodies) ||
-      index.joints.size() > static_cast<std::size_t>(kMaxJoints)) {
-    throw ModelError(source + ": more than " + std::to_string(kMaxBodies) + " links or " +
-                     std::to_string(kMaxJoints) + " joints");
+  if (index.links.size() > static_cast<std::size_t>(kMaxRobotLinks) ||
+      index.joints.size() > static_cast<std::size_t>(kMaxRobotJoints)) {
+    throw ModelError(source + ": " + std::to_string(index.links.size()) + " links and " +
+                     std::to_string(index.joints.size()) + " joints: ccma imports at most " +
+                     std::to_string(kMaxRobotLinks) + " links and " + std::to_string(kMaxRobotJoints) + " joints");
   }
   return index;
 }
@@ -71,18 +73,29 @@ class CapturedErrors final : public console_bridge::OutputHandler {
   std::string first_;
 };
 
+// urdfdom's message for ours: it quotes names from the file, so escaped as
+// Printable does (ccma/internal/format.h), at most 200 bytes.
+std::string LibraryText(const std::string& text) {
+  std::string out;
+  for (std::size_t i = 0; i < text.size() && i < 200; i += kQuotedChars) out += Printable(text.substr(i, kQuotedChars));
+  return text.size() > 200 ? out + "..." : out;
+}
+
 urdf::ModelInterfaceSharedPtr ParseUrdf(const std::string& text, const std::string& source) {
   CapturedErrors errors;
   urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(text);
   if (!model) {
-    throw ModelError(source + ": not a valid URDF: " + (errors.first().empty() ? "urdfdom rejected it" : errors.first()));
+    // urdfdom's messages quote names from the file: printable, cut.
+    throw ModelError(source + ": not a valid URDF: " +
+                     (errors.first().empty() ? "urdfdom rejected it" : LibraryText(errors.first())));
   }
   return model;
 }
 
-std::string Where(const XmlIndex& index, const std::string& source, const std::string& element) {
-  const auto it = index.line.find(element);
-  return source + (it == index.line.end() ? "" : ":" + std::to_string(it->second)) + ": " + element;
+// "source:LINE: joint 'NAME'" (kind: "link" or "joint"), the name quoted.
+std::string Where(const XmlIndex& index, const std::string& source, const std::string& kind, const std::string& name) {
+  const auto it = index.line.find(kind + " " + name);
+  return source + (it == index.line.end() ? "" : ":" + std::to_string(it->second)) + ": " + kind + " " + Quote(name);
 }
 
 // A pose, checked finite and within the documented magnitudes.
@@ -113,7 +126,7 @@ RobotJointType JointType(const urdf::Joint& joint, const std::string& where) {
 
 RobotJoint ReadJoint(const urdf::Joint& j, const Eigen::Isometry3d& X_WP, const XmlIndex& index,
                  const std::string& source) {
-  const std::string where = Where(index, source, "joint " + j.name);
+  const std::string where = Where(index, source, "joint", j.name);
   RobotJoint joint;
   joint.name = j.name;
   joint.type = JointType(j, where);
@@ -189,7 +202,7 @@ void WalkTree(const urdf::ModelInterface& urdf, const XmlIndex& index, const std
     link.name = name;
     link.X_WL = X_WL.at(name);
     link.line = index.line.at("link " + name);
-    AddMeshes(*urdf.getLink(name), folder, Where(index, source, "link " + name), &link);
+    AddMeshes(*urdf.getLink(name), folder, Where(index, source, "link", name), &link);
     robot->links.push_back(link);
   }
   for (const std::string& name : index.joints) {
@@ -199,16 +212,24 @@ void WalkTree(const urdf::ModelInterface& urdf, const XmlIndex& index, const std
 
 }  // namespace
 
-RobotDescription ReadUrdf(const std::string& urdf_path, const std::string& closures_path) {
-  std::string text, error;
-  if (!internal::ReadRegularFile(urdf_path, kMaxRobotFileBytes, "URDF file", &text, &error)) throw ModelError(error);
-  internal::CheckXmlNesting(text, urdf_path);
+RobotDescription ReadUrdfFromString(const std::string& text, const std::string& urdf_path) {
+  if (text.size() > kMaxRobotFileBytes) {
+    throw ModelError(urdf_path + ": larger than " + std::to_string(kMaxRobotFileBytes) + " bytes (a URDF file)");
+  }
+  internal::CheckRobotXml(text, urdf_path, "robot", "a URDF");  // before TinyXML: nesting, elements, one <robot>
   const XmlIndex index = IndexXml(text, urdf_path);
   const urdf::ModelInterfaceSharedPtr urdf = ParseUrdf(text, urdf_path);
   RobotDescription robot;
   robot.name = urdf->getName();
   robot.source = urdf_path;
   WalkTree(*urdf, index, urdf_path, internal::AbsoluteFolderOf(urdf_path), &robot);
+  return robot;
+}
+
+RobotDescription ReadUrdf(const std::string& urdf_path, const std::string& closures_path) {
+  std::string text, error;
+  if (!internal::ReadRegularFile(urdf_path, kMaxRobotFileBytes, "URDF file", &text, &error)) throw ModelError(error);
+  RobotDescription robot = ReadUrdfFromString(text, urdf_path);
   if (!closures_path.empty()) ApplyClosureFile(ReadClosureFile(closures_path), &robot);
   return robot;
 }

@@ -15,6 +15,9 @@ namespace ccma {
 // A URDF file is a few hundred kilobytes; this bounds hostile ones.
 constexpr std::size_t kMaxRobotFileBytes = std::size_t{16} << 20;
 
+// Before any XML parser sees it, the file must be plain XML with one <robot>
+// element, at most 100 deep and 100,000 elements (formats/internal/robot_xml.h);
+// at most kMaxRobotLinks links and kMaxRobotJoints joints.
 // Reads `urdf_path` and, unless `closures_path` is empty, its closure file.
 // Link poses are those of the URDF's zero configuration (every joint at 0).
 // The root link is the ground when it is called `world`; otherwise it is
@@ -23,6 +26,12 @@ constexpr std::size_t kMaxRobotFileBytes = std::size_t{16} << 20;
 // the line and the element on a malformed file, an unsupported joint type
 // (floating, or planar other than from the ground) or an unknown name.
 RobotDescription ReadUrdf(const std::string& urdf_path, const std::string& closures_path);
+
+// The URDF part of ReadUrdf for text in memory; `urdf_path` names it in
+// messages and its folder resolves mesh paths (the file is not read). A
+// closure file's text goes through ParseClosureFile and ApplyClosureFile
+// (formats/closure_file.h).
+RobotDescription ReadUrdfFromString(const std::string& text, const std::string& urdf_path);
 
 }  // namespace ccma
 

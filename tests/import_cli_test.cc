@@ -258,7 +258,7 @@ TEST_F(ImportCli, HostileSourcesAreRefusedWithFileLineAndName) {
   floating.replace(floating.find("type=\"revolute\""), 15, "type=\"floating\"");
   ExpectRefused({"import", "--from=" + Write("f.urdf", floating), "--actuated=drive", "--end_effector=upper",
                  "--out=" + Out()},
-                "f.urdf:11: joint shoulder: joint type not supported");
+                "f.urdf:11: joint 'shoulder': joint type not supported");
   std::string deep = "<robot name=\"r\">";
   for (int i = 0; i < 100000; ++i) deep += "<a>";
   ExpectRefused({"import", "--from=" + Write("deep.urdf", deep), "--end_effector=x", "--out=" + Out()},
@@ -267,6 +267,43 @@ TEST_F(ImportCli, HostileSourcesAreRefusedWithFileLineAndName) {
                                                              std::string(kArmOnBase).find("1 2 0"), 5, "nan 2 0")),
                  "--actuated=drive", "--end_effector=upper", "--out=" + Out()},
                 "nan.urdf");
+}
+
+// Issue 34: `<?x >` hid 100,000 nested elements from the nesting check
+// (TinyXML then overflowed the stack) in both formats; names from the file
+// reached the terminal raw (escape sequences, fake lines) and in full; a
+// 100,000-link URDF was read and assembled for seconds before the loader
+// refused "a model file" the user never gave.
+TEST_F(ImportCli, HostileRobotFilesAreRefusedEarlyNamingTheFile) {
+  std::string deep;
+  for (int i = 0; i < 100000; ++i) deep += "<a>";
+  ExpectRefused({"import", "--from=" + Write("hidden.urdf", "<?x >" + deep + "<!-- ?> --><robot name=\"r\"/>"),
+                 "--end_effector=a", "--out=" + Out()},
+                "hidden.urdf:1: expected the root element <robot>, found a processing instruction ('<?')");
+  ExpectRefused({"import", "--from=" + Write("hidden.sdf", "<?x >" + deep + "<!-- ?> --><sdf version=\"1.7\"/>"),
+                 "--end_effector=a", "--out=" + Out()},
+                "hidden.sdf:1: expected the root element <sdf>, found a processing instruction ('<?')");
+  std::string escapes = kArmOnBase;
+  const std::string shoulder = "\"shoulder\" type=\"revolute\"";
+  escapes.replace(escapes.find(shoulder), shoulder.size(), "\"sh&#x1b;[31m&#10;oulder\" type=\"floating\"");
+  ExpectRefused({"import", "--from=" + Write("e.urdf", escapes), "--actuated=drive", "--end_effector=upper",
+                 "--out=" + Out()},
+                "e.urdf:11: joint 'sh\\x1b[31m\\x0aoulder': joint type not supported");
+  ExpectRefused({"import", "--from=" + Write("ok.urdf", kArmOnBase), "--actuated=" + std::string(100000, 'm'),
+                 "--end_effector=upper", "--out=" + Out()},
+                "--actuated: empty or overlong name in 'mmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmm...' (100000 bytes)");
+  std::string chain = "<robot name=\"chain\"><link name=\"l0\"/>";
+  for (int i = 1; i <= 2000; ++i) {
+    const std::string n = std::to_string(i), p = std::to_string(i - 1);
+    chain += "<link name=\"l" + n + "\"/><joint name=\"j" + n + "\" type=\"fixed\"><parent link=\"l" + p +
+             "\"/><child link=\"l" + n + "\"/></joint>";
+  }
+  ExpectRefused({"import", "--from=" + Write("chain.urdf", chain + "</robot>"), "--end_effector=l0", "--out=" + Out()},
+                "chain.urdf: 2001 links and 2000 joints: ccma imports at most 2000 links and 2000 joints");
+  std::string huge = "<robot name=\"huge\">";
+  for (int i = 0; i < 99998; ++i) huge += "<link name=\"l" + std::to_string(i) + "\"/>";
+  ExpectRefused({"import", "--from=" + Write("huge.urdf", huge + "</robot>"), "--end_effector=l0", "--out=" + Out()},
+                "huge.urdf: 99998 links and 0 joints: ccma imports at most 2000 links");
 }
 
 }  // namespace

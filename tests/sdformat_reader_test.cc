@@ -185,6 +185,54 @@ TEST(SdformatReaderTest, OtherBadInputIsRejected) {
   EXPECT_THROW(ReadSdformat(dir, {}), ModelError);
 }
 
+// Issue 34: markup that TinyXML and TinyXML-2 end at different places let a
+// file that ccma's check saw as an empty <sdf> reach libsdformat as a URDF,
+// whose <include> it followed (the included model's links came out; a FIFO
+// hung it), and hid 100,000 nested elements from the nesting check (SIGSEGV).
+TEST(SdformatReaderTest, FilesTheParsersReadDifferentlyAreRefusedBeforeLibsdformat) {
+  const std::string dir = testing::ScratchPath("sdformat_reader", "other");
+  fs::create_directories(dir);
+  std::ofstream(dir + "/model.sdf") << Sdf("<link name=\"stolen\"/>\n");
+  std::ofstream(dir + "/model.config") << "<?xml version=\"1.0\"?><model><name>other</name>"
+                                          "<sdf version=\"1.7\">model.sdf</sdf></model>\n";
+  const std::string bypass = "<?x ><sdf version=\"1.7\"/> <!-- ?> --><robot name=\"r\"><link name=\"a\"/><gazebo>"
+                             "<include merge=\"true\"><uri>" + dir + "</uri></include></gazebo></robot>";
+  EXPECT_NE(Rejection(bypass).find("/tmp/robot.sdf:1: expected the root element <sdf>, found a processing "
+                                   "instruction ('<?')"),
+            std::string::npos)
+      << Rejection(bypass);
+  std::string deep;
+  for (int i = 0; i < 100000; ++i) deep += "<a>";
+  for (const std::string& hidden : {"<?x >" + deep + "<!-- ?> -->" + Sdf(""), "<!x >" + deep + Sdf(""),
+                                    Sdf("<!-- ?> -->" + deep)}) {
+    const std::string message = Rejection(hidden);
+    EXPECT_EQ(message.rfind("/tmp/robot.sdf:", 0), 0u) << message.substr(0, 300);
+    EXPECT_LT(message.size(), 400u);
+  }
+  EXPECT_NE(Rejection("<sdf version=\"1.7\"/>\n<robot name=\"r\"/>").find("/tmp/robot.sdf:2: found a '<' that does "
+                                                                           "not start a tag after the root element"),
+            std::string::npos);
+  EXPECT_NE(Rejection(Sdf("<link name=\"a\"><![CDATA[x]]><include/></link>")).find(":4: <include> is not supported"),
+            std::string::npos);
+}
+
+// Issue 34: libsdformat takes about 0.85 MB per <link> (4,000 took 3.4 GB):
+// a file whose elements would take more than 1 GB is refused before it
+// reads them, with the count and the estimate.
+TEST(SdformatReaderTest, AFileTooLargeForLibsdformatIsRefusedBeforeIt) {
+  std::string links;
+  for (int i = 0; i < 900; ++i) links += "<link name=\"l" + std::to_string(i) + "\"/>";
+  const std::string message = Rejection(Sdf(links));
+  EXPECT_NE(message.find("/tmp/robot.sdf: too large for libsdformat: its 902 elements (900 <link> elements) would "
+                         "take about"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("more than the 850 MB allowed"), std::string::npos) << message;
+  std::string worlds = "<?xml version=\"1.0\"?><sdf version=\"1.7\">";
+  for (int i = 0; i < 200; ++i) worlds += "<world name=\"w" + std::to_string(i) + "\"/>";
+  EXPECT_NE(Rejection(worlds + "</sdf>").find("(200 <world> elements)"), std::string::npos);
+}
+
 TEST(SdformatReaderTest, JointKindsPositionsAndLimits) {
   const RobotDescription robot = ReadSdformatFromString(Sdf(R"(
     <pose>0 0 1 0 0 1.5707963267948966</pose>

@@ -34,11 +34,11 @@ int BodyOf(const std::map<std::string, int>& bodies, const std::string& link) {
 MobileBase Base(const RobotDescription& robot, const RobotJoint& joint, const RobotLink& link) {
   const Eigen::Isometry3d& X = link.X_WL;
   if ((joint.axis_W - Eigen::Vector3d::UnitZ()).norm() > 1e-9 && (joint.axis_W + Eigen::Vector3d::UnitZ()).norm() > 1e-9) {
-    Fail(robot, joint.line, "joint '" + joint.name + "': a planar joint's normal must be the world z axis");
+    Fail(robot, joint.line, "joint " + Quote(joint.name) + ": a planar joint's normal must be the world z axis");
   }
   if (std::abs(X.translation().z()) > 1e-9 || X.linear().col(2).z() < 1 - 1e-12) {
-    Fail(robot, joint.line, "joint '" + joint.name + "': the mobile base link '" + link.name +
-                                "' must have its frame on the ground (z = 0) and upright at home");
+    Fail(robot, joint.line, "joint " + Quote(joint.name) + ": the mobile base link " + Quote(link.name) +
+                                " must have its frame on the ground (z = 0) and upright at home");
   }
   MobileBase base;
   base.name = CcmaName(link.name);
@@ -57,7 +57,7 @@ void AddBodies(const RobotDescription& robot, const std::vector<int>& base_joint
     Body body;
     body.name = CcmaName(link.name);
     if (!names.insert(body.name).second) {
-      Fail(robot, link.line, "link '" + link.name + "': its ccma name '" + body.name + "' is taken by another link");
+      Fail(robot, link.line, "link " + Quote(link.name) + ": its ccma name " + Quote(body.name) + " is taken by another link");
     }
     body.R_WB_home = link.X_WL.linear();
     body.p_WB_home = link.X_WL.translation();
@@ -106,12 +106,12 @@ Joint TreeJoint(const RobotDescription& robot, const RobotJoint& source, const M
   joint.body_a = BodyOf(bodies, source.parent);
   joint.body_b = BodyOf(bodies, source.child);
   if (joint.body_a == -2 || joint.body_b == -2 || joint.body_b == kWorld) {
-    Fail(robot, source.line, "joint '" + source.name + "' connects an unknown link or has the ground as its child");
+    Fail(robot, source.line, "joint " + Quote(source.name) + " connects an unknown link or has the ground as its child");
   }
   Eigen::Vector3d b_W = source.axis2_W;
   if (joint.type == JointType::kUniversal) {
     const double cosine = source.axis_W.dot(b_W);
-    if (std::abs(cosine) > 1e-6) Fail(robot, source.line, "joint '" + source.name + "': universal axes not perpendicular");
+    if (std::abs(cosine) > 1e-6) Fail(robot, source.line, "joint " + Quote(source.name) + ": universal axes not perpendicular");
     b_W = (b_W - cosine * source.axis_W).normalized();
   }
   SetJointGeometry(model, source.X_WJ.translation(), source.axis_W, b_W, &joint);
@@ -132,7 +132,7 @@ Joint ClosureJoint(const RobotDescription& robot, const RobotClosure& c, const M
   joint.type = c.six_d ? JointType::kFixed : JointType::kSpherical;
   joint.body_a = BodyOf(bodies, c.link_a);
   joint.body_b = BodyOf(bodies, c.link_b);
-  if (joint.body_a == -2 || joint.body_b == -2) Fail(robot, c.line, "closure '" + joint.name + "': unknown link");
+  if (joint.body_a == -2 || joint.body_b == -2) Fail(robot, c.line, "closure " + Quote(joint.name) + ": unknown link");
   static const Body kGround;
   const Body& A = joint.body_a == kWorld ? kGround : model.bodies[joint.body_a];
   const Body& B = joint.body_b == kWorld ? kGround : model.bodies[joint.body_b];
@@ -152,16 +152,16 @@ void SplitActuated(const RobotDescription& robot, const std::vector<std::string>
   std::set<std::string> seen;
   for (const std::string& name : actuated) {
     const int j = robot.FindJoint(name);
-    if (j < 0) Fail(robot, 0, "actuated joint '" + name + "': no joint of " + robot.source + " has that name");
-    if (!seen.insert(name).second) Fail(robot, robot.joints[j].line, "joint '" + name + "' is actuated twice");
+    if (j < 0) Fail(robot, 0, "actuated joint " + Quote(name) + ": no joint of " + robot.source + " has that name");
+    if (!seen.insert(name).second) Fail(robot, robot.joints[j].line, "joint " + Quote(name) + " is actuated twice");
     const RobotJointType type = robot.joints[j].type;
     if (type == RobotJointType::kPlanar) {
       bases->push_back(j);
     } else if (type == RobotJointType::kRevolute || type == RobotJointType::kPrismatic) {
       motors->push_back(j);
     } else {
-      Fail(robot, robot.joints[j].line, "joint '" + name +
-                                            "' cannot be actuated (only revolute, prismatic and planar joints can)");
+      Fail(robot, robot.joints[j].line, "joint " + Quote(name) +
+                                            " cannot be actuated (only revolute, prismatic and planar joints can)");
     }
   }
   for (int j = 0; j < static_cast<int>(robot.joints.size()); ++j) {
@@ -194,7 +194,7 @@ void SetEndEffector(const RobotDescription& robot, const ImportOptions& options,
   const Eigen::Vector3d p_L = given ? options.end_effector_point_L : robot.end_effector.point_L;
   if (robot.FindLink(link) < 0 && robot.FindJoint(link) >= 0) link = robot.joints[robot.FindJoint(link)].child;
   const int body = BodyOf(bodies, link);
-  if (body < 0) Fail(robot, 0, "end-effector link '" + link + "': no link of " + robot.source + " has that name");
+  if (body < 0) Fail(robot, 0, "end-effector link " + Quote(link) + ": no link of " + robot.source + " has that name");
   EndEffector& ee = model->end_effector;
   ee.body = body;
   ee.p_B = p_L;
@@ -207,7 +207,7 @@ void SetEndEffector(const RobotDescription& robot, const ImportOptions& options,
   for (const std::string& name : controlled) {
     const auto it = std::find(kEndEffectorComponentNames.begin(), kEndEffectorComponentNames.end(), name);
     if (it == kEndEffectorComponentNames.end()) {
-      Fail(robot, 0, "unknown controlled component '" + name + "' (x, y, z, roll, pitch, yaw)");
+      Fail(robot, 0, "unknown controlled component " + Quote(name) + " (x, y, z, roll, pitch, yaw)");
     }
     bool& component = ee.controlled[it - kEndEffectorComponentNames.begin()];
     // As an actuated joint named twice: a repeated component is a typo, not a request.
@@ -232,7 +232,7 @@ void CheckConnected(const RobotDescription& robot, const Model& model) {
     if (find(i) != find(n)) {
       const int link = robot.FindLink(model.bodies[i].name);
       Fail(robot, link >= 0 ? robot.links[link].line : 0,
-           "link '" + model.bodies[i].name + "' is connected to neither the ground nor a mobile base");
+           "link " + Quote(model.bodies[i].name) + " is connected to neither the ground nor a mobile base");
     }
   }
 }
@@ -243,7 +243,7 @@ void AddJoints(const RobotDescription& robot, const std::vector<int>& motors, co
   std::set<std::string> names;
   const auto add = [&](Joint joint, bool closure) {
     if (!names.insert(joint.name).second) {
-      Fail(robot, joint.line, "joint '" + joint.name + "': its ccma name is taken by another joint");
+      Fail(robot, joint.line, "joint " + Quote(joint.name) + ": its ccma name is taken by another joint");
     }
     model.joints.push_back(joint);
     out->closure.push_back(closure);
@@ -258,6 +258,31 @@ void AddJoints(const RobotDescription& robot, const std::vector<int>& motors, co
     add(joint, false);
   }
   for (const RobotClosure& c : robot.closures) add(ClosureJoint(robot, c, model, bodies), true);
+}
+
+// Links, joints, closures and meshes within the bounds of
+// formats/robot_description.h and ccma/limits.h, so that the model written
+// fits the loader's size (refused here, naming the robot's file, rather than
+// after assembling it).
+void CheckSize(const RobotDescription& robot) {
+  std::size_t meshes = 0;
+  for (const RobotLink& link : robot.links) {
+    meshes += link.meshes.size();
+    if (link.meshes.size() > static_cast<std::size_t>(kMaxMeshesPerBody)) {
+      Fail(robot, link.line, "link " + Quote(link.name) + ": more than " + std::to_string(kMaxMeshesPerBody) +
+                                 " meshes");
+    }
+  }
+  if (robot.links.size() > static_cast<std::size_t>(kMaxRobotLinks) ||
+      robot.joints.size() > static_cast<std::size_t>(kMaxRobotJoints) ||
+      robot.closures.size() > static_cast<std::size_t>(kMaxRobotClosures) ||
+      meshes > static_cast<std::size_t>(kMaxMeshes)) {
+    Fail(robot, 0, std::to_string(robot.links.size()) + " links, " + std::to_string(robot.joints.size()) +
+                       " joints, " + std::to_string(robot.closures.size()) + " closures and " +
+                       std::to_string(meshes) + " meshes: ccma imports at most " + std::to_string(kMaxRobotLinks) +
+                       ", " + std::to_string(kMaxRobotJoints) + ", " + std::to_string(kMaxRobotClosures) + " and " +
+                       std::to_string(kMaxMeshes));
+  }
 }
 
 }  // namespace
@@ -278,6 +303,7 @@ namespace internal {
 
 RobotModel BuildRobotModel(const RobotDescription& robot, const ImportOptions& options) {
   if (robot.links.empty()) Fail(robot, 0, "the robot has no links");
+  CheckSize(robot);
   std::vector<int> bases, motors;
   SplitActuated(robot, options.actuated.empty() ? robot.actuated : options.actuated, &bases, &motors);
   if (bases.empty() && motors.empty()) {

@@ -3,6 +3,7 @@
 #include <string>
 #include <utility>
 
+#include "ccma/internal/format.h"
 #include "formats/closure_file.h"
 #include "formats/model_loader.h"
 
@@ -33,11 +34,11 @@ RobotClosure Closure(const ClosureFile& file, std::size_t i, const RobotDescript
   const std::initializer_list<std::pair<int, std::string>> ends = {{a, loop.frame_a}, {b, loop.frame_b}};
   for (const auto& [link, name] : ends) {
     if (link < 0) {
-      Fail(file, loop.line, key, "unknown frame '" + name + "' (no link or joint of " + robot.source +
+      Fail(file, loop.line, key, "unknown frame " + Quote(name) + " (no link or joint of " + robot.source +
                                      " has that name)");
     }
   }
-  if (a == b) Fail(file, loop.line, key, "both frames are on link '" + robot.links[a].name + "'");
+  if (a == b) Fail(file, loop.line, key, "both frames are on link " + Quote(robot.links[a].name));
   closure.link_a = robot.links[a].name;
   closure.link_b = robot.links[b].name;
   closure.X_WA = robot.links[a].X_WL;
@@ -60,12 +61,12 @@ void MakeUniversal(const std::string& type, RobotJoint* joint) {
 void ApplyOverride(const ClosureFile& file, const ClosureFile::Override& o, RobotDescription* robot) {
   const int j = robot->FindJoint(o.joint);
   if (j < 0) {  // the collection's own loader skips these too; say so
-    robot->warnings.push_back(file.source + ":" + std::to_string(o.line) + ": joint_name: no joint '" + o.joint +
-                              "' in " + robot->source + ", ignored");
+    robot->warnings.push_back(file.source + ":" + std::to_string(o.line) + ": joint_name: no joint " + Quote(o.joint) +
+                              " in " + robot->source + ", ignored");
     return;
   }
   RobotJoint& joint = robot->joints[j];
-  if (joint.type == RobotJointType::kPlanar) Fail(file, o.line, "joint_type", "joint '" + o.joint + "' is planar");
+  if (joint.type == RobotJointType::kPlanar) Fail(file, o.line, "joint_type", "joint " + Quote(o.joint) + " is planar");
   if (o.type == "SPHERICAL") {
     joint.type = RobotJointType::kSpherical;
     joint.limited = false;
@@ -84,7 +85,7 @@ void ApplyClosureFile(const ClosureFile& file, RobotDescription* robot) {
   for (std::size_t i = 0; i < file.loops.size(); ++i) robot->closures.push_back(Closure(file, i, *robot));
   for (const std::string& name : file.actuated) {
     if (robot->FindJoint(name) < 0) {
-      Fail(file, file.actuated_line, "name_mot", "unknown joint '" + name + "' (not a joint of " + robot->source + ")");
+      Fail(file, file.actuated_line, "name_mot", "unknown joint " + Quote(name) + " (not a joint of " + robot->source + ")");
     }
   }
   robot->actuated = file.actuated;

@@ -65,3 +65,27 @@ def test_repeated_or_unknown_controlled_components_are_refused():
         ccma.import_robot(os.path.join(folder, "robot.urdf"), controlled=["x" * 300], **args)
     with pytest.raises(ValueError, match=r"actuated: empty or overlong name"):
         ccma.import_robot(os.path.join(folder, "robot.urdf"), actuated=[""], **args)
+
+
+def test_markup_that_hides_deep_nesting_raises_instead_of_crashing(tmp_path):
+    # Issue 34: TinyXML ends `<?x >` at the first '>', the nesting check used to
+    # skip to the next '?>': 100,000 nested elements after it overflowed the
+    # stack and killed the interpreter.
+    deep = "<a>" * 100000
+    for name, root in (("deep.urdf", '<robot name="r"/>'), ("deep.sdf", '<sdf version="1.7"/>')):
+        path = tmp_path / name
+        path.write_text("<?x >" + deep + "<!-- ?> -->" + root)
+        with pytest.raises(ccma.ModelError, match=name + r":1: expected the root element .* processing instruction"):
+            ccma.import_robot(str(path), end_effector="a")
+
+
+def test_a_long_name_is_quoted_short_with_control_bytes_escaped():
+    folder = os.path.join(ROBOTS, "5bar_linkage")
+    name = "\x1b[31m\nfake line" + "m" * 10_000_000
+    with pytest.raises(ccma.ModelError) as error:
+        ccma.import_robot(os.path.join(folder, "robot.urdf"), closures=os.path.join(folder, "robot.yaml"),
+                          actuated=[name], end_effector="effector")
+    message = str(error.value)
+    assert len(message) < 1000
+    assert "'\\x1b[31m\\x0afake line" in message and f"({len(name)} bytes)" in message
+    assert "\x1b" not in message and "\n" not in message
