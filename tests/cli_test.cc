@@ -382,7 +382,7 @@ TEST(Cli, EachCommandHasItsOwnHelpWithUnits) {
       {"replay", {"model", "waypoints", "out", "noise", "seed", "mocap_noise_m", "mocap_noise_rad",
                   "latency_s", "slip", "kp", "ki", "controller_hz", "max_wheel_speed", "obstacles", "method", "max_step_m",
                   "max_step_rad", "lambda"}},
-      {"view", {"model", "trajectory", "replay", "workspace", "meshes", "color_by", "out", "obstacles"}},
+      {"view", {"model", "trajectory", "replay", "workspace", "meshes", "mesh_root", "color_by", "out", "obstacles"}},
       {"workspace", {"model", "out", "x", "y", "z", "roll", "pitch", "yaw", "resolution", "samples", "seed",
                      "threads", "tile_size", "plot", "obstacles", "store", "method", "max_step_m", "max_step_rad", "lambda"}},
       {"design", {"model", "targets", "out", "vary", "vary_length", "max_change", "min_length", "min_singular_value",
