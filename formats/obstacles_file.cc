@@ -16,6 +16,11 @@ void AddObstaclesFromFile(const std::string& path, Model* model, std::vector<std
   if (!internal::ReadRegularFile(path, kMaxObstacleFileBytes, "obstacles file", &text, &error)) {
     throw ModelError(error);
   }
+  AddObstaclesFromString(text, path, model, warnings);
+}
+
+void AddObstaclesFromString(const std::string& text, const std::string& path, Model* model,
+                            std::vector<std::string>* warnings) {
   const YAML::Node root = internal::ParseYamlText(text, path);
   internal::MagnitudeChecks magnitudes(path);
   const internal::YamlReader r(path, warnings, &magnitudes);

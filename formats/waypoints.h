@@ -36,6 +36,10 @@ class WaypointError : public std::runtime_error {
 // Reads and validates the waypoint file at `path`; throws WaypointError.
 std::vector<Waypoint> LoadWaypoints(const std::string& path);
 
+// The same for the text of a waypoint file already in memory (at most
+// kMaxWaypointFileBytes); `source` names it in messages ("source:line: what").
+std::vector<Waypoint> ParseWaypoints(const std::string& text, const std::string& source);
+
 }  // namespace ccma
 
 #endif  // CCMA_WAYPOINTS_H_
