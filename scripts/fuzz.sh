@@ -85,8 +85,10 @@ build_dir="${CCMA_FUZZ_BUILD_DIR:-$source_dir/build-fuzz}"
 jobs="${CCMA_FUZZ_JOBS:-2}"
 
 # Runs "$@" in the background; while it runs, prints "$label: N s" every
-# $progress_every s, with the last status line of $tick_log when set.
+# $progress_every s, with the last match of $tick_pattern in $tick_log (ninja's
+# "[done/all]", libFuzzer's "#runs ... exec/s" line) when set.
 tick_log=""
+tick_pattern=""
 with_progress() {
   local label="$1"
   shift
@@ -96,7 +98,7 @@ with_progress() {
     sleep 1
     if (( SECONDS >= next )) && kill -0 "$pid" 2>/dev/null; then
       local last=""
-      [[ -n "$tick_log" && -f "$tick_log" ]] && last="$(grep -a '^#[0-9]' "$tick_log" | tail -n 1 || true)"
+      [[ -n "$tick_log" && -f "$tick_log" ]] && last="$(grep -aoE "$tick_pattern" "$tick_log" | tail -n 1 || true)"
       echo "scripts/fuzz.sh: $label: $((SECONDS - start)) s${last:+: $last}"
       next=$((SECONDS + progress_every))
     fi
@@ -118,6 +120,8 @@ binaries=()
 for name in "${chosen[@]}"; do binaries+=("${name}_fuzzer"); done
 echo "scripts/fuzz.sh: building ${binaries[*]} with clang + sanitizers in $build_dir" \
   "(the first time about 10 s of compiling per library file on one core; later runs reuse the build)"
+tick_log="$build_dir/build.log"
+tick_pattern='^\[[0-9]+/[0-9]+\]'
 build() { cmake --build "$build_dir" -j"$jobs" --target "${binaries[@]}" > "$build_dir/build.log" 2>&1; }
 if ! with_progress "building" build; then
   tail -n 40 "$build_dir/build.log" >&2
@@ -147,6 +151,7 @@ for name in "${chosen[@]}"; do
   [[ -n "$dict" ]] && args+=(-dict="$fuzz_dir/$dict")
   echo "scripts/fuzz.sh: $name: ${seconds} s over $work (full output: $log)"
   tick_log="$log"
+  tick_pattern='^#[0-9]+.*'
   set +e
   with_progress "$name" run_fuzzer
   code=$?
