@@ -16,6 +16,15 @@ void AddObstaclesFromFile(const std::string& path, Model* model, std::vector<std
   if (!internal::ReadRegularFile(path, kMaxObstacleFileBytes, "obstacles file", &text, &error)) {
     throw ModelError(error);
   }
+  AddObstaclesFromString(text, path, model, warnings);
+}
+
+void AddObstaclesFromString(const std::string& text, const std::string& path, Model* model,
+                            std::vector<std::string>* warnings) {
+  if (text.size() > kMaxObstacleFileBytes) {
+    throw ModelError(path + ": " + std::to_string(text.size()) + " bytes, more than the " +
+                     std::to_string(kMaxObstacleFileBytes) + " an obstacles file may have");
+  }
   const YAML::Node root = internal::ParseYamlText(text, path);
   internal::MagnitudeChecks magnitudes(path);
   const internal::YamlReader r(path, warnings, &magnitudes);

@@ -19,6 +19,12 @@ namespace ccma {
 // `warnings` (may be null) as the model loader does.
 void AddObstaclesFromFile(const std::string& path, Model* model, std::vector<std::string>* warnings = nullptr);
 
+// The same for the text of an obstacles file already in memory (at most
+// kMaxObstacleFileBytes); `source` names it in messages ("source:line: key:
+// what"). The model is changed only when the whole file is valid.
+void AddObstaclesFromString(const std::string& text, const std::string& source, Model* model,
+                            std::vector<std::string>* warnings = nullptr);
+
 }  // namespace ccma
 
 #endif  // CCMA_FORMATS_OBSTACLES_FILE_H_

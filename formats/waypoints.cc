@@ -145,7 +145,15 @@ std::vector<Waypoint> LoadWaypoints(const std::string& path) {
   if (!internal::ReadRegularFile(path, kMaxWaypointFileBytes, "waypoint file", &text, &error)) {
     throw WaypointError(error);
   }
-  return WaypointParser(path).Parse(text);
+  return ParseWaypoints(text, path);
+}
+
+std::vector<Waypoint> ParseWaypoints(const std::string& text, const std::string& source) {
+  if (text.size() > kMaxWaypointFileBytes) {
+    throw WaypointError(source + ": " + std::to_string(text.size()) + " bytes, more than the " +
+                        std::to_string(kMaxWaypointFileBytes) + " a waypoint file may have");
+  }
+  return WaypointParser(source).Parse(text);
 }
 
 std::string WaypointListError(const std::vector<Waypoint>& waypoints) {

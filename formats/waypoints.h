@@ -47,6 +47,10 @@ std::vector<Waypoint> LoadWaypoints(const std::string& path);
 // No waypoints at all is not an error here (a path with nothing to do).
 std::string WaypointListError(const std::vector<Waypoint>& waypoints);
 
+// The same for the text of a waypoint file already in memory (at most
+// kMaxWaypointFileBytes); `source` names it in messages ("source:line: what").
+std::vector<Waypoint> ParseWaypoints(const std::string& text, const std::string& source);
+
 }  // namespace ccma
 
 #endif  // CCMA_WAYPOINTS_H_

@@ -1,16 +1,18 @@
-// Replays the fuzz corpus through the libFuzzer target, without libFuzzer:
-// built by the ordinary compiler (gcc is fine) whenever tests are built, and
-// registered with CTest as `fuzz_corpus_replay`, so every input the fuzzer
-// ever kept is checked on every test run. Live fuzzing, which needs clang, is
-// fuzz/run_fuzz.sh.
+// Replays a fuzz target's corpus through its entry point, without libFuzzer:
+// built by the ordinary compiler (gcc is fine) for every target of
+// fuzz/targets.cmake whenever tests are built, as fuzz_corpus_replay_<name>
+// and registered with CTest under that name, so every input the fuzzer ever
+// kept is checked on every test run. Live fuzzing, which needs clang, is
+// scripts/fuzz.sh.
 //
-//   fuzz_corpus_replay DIR_OR_FILE...
+//   fuzz_corpus_replay_<name> DIR_OR_FILE...
 //
 // Feeds every regular file of each directory (in name order) or each named
 // file to LLVMFuzzerTestOneInput, which aborts on any bug (an exception other
-// than ModelError, a message without the file name, an inconsistent model).
-// Exits 0 after printing how many inputs ran; 1 when an argument cannot be
-// read or no input was found (an empty corpus would test nothing).
+// than the reader's own error, a message without the source name, a result
+// that breaks the reader's contract). Exits 0 after printing how many inputs
+// ran; 1 when an argument cannot be read or no input was found (an empty
+// corpus would test nothing).
 #include <algorithm>
 #include <chrono>
 #include <cstddef>

@@ -2,9 +2,9 @@
 //
 // Any text must either load or be rejected with ccma::ModelError; any other
 // exception, a crash, a sanitizer report, a leak or a hang is a bug.
-//   fuzz/run_fuzz.sh [seconds]      live fuzzing (clang, sanitizers)
-// The corpus in fuzz/corpus/ is also replayed through this function by every
-// test run (fuzz/corpus_replay.cc, CTest `fuzz_corpus_replay`, any compiler).
+//   scripts/fuzz.sh [seconds] loader      live fuzzing (clang, sanitizers)
+// The corpus in fuzz/corpus_loader/ is also replayed through this function by
+// every test run (fuzz/corpus_replay.cc, CTest `fuzz_corpus_replay_loader`).
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>

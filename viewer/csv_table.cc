@@ -84,6 +84,14 @@ std::string CsvTable::Where(std::size_t row, int col) const {
 CsvTable ReadCsvTable(const std::string& path, const CsvLimits& limits) {
   std::string text, error;
   if (!internal::ReadRegularFile(path, limits.max_bytes, "CSV file", &text, &error)) throw ViewInputError(error);
+  return ParseCsvTable(text, path, limits);
+}
+
+CsvTable ParseCsvTable(const std::string& text, const std::string& path, const CsvLimits& limits) {
+  if (text.size() > limits.max_bytes) {
+    throw ViewInputError(path + ": " + std::to_string(text.size()) + " bytes, more than the " +
+                         std::to_string(limits.max_bytes) + " a CSV file may have");
+  }
   CsvTable t;
   t.path = path;
   std::vector<bool> is_text;

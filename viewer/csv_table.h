@@ -52,6 +52,11 @@ struct CsvTable {
 // file, line and column.
 CsvTable ReadCsvTable(const std::string& path, const CsvLimits& limits);
 
+// The same for the text of a file already in memory; `source` names it in
+// messages and becomes the table's path. Text over limits.max_bytes is
+// refused as the file would be.
+CsvTable ParseCsvTable(const std::string& text, const std::string& source, const CsvLimits& limits);
+
 }  // namespace ccma::viewer
 
 #endif  // CCMA_VIEWER_CSV_TABLE_H_

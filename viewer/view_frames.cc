@@ -13,10 +13,10 @@ namespace {
 
 using Table = CsvTable;
 
-Table ReadTable(const std::string& path) {
-  // A trajectory's clearance_pair (cli.md) names two shapes: text.
-  return ReadCsvTable(path, CsvLimits{kMaxViewFileBytes, kMaxReplaySamples, {"clearance_pair"}});
-}
+// A trajectory's clearance_pair (cli.md) names two shapes: text.
+CsvLimits ViewLimits() { return CsvLimits{kMaxViewFileBytes, kMaxReplaySamples, {"clearance_pair"}}; }
+
+Table ReadTable(const std::string& path) { return ReadCsvTable(path, ViewLimits()); }
 
 // A value that must be present and finite (controls, times).
 double Required(const Table& t, size_t row, int col) {
@@ -65,6 +65,26 @@ Eigen::VectorXd Controls(const Model& model, const Table& t, size_t row, const s
   return u;
 }
 
+// The frames of a trajectory CSV's table (FramesFromTrajectory).
+std::vector<ViewFrame> FramesFromTrajectoryTable(const Model& model, const Table& t) {
+  const std::vector<int> controls = ControlColumns(model, t, "u", true);
+  const int time = t.Find("time_s", true);
+  const std::array<int, 3> target{t.Find("target_x_m", true), t.Find("target_y_m", true), t.Find("target_z_m", true)};
+  const std::array<int, 3> reached{t.Find("x_m", true), t.Find("y_m", true), t.Find("z_m", true)};
+  const int reached_flag = t.Find("reached", false);
+  std::vector<ViewFrame> frames;
+  for (size_t r = 0; r < t.rows.size(); ++r) {
+    ViewFrame f;
+    f.time = Required(t, r, time);
+    f.controls = Controls(model, t, r, controls);
+    f.commanded = Point(t, r, target);
+    f.tracked = Point(t, r, reached);
+    f.flagged = reached_flag >= 0 && t.rows[r][reached_flag] != 1.0;
+    frames.push_back(std::move(f));
+  }
+  return Thin(std::move(frames), MaxViewFrames(model));
+}
+
 }  // namespace
 
 int MaxViewFrames(const Model& model) {
@@ -85,23 +105,12 @@ std::vector<ViewFrame> Thin(std::vector<ViewFrame> frames, int max_frames) {
 }
 
 std::vector<ViewFrame> FramesFromTrajectory(const Model& model, const std::string& csv_path) {
-  const Table t = ReadTable(csv_path);
-  const std::vector<int> controls = ControlColumns(model, t, "u", true);
-  const int time = t.Find("time_s", true);
-  const std::array<int, 3> target{t.Find("target_x_m", true), t.Find("target_y_m", true), t.Find("target_z_m", true)};
-  const std::array<int, 3> reached{t.Find("x_m", true), t.Find("y_m", true), t.Find("z_m", true)};
-  const int reached_flag = t.Find("reached", false);
-  std::vector<ViewFrame> frames;
-  for (size_t r = 0; r < t.rows.size(); ++r) {
-    ViewFrame f;
-    f.time = Required(t, r, time);
-    f.controls = Controls(model, t, r, controls);
-    f.commanded = Point(t, r, target);
-    f.tracked = Point(t, r, reached);
-    f.flagged = reached_flag >= 0 && t.rows[r][reached_flag] != 1.0;
-    frames.push_back(std::move(f));
-  }
-  return Thin(std::move(frames), MaxViewFrames(model));
+  return FramesFromTrajectoryTable(model, ReadTable(csv_path));
+}
+
+std::vector<ViewFrame> FramesFromTrajectoryText(const Model& model, const std::string& text,
+                                                const std::string& source) {
+  return FramesFromTrajectoryTable(model, ParseCsvTable(text, source, ViewLimits()));
 }
 
 std::vector<ViewFrame> FramesFromReplay(const Model& model, const std::string& dir) {

@@ -50,6 +50,11 @@ int MaxViewFrames(const Model& model);
 // line and column) for a bad cell, including a control outside [-1e4, 1e4].
 std::vector<ViewFrame> FramesFromTrajectory(const Model& model, const std::string& csv_path);
 
+// The same for the text of a trajectory CSV already in memory; `source`
+// names it in messages.
+std::vector<ViewFrame> FramesFromTrajectoryText(const Model& model, const std::string& text,
+                                                const std::string& source);
+
 // Samples of a `ccma replay` directory: controls from bases.csv (true poses
 // base<k>_x_m.., actuated joints u_<joint>_.. when present, else home),
 // commanded cmd_x_m.. and tracked x_m.. from end_effector.csv; flagged where
