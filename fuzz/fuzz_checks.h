@@ -10,6 +10,7 @@
 #include <exception>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "ccma/model.h"
 #include "formats/model_loader.h"
@@ -28,22 +29,40 @@ inline void ExpectNamesSource(const std::string& message, const std::string& sou
   if (message.rfind(source, 0) != 0) Fail("message without the source name " + source, message);
 }
 
+// A message is one printable line: a name from the file that holds a
+// terminal escape sequence or a newline must arrive quoted and escaped.
+inline void ExpectOnePrintableLine(const std::string& message) {
+  for (const char c : message) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) Fail("control character in a message", message);
+  }
+}
+
 // Calls read(), which may throw only `Error` (the reader's documented error
-// type, whose message must name `source`); any other exception is a finding.
+// type, whose message must start with one of `sources`, and be one printable
+// line when `one_printable_line`); any other exception is a finding.
 // Returns whether read() returned normally.
 template <typename Error, typename Read>
-bool ReadOrRefuse(const std::string& source, Read read) {
+bool ReadOrRefuse(const std::vector<std::string>& sources, bool one_printable_line, Read read) {
   try {
     read();
     return true;
   } catch (const Error& e) {
-    ExpectNamesSource(e.what(), source);
+    const std::string message = e.what();
+    bool named = false;
+    for (const std::string& source : sources) named = named || message.rfind(source, 0) == 0;
+    if (!named) Fail("message without the source name " + sources.front(), message);
+    if (one_printable_line) ExpectOnePrintableLine(message);
   } catch (const std::exception& e) {
     Fail("unexpected exception", e.what());
   } catch (...) {
     Fail("unexpected non-standard exception");
   }
   return false;
+}
+
+template <typename Error, typename Read>
+bool ReadOrRefuse(const std::string& source, Read read) {
+  return ReadOrRefuse<Error>(std::vector<std::string>{source}, false, read);
 }
 
 // A model file of the repository (path relative to the source tree, e.g.

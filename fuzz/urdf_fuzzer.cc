@@ -14,6 +14,7 @@
 #include <string>
 
 #include "analyses/robot_import.h"
+#include "fuzz/fuzz_checks.h"
 #include "formats/closure_file.h"
 #include "formats/model_loader.h"
 #include "formats/urdf_reader.h"
@@ -26,16 +27,11 @@ constexpr const char* kSeparator = "\n--- closures ---\n";
 // Assembling a large robot is the solver's business, not this target's.
 constexpr std::size_t kMaxImportedLinks = 30;
 
-[[noreturn]] void Bug(const char* what, const std::string& detail) {
-  std::fprintf(stderr, "%s: %s\n", what, detail.c_str());
-  std::abort();
-}
-
 void Run(const std::string& input) {
   const std::size_t split = input.find(kSeparator);
   const std::string urdf = input.substr(0, split);
   ccma::RobotDescription robot = ccma::ReadUrdfFromString(urdf, kUrdf);
-  if (robot.source != kUrdf) Bug("wrong source", robot.source);
+  if (robot.source != kUrdf) ccma_fuzz::Fail("wrong source", robot.source);
   if (split != std::string::npos) {
     const std::string closures = input.substr(split + std::char_traits<char>::length(kSeparator));
     ccma::ApplyClosureFile(ccma::ParseClosureFile(closures, kClosures), &robot);
@@ -44,25 +40,13 @@ void Run(const std::string& input) {
   ccma::ImportOptions options;
   if (!robot.links.empty()) options.end_effector_link = robot.links.back().name;
   const ccma::ImportedRobot imported = ccma::ImportRobot(robot, options);
-  if (imported.model.num_bodies() == 0) Bug("imported a model without bodies", imported.yaml);
+  if (imported.model.num_bodies() == 0) ccma_fuzz::Fail("imported a model without bodies", imported.yaml);
 }
 
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string input(reinterpret_cast<const char*>(data), size);
-  try {
-    Run(input);
-  } catch (const ccma::ModelError& e) {
-    const std::string message = e.what();
-    if (message.rfind(kUrdf, 0) != 0 && message.rfind(kClosures, 0) != 0) Bug("message without the file name", message);
-    for (const char c : message) {
-      if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) Bug("control character in a message", message);
-    }
-  } catch (const std::exception& e) {
-    Bug("unexpected exception", e.what());
-  } catch (...) {
-    Bug("unexpected non-standard exception", "");
-  }
+  ccma_fuzz::ReadOrRefuse<ccma::ModelError>({kUrdf, kClosures}, /*one_printable_line=*/true, [&] { Run(input); });
   return 0;
 }
