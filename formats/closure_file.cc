@@ -6,6 +6,7 @@
 #include "ccma/internal/format.h"
 #include "ccma/limits.h"
 #include "ccma/model.h"
+#include "formats/internal/library_message.h"
 #include "formats/internal/yaml_checks.h"
 #include "formats/internal/yaml_document.h"
 #include "formats/model_loader.h"
@@ -117,7 +118,7 @@ ClosureFile ParseClosureFile(const std::string& text, const std::string& source)
     ReadOverrides(r, root, &file);
     ReadEndEffector(r, root, &file);
   } catch (const YAML::Exception& e) {  // a conversion we did not foresee
-    throw ModelError(internal::WithLine(source, e.mark) + ": " + e.msg);
+    throw ModelError(internal::WithLine(source, e.mark) + ": " + internal::LibraryMessage(e.msg));
   }
   return file;
 }

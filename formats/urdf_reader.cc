@@ -14,6 +14,7 @@
 #include "ccma/internal/format.h"
 #include "ccma/limits.h"
 #include "formats/closure_file.h"
+#include "formats/internal/library_message.h"
 #include "formats/internal/mesh_paths.h"
 #include "formats/internal/robot_xml.h"
 #include "formats/model_loader.h"
@@ -73,21 +74,13 @@ class CapturedErrors final : public console_bridge::OutputHandler {
   std::string first_;
 };
 
-// urdfdom's message for ours: it quotes names from the file, so escaped as
-// Printable does (ccma/internal/format.h), at most 200 bytes.
-std::string LibraryText(const std::string& text) {
-  std::string out;
-  for (std::size_t i = 0; i < text.size() && i < 200; i += kQuotedChars) out += Printable(text.substr(i, kQuotedChars));
-  return text.size() > 200 ? out + "..." : out;
-}
-
 urdf::ModelInterfaceSharedPtr ParseUrdf(const std::string& text, const std::string& source) {
   CapturedErrors errors;
   urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(text);
   if (!model) {
     // urdfdom's messages quote names from the file: printable, cut.
     throw ModelError(source + ": not a valid URDF: " +
-                     (errors.first().empty() ? "urdfdom rejected it" : LibraryText(errors.first())));
+                     (errors.first().empty() ? "urdfdom rejected it" : internal::LibraryMessage(errors.first())));
   }
   return model;
 }

@@ -270,6 +270,15 @@ TEST(ModelLoader, RepeatedKeysNameBothLines) {
   }
 }
 
+// yaml-cpp quotes the offending byte in its own message ("unknown escape
+// character: \x01"): it reaches the user escaped, one printable line (found
+// by fuzzing the closure file).
+TEST(ModelLoader, YamlParserMessagesArePrintable) {
+  const std::string message = ErrorOf(Replace(kValid, "name: tiny", "name: \"a\\\x01" "b\""));
+  EXPECT_EQ(message.rfind("bad.yaml:1: not valid YAML: unknown escape character: \\x01", 0), 0u) << message;
+  for (const char c : message) EXPECT_FALSE(static_cast<unsigned char>(c) < 0x20 || c == 0x7f) << message;
+}
+
 TEST(ModelLoader, EmptyFile) { EXPECT_NE(ErrorOf("").find("empty"), std::string::npos); }
 
 TEST(ModelLoader, LoadsEveryReferenceModel) {

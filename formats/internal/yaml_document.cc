@@ -10,6 +10,7 @@
 #include <yaml-cpp/depthguard.h>
 
 #include "ccma/internal/format.h"
+#include "formats/internal/library_message.h"
 
 #include "formats/model_loader.h"
 
@@ -98,9 +99,9 @@ YAML::Node ParseYamlText(const std::string& text, const std::string& source) {
     throw ModelError(WithLine(source, e.mark) + ": not valid YAML: nested too deeply (" +
                      std::to_string(e.depth()) + " levels)");
   } catch (const YAML::ParserException& e) {
-    throw ModelError(WithLine(source, e.mark) + ": not valid YAML: " + e.msg);
+    throw ModelError(WithLine(source, e.mark) + ": not valid YAML: " + LibraryMessage(e.msg));
   } catch (const YAML::Exception& e) {
-    throw ModelError(WithLine(source, e.mark) + ": cannot read the YAML: " + e.msg);
+    throw ModelError(WithLine(source, e.mark) + ": cannot read the YAML: " + LibraryMessage(e.msg));
   }
 }
 
