@@ -65,24 +65,43 @@ Eigen::VectorXd Controls(const Model& model, const Table& t, size_t row, const s
   return u;
 }
 
-// The frames of a trajectory CSV's table (FramesFromTrajectory).
-std::vector<ViewFrame> FramesFromTrajectoryTable(const Model& model, const Table& t) {
-  const std::vector<int> controls = ControlColumns(model, t, "u", true);
-  const int time = t.Find("time_s", true);
-  const std::array<int, 3> target{t.Find("target_x_m", true), t.Find("target_y_m", true), t.Find("target_z_m", true)};
-  const std::array<int, 3> reached{t.Find("x_m", true), t.Find("y_m", true), t.Find("z_m", true)};
-  const int reached_flag = t.Find("reached", false);
+// Where a table's frames are: the time, the commanded and the tracked point
+// (in `points`), the controls (in `control_table`), and the column that flags
+// a frame (-1 when absent), any value but `unflagged` flagging it.
+struct FrameColumns {
+  int time = -1;
+  std::array<int, 3> commanded{}, tracked{};
+  std::vector<int> controls;
+  int flag = -1;
+  double unflagged = 0;
+};
+
+std::vector<ViewFrame> FramesFromColumns(const Model& model, const Table& points, const Table& control_table,
+                                         const FrameColumns& c) {
   std::vector<ViewFrame> frames;
-  for (size_t r = 0; r < t.rows.size(); ++r) {
+  for (size_t r = 0; r < points.rows.size(); ++r) {
     ViewFrame f;
-    f.time = Required(t, r, time);
-    f.controls = Controls(model, t, r, controls);
-    f.commanded = Point(t, r, target);
-    f.tracked = Point(t, r, reached);
-    f.flagged = reached_flag >= 0 && t.rows[r][reached_flag] != 1.0;
+    f.time = Required(points, r, c.time);
+    f.controls = Controls(model, control_table, r, c.controls);
+    f.commanded = Point(points, r, c.commanded);
+    f.tracked = Point(points, r, c.tracked);
+    f.flagged = c.flag >= 0 && points.rows[r][c.flag] != c.unflagged;
     frames.push_back(std::move(f));
   }
   return Thin(std::move(frames), MaxViewFrames(model));
+}
+
+// The frames of a trajectory CSV's table (FramesFromTrajectory): a frame is
+// flagged when its `reached` is not 1.
+std::vector<ViewFrame> FramesFromTrajectoryTable(const Model& model, const Table& t) {
+  FrameColumns c;
+  c.controls = ControlColumns(model, t, "u", true);
+  c.time = t.Find("time_s", true);
+  c.commanded = {t.Find("target_x_m", true), t.Find("target_y_m", true), t.Find("target_z_m", true)};
+  c.tracked = {t.Find("x_m", true), t.Find("y_m", true), t.Find("z_m", true)};
+  c.flag = t.Find("reached", false);
+  c.unflagged = 1.0;
+  return FramesFromColumns(model, t, t, c);
 }
 
 }  // namespace
@@ -120,22 +139,13 @@ std::vector<ViewFrame> FramesFromReplay(const Model& model, const std::string& d
     throw ViewInputError(dir + ": end_effector.csv has " + std::to_string(ee.rows.size()) +
                          " rows but bases.csv has " + std::to_string(bases.rows.size()));
   }
-  const std::vector<int> controls = ControlColumns(model, bases, "base", false);
-  const int time = ee.Find("time_s", true);
-  const std::array<int, 3> cmd{ee.Find("cmd_x_m", true), ee.Find("cmd_y_m", true), ee.Find("cmd_z_m", true)};
-  const std::array<int, 3> tracked{ee.Find("x_m", true), ee.Find("y_m", true), ee.Find("z_m", true)};
-  const int torn = ee.Find("torn", false);
-  std::vector<ViewFrame> frames;
-  for (size_t r = 0; r < ee.rows.size(); ++r) {
-    ViewFrame f;
-    f.time = Required(ee, r, time);
-    f.controls = Controls(model, bases, r, controls);
-    f.commanded = Point(ee, r, cmd);
-    f.tracked = Point(ee, r, tracked);
-    f.flagged = torn >= 0 && ee.rows[r][torn] != 0.0;
-    frames.push_back(std::move(f));
-  }
-  return Thin(std::move(frames), MaxViewFrames(model));
+  FrameColumns c;  // a frame is flagged when the replay tore the mechanism
+  c.controls = ControlColumns(model, bases, "base", false);
+  c.time = ee.Find("time_s", true);
+  c.commanded = {ee.Find("cmd_x_m", true), ee.Find("cmd_y_m", true), ee.Find("cmd_z_m", true)};
+  c.tracked = {ee.Find("x_m", true), ee.Find("y_m", true), ee.Find("z_m", true)};
+  c.flag = ee.Find("torn", false);
+  return FramesFromColumns(model, ee, bases, c);
 }
 
 }  // namespace ccma::viewer
