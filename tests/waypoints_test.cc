@@ -200,14 +200,15 @@ TEST_F(WaypointFiles, RandomTextIsRejectedOrLoaded) {
 // it refuses is named with its waypoint and column.
 TEST(WaypointList, HoldsListsToTheRulesOfTheFile) {
   const Eigen::Vector3d p(0, 0, 0.6);
+  const Eigen::Vector3d o = Eigen::Vector3d::Zero();  // `{}` would leave an Eigen vector uninitialised
   EXPECT_EQ(WaypointListError({}), "");
-  EXPECT_EQ(WaypointListError({{0, p, {}}, {1, p, {}}, {1, p, {0, 0, 0.1}}}), "");
-  EXPECT_EQ(WaypointListError({{kMaxTime, p, {}}, {kMaxTime, {kMaxMagnitude, 0, -kMaxMagnitude}, {}}}), "");
-  EXPECT_EQ(WaypointListError({{0, p, {}}, {std::nan(""), p, {}}}),
+  EXPECT_EQ(WaypointListError({{0, p, o}, {1, p, o}, {1, p, {0, 0, 0.1}}}), "");
+  EXPECT_EQ(WaypointListError({{kMaxTime, p, o}, {kMaxTime, {kMaxMagnitude, 0, -kMaxMagnitude}, o}}), "");
+  EXPECT_EQ(WaypointListError({{0, p, o}, {std::nan(""), p, o}}),
             "waypoints[1].time (nan) must be a finite number in [-1e+06, 1e+06] (s)");
-  EXPECT_EQ(WaypointListError({{1, p, {}}, {0.5, p, {}}}),
+  EXPECT_EQ(WaypointListError({{1, p, o}, {0.5, p, o}}),
             "waypoints[1].time (0.5) is smaller than waypoints[0].time (1): time goes backwards");
-  EXPECT_EQ(WaypointListError({{0, {0, HUGE_VAL, 0}, {}}}),
+  EXPECT_EQ(WaypointListError({{0, {0, HUGE_VAL, 0}, o}}),
             "waypoints[0].y (inf) must be a finite number in [-10000, 10000] (m)");
   EXPECT_EQ(WaypointListError({{0, p, {0, 2e4, 0}}}),
             "waypoints[0].pitch (20000) must be a finite number in [-10000, 10000] (rad)");
