@@ -12,10 +12,12 @@ ROBOTS = os.path.join(os.path.dirname(__file__), "..", "..", "models", "robots",
 def test_five_bar_imports_assembled_with_source_coordinates(tmp_path):
     folder = os.path.join(ROBOTS, "5bar_linkage")
     out = tmp_path / "5bar.yaml"
-    model = ccma.import_robot(os.path.join(folder, "robot.urdf"), closures=os.path.join(folder, "robot.yaml"),
-                              end_effector="effector", controlled=["x", "y", "z"], out=str(out))
-    assert out.exists()
-    assert model.num_controls == 2
+    result = ccma.import_robot(os.path.join(folder, "robot.urdf"), closures=os.path.join(folder, "robot.yaml"),
+                               end_effector="effector", controlled=["y", "z"], out=str(out))
+    assert out.exists() and result.out == str(out)
+    model = result.new_model
+    assert model.num_controls == 2 and sorted(result.actuated) == ["mot1", "mot2"]
+    assert result.assembled and result.residual_energy < 1e-20 and result.closures == 1
     assert np.allclose(model.home_controls, [0.0, 0.0])
     problem = ccma.ForwardProblem(model)
     result = problem.solve(np.array([0.1, -0.1]))
