@@ -134,8 +134,10 @@ Command ImportCommand() {
           "zero configuration, solved with the motors held; if the loops cannot close so, with the motors\n"
           "free and a warning) and every revolute and prismatic joint carries q_home, so every q ccma\n"
           "reports is the source's joint position. Without --end_effector, the one `ccma export` stored.\n"
-          "Exit 2 naming the file, the element and the name for a malformed source, an unknown name or a\n"
-          "closure that cannot be assembled.",
+          "Without --controlled (and none stored), the end-effector components the motors move at home,\n"
+          "x y z roll pitch yaw in this order, each kept if it raises the rank (said on stderr).\n"
+          "Exit 2 naming the file, the element and the name for a malformed source, an unknown name, a\n"
+          "closure that cannot be assembled, or --controlled components the motors cannot move.",
           {"from", "closures", "actuated", "end_effector", "controlled", "out"}, RunImport};
 }
 

@@ -14,7 +14,10 @@ def import_robot(path, closures=None, actuated=(), end_effector="", point=(0.0, 
     name_mot); actuated: joint names (URDF default: the closure file's name_mot);
     end_effector: the link that carries it (default: the one `ccma export` stored) and
     point its controlled point in that link's frame [m]; controlled: components among
-    x, y, z, roll, pitch, yaw (default all six). out: also write the model file there
+    x, y, z, roll, pitch, yaw (default: the ones `ccma export` stored, else those the
+    motors move at home, translations first, as `ccma import` chooses them; the model's
+    `controlled` lists them); components the motors cannot move independently at home
+    raise ccma.ModelError naming those they move. out: also write the model file there
     (replaced atomically, never through a planted link). Every joint's q equals the
     source's joint position (q_home). Mesh paths are written relative to the folder of
     `out` (without `out`: of the robot file), so that the model and its meshes move

@@ -72,7 +72,8 @@ void BindImport(py::module_& m) {
         "SDFormat file into a Model assembled at home, as `ccma import` (docs/import.md): "
         "actuated: joint names (URDF default: the closure file's name_mot); end_effector: the "
         "link carrying it and point its controlled point in that link's frame [m]; controlled: "
-        "components (default all six); model_folder: the folder the model file will be written to "
+        "components (default: the stored ones, else those the motors move at home, translations first; "
+        "refused when the motors cannot move them); model_folder: the folder the model file will be written to "
         "(mesh paths are written relative to it; default the robot file's folder). Returns (Model, model file text). Every joint's q "
         "equals the source's joint position (q_home). Raises ccma.ModelError naming the file, "
         "the element and the name.");
