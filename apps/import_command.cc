@@ -20,7 +20,6 @@
 #include "formats/sdformat_reader.h"
 #include "formats/urdf_reader.h"
 
-DECLARE_string(from);
 DEFINE_string(closures, "", "import: the URDF's closure file (closed_loop, type, name_mot; docs/import.md) [path]");
 DEFINE_string(actuated, "", "import: the actuated joints, comma-separated (URDF: overrides name_mot) [names]");
 DEFINE_string(end_effector, "",
