@@ -3,6 +3,7 @@
 // home to the assembled configuration and write it as a model file.
 #include "analyses/robot_import.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -11,6 +12,7 @@
 
 #include "analyses/internal/import_mesh_paths.h"
 #include "analyses/internal/robot_model_builder.h"
+#include "analyses/moved_components.h"
 #include "ccma/internal/constraint_set.h"
 #include "ccma/internal/format.h"
 #include "ccma/joint_coordinates.h"
@@ -159,6 +161,43 @@ State Assemble(const internal::RobotModel& built, const ForwardOptions& options,
   return AssembleByContinuation(built, options, energy);
 }
 
+// "x y z" for the components set in `components`.
+std::string ComponentNames(const ComponentSet& components) {
+  std::string names;
+  for (int c = 0; c < 6; ++c) {
+    if (components[c]) names += std::string(names.empty() ? "" : " ") + kEndEffectorComponentNames[c];
+  }
+  return names;
+}
+
+// The controlled components at home (analyses/moved_components.h): the given
+// ones, refused when the controls cannot move them independently there; the
+// stored ones, kept (the exported model's own), with a warning in that case;
+// else the ones the controls move, translations first. An end-effector the
+// controls do not move at all is refused unless its components are stored.
+void SetControlled(const internal::RobotModel& built, const std::string& source, Model* home,
+                   std::vector<std::string>* warnings) {
+  using Controlled = internal::RobotModel::Controlled;
+  ComponentSet& controlled = home->end_effector.controlled;
+  const MovedComponents moved = AnalyzeMovedComponents(*home, State::Home(*home), home->home_controls(), controlled);
+  const int count = static_cast<int>(std::count(controlled.begin(), controlled.end(), true));
+  if (moved.rank == 0 && built.controlled != Controlled::kStored) {
+    throw ModelError(source + ": the controls move no component of the end-effector " +
+                     Quote(home->bodies[home->end_effector.body].name) + " at home: choose another end-effector link");
+  }
+  const std::string cannot = "the controls cannot move the controlled components " + ComponentNames(controlled) +
+                             " independently at home (rank " + std::to_string(moved.given_rank) + " of " +
+                             std::to_string(count) + "): they move " + std::to_string(moved.rank) +
+                             " end-effector DOF, for example " + ComponentNames(moved.chosen);
+  if (built.controlled == Controlled::kGiven && moved.given_rank < count) {
+    throw ModelError(source + ": " + cannot + " (the default when none are given)");
+  }
+  if (built.controlled == Controlled::kStored && moved.given_rank < count) {
+    warnings->push_back(source + ": the stored end-effector components: " + cannot);
+  }
+  if (built.controlled == Controlled::kToChoose) controlled = moved.chosen;
+}
+
 }  // namespace
 
 ImportedRobot ImportRobot(const RobotDescription& robot, const ImportOptions& options) {
@@ -187,6 +226,11 @@ ImportedRobot ImportRobot(const RobotDescription& robot, const ImportOptions& op
   Model home = Rehome(built, assembled, motors_held);
   CheckLimits(home, robot.source);
   ImportedRobot out;
+  SetControlled(built, robot.source, &home, &out.warnings);
+  out.controlled_chosen = built.controlled == internal::RobotModel::Controlled::kToChoose;
+  for (int c = 0; c < 6; ++c) {
+    if (home.end_effector.controlled[c]) out.controlled.push_back(kEndEffectorComponentNames[c]);
+  }
   const std::string folder = options.model_folder.empty()
                                  ? std::filesystem::absolute(robot.source).parent_path().string()
                                  : options.model_folder;

@@ -12,6 +12,13 @@
 // closed so, with the motors free, and a warning); every revolute and
 // prismatic joint gets q_home = its source joint position there, so every q
 // ccma reports is the source's joint position.
+//
+// Controlled components: the given ones (ImportOptions), refused when the
+// controls cannot move them independently at home; else the ones the source
+// stores (ccma export: the exported model's own, kept, with a warning when
+// the controls cannot move them); else those the controls move at home
+// (analyses/moved_components.h): a planar five-bar gets its two in-plane
+// translations.
 #ifndef CCMA_ANALYSES_ROBOT_IMPORT_H_
 #define CCMA_ANALYSES_ROBOT_IMPORT_H_
 
@@ -32,7 +39,9 @@ struct ImportOptions {
   // else an error.
   std::string end_effector_link;
   Eigen::Vector3d end_effector_point_L = Eigen::Vector3d::Zero();  // in the link frame [m]
-  // Controlled components (x y z roll pitch yaw); empty: the stored ones or all six.
+  // Controlled components (x y z roll pitch yaw); empty: the ones stored in
+  // the source (ccma export), else the ones the controls move at home,
+  // chosen translations first (analyses/moved_components.h).
   std::vector<std::string> controlled;
   std::string model_name;  // name of the written model; empty: the robot's
   // The folder the model file will be written to: mesh paths are written
@@ -49,6 +58,8 @@ struct ImportedRobot {
   double residual_energy = 0;  // E at home of `model` [m^2]
   int closures = 0;  // independent loops (joints + bases - bodies)
   std::vector<std::string> actuated;  // ccma names, in control order (bases first)
+  std::vector<std::string> controlled;  // the model's controlled components, x y z roll pitch yaw order
+  bool controlled_chosen = false;       // true when ImportRobot chose them (none given or stored)
   std::vector<std::string> warnings;  // e.g. the motors had to move to close the loops
 };
 
@@ -56,7 +67,9 @@ struct ImportedRobot {
 // actuated joint or end-effector link, a joint type that cannot be actuated,
 // a link connected to neither the ground nor a base, a closure that cannot
 // be assembled (its residual), a joint whose assembled position lies outside
-// its limits.
+// its limits, controlled components the controls cannot move independently
+// at home (naming the ones they move), an end-effector the controls do not
+// move at all (unless the source stores its components).
 ImportedRobot ImportRobot(const RobotDescription& robot, const ImportOptions& options);
 
 }  // namespace ccma

@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <sstream>
 
@@ -67,6 +68,35 @@ Eigen::VectorXd ParseNumberList(const std::string& text, const std::string& flag
   }
   if (values.empty()) throw UsageError("--" + flag + ": no numbers given");
   return Eigen::Map<Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
+}
+
+namespace {
+
+std::string ShellWord(const std::string& word) {
+  const std::string plain = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_@%+=:,./-";
+  if (!word.empty() && word.find_first_not_of(plain) == std::string::npos) return word;
+  bool printable = true;
+  for (const char c : word) printable = printable && static_cast<unsigned char>(c) >= 0x20 && c != 0x7f;
+  std::string out;
+  if (printable) {  // '...' keeps everything; a ' inside is closed, escaped and reopened
+    for (const char c : word) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return "'" + out + "'";
+  }
+  for (const char c : word) {
+    const unsigned char b = static_cast<unsigned char>(c);
+    char escaped[8];
+    std::snprintf(escaped, sizeof escaped, "\\x%02x", b);
+    out += b >= 0x20 && b < 0x7f && c != '\\' && c != '\'' ? std::string(1, c) : std::string(escaped);
+  }
+  return "$'" + out + "'";
+}
+
+}  // namespace
+
+std::string CommandLineForShell() {
+  std::string line;
+  for (const std::string& word : gflags::GetArgvs()) line += (line.empty() ? "" : " ") + ShellWord(word);
+  return line;
 }
 
 std::string RequireFlag(const std::string& value, const std::string& flag,

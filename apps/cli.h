@@ -31,6 +31,12 @@ Eigen::VectorXd ParseNumberList(const std::string& text, const std::string& flag
 std::string RequireFlag(const std::string& value, const std::string& flag,
                         const std::string& command);
 
+// The command line that started this process (main.cc hands its argv to
+// gflags::SetArgv), each word quoted for a shell where it needs it: 'a b',
+// and bash's $'\xNN' for bytes outside printable ASCII, so that it can be
+// printed as "run this again" and pasted back.
+std::string CommandLineForShell();
+
 }  // namespace ccma::cli
 
 #endif  // CCMA_APPS_CLI_H_

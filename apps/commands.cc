@@ -17,6 +17,17 @@ namespace {
 
 const std::vector<std::string> kControlFlags = {"method", "max_step_m", "max_step_rad", "lambda"};
 
+// --mocap_noise_m/_rad where there is no --noise to override (statics, design).
+const std::map<std::string, std::string> kPoseNoiseHelp = {
+    {"mocap_noise_m", "the bases' pose noise sigma on x and y, for the end-effector's covariance (default 0.001) [m]"},
+    {"mocap_noise_rad", "the bases' pose noise sigma on the heading, for the end-effector's covariance (default 0.003) "
+                        "[rad]"}};
+
+std::map<std::string, std::string> WithPoseNoiseHelp(std::map<std::string, std::string> help) {
+  help.insert(kPoseNoiseHelp.begin(), kPoseNoiseHelp.end());
+  return help;
+}
+
 std::vector<std::string> Concat(std::vector<std::string> a, const std::vector<std::string>& b) {
   a.insert(a.end(), b.begin(), b.end());
   return a;
@@ -43,7 +54,9 @@ Command SimulateCommand() {
           "home, or the configuration and controls in a JSON document printed by `ccma simulate` or\n"
           "`ccma control` (--from; then --controls defaults to that document's controls, so the result is\n"
           "reproduced exactly). Warns on stderr when not assembled, not converged or a branch jump.",
-          {"model", "controls", "from", "obstacles"}, RunSimulate};
+          {"model", "controls", "from", "obstacles"}, RunSimulate,
+          {{"from", "start from the configuration and controls of a JSON document printed by `ccma simulate` or "
+                    "`ccma control` instead of home (at most 4 MiB, nested at most 64 levels) [path]"}}};
 }
 
 Command ControlCommand() {
@@ -69,14 +82,15 @@ Command ControlCommand() {
 
 Command TrajectoryCommand() {
   return {"trajectory", "follow end-effector waypoints; one CSV row per control step",
-          "ccma trajectory --model=FILE --waypoints=FILE.csv --out=FILE.csv [--controls=...] [control flags]\n"
+          "ccma trajectory --model=FILE --waypoints=FILE.csv --out=FILE.csv [--controls=...] [--obstacles=FILE]\n"
+          "                [--method=lm|bfgs] [--max_step_m=0.01] [--max_step_rad=0.005] [--lambda=0.5]\n"
           "                [singularity and secondary flags, as ccma control]",
           "Follows end-effector waypoints (docs/waypoints.md) in small control steps and writes one CSV row\n"
           "per step (header names carry units). Stops at the first waypoint it cannot reach and warns.\n"
           "Prints the conditioning along the path (smallest singular value of dX/du, pivot ratio of\n"
           "dG/ds); the singularity barriers and secondary objectives act at every step as in ccma control.",
           Concat(Concat({"model", "waypoints", "out", "controls", "obstacles"}, SecondaryFlagNames()), kControlFlags),
-          RunTrajectory};
+          RunTrajectory, {{"out", "the CSV to write, one row per control step [path]"}}};
 }
 
 Command PlanCommand() {
@@ -94,7 +108,7 @@ Command PlanCommand() {
           "trajectory. Models with differential bases are refused (exit 2).",
           {"model", "waypoints", "out", "controls", "obstacles", "plan_iterations", "path_weight",
            "smoothness_weight", "travel_weight", "max_step_m", "max_step_rad", "lambda"},
-          RunPlan};
+          RunPlan, {{"out", "the CSV to write, one row per step, as ccma trajectory's [path]"}}};
 }
 
 Command StaticsCommand() {
@@ -112,7 +126,7 @@ Command StaticsCommand() {
           "allow here. ee_covariance: the end-effector pose's 6x6 covariance from the bases'\n"
           "pose noise (the replay's motion-capture model) through dX/du. Warns when not assembled,\n"
           "unbalanced, indeterminate or beyond a limit.",
-          {"model", "controls", "wrench", "mocap_noise_m", "mocap_noise_rad", "obstacles"}, RunStatics};
+          {"model", "controls", "wrench", "mocap_noise_m", "mocap_noise_rad", "obstacles"}, RunStatics, kPoseNoiseHelp};
 }
 
 Command GenerateCommand() {
@@ -121,7 +135,7 @@ Command GenerateCommand() {
           "Writes a generated model, validated before it is written: a Stewart-like CCMA with N mobile\n"
           "bases (the family of 6dof_six_agents), or with --kind=stewart_gough an N-leg UPS platform on\n"
           "the ground with actuated prismatic legs and no mobile base.",
-          {"agents", "kind", "out"}, RunGenerate};
+          {"agents", "kind", "out"}, RunGenerate, {{"out", "the model file to write (YAML) [path]"}}};
 }
 
 Command ImportCommand() {
@@ -134,9 +148,14 @@ Command ImportCommand() {
           "zero configuration, solved with the motors held; if the loops cannot close so, with the motors\n"
           "free and a warning) and every revolute and prismatic joint carries q_home, so every q ccma\n"
           "reports is the source's joint position. Without --end_effector, the one `ccma export` stored.\n"
-          "Exit 2 naming the file, the element and the name for a malformed source, an unknown name or a\n"
-          "closure that cannot be assembled.",
-          {"from", "closures", "actuated", "end_effector", "controlled", "out"}, RunImport};
+          "Without --controlled (and none stored), the end-effector components the motors move at home,\n"
+          "x y z roll pitch yaw in this order, each kept if it raises the rank (said on stderr).\n"
+          "Exit 2 naming the file, the element and the name for a malformed source, an unknown name, a\n"
+          "closure that cannot be assembled, or --controlled components the motors cannot move.",
+          {"from", "closures", "actuated", "end_effector", "controlled", "out"}, RunImport,
+          {{"from", "the robot file: URDF (.urdf, .xml) or SDFormat (.sdf), at most 16 MiB [path]"},
+           {"out", "the model file to write (YAML); mesh paths are written relative to its folder [path]"}}};
+
 }
 
 Command BenchCommand() {
@@ -146,7 +165,8 @@ Command BenchCommand() {
           "and BFGS with implicit-function and finite-difference gradients, the warm forward solve and the\n"
           "Jacobians, all in one run; medians and p95. --out writes per-step CSVs, tables and plots (moved\n"
           "into DIR at the end: a link planted at one of their names is replaced, never followed).",
-          {"model", "all", "models_dir", "scaling", "steps", "seed", "out"}, RunBench};
+          {"model", "all", "models_dir", "scaling", "steps", "seed", "out"}, RunBench,
+          {{"out", "folder for the per-step CSVs, tables and plots, created if missing (default: no files) [path]"}}};
 }
 
 Command ReplayCommand() {
@@ -161,13 +181,13 @@ Command ReplayCommand() {
           Concat({"model", "waypoints", "out", "noise", "seed", "mocap_noise_m", "mocap_noise_rad", "latency_s",
                   "slip", "kp", "ki", "controller_hz", "max_wheel_speed", "obstacles"},
                  kControlFlags),
-          RunReplay};
+          RunReplay, {{"out", "folder for the CSVs, the RMSE table and the plots, created if missing [path]"}}};
 }
 
 Command ViewCommand() {
   return {"view", "write a self-contained 3D HTML view (animated for a trajectory or replay)",
-          "ccma view --model=FILE [--trajectory=FILE.csv | --replay=DIR | --workspace=MAP.csv] [--meshes]\n"
-          "          [--obstacles=FILE.yaml] [--color_by=body|load] --out=FILE.html",
+          "ccma view --model=FILE [--trajectory=FILE.csv | --replay=DIR | --workspace=MAP.csv]\n"
+          "          [--meshes [--mesh_root=DIR,...]] [--obstacles=FILE.yaml] [--color_by=body|load] --out=FILE.html",
           "Writes one self-contained HTML page (three.js inlined; it fetches nothing) that shows the\n"
           "mechanism in 3D: links as capsules between joint points, bases as discs with a heading arrow,\n"
           "joint markers by type, the end-effector's frame, the ground grid, orbit controls. With a\n"
@@ -195,14 +215,15 @@ Command ViewCommand() {
           "force of the joints that touch it [N], on a scale from 0 to the page's largest (JSON max_load,\n"
           "unbalanced_frames, indeterminate_frames); statics beyond its bounds: exit 2.",
           {"model", "trajectory", "replay", "workspace", "meshes", "mesh_root", "color_by", "out", "obstacles"},
-          RunView};
+          RunView, {{"out", "the HTML page to write [path]"}}};
 }
 
 Command WorkspaceCommand() {
   return {"workspace", "map the reachable end-effector poses and their conditioning",
-          "ccma workspace --model=FILE --out=FILE.csv [--x=lo:hi] [--y=..] [--z=..] [--roll=..] [--pitch=..] [--yaw=..]\n"
-          "               [--resolution=11 | --samples=N --seed=1] [--threads=1] [--tile_size=0] [--plot=DIR]\n"
-          "               [--store=DIR] [control flags]",
+          "ccma workspace --model=FILE --out=FILE.csv [--x=lo:hi] [--y=lo:hi] [--z=lo:hi] [--roll=lo:hi]\n"
+          "               [--pitch=lo:hi] [--yaw=lo:hi] [--resolution=11 | --samples=N --seed=1] [--threads=1]\n"
+          "               [--tile_size=0] [--plot=DIR] [--store=DIR] [--obstacles=FILE]\n"
+          "               [--method=lm|bfgs] [--max_step_m=0.01] [--max_step_rad=0.005] [--lambda=0.5]",
           "Workspace map: samples end-effector poses over the given ranges of controlled components (a grid\n"
           "with --resolution points per range, or --samples seeded uniform draws; components not sampled keep\n"
           "their home value) and reaches each by continuation from the nearest already reached sample (or\n"
@@ -220,7 +241,7 @@ Command WorkspaceCommand() {
           Concat({"model", "out", "x", "y", "z", "roll", "pitch", "yaw", "resolution", "samples", "seed", "threads",
                   "tile_size", "plot", "obstacles", "store"},
                  kControlFlags),
-          RunWorkspace};
+          RunWorkspace, {{"out", "the CSV to write, one row per sample [path]"}}};
 }
 
 Command DesignCommand() {
@@ -229,7 +250,7 @@ Command DesignCommand() {
           "            [--vary_length=ANCHOR:JOINT,...] [--max_change=0.5] [--min_length=0.02]\n"
           "            [--min_singular_value=0.02] [--target_tolerance=1e-6] [--design_iterations=30]\n"
           "            [--objective=reach|payload|peak_push|ee_std] [--mocap_noise_m=0.001] [--mocap_noise_rad=0.003]\n"
-          "            [control flags]",
+          "            [--method=lm|bfgs] [--max_step_m=0.01] [--max_step_rad=0.005] [--lambda=0.5]",
           "Adjusts the named geometry (joint points in world home coordinates [m], link lengths [m]) so that\n"
           "every target pose of the waypoint CSV (docs/waypoints.md; times ignored) is reachable with margin:\n"
           "control error below --target_tolerance, assembled, joint limits held, smallest singular value of\n"
@@ -244,7 +265,7 @@ Command DesignCommand() {
           Concat({"model", "targets", "out", "vary", "vary_length", "max_change", "min_length", "min_singular_value",
                   "target_tolerance", "design_iterations", "objective", "mocap_noise_m", "mocap_noise_rad"},
                  kControlFlags),
-          RunDesign};
+          RunDesign, WithPoseNoiseHelp({{"out", "the model file to write: the input with the varied points changed [path]"}})};
 }
 
 Command ExportCommand() {
@@ -255,7 +276,8 @@ Command ExportCommand() {
           "SDFormat 1.7 with its loops (links posed at home). `ccma import` of the output gives back the same\n"
           "mechanism: the same end-effector pose at the same controls. Prints {out, format, closures (path or\n"
           "null), links, joints, loops}.",
-          {"model", "format", "out"}, RunExport};
+          {"model", "format", "out"}, RunExport,
+          {{"out", "the URDF or SDFormat file to write (URDF: also its closure file OUT.closures.yaml) [path]"}}};
 }
 
 }  // namespace
@@ -293,12 +315,15 @@ void ParseCommandFlags(const std::vector<std::string>& args, const std::string& 
 
 std::string CommandHelp(const Command& command) {
   std::ostringstream os;
-  os << "usage: " << command.synopsis << "\n\n" << command.description << "\n\nflags:\n";
+  std::string synopsis = command.synopsis;  // continuation lines aligned under the first's "ccma"
+  for (size_t p = synopsis.find('\n'); p != std::string::npos; p = synopsis.find('\n', p + 1)) synopsis.insert(p + 1, 7, ' ');
+  os << "usage: " << synopsis << "\n\n" << command.description << "\n\nflags:\n";
   for (const std::string& name : command.flags) {
     gflags::CommandLineFlagInfo info;
     if (!gflags::GetCommandLineFlagInfo(name.c_str(), &info)) continue;
     const std::string value = info.type == "bool" ? "" : "=" + std::string(info.type == "string" ? "TEXT" : info.type == "double" ? "NUMBER" : "INTEGER");
-    os << "  --" << name << value << "\n      " << info.description;
+    const auto own = command.flag_help.find(name);
+    os << "  --" << name << value << "\n      " << (own != command.flag_help.end() ? own->second : info.description);
     // -1: "not given" (the description says what applies then).
     if (!info.default_value.empty() && info.default_value != "0" && info.default_value != "false" &&
         info.default_value != "-1") {

@@ -8,6 +8,7 @@
 #ifndef CCMA_APPS_COMMANDS_H_
 #define CCMA_APPS_COMMANDS_H_
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,10 @@ struct Command {
   std::string description;  // what it does and prints
   std::vector<std::string> flags;  // accepted flags, in help order
   int (*run)(const std::vector<std::string>& args);
+  // What a shared flag (--from, --out, ...) means for this command, with its
+  // unit in brackets: replaces the flag's own (generic) description in
+  // `ccma NAME --help`, so that no command describes another's use of it.
+  std::map<std::string, std::string> flag_help = {};
 };
 
 // Every sub-command, in help order.

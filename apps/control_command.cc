@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iostream>
 
+#include "analyses/configuration_difference.h"
 #include "apps/cli.h"
 #include "apps/commands.h"
 #include "apps/flags.h"
@@ -48,22 +49,29 @@ PoseTarget TargetFlag(const Model& model, const PoseTarget& home) {
 
 // Do the returned controls, assembled from home the way `ccma simulate
 // --controls=...` does, give the same configuration? Not always: a path can
-// lead to another assembly branch of the same controls.
+// lead to another assembly branch of the same controls. Idle motions (a rod
+// spinning about its axis) are not branches: analyses/configuration_difference.h.
 nlohmann::json CheckReproducibleFromHome(const Model& model, const ControlProblem& control, std::string* warning) {
   ForwardProblem from_home(model);
   const ForwardResult r = from_home.Assemble(control.controls());
-  const double distance = (from_home.end_effector().position - control.forward().end_effector().position).norm();
-  const double state_distance = from_home.state().Minus(control.forward().state()).lpNorm<Eigen::Infinity>();
-  const bool same = r.assembled && state_distance < 1e-6;
+  const ConfigurationDifference difference =
+      CompareConfigurations(model, control.forward().state(), from_home.state(), control.controls());
+  const bool same = r.assembled && difference.same;
   if (!same) {
     *warning += std::string(warning->empty() ? "" : "; ") +
                 "these controls, simulated from home (ccma simulate --controls=...), assemble to another "
-                "configuration (end-effector " + FormatG(distance) + " m away" +
+                "configuration (end-effector " + FormatG(difference.end_effector_distance) + " m away" +
                 (r.assembled ? "" : ", not assembled") +
                 "): the mechanism has several assembly branches here; reproduce this result exactly with "
                 "ccma simulate --from=<this JSON>";
   }
-  return {{"reproducible", same}, {"end_effector_distance_m", distance}, {"max_state_difference", state_distance}};
+  nlohmann::json idle = nlohmann::json::array();
+  for (const int b : difference.idle_bodies) idle.push_back(model.bodies[b].name);
+  return {{"reproducible", same},
+          {"end_effector_distance_m", difference.end_effector_distance},
+          {"end_effector_rotation_rad", difference.end_effector_rotation},
+          {"max_state_difference", difference.max_state_difference},
+          {"idle_bodies", idle}};
 }
 
 }  // namespace

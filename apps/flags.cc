@@ -9,6 +9,7 @@ DEFINE_string(controls, "",
               "(default: the model's home controls)");
 DEFINE_string(waypoints, "", "waypoint CSV: time,x,y,z,roll,pitch,yaw (docs/waypoints.md) [path]");
 DEFINE_string(out, "", "output file or folder (see the command) [path]");
+DEFINE_string(from, "", "input file (see the command) [path]");
 DEFINE_int32(seed, 1, "seed of every random draw [integer >= 0]");
 DEFINE_string(method, "lm", "control outer loop: lm (Levenberg-Marquardt) or bfgs (the paper's) [lm|bfgs]");
 DEFINE_double(max_step_m, 0.010, "path step: end-effector translation per control step, 1e-6..1000 [m]");

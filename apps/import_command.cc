@@ -20,13 +20,14 @@
 #include "formats/sdformat_reader.h"
 #include "formats/urdf_reader.h"
 
-DECLARE_string(from);
 DEFINE_string(closures, "", "import: the URDF's closure file (closed_loop, type, name_mot; docs/import.md) [path]");
 DEFINE_string(actuated, "", "import: the actuated joints, comma-separated (URDF: overrides name_mot) [names]");
 DEFINE_string(end_effector, "",
               "import: the link carrying the end-effector, optionally with the controlled point in that "
               "link's frame: LINK[:px,py,pz] [name[:m,m,m]]");
-DEFINE_string(controlled, "", "import: the controlled components, default all six [x,y,z,roll,pitch,yaw]");
+DEFINE_string(controlled, "",
+              "import: the controlled components; default the ones the controls move at home, translations "
+              "first [x,y,z,roll,pitch,yaw]");
 
 namespace ccma::cli {
 namespace {
@@ -82,6 +83,12 @@ int RunImport(const std::vector<std::string>& args) {
   for (const std::string& warning : robot.warnings) std::cerr << "ccma import: warning: " << warning << "\n";
   const ImportedRobot imported = ImportRobot(robot, options);
   for (const std::string& warning : imported.warnings) std::cerr << "ccma import: warning: " << warning << "\n";
+  if (imported.controlled_chosen) {
+    std::string names;
+    for (const std::string& name : imported.controlled) names += (names.empty() ? "" : ",") + name;
+    std::cerr << "ccma import: controlled components chosen: " << names << " (the controls move "
+              << imported.controlled.size() << " end-effector DOF at home; choose others with --controlled)\n";
+  }
   out.stream() << imported.yaml;
   out.Commit();
   nlohmann::json summary = {{"out", out_path},
@@ -89,6 +96,8 @@ int RunImport(const std::vector<std::string>& args) {
                             {"joints", static_cast<int>(imported.model.joints.size())},
                             {"closures", imported.closures},
                             {"actuated", imported.actuated},
+                            {"controlled", imported.controlled},
+                            {"controlled_chosen", imported.controlled_chosen},
                             {"assembled", true},
                             {"residual_energy", imported.residual_energy},
                             {"controls", ToJson(imported.model.home_controls())}};

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include <gflags/gflags.h>
 #include <glog/logging.h>
 
 #include "apps/cli.h"
@@ -35,6 +36,7 @@ int Dispatch(const ccma::cli::Command& command, const std::vector<std::string>& 
 
 int main(int argc, char** argv) {
   google::InitGoogleLogging(argv[0]);
+  gflags::SetArgv(argc, const_cast<const char**>(argv));  // for CommandLineForShell (cli.h)
   FLAGS_minloglevel = google::GLOG_ERROR;  // Ceres' own chatter stays quiet
   if (argc < 2) {
     std::cerr << ccma::cli::GlobalHelp();

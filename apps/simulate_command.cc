@@ -10,11 +10,6 @@
 #include "apps/json_output.h"
 #include "ccma/internal/format.h"
 
-DEFINE_string(from, "",
-              "simulate: start from the configuration and controls of a JSON document printed by `ccma "
-              "simulate` or `ccma control` instead of home (at most 4 MiB, nested at most 64 levels); "
-              "import: the robot file, URDF (.urdf) or SDFormat (.sdf) [path]");
-
 namespace ccma::cli {
 namespace {
 

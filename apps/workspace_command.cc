@@ -17,6 +17,7 @@
 #include "apps/cli.h"
 #include "apps/commands.h"
 #include "apps/flags.h"
+#include "apps/interrupt_watch.h"
 #include "apps/json_output.h"
 #include "apps/output_file.h"
 #include "apps/plots.h"
@@ -206,6 +207,20 @@ nlohmann::json SummaryJson(const Model& model, const WorkspaceOptions& options, 
   return out;
 }
 
+// The map; with a store, Ctrl-C (or SIGTERM) first says on stderr what the
+// store keeps and how to resume, then ends the run as the signal would.
+WorkspaceResult ComputeWithStore(const Model& model, const WorkspaceOptions& options, WorkspaceStore* store) {
+  if (store == nullptr) return ComputeWorkspace(model, options, TerminalProgress(), nullptr);
+  const InterruptWatch watch([store](int signal_number) {
+    const int kept = store->Freeze();
+    std::cerr << (isatty(STDERR_FILENO) != 0 ? "\n" : "") << "ccma workspace: "
+              << (signal_number == SIGINT ? "interrupted" : "terminated") << ": " << kept << " of " << store->tiles()
+              << " tiles of the map are finished and kept in the store " << Quote(FLAGS_store)
+              << "; the same command again resumes from them:\n  " << CommandLineForShell() << std::endl;
+  });
+  return ComputeWorkspace(model, options, TerminalProgress(), store);
+}
+
 }  // namespace
 
 int RunWorkspace(const std::vector<std::string>& args) {
@@ -225,7 +240,7 @@ int RunWorkspace(const std::vector<std::string>& args) {
     store = std::make_unique<WorkspaceStore>(FLAGS_store, model, StoreKey(model_path, options),
                                              WorkspaceTiles(model, options));
   }
-  const WorkspaceResult result = ComputeWorkspace(model, options, TerminalProgress(), store.get());
+  const WorkspaceResult result = ComputeWithStore(model, options, store.get());
   WriteCsv(model, result, file.stream());
   file.Commit();
 

@@ -105,6 +105,8 @@ bool WorkspaceStore::Load(int tile, WorkspaceTileResult* out) {
   }
   if (!kept) {
     Warn("'" + path + "' is damaged (" + why + "); computing the tile again");
+    std::lock_guard<std::mutex> lock(mutex_);
+    damaged_.insert(tile);
     return false;
   }
   *out = std::move(*kept);
@@ -115,11 +117,29 @@ bool WorkspaceStore::Load(int tile, WorkspaceTileResult* out) {
 
 void WorkspaceStore::Save(int tile, const WorkspaceTileResult& result) {
   const std::string path = TilePath(tile);
+  const std::string bytes = EncodeWorkspaceTile(result);
+  std::lock_guard<std::mutex> lock(save_mutex_);
+  if (frozen_) return;
   try {
-    WriteStoreFile(path, EncodeWorkspaceTile(result));
+    WriteStoreFile(path, bytes);
+    std::lock_guard<std::mutex> lock(mutex_);
+    damaged_.erase(tile);
   } catch (const std::exception&) {
     Warn("could not write '" + path + "' (the map goes on without it)");
   }
+}
+
+int WorkspaceStore::Freeze() {
+  std::lock_guard<std::mutex> save_lock(save_mutex_);
+  frozen_ = true;
+  std::lock_guard<std::mutex> lock(mutex_);
+  int kept = 0;
+  for (int tile = 0; tile < tiles(); ++tile) {
+    struct stat info;
+    const bool file = ::lstat(TilePath(tile).c_str(), &info) == 0 && S_ISREG(info.st_mode);
+    kept += file && damaged_.count(tile) == 0 ? 1 : 0;
+  }
+  return kept;
 }
 
 }  // namespace ccma::cli

@@ -21,6 +21,7 @@
 #define CCMA_APPS_WORKSPACE_STORE_H_
 
 #include <mutex>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,13 @@ class WorkspaceStore final : public WorkspaceTileCache {
   void Save(int tile, const WorkspaceTileResult& result) override;
 
   int loaded() const { return loaded_; }  // tiles read back (not computed)
+  int tiles() const { return static_cast<int>(tiles_.size()); }
+
+  // For a run that is about to end (Ctrl-C): waits for a tile being written
+  // to be in place, stops writing tiles, and returns how many of this map's
+  // tiles the store holds: tile files that are regular files, other than
+  // those this run found damaged (and has not written again).
+  int Freeze();
 
  private:
   std::string TilePath(int tile) const;
@@ -50,7 +58,10 @@ class WorkspaceStore final : public WorkspaceTileCache {
   const Model& model_;
   const std::vector<WorkspaceTile> tiles_;
   int loaded_ = 0;
-  std::mutex mutex_;
+  std::set<int> damaged_;  // tiles found damaged and not written since (under mutex_)
+  bool frozen_ = false;    // under save_mutex_
+  std::mutex mutex_;       // stderr, loaded_ and damaged_
+  std::mutex save_mutex_;  // one tile written at a time, so Freeze counts only whole ones
 };
 
 }  // namespace ccma::cli

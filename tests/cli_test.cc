@@ -1,5 +1,6 @@
 // The `ccma` tool as shared/cli.md fixes it: exit codes, stdout/stderr, keys.
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <map>
 #include <vector>
@@ -404,6 +405,55 @@ TEST(Cli, EachCommandHasItsOwnHelpWithUnits) {
     }
     EXPECT_EQ(listed, expected) << command;
   }
+}
+
+// A flag several commands share is described for the command whose help
+// lists it: no description speaks for another command ("simulate: ..." in
+// import's help) or names a flag this command does not take (--noise, which
+// only replay has, in statics' help).
+TEST(Cli, FlagDescriptionsSpeakForTheirOwnCommand) {
+  const ToolRun global = Ccma("--help");
+  std::vector<std::string> commands;
+  std::istringstream global_lines(global.out);
+  for (std::string line; std::getline(global_lines, line);) {
+    if (line.rfind("  ccma ", 0) == 0) commands.push_back(line.substr(7, line.find(' ', 7) - 7));
+  }
+  ASSERT_GE(commands.size(), 14u) << global.out;
+  std::map<std::string, std::map<std::string, std::string>> described;  // command -> flag -> description
+  for (const std::string& command : commands) {
+    const ToolRun r = Ccma(command + " --help");
+    ASSERT_EQ(r.status, 0) << command;
+    std::istringstream lines(r.out);
+    for (std::string line; std::getline(lines, line);) {
+      if (line.rfind("  --", 0) != 0) continue;
+      std::string description;
+      std::getline(lines, description);
+      described[command][line.substr(4, line.find('=') == std::string::npos ? std::string::npos : line.find('=') - 4)] =
+          description;
+    }
+  }
+  for (const auto& [command, flags] : described) {
+    for (const auto& [flag, description] : flags) {
+      const std::string text = description.substr(description.find_first_not_of(' '));
+      for (const std::string& other : commands) {
+        const bool speaks_for = text.rfind(other + ":", 0) == 0 || text.rfind(other + " --", 0) == 0;
+        EXPECT_FALSE(speaks_for && other != command) << "ccma " << command << " --help: --" << flag << ": " << text;
+      }
+      for (size_t p = text.find("--"); p != std::string::npos; p = text.find("--", p + 2)) {
+        size_t end = p + 2;
+        while (end < text.size() && (std::isalnum(static_cast<unsigned char>(text[end])) || text[end] == '_')) ++end;
+        const std::string named = text.substr(p + 2, end - p - 2);
+        EXPECT_TRUE(named.empty() || flags.count(named) == 1)
+            << "ccma " << command << " --help: --" << flag << " names --" << named << ", which ccma " << command
+            << " does not take: " << text;
+      }
+    }
+  }
+  // The shared --from: a JSON result for simulate, the robot file for import.
+  EXPECT_NE(described["simulate"]["from"].find("JSON"), std::string::npos) << described["simulate"]["from"];
+  EXPECT_EQ(described["simulate"]["from"].find("URDF"), std::string::npos) << described["simulate"]["from"];
+  EXPECT_NE(described["import"]["from"].find("URDF"), std::string::npos) << described["import"]["from"];
+  EXPECT_EQ(described["import"]["from"].find("JSON"), std::string::npos) << described["import"]["from"];
 }
 
 TEST(Cli, VersionPrintsOneLine) {

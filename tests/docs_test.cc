@@ -2,8 +2,8 @@
 //  * docs/cli.md documents every command and every flag that `ccma --help`
 //    and `ccma COMMAND --help` list, each in that command's section, and
 //    mentions no flag a command does not accept;
-//  * docs/cli.md names every JSON key the commands print (normal runs and
-//    the failure cases that add keys such as `warning`);
+//  * (docs/cli.md's JSON keys and generated help blocks are checked by
+//    tests/cli_json_keys_test.py and scripts/update_cli_docs.py --check);
 //  * docs/model_format.md names every key the model loader knows;
 //  * README.md and docs/*.md name only files that are in the repository,
 //    carry no dates or history of past work, and the README stays a front
@@ -29,7 +29,6 @@
 #include <vector>
 
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 namespace {
 
@@ -77,10 +76,6 @@ ToolRun Ccma(const std::vector<std::string>& args) {
   std::remove(out_path.c_str());
   std::remove(err_path.c_str());
   return run;
-}
-
-std::string ModelFlag(const std::string& name) {
-  return std::string("--model=") + CCMA_SOURCE_DIR + "/models/" + name + ".yaml";
 }
 
 std::string DocsDir() {
@@ -400,120 +395,11 @@ TEST(CliDocs, GlobalInvocationsAreDocumented) {
   }
 }
 
-// ---- (c): JSON keys -------------------------------------------------------
-
-bool DocumentsKey(const std::string& doc, const std::string& key) {
-  return doc.find("\"" + key + "\"") != std::string::npos || doc.find("`" + key + "`") != std::string::npos;
-}
-
-// Top-level keys, and the keys of nested objects (one level down; for arrays
-// of objects, of their elements).
-std::set<std::string> Keys(const nlohmann::json& j, bool nested) {
-  std::set<std::string> keys;
-  if (j.is_array()) {
-    for (const auto& e : j) {
-      const std::set<std::string> k = Keys(e, nested);
-      keys.insert(k.begin(), k.end());
-    }
-    return keys;
-  }
-  if (!j.is_object()) return keys;
-  for (auto it = j.begin(); it != j.end(); ++it) {
-    keys.insert(it.key());
-    if (nested && (it.value().is_object() || it.value().is_array())) {
-      const std::set<std::string> k = Keys(it.value(), false);
-      keys.insert(k.begin(), k.end());
-    }
-  }
-  return keys;
-}
-
-void ExpectKeysDocumented(const std::vector<std::string>& args, bool nested) {
-  const ToolRun r = Ccma(args);
-  std::string command_line = "ccma";
-  for (const std::string& a : args) command_line += " " + a;
-  ASSERT_EQ(r.status, 0) << command_line << "\n" << r.err;
-  const nlohmann::json j = nlohmann::json::parse(r.out, nullptr, false);
-  ASSERT_FALSE(j.is_discarded()) << command_line << "\n" << r.out;
-  const std::string doc = ReadDoc("cli.md");
-  const std::set<std::string> keys = Keys(j, nested);
-  EXPECT_FALSE(keys.empty());
-  for (const std::string& key : keys) {
-    EXPECT_TRUE(DocumentsKey(doc, key)) << command_line << " prints the key \"" << key
-                                        << "\", which docs/cli.md does not name (as \"" << key << "\" or `"
-                                        << key << "`)";
-  }
-}
-
-const char* kReducedHome =
-    "0,0.583012702,1.570796327,-0.504903811,-0.291506351,-2.617993878,0.504903811,-0.291506351,-0.523598776";
-
-TEST(CliDocs, CheckKeysAreDocumented) {
-  ExpectKeysDocumented({"check", ModelFlag("4dof_reduced")}, true);
-}
-
-TEST(CliDocs, SimulateKeysAreDocumented) {
-  ExpectKeysDocumented({"simulate", ModelFlag("4dof_reduced")}, true);
-}
-
-TEST(CliDocs, ControlKeysAreDocumented) {
-  ExpectKeysDocumented({"control", ModelFlag("4dof_reduced"), "--target=0.02,0.01,0.62,0,0,0.05"}, true);
-}
-
-TEST(CliDocs, TrajectoryAndGenerateKeysAreDocumented) {
-  const std::string csv = TempPath("path.csv"), yaml = TempPath("generated.yaml");
-  ExpectKeysDocumented({"trajectory", ModelFlag("4dof_reduced"),
-                        std::string("--waypoints=") + CCMA_SOURCE_DIR + "/models/paths/4dof_sequential.csv",
-                        "--out=" + csv},
-                       true);
-  ExpectKeysDocumented({"generate", "--agents=4", "--out=" + yaml}, true);
-  std::remove(csv.c_str());
-  std::remove(yaml.c_str());
-}
-
-// Keys that appear only when something went wrong.
-TEST(CliDocs, FailureKeysAreDocumented) {
-  // Not rigid with the controls fixed: the walkthrough model with S-S legs.
-  std::string model = Slurp(std::string(CCMA_SOURCE_DIR) + "/examples/my_first_mechanism.yaml");
-  ASSERT_FALSE(model.empty());
-  for (size_t p = model.find("type: revolute,"); p != std::string::npos; p = model.find("type: revolute,", p)) {
-    model.replace(p, 15, "type: spherical,");
-  }
-  const std::string ss = TempPath("ss_legs.yaml");
-  std::ofstream(ss) << model;
-  ExpectKeysDocumented({"check", "--model=" + ss}, true);
-  std::remove(ss.c_str());
-  // Controls the mechanism cannot reach (base0 pulled 0.6 m outwards).
-  std::string far = kReducedHome;
-  far.replace(far.find("0.583012702"), 11, "1.2");
-  ExpectKeysDocumented({"simulate", ModelFlag("4dof_reduced"), "--controls=" + far}, true);
-  // An unreachable target (z = 0.9 m).
-  ExpectKeysDocumented({"control", ModelFlag("4dof_reduced"), "--target=0,0,0.9,0"}, true);
-  // A path with an unreachable waypoint.
-  const std::string path = TempPath("far.csv"), csv = TempPath("far_out.csv");
-  std::ofstream(path) << "time,x,y,z,roll,pitch,yaw\n0,0,0,0.6,0,0,0\n1,0,0,0.9,0,0,0\n";
-  ExpectKeysDocumented({"trajectory", ModelFlag("4dof_reduced"), "--waypoints=" + path, "--out=" + csv}, true);
-  std::remove(path.c_str());
-  std::remove(csv.c_str());
-}
-
-TEST(CliDocs, ReplayAndBenchKeysAreDocumented) {
-  const std::string dir = TempPath("replay");
-  // A short path whose chain tears (1 s latency: the bases lag behind the
-  // turn at 5 s): every key of a failed replay.
-  const std::string path = TempPath("lift.csv");
-  std::ofstream(path) << "time,x,y,z,roll,pitch,yaw\n0,0,0,0.6,0,0,0\n5,0,0.08,0.6,0,0,0\n10,0,-0.08,0.6,0,0,0\n";
-  ExpectKeysDocumented({"replay", ModelFlag("4dof_reduced"), "--waypoints=" + path, "--out=" + dir,
-                        "--latency_s=1"},
-                       true);
-  ExpectKeysDocumented({"bench", ModelFlag("4dof_reduced"), "--steps=1"}, true);
-  // The torn replay, viewed: flagged frames.
-  const std::string html = TempPath("replay.html");
-  ExpectKeysDocumented({"view", ModelFlag("4dof_reduced"), "--replay=" + dir, "--out=" + html}, true);
-  std::remove(path.c_str());
-  std::remove(html.c_str());
-  std::filesystem::remove_all(dir);
-}
+// ---- (c): JSON keys ---------------------------------------------------------
+// Every key each command prints, nested ones included, is in that command's
+// key tables: tests/cli_json_keys_test.py (the CTest cli_json_keys), and the
+// help texts shown are the tool's own: scripts/update_cli_docs.py --check
+// (cli_docs_generated).
 
 // ---- (d): model format keys -----------------------------------------------
 

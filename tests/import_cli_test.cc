@@ -1,6 +1,7 @@
 // `ccma import` from the command line: the contract's JSON, a planar-base
 // robot written by hand, and hostile sources (exit 2, file, line, element and
 // name in one line on stderr, nothing on stdout).
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -201,12 +202,124 @@ TEST_F(ImportCli, FiveBarJsonAsTheContractSays) {
                              "--out=" + Out()});
   ASSERT_EQ(r.status, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
-  for (const char* key : {"out", "bodies", "joints", "closures", "actuated", "assembled", "residual_energy", "controls"}) {
+  for (const char* key : {"out", "bodies", "joints", "closures", "actuated", "controlled", "controlled_chosen",
+                          "assembled", "residual_energy", "controls"}) {
     EXPECT_TRUE(j.contains(key)) << key;
   }
   EXPECT_EQ(j["closures"], 1);
   EXPECT_LT(j["residual_energy"].get<double>(), 1e-24);
   EXPECT_EQ(j["controls"], nlohmann::json({0.0, 0.0}));
+}
+
+// The five-bar's two motors move its effector in the world's y-z plane:
+// without --controlled, import controls y and z and says so; check then
+// counts exactly 2 end-effector DOF, without a warning, and control reaches
+// a target given as those two components. --controlled=x,y,z, which the
+// motors cannot move, is refused naming the ones they move.
+TEST_F(ImportCli, WithoutControlledTheComponentsTheMotorsMoveAreChosen) {
+  const std::string five = kRobots + "5bar_linkage/";
+  const std::vector<std::string> args = {"import", "--from=" + five + "robot.urdf", "--closures=" + five + "robot.yaml",
+                                         "--end_effector=effector", "--out=" + Out()};
+  const ToolRun r = RunTool(args);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["controlled"], nlohmann::json({"y", "z"}));
+  EXPECT_EQ(j["controlled_chosen"], true);
+  EXPECT_NE(r.err.find("ccma import: controlled components chosen: y,z (the controls move 2 end-effector DOF at "
+                       "home; choose others with --controlled)\n"),
+            std::string::npos)
+      << r.err;
+  const ToolRun check = RunTool({"check", "--model=" + Out()});
+  ASSERT_EQ(check.status, 0) << check.err;
+  const nlohmann::json mobility = nlohmann::json::parse(check.out);
+  EXPECT_EQ(mobility["end_effector_dof"], 2);
+  EXPECT_EQ(mobility["controlled"], nlohmann::json({"y", "z"}));
+  EXPECT_EQ(check.err.find("end-effector DOF at home, fewer than"), std::string::npos) << check.err;
+  // A target 5 mm off home in y and z, given as its two components.
+  const Model model = LoadModel(Out());
+  const Eigen::Vector3d home = model.end_effector.p_W_home;
+  const std::string target = "--target=" + std::to_string(home.y() + 0.005) + "," + std::to_string(home.z() - 0.005);
+  const ToolRun control = RunTool({"control", "--model=" + Out(), target});
+  ASSERT_EQ(control.status, 0) << control.err;
+  EXPECT_EQ(nlohmann::json::parse(control.out)["converged"], true) << control.err;
+  std::filesystem::remove(Out());
+  std::vector<std::string> given = args;
+  given.push_back("--controlled=z,y");
+  const ToolRun same = RunTool(given);
+  ASSERT_EQ(same.status, 0) << same.err;
+  EXPECT_EQ(nlohmann::json::parse(same.out)["controlled"], nlohmann::json({"y", "z"}));
+  EXPECT_EQ(nlohmann::json::parse(same.out)["controlled_chosen"], false);
+  EXPECT_EQ(same.err.find("chosen"), std::string::npos) << same.err;
+  std::filesystem::remove(Out());
+  given.back() = "--controlled=x,y,z";
+  ExpectRefused(given, "5bar_linkage/robot.urdf: the controls cannot move the controlled components x y z "
+                       "independently at home (rank 2 of 3): they move 2 end-effector DOF, for example y z (the "
+                       "default when none are given)");
+  given.back() = "--controlled=x";
+  ExpectRefused(given, "the controlled components x independently at home (rank 0 of 1)");
+  // The frame the motors are mounted on: they move none of its components.
+  ExpectRefused({"import", "--from=" + five + "robot.urdf", "--closures=" + five + "robot.yaml", "--end_effector=built",
+                 "--out=" + Out()},
+                "5bar_linkage/robot.urdf: the controls move no component of the end-effector 'built' at home: "
+                "choose another end-effector link");
+}
+
+// Components stored by `ccma export` are the exported model's own: kept
+// (the round trip gives back the same model), with a warning when the
+// motors cannot move them.
+TEST_F(ImportCli, StoredComponentsAreKeptWithAWarningWhenTheMotorsCannotMoveThem) {
+  const std::string five = kRobots + "5bar_linkage/";
+  ASSERT_EQ(RunTool({"import", "--from=" + five + "robot.urdf", "--closures=" + five + "robot.yaml",
+                     "--end_effector=effector", "--out=" + Out()})
+                .status,
+            0);
+  std::string text = testing::Slurp(Out());
+  const std::size_t at = text.find("controlled: [y, z]");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 18, "controlled: [x, y, z]");
+  const std::string model = Write("over.yaml", text);
+  const std::string sdf = (dir_ / "over.sdf").string();
+  ASSERT_EQ(RunTool({"export", "--model=" + model, "--format=sdf", "--out=" + sdf}).status, 0);
+  const ToolRun r = RunTool({"import", "--from=" + sdf, "--out=" + (dir_ / "again.yaml").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["controlled"], nlohmann::json({"x", "y", "z"}));
+  EXPECT_EQ(j["controlled_chosen"], false);
+  EXPECT_NE(r.err.find("over.sdf: the stored end-effector components: the controls cannot move the controlled "
+                       "components x y z independently at home (rank 2 of 3): they move 2 end-effector DOF, for "
+                       "example y z\n"),
+            std::string::npos)
+      << r.err;
+}
+
+// cassie_like's two rods between ball joints spin freely about their axes
+// (idle motions: `check` names them). Control's controls, assembled from
+// home, give the same configuration up to those spins: no "several assembly
+// branches" warning, and from_home names the spinning bodies. (A real
+// branch still warns: Branches.ControlWarnsAndSimulateFromReproduces.)
+TEST_F(ImportCli, IdleSpinsOfImportedRodsAreNotAssemblyBranches) {
+  const std::string cassie = kRobots + "cassie_like/";
+  const ToolRun r = RunTool({"import", "--from=" + cassie + "robot.urdf", "--closures=" + cassie + "robot.yaml",
+                             "--end_effector=foot", "--out=" + Out()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const Eigen::Vector3d home = LoadModel(Out()).end_effector.p_W_home;
+  const std::string target = "--target=" + std::to_string(home.x() + 0.01) + "," + std::to_string(home.y() + 0.01) +
+                             "," + std::to_string(home.z() + 0.005) + ",0,0,0";
+  const ToolRun c = RunTool({"control", "--model=" + Out(), target});
+  ASSERT_EQ(c.status, 0) << c.err;
+  const nlohmann::json control = nlohmann::json::parse(c.out);
+  EXPECT_EQ(control["converged"], true) << c.err;
+  EXPECT_EQ(c.err.find("assemble to another configuration"), std::string::npos) << c.err;
+  EXPECT_EQ(control.contains("warning"), false);
+  const nlohmann::json& from_home = control["from_home"];
+  EXPECT_EQ(from_home["reproducible"], true);
+  EXPECT_LT(from_home["end_effector_distance_m"].get<double>(), 1e-9);
+  EXPECT_LT(from_home["max_state_difference"].get<double>(), 1e-9);
+  std::vector<std::string> idle = from_home["idle_bodies"];
+  std::sort(idle.begin(), idle.end());
+  EXPECT_EQ(idle, (std::vector<std::string>{"closedloop1_A", "closedloop1_B", "closedloop2_A", "closedloop2_B",
+                                             "half_hachil_rode", "half_hachil_rode_2", "half_planta_rode",
+                                             "half_planta_rode_2"}));
 }
 
 TEST_F(ImportCli, ClosureFileQuirksOfTheCollectionAreRead) {

@@ -1,19 +1,26 @@
 // Numerical mobility (`ccma check`): the reference table of
 // shared/reference_models/README.md, small models counted by hand, the
 // sparse analysis against the dense one, and generated models of up to 1000
-// agents against their closed form.
+// agents against their closed form. Built on it: the end-effector
+// components the controls move (analyses/moved_components.h) and the
+// comparison of configurations up to idle motions
+// (analyses/configuration_difference.h).
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include "analyses/configuration_difference.h"
 #include "analyses/internal/sparse_mobility.h"
 #include "analyses/mobility.h"
+#include "analyses/moved_components.h"
 #include "formats/model_generator.h"
 #include "formats/model_loader.h"
+#include "tests/hinge_model.h"
 
 namespace ccma {
 namespace {
@@ -321,6 +328,143 @@ TEST(SparseMobility, RefusesAboveTheStateSizeBound) {
     EXPECT_EQ(std::string(e.what()),
               "mobility analysis: state size 120006 (20001 bodies) is above the bound of 120000 (20000 bodies)");
   }
+}
+
+// ---- End-effector components the controls move (moved_components.h) ----
+
+// The hinge of hinge_model.h at home: the omni base moves x, y and (turning,
+// the point 0.2 m along y) -0.2 x + yaw; the hinge about x moves z = 0.2 q
+// and roll = q together. Rows over (base x, y, theta, hinge): x [1 0 -0.2 0],
+// y [0 1 0 0], z [0 0 0 0.2], roll [0 0 0 1], pitch 0, yaw [0 0 1 0]: roll
+// adds nothing to x y z, yaw does.
+TEST(MovedComponents, HingeOnAnOmniBaseMatchesItsClosedForm) {
+  const Model m = LoadModelFromString(kHinge, "hinge.yaml");
+  const ComponentSet xyz_roll = {true, true, true, true, false, false};
+  const MovedComponents moved = AnalyzeMovedComponents(m, State::Home(m), m.home_controls(), xyz_roll);
+  EXPECT_EQ(moved.chosen, (ComponentSet{true, true, true, false, false, true}));
+  EXPECT_EQ(moved.rank, 4);
+  EXPECT_EQ(moved.given_rank, 3);
+  EXPECT_EQ(AnalyzeMovedComponents(m, State::Home(m), m.home_controls(), {false, false, false, true, false, false})
+                .given_rank,
+            1);
+  EXPECT_EQ(AnalyzeMobility(m, State::Home(m), m.home_controls()).end_effector_dof, moved.rank);
+}
+
+// The sparse path (rank([A; X_S]) - rank(A)) agrees with the dense one on
+// every one of the 64 sets of components, and the chosen set's size is
+// check's end_effector_dof.
+TEST(MovedComponents, SparseRanksMatchTheDenseOnesForEverySet) {
+  for (const char* name : {"4dof_reduced", "planar_3rpr"}) {
+    SCOPED_TRACE(name);
+    const Model m = LoadModel(std::string(CCMA_MODELS_DIR) + "/" + name + ".yaml");
+    const State s = State::Home(m);
+    const SparseEndEffectorRanks sparse(m, s, m.home_controls(), kMovedComponentTolerance);
+    for (int bits = 0; bits < 64; ++bits) {
+      ComponentSet set{};
+      for (int c = 0; c < 6; ++c) set[c] = (bits >> c) & 1;
+      EXPECT_EQ(sparse.Rank(set), AnalyzeMovedComponents(m, s, m.home_controls(), set).given_rank) << bits;
+    }
+    EXPECT_EQ(AnalyzeMovedComponents(m, s, m.home_controls(), {}).rank,
+              AnalyzeMobility(m, s, m.home_controls()).end_effector_dof);
+  }
+  // planar_3rpr moves x, y and yaw only.
+  const Model planar = LoadModel(std::string(CCMA_MODELS_DIR) + "/planar_3rpr.yaml");
+  EXPECT_EQ(AnalyzeMovedComponents(planar, State::Home(planar), planar.home_controls(), {}).chosen,
+            (ComponentSet{true, true, false, false, false, true}));
+}
+
+// Beyond kDenseMobilityStateSize: 50 generated agents drive all six.
+TEST(MovedComponents, ALargeMechanismTakesTheSparsePath) {
+  StewartOptions options;
+  options.agents = 50;
+  const Model m = LoadModelFromString(GenerateStewartModel(options), "generated.yaml");
+  ASSERT_GT(m.state_size(), kDenseMobilityStateSize);
+  const MovedComponents moved = AnalyzeMovedComponents(m, State::Home(m), m.home_controls(), {true, true});
+  EXPECT_EQ(moved.chosen, (ComponentSet{true, true, true, true, true, true}));
+  EXPECT_EQ(moved.rank, 6);
+  EXPECT_EQ(moved.given_rank, 2);
+}
+
+// ---- Configurations compared up to idle motions (configuration_difference.h) ----
+
+// A rod between two ball joints, one on a post welded to an omni base, one
+// on the ground; its frame off its axis. The rod's spin about its axis is
+// its one idle motion.
+constexpr char kSpinningRod[] = R"(name: spinning_rod
+bodies:
+  - {name: post, position: [0.5, 0, 0.1]}
+  - {name: rod, position: [0.25, 0.05, 0.3]}
+mobile_bases:
+  - {name: base0, type: omni, actuation: complete, pose: [0.5, 0, 0]}
+joints:
+  - {type: fixed, between: [base0, post], point: [0.5, 0, 0.1]}
+  - {type: spherical, between: [post, rod], point: [0.5, 0, 0.2]}
+  - {type: spherical, between: [world, rod], point: [0, 0, 0.4]}
+end_effector: {body: post, point: [0.5, 0, 0.2], controlled: [x, y]}
+)";
+
+// `s` with body b turned by `angle` about the line through `c` along `axis`.
+State Turned(const State& s, int b, const Eigen::Vector3d& c, const Eigen::Vector3d& axis, double angle) {
+  const Eigen::AngleAxisd turn(angle, axis.normalized());
+  State out = s;
+  out.SetPose(b, Eigen::Quaterniond(turn) * s.q_WB(b), c + turn * (s.p_WB(b) - c));
+  return out;
+}
+
+TEST(ConfigurationDifference, AnIdleSpinIsTheSameConfigurationAndARealChangeIsNot) {
+  const Model m = LoadModelFromString(kSpinningRod, "spinning_rod.yaml");
+  const int rod = m.FindBody("rod"), post = m.FindBody("post");
+  const State home = State::Home(m);
+  const Eigen::Vector3d p1(0.5, 0, 0.2), p2(0, 0, 0.4);
+  const State spun = Turned(home, rod, p1, p2 - p1, 1.0);
+  ASSERT_GT(spun.Minus(home).lpNorm<Eigen::Infinity>(), 0.5);  // raw states far apart
+  const ConfigurationDifference idle = CompareConfigurations(m, home, spun, m.home_controls());
+  EXPECT_TRUE(idle.same);
+  EXPECT_EQ(idle.idle_bodies, std::vector<int>{rod});
+  EXPECT_LT(idle.max_state_difference, 1e-12);  // the rod's two ends
+  EXPECT_LT(idle.end_effector_distance, 1e-15);
+  // The spun rod moved off its ends by 1 mm: its end points differ.
+  State shifted = spun;
+  shifted.SetPose(rod, spun.q_WB(rod), spun.p_WB(rod) + Eigen::Vector3d(0, 1e-3, 0));
+  const ConfigurationDifference moved = CompareConfigurations(m, home, shifted, m.home_controls());
+  EXPECT_FALSE(moved.same);
+  EXPECT_NEAR(moved.max_state_difference, 1e-3, 1e-12);
+  // The post turned about its vertical axis through the end-effector point:
+  // the point stays, the end-effector's orientation does not.
+  const State turned = Turned(home, post, Eigen::Vector3d(0.5, 0, 0), Eigen::Vector3d::UnitZ(), 1e-3);
+  const ConfigurationDifference rotated = CompareConfigurations(m, home, turned, m.home_controls());
+  EXPECT_FALSE(rotated.same);
+  EXPECT_LT(rotated.end_effector_distance, 1e-15);
+  EXPECT_NEAR(rotated.end_effector_rotation, 1e-3, 1e-12);
+}
+
+// The sparse path: 100 generated agents, leg 37's spherical joint taken
+// out. Its post spins (about its base's vertical axis) carrying its link,
+// and the link swings about its hinge at the post's top: idle motions.
+TEST(ConfigurationDifference, IdleMotionsOfALargeMechanism) {
+  StewartOptions options;
+  options.agents = 100;
+  std::string text = GenerateStewartModel(options);
+  const size_t at = text.find("  - {type: spherical, between: [link37, ee]");
+  ASSERT_NE(at, std::string::npos);
+  text.erase(at, text.find('\n', at) + 1 - at);
+  const Model m = LoadModelFromString(text, "generated.yaml");
+  ASSERT_GT(m.state_size(), kDenseMobilityStateSize);
+  const int post = m.FindBody("post37"), link = m.FindBody("link37");
+  const State home = State::Home(m);
+  const Joint* hinge = nullptr;
+  for (const Joint& joint : m.joints) {
+    if (joint.body_a == post && joint.body_b == link) hinge = &joint;
+  }
+  ASSERT_NE(hinge, nullptr);
+  const Eigen::Vector3d top = home.R_WB(post) * hinge->p_A + home.p_WB(post);
+  State b = Turned(home, link, top, home.R_WB(post) * hinge->a_A, 0.5);
+  const Eigen::Vector3d foot(top.x(), top.y(), 0);
+  b = Turned(Turned(b, post, foot, Eigen::Vector3d::UnitZ(), 0.3), link, foot, Eigen::Vector3d::UnitZ(), 0.3);
+  const ConfigurationDifference d = CompareConfigurations(m, home, b, m.home_controls());
+  EXPECT_TRUE(d.same);
+  EXPECT_EQ(d.idle_bodies, (std::vector<int>{std::min(post, link), std::max(post, link)}));
+  EXPECT_LT(d.max_state_difference, 1e-12);
 }
 
 }  // namespace

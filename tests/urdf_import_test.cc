@@ -1,8 +1,10 @@
 // `ccma import` on real robots (models/robots/example-parallel-robots, from
 // LAAS-CNRS/INRIA, BSD-3-Clause): each imports, is assembled, its closures
 // hold, an independent forward kinematics through the URDF tree with the
-// reported q reproduces every body pose, the motors move it and control
-// reaches an end-effector target. Plus the errors a user can make.
+// reported q reproduces every body pose, the motors move it, control
+// reaches an end-effector target, and the controlled components are those
+// the motors move. Plus the errors a user can make.
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <fstream>
@@ -14,6 +16,7 @@
 #include <gtest/gtest.h>
 #include <urdf_parser/urdf_parser.h>
 
+#include "analyses/mobility.h"
 #include "analyses/robot_import.h"
 #include "ccma/joint_coordinates.h"
 #include "formats/model_loader.h"
@@ -28,13 +31,18 @@ const std::string kRobots = std::string(CCMA_MODELS_DIR) + "/robots/example-para
 
 struct Robot {
   std::string folder, end_effector;
+  std::vector<std::string> moved;  // the components the motors move at home, as import chooses them
 };
 // battobot_6d replaces joints by universal and spherical ones (joint_name /
 // joint_type) and has a link named 'toe_a_2/2'; 5bar_linkage_iso3d closes
-// its loop with a 3d closure.
-const Robot kCopied[] = {{"5bar_linkage", "effector"},       {"robot_delta", "eff"},
-                         {"cassie_like", "foot"},            {"5bar_linkage_iso3d", "effector"},
-                         {"battobot_6d", "foot_left"}};
+// its loop with a 3d closure. The five-bar and the delta (two motors each)
+// move in the world's y-z plane, 5bar_linkage_iso3d in x-z; cassie_like's
+// five motors move the foot in all but yaw; battobot_6d's twelve, all six.
+const Robot kCopied[] = {{"5bar_linkage", "effector", {"y", "z"}},
+                         {"robot_delta", "eff", {"y", "z"}},
+                         {"cassie_like", "foot", {"x", "y", "z", "roll", "pitch"}},
+                         {"5bar_linkage_iso3d", "effector", {"x", "z"}},
+                         {"battobot_6d", "foot_left", {"x", "y", "z", "roll", "pitch", "yaw"}}};
 
 // The ccma name of a URDF name (docs/import.md): other characters than
 // [A-Za-z0-9_-] become '_'.
@@ -50,7 +58,6 @@ ImportedRobot Import(const Robot& robot) {
       ReadUrdf(kRobots + robot.folder + "/robot.urdf", kRobots + robot.folder + "/robot.yaml");
   ImportOptions options;
   options.end_effector_link = robot.end_effector;
-  options.controlled = {"x", "y", "z"};
   return ImportRobot(description, options);
 }
 
@@ -196,6 +203,53 @@ TEST_P(CopiedRobot, ControlReachesAnEndEffectorTarget) {
   const ControlResult result = control.MoveTo(goal);
   EXPECT_TRUE(result.converged) << result.warning;
   EXPECT_LT((control.forward().end_effector().position - target).norm(), 1e-6);
+}
+
+// Without controlled components, import chooses those the motors move at
+// home (translations first), and `ccma check`'s analysis counts exactly that
+// many end-effector DOF: every target of that many components is reachable
+// to first order.
+TEST_P(CopiedRobot, ControlsTheComponentsTheMotorsMove) {
+  const ImportedRobot imported = Import(GetParam());
+  EXPECT_TRUE(imported.controlled_chosen);
+  EXPECT_EQ(imported.controlled, GetParam().moved);
+  std::vector<std::string> in_model;
+  for (int c = 0; c < 6; ++c) {
+    if (imported.model.end_effector.controlled[c]) in_model.push_back(kEndEffectorComponentNames[c]);
+  }
+  EXPECT_EQ(in_model, GetParam().moved);
+  const Model& m = imported.model;
+  const MobilityReport mobility = AnalyzeMobility(m, State::Home(m), m.home_controls());
+  EXPECT_EQ(mobility.end_effector_dof, static_cast<int>(GetParam().moved.size()));
+  // Given, the same components are kept; one more is refused, naming those.
+  ImportOptions options;
+  options.end_effector_link = GetParam().end_effector;
+  options.controlled = GetParam().moved;
+  const RobotDescription description = ReadUrdf(kRobots + GetParam().folder + "/robot.urdf",
+                                                kRobots + GetParam().folder + "/robot.yaml");
+  const ImportedRobot given = ImportRobot(description, options);
+  EXPECT_FALSE(given.controlled_chosen);
+  EXPECT_EQ(given.controlled, GetParam().moved);
+  if (GetParam().moved.size() == 6) return;
+  for (const char* extra : {"x", "y", "z", "roll", "pitch", "yaw"}) {
+    if (std::count(options.controlled.begin(), options.controlled.end(), extra) == 0) {
+      options.controlled.push_back(extra);
+      break;
+    }
+  }
+  std::string moved;
+  for (const std::string& c : GetParam().moved) moved += (moved.empty() ? "" : " ") + c;
+  try {
+    ImportRobot(description, options);
+    FAIL() << "accepted components the motors cannot move";
+  } catch (const ModelError& e) {
+    EXPECT_NE(std::string(e.what()).find("independently at home (rank " + std::to_string(GetParam().moved.size()) +
+                                         " of " + std::to_string(options.controlled.size()) + "): they move " +
+                                         std::to_string(GetParam().moved.size()) +
+                                         " end-effector DOF, for example " + moved + " "),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(ExampleParallelRobots, CopiedRobot, ::testing::ValuesIn(kCopied),

@@ -2,8 +2,10 @@
 // 34): links planted at the names it writes, tiles that claim too much, are
 // not files or hold values the map cannot use, and manifests that are not
 // manifests. A bad tile is computed again (one line on stderr naming it, the
-// same map as without a store); a bad manifest is refused with exit 2.
+// same map as without a store); a bad manifest is refused with exit 2. And
+// Ctrl-C: what the store keeps and the command that resumes, on stderr.
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -12,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -190,6 +193,77 @@ TEST(WorkspaceStoreWrites, ConcurrentWritersOfOneTileWarnNothing) {
     const std::string name = e.path().filename().string();
     EXPECT_TRUE(name == "store.json" || name == "tile_" + std::to_string(home) + ".bin") << name;
   }
+}
+
+// ---------------------------------------------------------------- Ctrl-C ---
+
+// Ctrl-C in the middle of a map: the run ends by SIGINT (a shell's exit
+// status 130) with nothing on stdout and no CSV, after one message on stderr
+// that names the tiles the store keeps -- exactly the tile files there -- and
+// the command line that resumes. That line, run by a shell, finishes the map
+// from the store: the same CSV as in one go.
+TEST(WorkspaceStoreInterrupt, CtrlCSaysWhatIsKeptAndHowToResume) {
+  // 24 x 24 samples in 16 tiles of 6 x 6: long enough to stop half-way.
+  const std::vector<std::string> map = {"--x=-0.35:0.35", "--z=0.35:1.0", "--resolution=24", "--tile_size=6"};
+  const std::string dir = FreshDir("ctrl_c"), store = dir + "/store";
+  std::vector<std::string> args = {"workspace", "--model=" + testing::ModelPath("4dof_reduced")};
+  args.insert(args.end(), map.begin(), map.end());
+  std::vector<std::string> whole = args;
+  whole.push_back("--out=" + dir + "/whole.csv");
+  ASSERT_EQ(testing::RunTool(whole).status, 0);
+  args.push_back("--out=" + dir + "/map.csv");
+  args.push_back("--store=" + store);
+
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int o = open((dir + "/out").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    const int e = open((dir + "/err").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    dup2(o, 1);
+    dup2(e, 2);
+    std::vector<char*> argv = {const_cast<char*>(CCMA_TOOL_PATH)};
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execv(CCMA_TOOL_PATH, argv.data());
+    _exit(127);
+  }
+  auto tile_files = [&store] {
+    int n = 0;
+    std::error_code ec;
+    for (const fs::directory_entry& e : fs::directory_iterator(store, ec)) {
+      n += e.path().filename().string().rfind("tile_", 0) == 0 && e.path().extension() == ".bin";
+    }
+    return n;
+  };
+  // Wait for 2 finished tiles (a bound on the wait, not a timing assertion).
+  for (int polls = 0; polls < 24000 && tile_files() < 2 && waitpid(pid, nullptr, WNOHANG) == 0; ++polls) usleep(5000);
+  ASSERT_EQ(kill(pid, SIGINT), 0);
+  int raw = 0;
+  ASSERT_EQ(waitpid(pid, &raw, 0), pid);
+  const std::string err = testing::Slurp(dir + "/err");
+  ASSERT_TRUE(WIFSIGNALED(raw)) << "exit status " << WEXITSTATUS(raw) << "\n" << err;
+  EXPECT_EQ(WTERMSIG(raw), SIGINT);  // a shell reports 128 + 2 = 130
+  EXPECT_EQ(testing::Slurp(dir + "/out"), "");
+  EXPECT_FALSE(fs::exists(dir + "/map.csv"));
+  const int kept = tile_files();
+  EXPECT_GE(kept, 2);
+  EXPECT_LT(kept, 16);
+  const std::string said = "ccma workspace: interrupted: " + std::to_string(kept) +
+                           " of 16 tiles of the map are finished and kept in the store '" + store + "'";
+  EXPECT_EQ(err.rfind(said, 0), 0u) << err;
+  std::string command = CCMA_TOOL_PATH;
+  for (const std::string& a : args) command += " " + a;
+  const std::string resume = "the same command again resumes from them:\n  " + command + "\n";
+  ASSERT_NE(err.find(resume), std::string::npos) << err;
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 2) << err;
+
+  // The printed line, run by a shell.
+  const std::string line = err.substr(err.find("\n  ") + 3, command.size());
+  const int status = std::system((line + " >" + dir + "/resumed.json 2>" + dir + "/resumed.err").c_str());
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << testing::Slurp(dir + "/resumed.err");
+  const nlohmann::json summary = nlohmann::json::parse(testing::Slurp(dir + "/resumed.json"));
+  EXPECT_EQ(summary["tiles"], 16);
+  EXPECT_EQ(summary["tiles_from_store"], kept);
+  EXPECT_EQ(testing::Slurp(dir + "/map.csv"), testing::Slurp(dir + "/whole.csv"));
 }
 
 // ----------------------------------------------------------------- tiles ---

@@ -184,8 +184,10 @@ std::vector<int> TreeOrder(const RobotDescription& robot, const std::vector<int>
   return order;
 }
 
-void SetEndEffector(const RobotDescription& robot, const ImportOptions& options,
-                    const std::map<std::string, int>& bodies, Model* model) {
+// The end-effector; returns where its controlled components come from
+// (RobotModel::controlled).
+RobotModel::Controlled SetEndEffector(const RobotDescription& robot, const ImportOptions& options,
+                                      const std::map<std::string, int>& bodies, Model* model) {
   const bool given = !options.end_effector_link.empty();
   if (!given && !robot.has_end_effector) {
     Fail(robot, 0, "no end-effector link: name one with --end_effector=LINK[:px,py,pz]");
@@ -200,10 +202,11 @@ void SetEndEffector(const RobotDescription& robot, const ImportOptions& options,
   ee.p_B = p_L;
   const Body& B = model->bodies[body];
   ee.p_W_home = B.R_WB_home * p_L + B.p_WB_home;
-  std::vector<std::string> controlled = !options.controlled.empty() ? options.controlled
-                                        : !given && !robot.end_effector.controlled.empty()
-                                            ? robot.end_effector.controlled
-                                            : std::vector<std::string>{"x", "y", "z", "roll", "pitch", "yaw"};
+  const bool stored = !given && !robot.end_effector.controlled.empty();
+  const std::vector<std::string> all_six(kEndEffectorComponentNames.begin(), kEndEffectorComponentNames.end());
+  const std::vector<std::string>& controlled = !options.controlled.empty() ? options.controlled
+                                               : stored                    ? robot.end_effector.controlled
+                                                                           : all_six;
   for (const std::string& name : controlled) {
     const auto it = std::find(kEndEffectorComponentNames.begin(), kEndEffectorComponentNames.end(), name);
     if (it == kEndEffectorComponentNames.end()) {
@@ -214,6 +217,9 @@ void SetEndEffector(const RobotDescription& robot, const ImportOptions& options,
     if (component) Fail(robot, 0, "controlled component " + Quote(name) + " given twice");
     component = true;
   }
+  return !options.controlled.empty() ? RobotModel::Controlled::kGiven
+         : stored                    ? RobotModel::Controlled::kStored
+                                     : RobotModel::Controlled::kToChoose;
 }
 
 // Every body must reach the ground or a mobile base through joints.
@@ -318,7 +324,7 @@ RobotModel BuildRobotModel(const RobotDescription& robot, const ImportOptions& o
   AddJoints(robot, motors, bodies, &out);
   for (const int j : bases) out.actuated.push_back(CcmaName(robot.joints[j].name));
   for (const int j : motors) out.actuated.push_back(CcmaName(robot.joints[j].name));
-  SetEndEffector(robot, options, bodies, &model);
+  out.controlled = SetEndEffector(robot, options, bodies, &model);
   CheckConnected(robot, model);
   return out;
 }

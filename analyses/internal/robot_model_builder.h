@@ -18,6 +18,11 @@ struct RobotModel {
   Model model;                   // bodies: links then bases; joints: tree, then closures
   std::vector<bool> closure;     // per joint of `model`
   std::vector<std::string> actuated;  // ccma names in control order
+  // Where model.end_effector.controlled comes from: ImportOptions, the
+  // source (ccma export stores it), or neither (it holds all six and
+  // ImportRobot chooses).
+  enum class Controlled { kGiven, kStored, kToChoose };
+  Controlled controlled = Controlled::kToChoose;
 };
 
 // Throws ModelError as ImportRobot documents.

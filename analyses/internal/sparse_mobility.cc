@@ -133,6 +133,48 @@ std::vector<int> FreeMotionBodies(const Eigen::VectorXd& ds) {
   return bodies;
 }
 
+SparseEndEffectorRanks::SparseEndEffectorRanks(const Model& model, const State& s, const Eigen::VectorXd& u,
+                                               double rank_tolerance) {
+  const ConstraintSet constraints(model);
+  EnergyDerivatives derivatives;
+  constraints.EvaluateDerivatives(s, u, &derivatives);
+  threshold_ = rank_tolerance * std::max(1.0, LargestSingularValue(derivatives.J_s));
+  A_ = WithControls(derivatives.J_s, derivatives.J_u, model.effective_control_indices());
+  X_ = Sparse(EndEffectorJacobian(model, s), static_cast<int>(A_.cols()));
+  rank_A_ = SparseRank(A_, threshold_);
+}
+
+int SparseEndEffectorRanks::Rank(const std::array<bool, 6>& rows) const {
+  Triplets t;
+  int count = 0;
+  for (int r = 0; r < 6; ++r) {
+    if (!rows[r]) continue;
+    for (int j = 0; j < X_.outerSize(); ++j) {
+      for (SparseMatrixCol::InnerIterator it(X_, j); it; ++it) {
+        if (it.row() == r) t.emplace_back(count, static_cast<int>(it.col()), it.value());
+      }
+    }
+    ++count;
+  }
+  if (count == 0) return 0;
+  SparseMatrixCol X_rows(count, X_.cols());
+  X_rows.setFromTriplets(t.begin(), t.end());
+  return SparseRank(Stack(A_, X_rows), threshold_) - rank_A_;
+}
+
+bool SparseIdleMotions(const Model& model, const State& s, const Eigen::VectorXd& u, double rank_tolerance,
+                       Eigen::MatrixXd* basis) {
+  const ConstraintSet constraints(model);
+  EnergyDerivatives derivatives;
+  constraints.EvaluateDerivatives(s, u, &derivatives);
+  const double threshold = rank_tolerance * std::max(1.0, LargestSingularValue(derivatives.J_s));
+  const SparseMatrixCol M = Stack(derivatives.J_s, Sparse(EndEffectorJacobian(model, s), model.state_size()));
+  const double dof = static_cast<double>(M.cols() - SparseRank(M, threshold));
+  if (static_cast<double>(M.cols()) * dof * dof > kMaxFreeMotionWork) return false;
+  *basis = dof > 0 ? SparseNullSpace(M, threshold) : Eigen::MatrixXd(M.cols(), 0);
+  return true;
+}
+
 void AnalyzeMobilitySparse(const Model& model, const State& s, const Eigen::VectorXd& u, double rank_tolerance,
                            MobilityReport* report) {
   const ConstraintSet constraints(model);

@@ -224,6 +224,9 @@ class ImportResult(Result):
     joints = Field("joints", "number of joints")
     closures = Field("closures", "number of loop closures")
     actuated = Field("actuated", "the actuated joints' names")
+    controlled = Field("controlled", "the model's controlled components, in x y z roll pitch yaw order")
+    controlled_chosen = Field("controlled_chosen", "True when import chose them (none given or stored): "
+                              "the components the motors move at home, translations first")
     assembled = Field("assembled", "assembled at home (always True: import refuses otherwise)")
     residual_energy = Field("residual_energy", "E at home [m^2]")
     controls = Field("controls", "the home controls")

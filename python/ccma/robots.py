@@ -30,11 +30,15 @@ def import_robot(from_, closures=None, actuated=(), end_effector="", controlled=
     closure file (closed_loop, type, name_mot); actuated: joint names (URDF default: the
     closure file's name_mot); end_effector: 'LINK' or 'LINK:px,py,pz', the link that carries
     it and the controlled point in that link's frame [m] (default: the one `ccma export`
-    stored); controlled: components among x, y, z, roll, pitch, yaw; out: also write the model
-    file there (replaced atomically, never through a planted link).
+    stored); controlled: components among x, y, z, roll, pitch, yaw (default: the ones
+    `ccma export` stored, else those the motors move at home, translations first, as
+    `ccma import` chooses them); components the motors cannot move independently at home
+    raise ccma.ModelError naming those they move; out: also write the model file there
+    (replaced atomically, never through a planted link).
 
     Returns a ccma.ImportResult: the command's JSON as attributes (to_dict()): bodies,
-    joints, closures, actuated, assembled, residual_energy [m^2], controls, and out when
+    joints, closures, actuated, controlled (the model's components), controlled_chosen
+    (True when import chose them), assembled, residual_energy [m^2], controls, and out when
     written; `new_model` is the imported Model (as loaded back from `out` when written).
     Every joint's q equals the source's joint position (q_home). Mesh paths are written
     relative to the folder of `out` (without `out`: of the robot file), so that the model

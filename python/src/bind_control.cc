@@ -198,8 +198,9 @@ void BindControlConfiguration(py::class_<ControlSolution>& c) {
           "Record {min [m], pair, margin [m], below_margin}; None without collision geometry")
       .def_property_readonly(
           "from_home", [](const ControlSolution& r) { return ToView(FromHome(r)); },
-          "Record {reproducible, end_effector_distance_m [m], max_state_difference}: whether the controls, "
-          "assembled from home, give this configuration (checked when first asked for)")
+          "Record {reproducible, end_effector_distance_m [m], end_effector_rotation_rad [rad], "
+          "max_state_difference [m, rad], idle_bodies}: whether the controls, assembled from home, give this "
+          "configuration up to idle motions (the bodies idle_bodies names; checked when first asked for)")
       .def_property_readonly("warning", &ControlWarning,
                              "why the target was not reached, or that the controls assemble elsewhere from home "
                              "('' when neither)")

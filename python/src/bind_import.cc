@@ -75,6 +75,8 @@ py::tuple ImportRobotFile(const std::filesystem::path& from, const std::optional
                                    {"joints", static_cast<int>(imported.model.joints.size())},
                                    {"closures", imported.closures},
                                    {"actuated", imported.actuated},
+                                   {"controlled", imported.controlled},
+                                   {"controlled_chosen", imported.controlled_chosen},
                                    {"assembled", true},
                                    {"residual_energy", imported.residual_energy},
                                    {"controls", cli::ToJson(imported.model.home_controls())}};
@@ -123,7 +125,8 @@ void BindImport(py::module_& m) {
         "SDFormat file into a Model assembled at home, as `ccma import` (docs/import.md): "
         "actuated: joint names (URDF default: the closure file's name_mot); end_effector: the "
         "link carrying it and point its controlled point in that link's frame [m]; controlled: "
-        "components (default all six); model_folder: the folder the model file will be written to "
+        "components (default: the stored ones, else those the motors move at home, translations first; "
+        "refused when the motors cannot move them); model_folder: the folder the model file will be written to "
         "(mesh paths are written relative to it; default the robot file's folder). Returns (Model, model file text, "
         "`ccma import`'s JSON without out). Every joint's q "
         "equals the source's joint position (q_home). Raises ccma.ModelError naming the file, "

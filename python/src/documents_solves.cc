@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "analyses/configuration_difference.h"
 #include "apps/json_output.h"
 #include "ccma/internal/format.h"
 #include "python/src/documents.h"
@@ -72,23 +73,29 @@ nlohmann::json SimulateDocument(const ForwardSolution& s) {
   return out;
 }
 
+// apps/control_command.cc CheckReproducibleFromHome: idle motions (a rod
+// spinning about its axis) are not branches (analyses/configuration_difference.h).
 const nlohmann::json& FromHome(const ControlSolution& s) {
   if (s.from_home) return *s.from_home;
   const Model& model = *s.model;
   ForwardProblem from_home(model);
   const ForwardResult r = from_home.Assemble(s.controls);
-  const double distance = (from_home.end_effector().position - s.end_effector.position).norm();
-  const double state_distance = from_home.state().Minus(s.state).lpNorm<Eigen::Infinity>();
-  const bool same = r.assembled && state_distance < 1e-6;
+  const ConfigurationDifference difference = CompareConfigurations(model, s.state, from_home.state(), s.controls);
+  const bool same = r.assembled && difference.same;
   if (!same) {
     s.from_home_warning = "these controls, simulated from home (ccma simulate --controls=...), assemble to another "
-                          "configuration (end-effector " + FormatG(distance) + " m away" +
+                          "configuration (end-effector " + FormatG(difference.end_effector_distance) + " m away" +
                           (r.assembled ? "" : ", not assembled") +
                           "): the mechanism has several assembly branches here; reproduce this result exactly with "
                           "ccma simulate --from=<this JSON>";
   }
-  s.from_home = nlohmann::json{
-      {"reproducible", same}, {"end_effector_distance_m", distance}, {"max_state_difference", state_distance}};
+  nlohmann::json idle = nlohmann::json::array();
+  for (const int b : difference.idle_bodies) idle.push_back(model.bodies[b].name);
+  s.from_home = nlohmann::json{{"reproducible", same},
+                               {"end_effector_distance_m", difference.end_effector_distance},
+                               {"end_effector_rotation_rad", difference.end_effector_rotation},
+                               {"max_state_difference", difference.max_state_difference},
+                               {"idle_bodies", idle}};
   return *s.from_home;
 }
 

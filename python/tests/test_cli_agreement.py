@@ -307,6 +307,40 @@ def test_import_equals_cli(tmp_path):
     assert result.new_model.num_controls == len(result.controls)
 
 
+def test_import_choosing_the_controlled_components_equals_cli(tmp_path):
+    """Without --controlled, both choose what the 5-bar's two motors move at home: y, z."""
+    flags = ["--from=" + str(FIVE_BAR / "robot.urdf"), "--closures=" + str(FIVE_BAR / "robot.yaml"),
+             "--end_effector=effector"]
+    cli = run_tool("import", *flags, "--out=" + str(tmp_path / "cli.yaml"))
+    result = ccma.import_robot(FIVE_BAR / "robot.urdf", closures=FIVE_BAR / "robot.yaml",
+                               end_effector="effector", out=tmp_path / "py.yaml")
+    assert_agrees(result, cli)
+    assert result.controlled == ["y", "z"] and result.controlled_chosen is True
+    assert result.new_model.controlled == ["y", "z"]
+    assert (tmp_path / "py.yaml").read_text() == (tmp_path / "cli.yaml").read_text()
+
+
+def test_control_of_an_imported_idle_spin_robot_equals_cli(tmp_path):
+    """cassie_like's rods spin idly between their ball joints: the controls, assembled from
+    home, give the same configuration up to those spins, in Python as on the command line
+    (no branch warning, the same idle_bodies)."""
+    cassie = ROOT / "models" / "robots" / "example-parallel-robots" / "cassie_like"
+    model_path = str(tmp_path / "cassie.yaml")
+    imported = ccma.import_robot(cassie / "robot.urdf", closures=cassie / "robot.yaml", end_effector="foot",
+                                 out=model_path)
+    model = imported.new_model
+    p = model.end_effector.p_W_home
+    target = [p[0] + 0.01, p[1] + 0.01, p[2] + 0.005, 0.0, 0.0, 0.0]
+    cli = run_tool("control", "--model=" + model_path, "--target=" + csv_numbers(target))
+    result = ccma.ControlProblem(model).move_to(target)
+    assert_agrees(result, cli)
+    assert result.converged and result.warning == "" and "warning" not in cli
+    assert result.from_home.reproducible and result.from_home.max_state_difference < 1e-9
+    assert sorted(result.from_home.idle_bodies) == [
+        "closedloop1_A", "closedloop1_B", "closedloop2_A", "closedloop2_B",
+        "half_hachil_rode", "half_hachil_rode_2", "half_planta_rode", "half_planta_rode_2"]
+
+
 @pytest.mark.parametrize("fmt", ["urdf", "sdf"])
 def test_export_equals_cli(tmp_path, fmt):
     (tmp_path / "cli").mkdir()

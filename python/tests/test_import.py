@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 
 import ccma
+from conftest import run_tool
 
 ROBOTS = os.path.join(os.path.dirname(__file__), "..", "..", "models", "robots", "example-parallel-robots")
 
@@ -13,10 +14,11 @@ def test_five_bar_imports_assembled_with_source_coordinates(tmp_path):
     folder = os.path.join(ROBOTS, "5bar_linkage")
     out = tmp_path / "5bar.yaml"
     result = ccma.import_robot(os.path.join(folder, "robot.urdf"), closures=os.path.join(folder, "robot.yaml"),
-                               end_effector="effector", controlled=["y", "z"], out=str(out))
+                               end_effector="effector", out=str(out))
     assert out.exists() and result.out == str(out)
     model = result.new_model
     assert model.num_controls == 2 and sorted(result.actuated) == ["mot1", "mot2"]
+    assert result.controlled == ["y", "z"] and result.controlled_chosen is True
     assert result.assembled and result.residual_energy < 1e-20 and result.closures == 1
     assert np.allclose(model.home_controls, [0.0, 0.0])
     problem = ccma.ForwardProblem(model)
@@ -26,6 +28,39 @@ def test_five_bar_imports_assembled_with_source_coordinates(tmp_path):
     # The motors' q are their controls.
     motors = {j.name: j for j in model.joints if j.actuated}
     assert set(motors) == {"mot1", "mot2"}
+
+
+@pytest.mark.parametrize("robot, end_effector, moved", [
+    ("5bar_linkage", "effector", ["y", "z"]),
+    ("robot_delta", "eff", ["y", "z"]),
+    ("cassie_like", "foot", ["x", "y", "z", "roll", "pitch"]),
+])
+def test_import_controls_what_the_motors_move_as_the_cli_does(tmp_path, robot, end_effector, moved):
+    """Without controlled=, import_robot controls the components the motors move at home
+    (translations first), the same ones `ccma import` chooses; `ccma check` counts that
+    many end-effector DOF. Components the motors cannot move are refused (ValueError),
+    with the CLI's message."""
+    folder = os.path.join(ROBOTS, robot)
+    files = dict(closures=os.path.join(folder, "robot.yaml"), end_effector=end_effector)
+    out = tmp_path / "robot.yaml"
+    imported = ccma.import_robot(os.path.join(folder, "robot.urdf"), out=str(out), **files)
+    assert imported.controlled == moved and imported.controlled_chosen is True
+    assert imported.new_model.controlled == moved
+    cli = run_tool("import", "--from=" + os.path.join(folder, "robot.urdf"), "--closures=" + files["closures"],
+                   "--end_effector=" + end_effector, "--out=" + str(tmp_path / "cli.yaml"))
+    assert cli["controlled"] == moved and cli["controlled_chosen"] is True
+    assert run_tool("check", "--model=" + str(out))["end_effector_dof"] == len(moved)
+    given = ccma.import_robot(os.path.join(folder, "robot.urdf"), controlled=moved[::-1], **files)
+    assert given.controlled == moved and given.controlled_chosen is False and given.new_model.controlled == moved
+    extra = next(c for c in ("x", "y", "z", "roll", "pitch", "yaw") if c not in moved)
+    with pytest.raises(ValueError, match=r"independently at home \(rank %d of %d\): they move %d end-effector DOF, "
+                                         r"for example %s " % (len(moved), len(moved) + 1, len(moved), " ".join(moved))) as e:
+        ccma.import_robot(os.path.join(folder, "robot.urdf"), controlled=moved + [extra], **files)
+    refused = run_tool("import", "--from=" + os.path.join(folder, "robot.urdf"), "--closures=" + files["closures"],
+                       "--end_effector=" + end_effector, "--controlled=" + ",".join(moved + [extra]),
+                       "--out=" + str(tmp_path / "refused.yaml"), expect=2)
+    assert refused.stdout == ""
+    assert refused.stderr == "ccma import: " + str(e.value) + "\n"
 
 
 def test_unknown_actuated_joint_raises_model_error():

@@ -167,10 +167,14 @@ def test_the_command_line_store_resumes_after_ctrl_c(tmp_path):
     while time.time() < deadline and len(list(store.glob("tile_*.bin"))) < 3 and run.poll() is None:
         time.sleep(0.005)
     run.send_signal(signal.SIGINT)  # Ctrl-C: the tiles finished so far stay in the store
-    out, _ = run.communicate(timeout=60)
-    assert run.returncode == -signal.SIGINT and out == b""
+    out, err = run.communicate(timeout=60)
+    assert run.returncode == -signal.SIGINT and out == b""  # a shell's exit status 130
     kept = len(list(store.glob("tile_*.bin")))
     assert 3 <= kept < 25 and not (tmp_path / "map.csv").exists()
+    # stderr: the tiles the store keeps, and the command that resumes (this one).
+    said = err.decode()
+    assert said.startswith(f"ccma workspace: interrupted: {kept} of 25 tiles of the map are finished and kept"), said
+    assert said.endswith("the same command again resumes from them:\n  " + " ".join(command) + "\n"), said
     resumed = subprocess.run(command, capture_output=True, timeout=300)
     assert resumed.returncode == 0, resumed.stderr.decode()
     summary = json.loads(resumed.stdout)
