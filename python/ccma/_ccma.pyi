@@ -820,6 +820,9 @@ class FreeMotion:
     @property
     def bodies(self) -> list[int]:
         """Indices into model.bodies of the bodies it moves, ascending."""
+    @property
+    def joints(self) -> list[int]:
+        """Indices into model.joints of the revolute and prismatic joints whose coordinate it changes, ascending."""
 
 class MobilityReport:
     """Numerical mobility at a configuration (analyses/mobility.h, `ccma check`). Read-only."""

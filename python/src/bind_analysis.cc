@@ -16,7 +16,10 @@ void BindAnalysis(py::module_& m) {
   py::class_<FreeMotion>(m, "FreeMotion", "One free motion with the controls fixed (analyses/mobility.h).")
       .def_readonly("direction", &FreeMotion::direction,
                     "ds (state_size): 6 per body, rotation increment [rad] then translation [m], unit norm")
-      .def_readonly("bodies", &FreeMotion::bodies, "indices into model.bodies of the bodies it moves, ascending");
+      .def_readonly("bodies", &FreeMotion::bodies, "indices into model.bodies of the bodies it moves, ascending")
+      .def_readonly("joints", &FreeMotion::joints,
+                    "indices into model.joints of the revolute and prismatic joints whose coordinate it changes, "
+                    "ascending");
   py::class_<MobilityReport>(m, "MobilityReport", "Numerical mobility at a configuration (analyses/mobility.h).")
       .def_readonly("constraint_rows", &MobilityReport::constraint_rows)
       .def_readonly("constraint_rank", &MobilityReport::constraint_rank)
