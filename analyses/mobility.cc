@@ -10,6 +10,7 @@
 #include "analyses/internal/sparse_mobility.h"
 #include "ccma/end_effector.h"
 #include "ccma/internal/constraint_set.h"
+#include "ccma/joint_coordinates.h"
 
 namespace ccma {
 namespace {
@@ -86,6 +87,33 @@ Eigen::MatrixXd LateralRows(const Model& model, const State& s, const Eigen::Vec
   return L.topRows(rows);
 }
 
+// FreeMotion::joints of each motion: the coordinates' rates along the
+// motion by a central difference (exact to about 1e-9 rad or m per unit of
+// ds, far below kMovingJointRate).
+void AddMovingJoints(const Model& model, const State& s, std::vector<FreeMotion>* motions) {
+  constexpr double kStep = 1e-7;
+  const double two_pi = 2 * std::acos(-1.0);
+  std::vector<double> rate(model.joints.size());
+  for (FreeMotion& motion : *motions) {
+    State plus = s, minus = s;
+    plus.Plus(kStep * motion.direction);
+    minus.Plus(-kStep * motion.direction);
+    double largest = 0;
+    for (std::size_t j = 0; j < model.joints.size(); ++j) {
+      const Joint& joint = model.joints[j];
+      const double change = JointCoordinate(joint, plus) - JointCoordinate(joint, minus);
+      // A revolute coordinate is wrapped into (-pi, pi]: undo a wrap between the two.
+      rate[j] = std::abs(joint.type == JointType::kRevolute ? std::remainder(change, two_pi) : change) / (2 * kStep);
+      largest = std::max(largest, rate[j]);
+    }
+    for (std::size_t j = 0; j < model.joints.size(); ++j) {
+      if (rate[j] > kMovingJointRate && rate[j] > kMovingBodyTolerance * largest) {
+        motion.joints.push_back(static_cast<int>(j));
+      }
+    }
+  }
+}
+
 }  // namespace
 
 MobilityReport AnalyzeMobility(const Model& model, const State& s, const Eigen::VectorXd& u,
@@ -105,6 +133,7 @@ MobilityReport AnalyzeMobility(const Model& model, const State& s, const Eigen::
     constraints.Evaluate(s, u, &C);
     report.energy = 0.5 * C.squaredNorm();
     AnalyzeMobilitySparse(model, s, u, rank_tolerance, &report);
+    AddMovingJoints(model, s, &report.free_motions);
     return report;
   }
   Eigen::VectorXd C;
@@ -121,6 +150,7 @@ MobilityReport AnalyzeMobility(const Model& model, const State& s, const Eigen::
   report.smallest_singular_value =
       sigma.size() >= n ? sigma[n - 1] : 0.0;  // fewer rows than columns: singular
   if (!report.rigid_with_controls_fixed) report.free_motions = FreeMotions(J_s, report.constraint_rank);
+  AddMovingJoints(model, s, &report.free_motions);
 
   // Motions with the effective controls free: null space of [J_s, J_u_eff],
   // and of the same with no lateral velocity of the differential bases.

@@ -31,12 +31,22 @@ constexpr int kMaxMobilityStateSize = 120000;
 // moves): e.g. up to 288 free motions at 1000 agents.
 constexpr double kMaxFreeMotionWork = 1e9;
 
+// A revolute or prismatic joint counts as moving in a free motion when its
+// coordinate's rate along the motion (rad or m per unit of ds) exceeds this,
+// and kMovingBodyTolerance times the motion's largest joint rate.
+constexpr double kMovingJointRate = 1e-6;
+
 // One free motion with the controls fixed: a direction ds of the state
 // (state.h: 6 per body, rotation increment [rad] then translation [m], unit
 // norm) with dC/ds ds = 0.
 struct FreeMotion {
   Eigen::VectorXd direction;  // ds, size state_size
   std::vector<int> bodies;    // indices into Model::bodies of the bodies it moves, ascending
+  // Indices into Model::joints of the revolute and prismatic joints whose
+  // coordinate it changes (kMovingBodyTolerance times the largest rate, and
+  // kMovingJointRate), ascending; a motion of spherical or universal joints
+  // alone has none.
+  std::vector<int> joints;
 };
 
 struct MobilityReport {

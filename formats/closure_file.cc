@@ -101,6 +101,22 @@ void ReadEndEffector(const internal::YamlReader& r, const YAML::Node& root, Clos
   }
 }
 
+// ccma's `q_home: {joint: q, ...}`: joint positions at home (rad or m).
+void ReadPositions(const internal::YamlReader& r, const YAML::Node& root, ClosureFile* file) {
+  if (!internal::YamlReader::Has(root, "q_home")) return;
+  const YAML::Node map = r.Map(root["q_home"], "q_home");
+  if (map.size() > kMaxClosureEntries) {
+    r.Fail(map, "q_home", "more than " + std::to_string(kMaxClosureEntries) + " joints");
+  }
+  for (const auto& entry : map) {
+    ClosureFile::Position position;
+    position.joint = SourceName(r, entry.first, "q_home");
+    position.q = r.Number(entry.second, "q_home[" + Quote(position.joint) + "]", "rad or m");
+    position.line = entry.first.Mark().line + 1;
+    file->positions.push_back(position);
+  }
+}
+
 }  // namespace
 
 ClosureFile ParseClosureFile(const std::string& text, const std::string& source) {
@@ -117,6 +133,7 @@ ClosureFile ParseClosureFile(const std::string& text, const std::string& source)
     if (internal::YamlReader::Has(root, "name_mot")) file.actuated_line = root["name_mot"].Mark().line + 1;
     ReadOverrides(r, root, &file);
     ReadEndEffector(r, root, &file);
+    ReadPositions(r, root, &file);
   } catch (const YAML::Exception& e) {  // a conversion we did not foresee
     throw ModelError(internal::WithLine(source, e.mark) + ": " + internal::LibraryMessage(e.msg));
   }

@@ -5,8 +5,12 @@
 //   name_mot: [joint, ...]         the actuated joints
 //   joint_name: [joint, ...]       optional: joints whose type is replaced by
 //   joint_type: [SPHERICAL | FIXED | UJOINT_XY | UJOINT_YZ | UJOINT_ZX | UJOINT_ZY, ...]
-// plus ccma's own optional `end_effector: {link, point, controlled}` (written
-// by `ccma export`). Other keys are ignored.
+// plus ccma's own optional keys, written by `ccma export`:
+//   end_effector: {link, point, controlled}
+//   q_home: {joint: q, ...}        the joint positions (rad or m) at which the
+//                                  URDF's links are read: the model's home,
+//                                  where the loops are closed
+// Other keys are ignored.
 #ifndef CCMA_FORMATS_CLOSURE_FILE_H_
 #define CCMA_FORMATS_CLOSURE_FILE_H_
 
@@ -28,11 +32,17 @@ struct ClosureFile {
     std::string type;  // SPHERICAL, FIXED, UJOINT_XY, ...
     int line = 0;
   };
+  struct Position {
+    std::string joint;
+    double q = 0;  // rad (revolute) or m (prismatic)
+    int line = 0;
+  };
   std::string source;  // the file read
   std::vector<Loop> loops;
   std::vector<std::string> actuated;  // name_mot
   int actuated_line = 0;
   std::vector<Override> overrides;
+  std::vector<Position> positions;  // q_home, file order
   bool has_end_effector = false;
   RobotEndEffector end_effector;
 };
@@ -44,10 +54,13 @@ ClosureFile ReadClosureFile(const std::string& path);
 ClosureFile ParseClosureFile(const std::string& text, const std::string& source);
 
 // Adds the file's closures, type overrides, actuated joints and end-effector
-// to `robot` (read from its URDF). A frame name is a link name, or a joint
-// name standing for its child link's frame. Throws ModelError
+// to `robot` (read from its URDF at its zero configuration), and moves its
+// links to the `q_home` joint positions (formats/internal/joint_positions.h)
+// before the closures' frames are taken. A frame name is a link name, or a
+// joint name standing for its child link's frame. Throws ModelError
 // "closures.yaml:LINE: closed_loop[i]: unknown frame 'X' (no link or joint of
-// robot.urdf has that name)" and likewise for unknown joints.
+// robot.urdf has that name)" and likewise for unknown joints; a q_home
+// joint that is not revolute or prismatic (after the joint_type overrides).
 void ApplyClosureFile(const ClosureFile& file, RobotDescription* robot);
 
 }  // namespace ccma

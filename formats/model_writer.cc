@@ -41,7 +41,17 @@ std::string Quoted(const std::string& text) {
   return out + "\"";
 }
 
-std::string BodyName(const Model& model, int body) { return body == kWorld ? "world" : model.bodies[body].name; }
+// A name ([A-Za-z0-9_-], from the model or a robot file) as a YAML scalar
+// that reads back as that string: quoted where plain YAML would read it as
+// null (`null`, `Null`, `NULL`) or as a list entry (`-`).
+std::string YamlName(const std::string& name) {
+  const bool special = name == "null" || name == "Null" || name == "NULL" || name.empty() || name[0] == '-';
+  return special ? "'" + name + "'" : name;
+}
+
+std::string BodyName(const Model& model, int body) {
+  return body == kWorld ? "world" : YamlName(model.bodies[body].name);
+}
 
 void WriteMeshes(const Body& body, std::ostringstream& out) {
   if (body.meshes.empty()) return;
@@ -59,7 +69,7 @@ void WriteBodies(const Model& model, std::ostringstream& out) {
   out << (any ? "bodies:\n" : "bodies: []\n");
   for (const Body& body : model.bodies) {
     if (body.is_mobile_base()) continue;
-    out << "  - name: " << body.name << "\n    position: " << Vec(body.p_WB_home) << "\n    rpy: "
+    out << "  - name: " << YamlName(body.name) << "\n    position: " << Vec(body.p_WB_home) << "\n    rpy: "
         << Vec(RpyFromRotation(body.R_WB_home)) << "\n";
     WriteMeshes(body, out);
   }
@@ -70,7 +80,7 @@ void WriteBases(const Model& model, std::ostringstream& out) {
   out << "mobile_bases:\n";
   for (const MobileBase& base : model.mobile_bases) {
     const bool differential = base.type == BaseType::kDifferential;
-    out << "  - name: " << base.name << "\n    type: " << (differential ? "differential" : "omni")
+    out << "  - name: " << YamlName(base.name) << "\n    type: " << (differential ? "differential" : "omni")
         << "\n    actuation: " << (base.actuation == Actuation::kReduced ? "reduced" : "complete")
         << "\n    pose: " << Vec(base.home_pose) << "\n";
     if (differential) {
@@ -84,7 +94,7 @@ void WriteBases(const Model& model, std::ostringstream& out) {
 void WriteJoint(const Model& model, const Joint& joint, std::ostringstream& out) {
   const Body& A = Frame(model, joint.body_a);
   const Body& B = Frame(model, joint.body_b);
-  out << "  - name: " << joint.name << "\n    type: " << JointTypeName(joint.type) << "\n    between: ["
+  out << "  - name: " << YamlName(joint.name) << "\n    type: " << JointTypeName(joint.type) << "\n    between: ["
       << BodyName(model, joint.body_a) << ", " << BodyName(model, joint.body_b) << "]\n    point: "
       << Vec(A.R_WB_home * joint.p_A + A.p_WB_home) << "\n";
   if (joint.has_coordinate()) out << "    axis: " << Vec(A.R_WB_home * joint.a_A) << "\n";
@@ -99,7 +109,7 @@ void WriteJoint(const Model& model, const Joint& joint, std::ostringstream& out)
 
 void WriteEndEffector(const Model& model, std::ostringstream& out) {
   const EndEffector& ee = model.end_effector;
-  out << "end_effector:\n  body: " << model.bodies[ee.body].name << "\n  point: " << Vec(ee.p_W_home)
+  out << "end_effector:\n  body: " << YamlName(model.bodies[ee.body].name) << "\n  point: " << Vec(ee.p_W_home)
       << "\n  controlled: [";
   const char* separator = "";
   for (int c = 0; c < 6; ++c) {
@@ -116,7 +126,7 @@ std::string WriteModelYaml(const Model& model, const std::string& header) {
   std::ostringstream out;
   std::istringstream lines(header);
   for (std::string line; std::getline(lines, line);) out << "# " << line << "\n";
-  out << "name: " << model.name << "\n";
+  out << "name: " << YamlName(model.name) << "\n";
   if (!model.description.empty()) out << "description: " << Quoted(model.description) << "\n";
   WriteBodies(model, out);
   WriteBases(model, out);

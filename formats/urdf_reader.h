@@ -19,7 +19,8 @@ constexpr std::size_t kMaxRobotFileBytes = std::size_t{16} << 20;
 // element, at most 100 deep and 100,000 elements (formats/internal/robot_xml.h);
 // at most kMaxRobotLinks links and kMaxRobotJoints joints.
 // Reads `urdf_path` and, unless `closures_path` is empty, its closure file.
-// Link poses are those of the URDF's zero configuration (every joint at 0).
+// Link poses are those of the URDF's zero configuration (every joint at 0),
+// or, when the closure file gives ccma's `q_home`, of those joint positions.
 // The root link is the ground when it is called `world`; otherwise it is
 // welded to the ground by a fixed joint `world__ROOT`. Mesh references are
 // resolved against the URDF's folder. Throws ModelError naming the file,

@@ -145,6 +145,7 @@ class UrdfBuilder {
     }
     u.limit = LimitElement(joint);
     u.origin = links_[parent].X_W.inverse() * X_WC * JointMotion(joint.type, u.axis, -joint.q_home);
+    if (joint.has_coordinate() && joint.q_home != 0) positions_.emplace_back(name, joint.q_home);
     if (joint.type == JointType::kSpherical || joint.type == JointType::kUniversal) {
       overrides_.emplace_back(name, joint.type == JointType::kSpherical ? "SPHERICAL" : "UJOINT_XY");
     }
@@ -220,6 +221,7 @@ class UrdfBuilder {
   std::vector<UrdfJoint> joints_;
   std::vector<UrdfClosure> closures_;
   std::vector<std::pair<std::string, std::string>> overrides_;  // joint_name, joint_type
+  std::vector<std::pair<std::string, double>> positions_;       // joint, q_home (rad or m), when not 0
   std::vector<std::string> planar_joints_;                      // base order
   std::vector<std::pair<int, int>> weld_after_;                  // (joint frame link, body link) to weld
 };
@@ -274,6 +276,16 @@ std::string UrdfBuilder::ClosureText() const {
   }
   if (!overrides_.empty()) {
     os << "joint_name: " << QuotedList(override_names) << "\n" << "joint_type: " << QuotedList(override_types) << "\n";
+  }
+  if (!positions_.empty()) {
+    // Read the URDF's links at these positions and the loops are closed: the
+    // import starts from home instead of closing the loops from q = 0.
+    os << "# ccma's extension: the joint positions at home [rad or m], where the loops are closed.\n"
+       << "q_home: {";
+    for (size_t i = 0; i < positions_.size(); ++i) {
+      os << (i > 0 ? ", '" : "'") << positions_[i].first << "': " << internal::Number(positions_[i].second);
+    }
+    os << "}\n";
   }
   const EndEffector& ee = model_.end_effector;
   const Eigen::Vector3d point = links_[Link(ee.body)].X_W.inverse() * ee.p_W_home;

@@ -16,7 +16,9 @@
 //    tree gets its axis negated, so its coordinate keeps its sign;
 //  * URDF's zero configuration is q = 0 for every joint: a joint with q_home
 //    != 0 has its origin moved back by q_home, so the model's home is where
-//    every joint reads q_home;
+//    every joint reads q_home. The closure file's `q_home` (ccma's extension)
+//    lists those positions: `ccma import` reads the links there, where the
+//    loops are closed, and every joint keeps its coordinate;
 //  * revolute: `revolute` with its limits, or `continuous`; prismatic:
 //    `prismatic` (a <limit> without lower/upper when unlimited); fixed:
 //    `fixed`; spherical and universal: a `continuous` joint replaced in the

@@ -65,7 +65,7 @@ TEST(Cli, CheckPrintsTheContractKeys) {
   EXPECT_EQ(j["assembled_at_home"], true);
 }
 
-// `check` names the bodies each free motion moves (JSON and stderr). Leg 2
+// `check` names the bodies and joints each free motion moves (JSON and stderr). Leg 2
 // of 4dof_reduced without its joint to ee hangs from its base: its post
 // spins carrying its link, and the link swings alone.
 TEST(Cli, CheckNamesTheBodiesOfEachFreeMotion) {
@@ -78,12 +78,14 @@ TEST(Cli, CheckNamesTheBodiesOfEachFreeMotion) {
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["rigid_with_controls_fixed"], false);
   EXPECT_EQ(j["dof_with_controls_fixed"], 2);
-  EXPECT_EQ(j["free_motions"], nlohmann::json::parse(R"([{"bodies": ["post2", "link2"]}, {"bodies": ["link2"]}])"));
+  // The post's joint (joint6, base2-post2) turns carrying the link; the link's (joint7) turns alone.
+  EXPECT_EQ(j["free_motions"], nlohmann::json::parse(R"([{"bodies": ["post2", "link2"], "joints": ["joint6"]},
+                                                         {"bodies": ["link2"], "joints": ["joint7"]}])"));
   EXPECT_NE(r.err.find("ccma check: warning: not rigid with its controls fixed: 2 free motion(s) remain"),
             std::string::npos) << r.err;
   // Neither motion moves the end-effector, which the other legs hold: idle.
-  EXPECT_NE(r.err.find("): motion 1 moves post2, link2; motion 2 moves link2; none moves the end-effector (idle "
-                       "motions, docs/numerics.md)"),
+  EXPECT_NE(r.err.find("): motion 1 moves post2, link2 (joints joint6); motion 2 moves link2 (joints joint7); none "
+                       "moves the end-effector (idle motions, docs/numerics.md)"),
             std::string::npos) << r.err;
   // A rigid mechanism: the field is there, empty.
   const ToolRun rigid = Ccma("check " + Model("4dof_reduced"));

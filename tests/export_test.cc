@@ -152,8 +152,23 @@ ParsedUrdf ParseExport(const Model& model) {
   p.urdf = urdf::parseURDF(p.text.urdf);
   if (!p.urdf) return p;
   p.closures = YAML::Load(p.text.closures);
-  p.home = UrdfPoses(*p.urdf, HomeCoordinates(model));
+  // Home: the joint positions the closure file's q_home gives (0 where it
+  // gives none), as another URDF reader would take them.
+  std::map<std::string, double> q;
+  for (const auto& entry : p.closures["q_home"]) q[entry.first.as<std::string>()] = entry.second.as<double>();
+  p.home = UrdfPoses(*p.urdf, q);
   return p;
+}
+
+// The closure file's q_home lists exactly the joints whose q_home is not 0,
+// with that value (17 digits: exactly).
+void ExpectHomePositions(const ParsedUrdf& p, const Model& model) {
+  std::map<std::string, double> written, expected;
+  for (const auto& entry : p.closures["q_home"]) written[entry.first.as<std::string>()] = entry.second.as<double>();
+  for (const auto& [name, q] : HomeCoordinates(model)) {
+    if (q != 0) expected[name] = q;
+  }
+  EXPECT_EQ(written, expected);
 }
 
 // Every closure's two frames coincide at home (6d: whole frames; 3d: origins).
@@ -295,6 +310,7 @@ void CheckUrdf(const Model& model, const std::string& what) {
   ExpectClosuresHold(p, what);
   ExpectOverridesAndMotors(p, model);
   ExpectEndEffector(p, model);
+  ExpectHomePositions(p, model);
 }
 
 TEST(UrdfExport, EveryBundledModelIsAValidTreeWhoseClosuresHoldAtHome) {
@@ -316,9 +332,12 @@ TEST(UrdfExport, QHomeLimitsAndReversedJoints) {
   EXPECT_EQ(p.urdf->getJoint("piston")->parent_link_name, "crank");         // reversed prismatic
   EXPECT_EQ(p.urdf->getLink("leg_coupler_A")->parent_joint->parent_link_name, "leg_upper");  // cut spherical
   EXPECT_EQ(p.urdf->getJoint("rocker_ground")->child_link_name, "rocker_ground_A");  // cut, dummy link
-  // At URDF's zero (every q = 0) the crank is turned back by q_home: the loop is open there.
+  // At URDF's zero (every q = 0) the crank is turned back by q_home: the loop
+  // is open there; the closure file's q_home closes it.
   const std::map<std::string, Eigen::Isometry3d> zero = UrdfPoses(*p.urdf, {});
   EXPECT_NEAR(Eigen::AngleAxisd(zero.at("crank").linear()).angle(), 0.3, 1e-12);
+  EXPECT_EQ(p.closures["q_home"]["crank_joint"].as<double>(), 0.3);
+  EXPECT_EQ(p.closures["q_home"]["slide"].as<double>(), 0.05);
 }
 
 TEST(UrdfExport, RotatedBodyFrames) {
@@ -570,10 +589,10 @@ std::vector<Eigen::VectorXd> SeededControls(const Model& model, unsigned seed) {
   return controls;
 }
 
-// R_EE is the end-effector body's rotation since home, and the imported
-// model's home may differ from the original's (URDF's zero holds actuated
-// joints at 0, not at q_home): the imported rotations are compared relative
-// to the imported model assembled at the original's home controls.
+// R_EE is the end-effector body's rotation since home: the imported
+// rotations are compared relative to the imported model assembled at the
+// original's home controls (the identity when the homes are the same, as
+// both exports keep them).
 void ExpectSameMechanism(const Model& original, const Model& imported, const std::string& what) {
   SCOPED_TRACE(what);
   ASSERT_EQ(imported.num_controls(), original.num_controls());
@@ -603,12 +622,21 @@ TEST(ExportRoundTrip, UrdfGivesBackTheSameMechanism) {
   for (const std::string& name : testing::BundledModels()) {
     const Model model = LoadModel(testing::ModelPath(name));
     const Model imported = ImportUrdfExport(model);
-    // Without q_home the import's home is the original's.
     EXPECT_LT((imported.home_controls() - model.home_controls()).norm(), 1e-12) << name;
     ExpectSameMechanism(model, imported, name + " (urdf)");
   }
   const Model loop = LoadModelFromString(kLoopModel, "qhome_loop.yaml");
-  ExpectSameMechanism(loop, ImportUrdfExport(loop), "qhome_loop (urdf)");
+  const Model imported = ImportUrdfExport(loop);
+  // The closure file's q_home puts the links at home: the same home controls
+  // (crank_joint's q_home is 0.3), every joint with its coordinate.
+  EXPECT_LT((imported.home_controls() - loop.home_controls()).norm(), 1e-12);
+  for (const Joint& joint : loop.joints) {
+    if (!joint.has_coordinate()) continue;
+    const int j = imported.FindJoint(joint.name);
+    ASSERT_GE(j, 0) << joint.name;
+    EXPECT_NEAR(imported.joints[j].q_home, joint.q_home, 1e-12) << joint.name;
+  }
+  ExpectSameMechanism(loop, imported, "qhome_loop (urdf)");
 }
 
 // The SDFormat export, read back with no --actuated: the reader takes the

@@ -176,6 +176,11 @@ TEST(Mobility, AJointTakenOutNamesTheBodiesThatMove) {
   EXPECT_NEAR(r.free_motions[0].direction.norm(), 1, 1e-12);
   EXPECT_NEAR(r.free_motions[1].direction.norm(), 1, 1e-12);
   EXPECT_NEAR(r.free_motions[0].direction.dot(r.free_motions[1].direction), 0, 1e-12);
+  // The joints whose coordinate each changes: the post's (base2-post2,
+  // joint6) turns carrying the link, then the link's (post2-link2, joint7)
+  // turns alone; the legs' other joints hold still.
+  EXPECT_EQ(r.free_motions[0].joints, std::vector<int>{m.FindJoint("joint6")});
+  EXPECT_EQ(r.free_motions[1].joints, std::vector<int>{m.FindJoint("joint7")});
   // The bundled model itself is rigid: no free motion to name.
   const Model full = LoadModel(std::string(CCMA_MODELS_DIR) + "/4dof_reduced.yaml");
   EXPECT_TRUE(AnalyzeMobility(full, State::Home(full), full.home_controls()).free_motions.empty());

@@ -19,7 +19,9 @@
 #include "analyses/mobility.h"
 #include "analyses/robot_import.h"
 #include "ccma/joint_coordinates.h"
+#include "formats/closure_file.h"
 #include "formats/model_loader.h"
+#include "formats/sdformat_reader.h"
 #include "formats/urdf_reader.h"
 #include "problems/control_problem.h"
 #include "problems/forward_problem.h"
@@ -33,6 +35,8 @@ struct Robot {
   std::string folder, end_effector;
   std::vector<std::string> moved;  // the components the motors move at home, as import chooses them
 };
+// gtest (and CTest's test names) show a robot by its folder.
+void PrintTo(const Robot& robot, std::ostream* os) { *os << robot.folder; }
 // battobot_6d replaces joints by universal and spherical ones (joint_name /
 // joint_type) and has a link named 'toe_a_2/2'; 5bar_linkage_iso3d closes
 // its loop with a 3d closure. The five-bar and the delta (two motors each)
@@ -254,6 +258,128 @@ TEST_P(CopiedRobot, ControlsTheComponentsTheMotorsMove) {
 
 INSTANTIATE_TEST_SUITE_P(ExampleParallelRobots, CopiedRobot, ::testing::ValuesIn(kCopied),
                          [](const auto& info) { return info.param.folder; });
+
+}  // namespace
+}  // namespace ccma
+
+namespace ccma {
+namespace {
+
+// ---- The closure file's q_home (ccma's own key, written by `ccma export`) ----
+
+// world -j1 (revolute about z at (1,0,0), origin turned 0.3 about z)-> a
+// -j2 (prismatic along a's x, at (0,2,0) in a)-> b -j3 (fixed, (0,0,1) in b)-> c.
+const char* kChain = R"(<robot name="chain">
+  <link name="world"/><link name="a"/><link name="b"/><link name="c"/>
+  <joint name="j1" type="continuous"><parent link="world"/><child link="a"/>
+    <origin xyz="1 0 0" rpy="0 0 0.3"/><axis xyz="0 0 1"/></joint>
+  <joint name="j2" type="prismatic"><parent link="a"/><child link="b"/>
+    <origin xyz="0 2 0"/><axis xyz="1 0 0"/><limit lower="-1" upper="1" effort="0" velocity="0"/></joint>
+  <joint name="j3" type="fixed"><parent link="b"/><child link="c"/><origin xyz="0 0 1"/></joint>
+</robot>)";
+
+RobotDescription ChainWith(const std::string& closures) {
+  RobotDescription robot = ReadUrdfFromString(kChain, "chain.urdf");
+  ApplyClosureFile(ParseClosureFile(closures, "chain.yaml"), &robot);
+  return robot;
+}
+
+const RobotLink& LinkOf(const RobotDescription& robot, const std::string& name) {
+  return robot.links[robot.FindLink(name)];
+}
+
+TEST(ClosureFileQHome, LinksAreReadAtTheGivenJointPositions) {
+  const RobotDescription robot = ChainWith("name_mot: ['j1']\nq_home: {'j1': 0.5, 'j2': 0.25}\n");
+  // Closed form: a turned 0.3 + 0.5 about z at (1,0,0); b shifted 0.25 along a's x.
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(0.8, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Eigen::Vector3d p_a(1, 0, 0), p_b = p_a + R * Eigen::Vector3d(0.25, 2, 0);
+  EXPECT_LT((LinkOf(robot, "a").X_WL.translation() - p_a).norm(), 1e-15);
+  EXPECT_LT((LinkOf(robot, "a").X_WL.linear() - R).norm(), 1e-15);
+  EXPECT_LT((LinkOf(robot, "b").X_WL.translation() - p_b).norm(), 1e-15);
+  EXPECT_LT((LinkOf(robot, "c").X_WL.translation() - (p_b + Eigen::Vector3d(0, 0, 1))).norm(), 1e-15);
+  EXPECT_LT((LinkOf(robot, "c").X_WL.linear() - R).norm(), 1e-15);
+  const RobotJoint& j2 = robot.joints[robot.FindJoint("j2")];
+  EXPECT_EQ(j2.position, 0.25);
+  EXPECT_LT((j2.axis_W - R.col(0)).norm(), 1e-15);
+  // Imported (and written and read back: rounding to 1e-15), the joints read
+  // those positions at home and motor j1's control is 0.5.
+  ImportOptions options;
+  options.end_effector_link = "c";
+  const ImportedRobot imported = ImportRobot(robot, options);
+  EXPECT_EQ(imported.model.home_controls(), Eigen::VectorXd::Constant(1, 0.5));
+  const State home = State::Home(imported.model);
+  for (const JointCoordinateReport& r : JointCoordinates(imported.model, home)) {
+    const std::string& name = imported.model.joints[r.joint].name;
+    EXPECT_NEAR(r.q, name == "j1" ? 0.5 : 0.25, 1e-12) << name;
+  }
+  EXPECT_LT((home.p_WB(imported.model.FindBody("c")) - (p_b + Eigen::Vector3d(0, 0, 1))).norm(), 1e-12);
+}
+
+void ExpectRefused(const std::string& closures, const std::string& message) {
+  try {
+    ChainWith(closures);
+    ADD_FAILURE() << "accepted: " << closures;
+  } catch (const ModelError& e) {
+    EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+  }
+}
+
+TEST(ClosureFileQHome, HostileEntriesAreRefusedWithFileLineAndJoint) {
+  ExpectRefused("q_home: {'nope': 1}\n", "chain.yaml:1: q_home: unknown joint 'nope' (not a joint of chain.urdf)");
+  ExpectRefused("name_mot: ['j1']\nq_home: {'j3': 1}\n", "chain.yaml:2: q_home: joint 'j3' is not revolute or prismatic");
+  ExpectRefused("q_home: {'j1': abc}\n", "chain.yaml:1: q_home['j1']: must be a number, got 'abc'");
+  ExpectRefused("q_home: {'j1': .nan}\n", "q_home['j1']: must be a finite number");
+  ExpectRefused("q_home: {'j1': 1e5}\n", "must lie in [-10000, 10000] (rad or m)");
+  ExpectRefused("q_home: [1, 2]\n", "chain.yaml:1: q_home: must be a mapping");
+  ExpectRefused("q_home: {'j1': 1, 'j1': 2}\n", "chain.yaml:1");  // a repeated key
+  ExpectRefused("q_home: {'sh\x1b[31m': 1}\n", "must be a name of at most");
+  // Within the file's rules but outside the joint's limits: import refuses it.
+  RobotDescription robot = ChainWith("name_mot: ['j1']\nq_home: {'j2': 1.5}\n");
+  ImportOptions options;
+  options.end_effector_link = "c";
+  try {
+    ImportRobot(robot, options);
+    ADD_FAILURE() << "accepted j2 at 1.5";
+  } catch (const ModelError& e) {
+    EXPECT_NE(std::string(e.what()).find("joint 'j2': its position at home, 1.5, is outside its limits"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+// ---- The imported model's name (docs/import.md, "Model name") ----
+
+std::string ImportedName(const std::string& robot_name, const std::string& path) {
+  std::string text = kChain;
+  text.replace(text.find("\"chain\""), 7, "\"" + robot_name + "\"");
+  RobotDescription robot = ReadUrdfFromString(text, path);
+  ApplyClosureFile(ParseClosureFile("name_mot: ['j1']\n", "chain.yaml"), &robot);
+  ImportOptions options;
+  options.end_effector_link = "c";
+  return ImportRobot(robot, options).model.name;  // loaded back from the written file
+}
+
+TEST(ImportedModelName, TheFilesRobotNameElseItsStemElseItsFolder) {
+  EXPECT_EQ(ImportedName("chain", "robots/arm/robot.urdf"), "chain");
+  EXPECT_EQ(ImportedName("Onshape", "robots/arm/my_arm.urdf"), "my_arm");  // an exporter's name
+  EXPECT_EQ(ImportedName("", "robots/arm/robot.urdf"), "arm");
+  EXPECT_EQ(ImportedName("robot", "robots/arm/model.urdf"), "arm");
+  EXPECT_EQ(ImportedName("my arm (v2)", "x.urdf"), "my_arm__v2_");  // made a ccma name
+  EXPECT_EQ(ImportedName(std::string(100, 'n'), "x.urdf"), std::string(64, 'n'));
+  // Names that plain YAML reads as null or as a list entry are written quoted.
+  EXPECT_EQ(ImportedName("null", "x.urdf"), "null");
+  EXPECT_EQ(ImportedName("-", "x.urdf"), "-");
+  // The collection's files are all <robot name="onshape"> in robot.urdf.
+  ImportOptions options;
+  options.end_effector_link = "effector";
+  EXPECT_EQ(ImportRobot(ReadUrdf(kRobots + "5bar_linkage/robot.urdf", kRobots + "5bar_linkage/robot.yaml"), options)
+                .model.name,
+            "5bar_linkage");
+  options.end_effector_link = "coupler";
+  EXPECT_EQ(ImportRobot(ReadSdformat(std::string(CCMA_MODELS_DIR) + "/robots/four_bar_loop.sdf", {"crank"}), options)
+                .model.name,
+            "four_bar_loop");  // <model name="four_bar_loop">
+}
 
 }  // namespace
 }  // namespace ccma

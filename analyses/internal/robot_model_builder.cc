@@ -8,6 +8,7 @@
 #include <set>
 #include <string>
 
+#include "analyses/internal/import_model_name.h"
 #include "ccma/internal/format.h"
 #include "ccma/limits.h"
 #include "ccma/rotation.h"
@@ -317,7 +318,7 @@ RobotModel BuildRobotModel(const RobotDescription& robot, const ImportOptions& o
   }
   RobotModel out;
   Model& model = out.model;
-  model.name = CcmaName(options.model_name.empty() ? robot.name : options.model_name);
+  model.name = options.model_name.empty() ? ImportedModelName(robot) : CcmaName(options.model_name);
   model.description = "Imported by ccma import from " + robot.source.substr(robot.source.find_last_of('/') + 1);
   std::map<std::string, int> bodies;
   AddBodies(robot, bases, &model, &bodies);

@@ -2,9 +2,11 @@
 #include <initializer_list>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "ccma/internal/format.h"
 #include "formats/closure_file.h"
+#include "formats/internal/joint_positions.h"
 #include "formats/model_loader.h"
 
 namespace ccma {
@@ -78,10 +80,29 @@ void ApplyOverride(const ClosureFile& file, const ClosureFile::Override& o, Robo
   }
 }
 
+// q_home: the links moved to these joint positions (before the closures'
+// frames are taken from them).
+void ApplyPositions(const ClosureFile& file, RobotDescription* robot) {
+  std::vector<std::pair<int, double>> positions;
+  for (const ClosureFile::Position& p : file.positions) {
+    const int j = robot->FindJoint(p.joint);
+    if (j < 0) {
+      Fail(file, p.line, "q_home", "unknown joint " + Quote(p.joint) + " (not a joint of " + robot->source + ")");
+    }
+    const RobotJointType type = robot->joints[j].type;
+    if (type != RobotJointType::kRevolute && type != RobotJointType::kPrismatic) {
+      Fail(file, p.line, "q_home", "joint " + Quote(p.joint) + " is not revolute or prismatic: it has no position");
+    }
+    positions.emplace_back(j, p.q);
+  }
+  if (!positions.empty()) internal::MoveToJointPositions(positions, robot);
+}
+
 }  // namespace
 
 void ApplyClosureFile(const ClosureFile& file, RobotDescription* robot) {
   for (const ClosureFile::Override& o : file.overrides) ApplyOverride(file, o, robot);
+  ApplyPositions(file, robot);
   for (std::size_t i = 0; i < file.loops.size(); ++i) robot->closures.push_back(Closure(file, i, *robot));
   for (const std::string& name : file.actuated) {
     if (robot->FindJoint(name) < 0) {

@@ -835,6 +835,9 @@ class FreeMotion:
     @property
     def bodies(self) -> list[str]:
         """Names of the bodies it moves, in model order (as `ccma check`'s free_motions)."""
+    @property
+    def joints(self) -> list[str]:
+        """Names of the revolute and prismatic joints whose coordinate it changes, in model order (as `ccma check`'s free_motions)."""
 
 class MobilityReport:
     """Numerical mobility at a configuration (analyses/mobility.h, `ccma check`). Read-only."""

@@ -23,6 +23,7 @@ namespace {
 struct NamedFreeMotion {
   Eigen::VectorXd direction;
   std::vector<std::string> bodies;
+  std::vector<std::string> joints;
 };
 
 struct MobilitySolution : MobilityReport {
@@ -33,8 +34,9 @@ MobilitySolution Named(const Model& model, const MobilityReport& r) {
   MobilitySolution s;
   static_cast<MobilityReport&>(s) = r;
   for (const FreeMotion& motion : r.free_motions) {
-    NamedFreeMotion named{motion.direction, {}};
+    NamedFreeMotion named{motion.direction, {}, {}};
     for (const int b : motion.bodies) named.bodies.push_back(model.bodies[b].name);
+    for (const int j : motion.joints) named.joints.push_back(model.joints[j].name);
     s.named_free_motions.push_back(named);
   }
   return s;
@@ -45,7 +47,10 @@ void BindReport(py::module_& m) {
       .def_readonly("direction", &NamedFreeMotion::direction,
                     "ds (state_size): 6 per body, rotation increment [rad] then translation [m], unit norm")
       .def_readonly("bodies", &NamedFreeMotion::bodies,
-                    "names of the bodies it moves, in model order (as `ccma check`'s free_motions)");
+                    "names of the bodies it moves, in model order (as `ccma check`'s free_motions)")
+      .def_readonly("joints", &NamedFreeMotion::joints,
+                    "names of the revolute and prismatic joints whose coordinate it changes, in model order "
+                    "(as `ccma check`'s free_motions)");
   py::class_<MobilitySolution>(m, "MobilityReport",
                                "Numerical mobility at a configuration (analyses/mobility.h); the names are "
                                "`ccma check`'s.")

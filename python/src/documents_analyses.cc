@@ -132,7 +132,9 @@ nlohmann::json CheckCounts(const Model& model, const MobilityReport& mobility, b
   for (const FreeMotion& motion : mobility.free_motions) {
     nlohmann::json bodies = nlohmann::json::array();
     for (const int b : motion.bodies) bodies.push_back(model.bodies[b].name);
-    motions.push_back({{"bodies", bodies}});
+    nlohmann::json joints = nlohmann::json::array();
+    for (const int j : motion.joints) joints.push_back(model.joints[j].name);
+    motions.push_back({{"bodies", bodies}, {"joints", joints}});
   }
   out["free_motions"] = motions;
   return out;
@@ -144,6 +146,10 @@ std::string FreeMotionText(const Model& model, const std::vector<FreeMotion>& mo
   for (size_t m = 0; m < motions.size(); ++m) {
     text += (m ? "; motion " : "motion ") + std::to_string(m + 1) + " moves ";
     for (size_t i = 0; i < motions[m].bodies.size(); ++i) text += (i ? ", " : "") + model.bodies[motions[m].bodies[i]].name;
+    for (size_t i = 0; i < motions[m].joints.size(); ++i) {
+      text += (i ? ", " : " (joints ") + model.joints[motions[m].joints[i]].name;
+    }
+    if (!motions[m].joints.empty()) text += ")";
   }
   return text;
 }

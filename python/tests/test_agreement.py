@@ -91,7 +91,8 @@ def test_move_to_matches_control(model_path):
 
 def test_free_motions_match_check(tmp_path):
     """A joint taken out of 4dof_reduced leaves leg 2 hanging: Python names the
-    same moving bodies as `ccma check` ([post2, link2] and [link2]), along
+    same moving bodies as `ccma check` ([post2, link2] and [link2]) and joints
+    ([joint6] and [joint7]), along
     unit, orthogonal directions in the null space."""
     text = (MODELS_DIR / "4dof_reduced.yaml").read_text()
     line = next(l for l in text.splitlines(keepends=True) if l.startswith("  - {type: revolute, between: [link2, ee]"))
@@ -104,6 +105,9 @@ def test_free_motions_match_check(tmp_path):
     assert mobility.free_motions_listed
     check = run_tool("check", "--model=" + str(path))
     assert names == [motion["bodies"] for motion in check["free_motions"]]
+    joints = [motion.joints for motion in mobility.free_motions]
+    assert joints == [["joint6"], ["joint7"]]
+    assert joints == [motion["joints"] for motion in check["free_motions"]]
     d = np.array([motion.direction for motion in mobility.free_motions])
     assert np.allclose(d @ d.T, np.eye(2), atol=1e-12)
     assert ccma.analyze_mobility(ccma.load_model(str(MODELS_DIR / "4dof_reduced.yaml"))).free_motions == []
