@@ -23,6 +23,7 @@
 #include <gflags/gflags.h>
 
 #include "apps/cli.h"
+#include "ccma/internal/format.h"
 #include "apps/flags.h"
 #include "apps/commands.h"
 #include "apps/json_output.h"
@@ -296,12 +297,6 @@ nlohmann::json Scaling(int steps) {
           {"machine", Machine()}};
 }
 
-std::string Fixed(double v, int digits) {
-  std::ostringstream os;
-  os << std::fixed << std::setprecision(digits) << v;
-  return os.str();
-}
-
 // The tables of benchmarks/RESULTS.md, written next to the data.
 void WriteModelTable(const std::string& path, const nlohmann::json& results) {
   std::ofstream md(path);
@@ -314,16 +309,16 @@ void WriteModelTable(const std::string& path, const nlohmann::json& results) {
         "Jacobians analytic / autodiff [us] |\n|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : results) {
     auto loop = [](const nlohmann::json& l) {
-      return Fixed(l["median"], 3) + " (" + Fixed(l["p95"], 3) + "), " + Fixed(l["median_iterations"], 0) +
-             " it" + (l["reached_fraction"].get<double>() < 1 ? ", reached " + Fixed(100 * l["reached_fraction"].get<double>(), 0) + "%" : "");
+      return FormatFixed(l["median"], 3) + " (" + FormatFixed(l["p95"], 3) + "), " + FormatFixed(l["median_iterations"], 0) +
+             " it" + (l["reached_fraction"].get<double>() < 1 ? ", reached " + FormatFixed(100 * l["reached_fraction"].get<double>(), 0) + "%" : "");
     };
     md << "| " << r["model"].get<std::string>() << " | " << r["state_size"] << " | "
-       << Fixed(r["forward_us"]["median"], 1) << " (" << Fixed(r["forward_us"]["p95"], 1) << ") | "
+       << FormatFixed(r["forward_us"]["median"], 1) << " (" << FormatFixed(r["forward_us"]["p95"], 1) << ") | "
        << loop(r["control_ms"]["lm"]) << " | " << loop(r["control_ms"]["bfgs"]) << " | "
        << loop(r["finite_difference_ms"]["lm"]) << " | " << loop(r["finite_difference_ms"]["bfgs"]) << " | "
-       << Fixed(r["speedup_over_finite_differences"]["lm"], 1) << "x / "
-       << Fixed(r["speedup_over_finite_differences"]["bfgs"], 1) << "x | "
-       << Fixed(r["jacobian_us"]["analytic"], 2) << " / " << Fixed(r["jacobian_us"]["autodiff"], 2) << " |\n";
+       << FormatFixed(r["speedup_over_finite_differences"]["lm"], 1) << "x / "
+       << FormatFixed(r["speedup_over_finite_differences"]["bfgs"], 1) << "x | "
+       << FormatFixed(r["jacobian_us"]["analytic"], 2) << " / " << FormatFixed(r["jacobian_us"]["autodiff"], 2) << " |\n";
   }
 }
 
@@ -336,12 +331,12 @@ void WriteScalingTable(const std::string& path, const nlohmann::json& scaling) {
      << "| agents | state size | forward solve [us] | control step, LM [ms] | LM iterations |\n"
      << "|---|---|---|---|---|\n";
   for (const auto& r : scaling["scaling"]) {
-    md << "| " << r["agents"] << " | " << r["state_size"] << " | " << Fixed(r["forward_us_median"], 1) << " | "
-       << Fixed(r["control_ms_median"], 3) << " | " << Fixed(r["control_median_iterations"], 0) << " |\n";
+    md << "| " << r["agents"] << " | " << r["state_size"] << " | " << FormatFixed(r["forward_us_median"], 1) << " | "
+       << FormatFixed(r["control_ms_median"], 3) << " | " << FormatFixed(r["control_median_iterations"], 0) << " |\n";
   }
   md << "\nFitted growth exponents from 6 to 48 agents (" << scaling["fit"].get<std::string>()
-     << "): forward solve " << Fixed(scaling["forward_exponent"], 2) << ", control step "
-     << Fixed(scaling["control_exponent"], 2) << ".\n";
+     << "): forward solve " << FormatFixed(scaling["forward_exponent"], 2) << ", control step "
+     << FormatFixed(scaling["control_exponent"], 2) << ".\n";
 }
 
 // The models to bench: --model, or with --all every .yaml in --models_dir.

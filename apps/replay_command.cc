@@ -15,6 +15,7 @@
 #include <gflags/gflags.h>
 
 #include "apps/cli.h"
+#include "ccma/internal/format.h"
 #include "apps/flags.h"
 #include "apps/commands.h"
 #include "apps/json_output.h"
@@ -38,12 +39,6 @@ DEFINE_double(max_wheel_speed, 30.0, "wheel-speed saturation [rad/s]");
 
 namespace ccma::cli {
 namespace {
-
-std::string G(double v) {
-  char text[64];
-  std::snprintf(text, sizeof(text), "%g", v);
-  return text;
-}
 
 // Whether a flag was given on the command line (the replay flags' -1 means "not given").
 bool Given(const char* flag) { return !gflags::GetCommandLineFlagInfoOrDie(flag).is_default; }
@@ -77,11 +72,11 @@ ReplayOptions ReplayOptionsFromFlags() {
 // One sentence: what was simulated, for rmse.md.
 std::string Setting(const Model& model, const std::string& path_name, const ReplayOptions& o) {
   const SimulationNoise& n = o.noise;
-  return model.name + " on " + path_name + " (noise: " + FLAGS_noise + ", mocap " + G(1000 * n.position_sigma) +
-         " mm / " + G(n.heading_sigma) + " rad, latency " + G(1000 * n.mocap_latency) + "+" +
-         G(1000 * n.command_latency) + " ms, slip " + G(100 * n.slip) + " +- " + G(100 * n.slip_sigma) +
-         " %, seed " + std::to_string(n.seed) + "; PI kp " + G(o.gains.kp_position) + "/s, ki " +
-         G(o.gains.ki_position) + "/s^2 at " + G(o.gains.rate_hz) + " Hz)";
+  return model.name + " on " + path_name + " (noise: " + FLAGS_noise + ", mocap " + FormatG(1000 * n.position_sigma) +
+         " mm / " + FormatG(n.heading_sigma) + " rad, latency " + FormatG(1000 * n.mocap_latency) + "+" +
+         FormatG(1000 * n.command_latency) + " ms, slip " + FormatG(100 * n.slip) + " +- " + FormatG(100 * n.slip_sigma) +
+         " %, seed " + std::to_string(n.seed) + "; PI kp " + FormatG(o.gains.kp_position) + "/s, ki " +
+         FormatG(o.gains.ki_position) + "/s^2 at " + FormatG(o.gains.rate_hz) + " Hz)";
 }
 
 nlohmann::json OptionsJson(const ReplayOptions& options) {

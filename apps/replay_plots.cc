@@ -12,8 +12,6 @@
 namespace ccma::cli {
 namespace {
 
-std::string G(double v) { return FormatG(v); }  // %g, for every number in a message or script
-
 // end_effector.csv's columns (1-based): commanded, tracked, error, torn.
 int CommandedColumn(int c) { return 2 + c; }
 int TrackedColumn(int c) { return 8 + c; }
@@ -26,12 +24,12 @@ std::vector<std::string> FailureHeadlines(const ReplayResult& r, const std::stri
   std::vector<std::string> out;
   if (!r.converged) {
     out.push_back("FAILED: the control solution did not reach a waypoint; the plan stops at t = " +
-                  G(r.failed_step_time) + " s (red dotted line)");
+                  FormatG(r.failed_step_time) + " s (red dotted line)");
   }
   if (r.torn) {
     out.push_back("FAILED: chain torn (could not follow the bases) in " + std::to_string(r.torn_samples) + " of " +
-                  std::to_string(r.samples.size()) + " samples from t = " + G(r.first_torn_time) +
-                  " s (" + torn_mark + "), worst E = " + G(r.max_residual_energy) + " m^2");
+                  std::to_string(r.samples.size()) + " samples from t = " + FormatG(r.first_torn_time) +
+                  " s (" + torn_mark + "), worst E = " + FormatG(r.max_residual_energy) + " m^2");
   }
   if (r.samples.empty()) out.push_back("FAILED: no samples");
   return out;
@@ -41,12 +39,12 @@ std::vector<std::string> FailureHeadlines(const ReplayResult& r, const std::stri
 std::string HeadingLabels(const std::string& title, const ReplayResult& r, int height,
                           const std::string& torn_mark) {
   std::ostringstream s;
-  s << "set label 101 " << GnuplotQuote(title) << " at screen 0.5, screen " << G(1 - 22.0 / height)
+  s << "set label 101 " << GnuplotQuote(title) << " at screen 0.5, screen " << FormatG(1 - 22.0 / height)
     << " center font ',13'\n";
   int n = 0;
   for (const std::string& line : FailureHeadlines(r, torn_mark)) {
     s << "set label " << 102 + n << " " << GnuplotQuote(line) << " at screen 0.5, screen "
-      << G(1 - (46.0 + 20 * n) / height) << " center font ',11' textcolor rgb '" << kFailColour << "'\n";
+      << FormatG(1 - (46.0 + 20 * n) / height) << " center font ',11' textcolor rgb '" << kFailColour << "'\n";
     ++n;
   }
   return s.str();
@@ -85,7 +83,7 @@ std::string TornBands(const ReplayResult& r) {
   std::ostringstream s;
   int id = 1000;
   for (const auto& [from, to] : TornIntervals(r)) {
-    s << "set object " << id++ << " rect from first " << G(from) << ", graph 0 to first " << G(to)
+    s << "set object " << id++ << " rect from first " << FormatG(from) << ", graph 0 to first " << FormatG(to)
       << ", graph 1 behind fillcolor rgb '" << kFailColour << "' fillstyle transparent solid 0.18 noborder\n";
   }
   return s.str();
@@ -117,16 +115,16 @@ std::string EndEffectorFigure(const std::string& format, const Model& model, con
   const double top = 1 - (HeadingHeight(r) + 20.0) / height, bottom = 55.0 / height;
   std::ostringstream s;
   s << TerminalCommand(format, 1200, height) << "set output 'end_effector." << format << "'\n"
-    << "set multiplot layout " << panels << ",1 margins 0.07,0.72," << G(bottom) << "," << G(top)
-    << " spacing 0.08," << G(28.0 / height) << "\n"
-    << "set grid\nset key at screen 0.99, graph 1 right top Left reverse\nset xrange [" << G(r.samples.front().time) << ":"
-    << G(r.samples.back().time) << "]\nset format x ''\nunset xlabel\n"
+    << "set multiplot layout " << panels << ",1 margins 0.07,0.72," << FormatG(bottom) << "," << FormatG(top)
+    << " spacing 0.08," << FormatG(28.0 / height) << "\n"
+    << "set grid\nset key at screen 0.99, graph 1 right top Left reverse\nset xrange [" << FormatG(r.samples.front().time) << ":"
+    << FormatG(r.samples.back().time) << "]\nset format x ''\nunset xlabel\n"
     << HeadingLabels("SIMULATION (ccma replay): " + model.name + " end-effector on " + path_name +
                          ", tracked vs commanded",
                      r, height, "red bands");
   s << TornBands(r);
   if (!std::isnan(r.failed_step_time)) {
-    s << "set arrow 1 from first " << G(r.failed_step_time) << ", graph 0 to first " << G(r.failed_step_time)
+    s << "set arrow 1 from first " << FormatG(r.failed_step_time) << ", graph 0 to first " << FormatG(r.failed_step_time)
       << ", graph 1 nohead front lw 2 dt 3 lc rgb '" << kFailColour << "'\n";
   }
   for (size_t i = 0; i < components.size(); ++i) {
@@ -292,8 +290,8 @@ std::string SingleBasesFigure(const std::string& format, const Model& model, con
   const int height = HeadingHeight(r) + 20 + plot_height + 60 + key_height;
   std::ostringstream s;
   s << TerminalCommand(format, width, height) << "set output 'bases_xy." << format << "'\n"
-    << "set size ratio -1\nset grid\nset tmargin at screen " << G(1 - (HeadingHeight(r) + 20.0) / height)
-    << "\nset bmargin at screen " << G((key_height + 50.0) / height) << "\nset xlabel 'x [m]'\nset ylabel 'y [m]'\n"
+    << "set size ratio -1\nset grid\nset tmargin at screen " << FormatG(1 - (HeadingHeight(r) + 20.0) / height)
+    << "\nset bmargin at screen " << FormatG((key_height + 50.0) / height) << "\nset xlabel 'x [m]'\nset ylabel 'y [m]'\n"
     << "set key below horizontal\n" << FittedRanges(all, margin)
     << HeadingLabels("SIMULATION (ccma replay): " + model.name + ", " + std::to_string(n) +
                          " mobile bases in the ground plane" + (named ? "" : " (one colour per base)"),
@@ -321,10 +319,10 @@ std::string ZoomedBasesFigure(const std::string& format, const Model& model, con
                      r, height, "red dots")
     << StartsBlock(n, r) << "$windows << EOD\n" << std::setprecision(12);
   for (const Extent& e : extents) s << 0.5 * (e.x0 + e.x1) << "," << 0.5 * (e.y0 + e.y1) << "," << side / 2 << "\n";
-  s << "EOD\nset key at screen 0.5, screen " << G((key_height - 10.0) / height) << " center top\n"
-    << "set multiplot layout " << rows << "," << columns << " margins 0.08,0.97," << G((key_height + 20.0) / height)
-    << "," << G(1 - (HeadingHeight(r) + 45.0) / height) << " spacing 0.1," << G(70.0 / height) << "\n"
-    << "set size ratio -1\nset title 'all bases (squares: the " << G(100 * side) << " cm windows of the panels)'\n"
+  s << "EOD\nset key at screen 0.5, screen " << FormatG((key_height - 10.0) / height) << " center top\n"
+    << "set multiplot layout " << rows << "," << columns << " margins 0.08,0.97," << FormatG((key_height + 20.0) / height)
+    << "," << FormatG(1 - (HeadingHeight(r) + 45.0) / height) << " spacing 0.1," << FormatG(70.0 / height) << "\n"
+    << "set size ratio -1\nset title 'all bases (squares: the " << FormatG(100 * side) << " cm windows of the panels)'\n"
     << FittedRanges(all, std::max(0.05 * std::max(all.width(), all.height()), side / 2))
     << AllBasesPlot(model, r, true, true) << UnsetHeadingLabels(r) << "unset key\n";
   // One tic step on both axes of every window, 1, 2 or 5 times a power of
@@ -333,7 +331,7 @@ std::string ZoomedBasesFigure(const std::string& format, const Model& model, con
   const double decade = std::pow(10.0, std::floor(std::log10(least)));
   const double tic = least <= decade ? decade : least <= 2 * decade ? 2 * decade
                    : least <= 5 * decade ? 5 * decade : 10 * decade;
-  s << "set xtics " << G(tic) << "\nset ytics " << G(tic) << "\n";
+  s << "set xtics " << FormatG(tic) << "\nset ytics " << FormatG(tic) << "\n";
   for (int k = 0; k < n; ++k) {
     s << "set title " << GnuplotQuote(model.mobile_bases[k].name) << "\n" << WindowRanges(extents[k], side) << "plot "
       << (r.torn ? TornClause(model, k, false) : "") << PathClauses(model, k, "notitle") << ", $starts using 1:2 every ::"

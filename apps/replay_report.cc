@@ -13,14 +13,6 @@
 namespace ccma::cli {
 namespace {
 
-std::string G(double v) { return FormatG(v); }  // %g, for every number in a message or script
-
-std::string Fixed(double v, int digits) {
-  std::ostringstream os;
-  os << std::fixed << std::setprecision(digits) << v;
-  return os.str();
-}
-
 }  // namespace
 
 std::vector<int> ReportedComponents(const Model& model) {
@@ -53,13 +45,13 @@ std::vector<std::string> ReplayFailures(const ReplayResult& r) {
   std::vector<std::string> out;
   if (!r.converged) {
     out.push_back("not converged: the control solution did not reach every waypoint (the replay stops at t = " +
-                  G(r.failed_step_time) + " s): " + OneLine(r.warning));
+                  FormatG(r.failed_step_time) + " s): " + OneLine(r.warning));
   }
   if (r.torn) {
     out.push_back("chain torn: the chain could not follow the bases in " + std::to_string(r.torn_samples) + " of " +
                   std::to_string(r.samples.size()) + " samples (residual energy above " +
-                  G(r.torn_residual_energy) + " m^2), first at t = " + G(r.first_torn_time) +
-                  " s, worst E = " + G(r.max_residual_energy) + " m^2");
+                  FormatG(r.torn_residual_energy) + " m^2), first at t = " + FormatG(r.first_torn_time) +
+                  " s, worst E = " + FormatG(r.max_residual_energy) + " m^2");
   }
   if (r.samples.empty()) out.push_back("no samples: nothing was simulated");
   return out;
@@ -70,7 +62,7 @@ std::string ReplayRmseTable(const Model& model, const ReplayResult& r, const std
   if (!r.trustworthy()) {
     std::string reasons;
     auto add = [&](const std::string& reason) { reasons += (reasons.empty() ? "" : "; ") + reason; };
-    if (!r.converged) add("the control solution did not reach every waypoint (stops at t = " + G(r.failed_step_time) + " s)");
+    if (!r.converged) add("the control solution did not reach every waypoint (stops at t = " + FormatG(r.failed_step_time) + " s)");
     if (r.torn) add("the chain was torn in " + std::to_string(r.torn_samples) + " samples");
     if (r.samples.empty()) add("no samples");
     table << "WARNING: NOT TRUSTWORTHY, " << reasons << ": the RMSE below does not measure tracking.\n\n";
@@ -82,14 +74,14 @@ std::string ReplayRmseTable(const Model& model, const ReplayResult& r, const std
   table << "\n|---|";
   for (size_t i = 0; i < components.size(); ++i) table << "---|";
   table << "\n| ccma simulation" << (r.trustworthy() ? "" : " (FAILED)") << " |";
-  for (const int c : components) table << " " << (IsAngle(c) ? Fixed(r.rmse[c], 5) : Fixed(1000 * r.rmse[c], 3)) << " |";
+  for (const int c : components) table << " " << (IsAngle(c) ? FormatFixed(r.rmse[c], 5) : FormatFixed(1000 * r.rmse[c], 3)) << " |";
   table << "\n";
   if (IsPaperModel(model)) {
     for (const PaperRow& row : PaperHardwareRmse()) {
       table << "| paper, " << row.experiment << " |";
       for (const int c : components) {
         table << " "
-              << (c == kX ? G(row.x_mm) : c == kY ? G(row.y_mm) : c == kZ ? G(row.z_mm) : c == kYaw ? G(row.yaw_rad) : "-")
+              << (c == kX ? FormatG(row.x_mm) : c == kY ? FormatG(row.y_mm) : c == kZ ? FormatG(row.z_mm) : c == kYaw ? FormatG(row.yaw_rad) : "-")
               << " |";
       }
       table << "\n";

@@ -11,7 +11,7 @@
 namespace ccma {
 namespace {
 
-std::string Vec(const Eigen::Vector3d& v) {
+std::string Vec12(const Eigen::Vector3d& v) {
   std::ostringstream os;
   os << std::setprecision(12) << "[" << v.x() << ", " << v.y() << ", " << v.z() << "]";
   return os.str();
@@ -36,29 +36,29 @@ std::string GenerateStewartModel(const StewartOptions& o) {
     const Eigen::Vector3d reach = sphere - post_top;
     const Eigen::Vector3d axis = Eigen::Vector3d(reach.y(), -reach.x(), 0).normalized();
     const std::string n = std::to_string(k);
-    bodies << "  - {name: post" << n << ", position: " << Vec(post_joint) << "}\n"
-           << "  - {name: link" << n << ", position: " << Vec((post_top + sphere) / 2) << "}\n";
+    bodies << "  - {name: post" << n << ", position: " << Vec12(post_joint) << "}\n"
+           << "  - {name: link" << n << ", position: " << Vec12((post_top + sphere) / 2) << "}\n";
     // From 6 agents on, each reduced R-R-S leg constrains one distance; below
     // that, complete bases with welded posts (F-R-S, as 6dof_symmetric)
     // constrain two each, so every generated model is rigid.
     const bool reduced = o.agents >= 6;
     bases << "  - {name: base" << n << ", type: omni, actuation: "
           << (reduced ? "reduced" : "complete") << ", pose: "
-          << Vec(Eigen::Vector3d(base.x(), base.y(), angle)) << "}\n";
+          << Vec12(Eigen::Vector3d(base.x(), base.y(), angle)) << "}\n";
     joints << "  - {type: " << (reduced ? "revolute" : "fixed") << ", between: [base" << n << ", post"
-           << n << "], point: " << Vec(post_joint) << (reduced ? ", axis: [0, 0, 1]}\n" : "}\n")
+           << n << "], point: " << Vec12(post_joint) << (reduced ? ", axis: [0, 0, 1]}\n" : "}\n")
            << "  - {type: revolute, between: [post" << n << ", link" << n << "], point: "
-           << Vec(post_top) << ", axis: " << Vec(axis) << "}\n"
-           << "  - {type: spherical, between: [link" << n << ", ee], point: " << Vec(sphere) << "}\n";
+           << Vec12(post_top) << ", axis: " << Vec12(axis) << "}\n"
+           << "  - {type: spherical, between: [link" << n << ", ee], point: " << Vec12(sphere) << "}\n";
   }
   std::ostringstream model;
   model << "name: stewart_" << o.agents << "_agents\n"
         << "description: \"Generated: " << o.agents
         << (o.agents >= 6 ? " reduced omni bases, R-R-S legs" : " complete omni bases, F-R-S legs")
         << ", Stewart-like layout (family of 6dof_six_agents).\"\n"
-        << "bodies:\n  - {name: ee, position: " << Vec(Eigen::Vector3d(0, 0, o.platform_height)) << "}\n"
+        << "bodies:\n  - {name: ee, position: " << Vec12(Eigen::Vector3d(0, 0, o.platform_height)) << "}\n"
         << bodies.str() << "mobile_bases:\n" << bases.str() << "joints:\n" << joints.str()
-        << "end_effector:\n  body: ee\n  point: " << Vec(Eigen::Vector3d(0, 0, o.platform_height))
+        << "end_effector:\n  body: ee\n  point: " << Vec12(Eigen::Vector3d(0, 0, o.platform_height))
         << "\n  controlled: [x, y, z, roll, pitch, yaw]\n";
   return model.str();
 }
@@ -77,22 +77,22 @@ std::string GenerateStewartGoughModel(const StewartOptions& o) {
     const Eigen::Vector3d a1 = Eigen::Vector3d(leg.y(), -leg.x(), 0).normalized();
     const Eigen::Vector3d a2 = leg.cross(a1).normalized();
     const std::string n = std::to_string(k);
-    bodies << "  - {name: lower" << n << ", position: " << Vec(ground + 0.25 * leg) << "}\n"
-           << "  - {name: upper" << n << ", position: " << Vec(ground + 0.75 * leg) << "}\n";
-    joints << "  - {type: universal, between: [world, lower" << n << "], point: " << Vec(ground)
-           << ", axes: [" << Vec(a1) << ", " << Vec(a2) << "]}\n"
+    bodies << "  - {name: lower" << n << ", position: " << Vec12(ground + 0.25 * leg) << "}\n"
+           << "  - {name: upper" << n << ", position: " << Vec12(ground + 0.75 * leg) << "}\n";
+    joints << "  - {type: universal, between: [world, lower" << n << "], point: " << Vec12(ground)
+           << ", axes: [" << Vec12(a1) << ", " << Vec12(a2) << "]}\n"
            << "  - {name: leg" << n << ", type: prismatic, actuated: true, limits: [-0.1, 0.1], between: [lower" << n
-           << ", upper" << n << "], point: " << Vec(ground + 0.5 * leg) << ", axis: " << Vec(leg) << "}\n"
-           << "  - {type: spherical, between: [upper" << n << ", ee], point: " << Vec(top) << "}\n";
+           << ", upper" << n << "], point: " << Vec12(ground + 0.5 * leg) << ", axis: " << Vec12(leg) << "}\n"
+           << "  - {type: spherical, between: [upper" << n << ", ee], point: " << Vec12(top) << "}\n";
   }
   std::ostringstream model;
   model << "name: stewart_gough_" << o.agents << "_legs\n"
         << "description: \"Generated: " << o.agents
         << "-UPS Stewart-Gough platform: universal at the ground, actuated prismatic (leg<i>, "
            "+-0.1 m), spherical at the platform; no mobile base.\"\n"
-        << "bodies:\n  - {name: ee, position: " << Vec(Eigen::Vector3d(0, 0, o.platform_height)) << "}\n"
+        << "bodies:\n  - {name: ee, position: " << Vec12(Eigen::Vector3d(0, 0, o.platform_height)) << "}\n"
         << bodies.str() << "joints:\n" << joints.str()
-        << "end_effector:\n  body: ee\n  point: " << Vec(Eigen::Vector3d(0, 0, o.platform_height))
+        << "end_effector:\n  body: ee\n  point: " << Vec12(Eigen::Vector3d(0, 0, o.platform_height))
         << "\n  controlled: [x, y, z, roll, pitch, yaw]\n";
   return model.str();
 }

@@ -1,6 +1,7 @@
 // LoadModel and LoadModelFromString: size guard, YAML parsing (yaml_document.h),
 // then the sections of the format (formats/internal/model_parser.h).
 #include "formats/model_loader.h"
+#include "ccma/internal/format.h"
 
 #include <string>
 
@@ -13,14 +14,13 @@
 namespace ccma {
 namespace {
 
-std::string MiB(std::size_t bytes) { return std::to_string(bytes >> 20) + " MiB"; }
 
 }  // namespace
 
 Model LoadModelFromString(const std::string& text, const std::string& source_name,
                           std::vector<std::string>* warnings) {
   if (text.size() > kMaxModelFileBytes) {
-    throw ModelError(source_name + ": larger than " + MiB(kMaxModelFileBytes) +
+    throw ModelError(source_name + ": larger than " + FormatMiB(kMaxModelFileBytes) +
                      " (the limit for a model file)");
   }
   const YAML::Node root = internal::ParseYamlText(text, source_name);

@@ -1,12 +1,12 @@
 #include <string>
 
 #include "ccma/internal/format.h"
+#include "ccma/internal/in_range.h"
 #include "problems/control_problem.h"
 
 namespace ccma {
 namespace {
 
-bool InRange(double value, double lo, double hi) { return value >= lo && value <= hi; }
 
 }  // namespace
 

@@ -10,6 +10,8 @@
 
 #include "ccma/internal/constraint_set.h"
 #include "ccma/internal/format.h"
+#include "ccma/internal/elapsed.h"
+#include "ccma/internal/in_range.h"
 #include "ccma/internal/pose_manifold.h"
 #include "ccma/limits.h"
 #include "ccma/rotation.h"
@@ -25,10 +27,6 @@ namespace {
 constexpr double kPolishedGradient = 1e-14;
 
 using Clock = std::chrono::steady_clock;
-
-double MillisecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 ceres::Solver::Options SolverOptions(const ForwardOptions& options) {
   ceres::Solver::Options so;
@@ -68,7 +66,6 @@ ceres::Solver::Options SolverOptions(const ForwardOptions& options) {
   return so;
 }
 
-bool InRange(double value, double lo, double hi) { return value >= lo && value <= hi; }
 
 }  // namespace
 

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "ccma/internal/format.h"
+#include "ccma/internal/in_range.h"
 #include "collision/clearance.h"
 #include "problems/internal/control_workspace.h"
 #include "problems/internal/detour_seeds.h"
@@ -19,7 +20,6 @@ namespace {
 // KKT system is factorised in every iteration.
 constexpr long kMaxPlanUnknowns = 100000;
 
-bool InRange(double v, double lo, double hi) { return v >= lo && v <= hi; }
 
 // The greedy steps of the legs it completed, then straight-path steps for
 // the others, all at the last assembled configuration.

@@ -11,7 +11,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 echo "demo: set-up and build of the ccma tool first (about 3 minutes on 2 cores the first time), then about 20 s of runs"
-scripts/setup.sh ccma_tool
+scripts/setup.sh --tool
 ccma=build/apps/ccma
 out=build/demo
 mkdir -p "$out"

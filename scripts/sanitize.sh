@@ -17,7 +17,7 @@
 # tests (the sanitized tool writes the pages; they are skipped, as in the
 # normal build, when /usr/bin/chromium is missing).
 # What does not run, and why (the same list is printed when it starts):
-#   - the Python module and its pytest suite (python_pytest): an
+#   - the Python module and its pytest suite (python_test_*): an
 #     ASan-instrumented extension cannot be loaded into an uninstrumented
 #     python3 ("ASan runtime does not come first in initial library list");
 #     they run in the normal build (scripts/test.sh).

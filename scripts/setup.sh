@@ -3,7 +3,8 @@
 # builds it into build/ (Release), printing progress at least every 20 s.
 # Safe to run again: it does nothing twice.
 #   scripts/setup.sh                      # set up and build everything (tests too)
-#   scripts/setup.sh ccma_tool            # only these CMake targets (the demo's choice)
+#   scripts/setup.sh --tool               # only what the `ccma` tool needs (the demo's choice):
+#                                         #   fewer packages, no tests, Python or benchmarks
 #   scripts/setup.sh --register-python    # also make `import ccma` work without PYTHONPATH
 #   CCMA_EXTRA_PACKAGES="chromium" scripts/setup.sh   # more packages
 # Without --register-python nothing is written outside this clone: use
@@ -12,27 +13,31 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 register=0
-targets=()
+tool_only=0
 for arg in "$@"; do
   case "$arg" in
     --register-python) register=1 ;;
+    --tool) tool_only=1 ;;
     -h|--help) sed -n '2,11p' "$0"; exit 0 ;;
-    -*) echo "setup: unknown option '$arg' (see scripts/setup.sh --help)" >&2; exit 2 ;;
-    *) [[ "$arg" =~ ^[A-Za-z0-9_]+$ ]] || { echo "setup: '$arg' is not a target name" >&2; exit 2; }
-       targets+=("$arg") ;;
+    *) echo "setup: unknown argument '$arg' (see scripts/setup.sh --help)" >&2; exit 2 ;;
   esac
 done
 
+# What the library and the `ccma` tool need to build and run.
 PACKAGES=(g++ make cmake pkg-config
           libceres-dev libeigen3-dev libgoogle-glog-dev libgflags-dev
-          libyaml-cpp-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev
-          gnuplot-nox   # gnuplot: plots of `ccma bench --out` and `ccma replay` (optional at run time)
-          pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module and its tests
-          python3-matplotlib  # the Python trajectory example's plot
-          python3-distributed  # ccma.workspace on a Dask cluster (and its local-cluster test)
-          python3-zarr python3-tqdm  # sweeps: finished chunks kept for resuming; the progress bar
+          libyaml-cpp-dev nlohmann-json3-dev
           liburdfdom-dev libsdformat-dev  # ccma import: URDF and SDFormat robot files
-          libfcl-dev)  # tests: FCL's distances, the independent check of ccma's clearances
+          gnuplot-nox)  # gnuplot: plots of `ccma bench --out` and `ccma replay` (optional at run time)
+# What the tests, benchmarks, examples and the Python module add.
+if ((!tool_only)); then
+  PACKAGES+=(libgtest-dev libbenchmark-dev
+             pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module and its tests
+             python3-matplotlib  # the Python trajectory example's plot
+             python3-distributed  # ccma.workspace on a Dask cluster (and its local-cluster test)
+             python3-zarr python3-tqdm  # sweeps: finished chunks kept for resuming; the progress bar
+             libfcl-dev)  # tests: FCL's distances, the independent check of ccma's clearances
+fi
 # The viewer's JavaScript is bundled with npm (three.js from the npm registry).
 command -v npm > /dev/null || PACKAGES+=(npm)
 # shellcheck disable=SC2206
@@ -61,20 +66,29 @@ BUILD_TYPE="${CCMA_BUILD_TYPE:-Release}"
 launcher=()
 # ccache, when installed, makes a second clone's or a rebuilt branch's build fast.
 command -v ccache > /dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
-cmake -S . -B build -DCMAKE_BUILD_TYPE="$BUILD_TYPE" "${launcher[@]}" > build.log 2>&1 || { cat build.log; exit 1; }
-
+# --tool configures without the parts that need the test packages, unless
+# build/ already has them (a later --tool run never takes tests away).
+parts=(-DCCMA_BUILD_TESTS=ON -DCCMA_BUILD_BENCHMARKS=ON -DCCMA_BUILD_EXAMPLES=ON -DCCMA_BUILD_PYTHON=ON)
+target_args=()
 what="everything (library, tool, tests, benchmarks, examples, Python module)"
-estimate="about 9 minutes on 2 cores the first time"
-if ((${#targets[@]})); then
-  what="${targets[*]}"
-  estimate="about 3 minutes on 2 cores the first time"
+estimate="about 6 minutes on 2 cores the first time"
+if ((tool_only)); then
+  target_args=(--target ccma_tool)
+  what="the ccma tool"
+  estimate="about 2 minutes on 2 cores the first time"
+  if grep -qs '^CCMA_BUILD_TESTS:BOOL=ON' build/CMakeCache.txt; then
+    parts=()
+  else
+    parts=(-DCCMA_BUILD_TESTS=OFF -DCCMA_BUILD_BENCHMARKS=OFF -DCCMA_BUILD_EXAMPLES=OFF -DCCMA_BUILD_PYTHON=OFF)
+  fi
 fi
+echo "setup: configuring build/ (CMake, a few seconds)"
+cmake -S . -B build -DCMAKE_BUILD_TYPE="$BUILD_TYPE" "${launcher[@]}" "${parts[@]}" > build.log 2>&1 \
+  || { cat build.log; exit 1; }
 echo "setup: building $what into build/ ($BUILD_TYPE), $estimate; log in build.log"
 
 # The build runs in the background; a line for every 10 % and, between
 # them, a line at least every 20 s naming what is being compiled.
-target_args=()
-for t in "${targets[@]}"; do target_args+=(--target "$t"); done
 cmake --build build -j"$(nproc)" "${target_args[@]}" >> build.log 2>&1 &
 build_pid=$!
 start=$SECONDS last_print=$SECONDS next=0

@@ -300,7 +300,7 @@ class FrameAssembler {
 };
 
 // The per-frame columns of the scene ("frames" and "paths").
-struct FrameColumns {
+struct SceneFrameColumns {
   json time = json::array(), poses = json::array(), flags = json::array();
   json commanded = json::array(), tracked = json::array(), bases = json::array();  // bases: one list per base
   bool any_commanded = false;
@@ -309,7 +309,7 @@ struct FrameColumns {
 // Re-assembles the frames in turn (scene.h), filling the columns, the
 // clearance and the summary's counts.
 void AddFrames(const Model& model, const std::vector<ViewFrame>& frames, FrameAssembler* assembler,
-               ClearanceColumns* clearance, FrameLoads* loads, FrameColumns* c, SceneSummary* s) {
+               ClearanceColumns* clearance, FrameLoads* loads, SceneFrameColumns* c, SceneSummary* s) {
   const ForwardProblem& forward = assembler->forward();
   for (const ViewFrame& f : frames) {
     bool jump = false, beyond = false;
@@ -373,7 +373,7 @@ std::string BuildScene(const Model& model, const std::vector<ViewFrame>& frames,
   if (color_by == ColorBy::kLoad) loads.emplace(model, frames.empty() ? 1 : static_cast<int>(frames.size()));
   FrameAssembler assembler(model, FlagEnergyFor(source));
   ClearanceColumns clearance(model, assembler.forward().state());
-  FrameColumns c;
+  SceneFrameColumns c;
   for (int k = 0; k < model.num_bases(); ++k) c.bases.push_back(json::array());
   if (frames.empty()) {  // the model at home
     const bool below = clearance.Add(assembler.forward().state());

@@ -36,6 +36,16 @@ inline std::string Quote(const std::string& text) {
 }
 
 // `value` with printf's %.<digits>g.
+// A size in whole MiB, for messages about size limits.
+inline std::string FormatMiB(std::size_t bytes) { return std::to_string(bytes >> 20) + " MiB"; }
+
+// `value` with `digits` digits after the point (tables of results).
+inline std::string FormatFixed(double value, int digits) {
+  char buffer[400];
+  std::snprintf(buffer, sizeof(buffer), "%.*f", digits, value);
+  return buffer;
+}
+
 inline std::string FormatG(double value, int digits = 6) {
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);

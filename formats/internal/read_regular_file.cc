@@ -12,11 +12,11 @@
 #include <string>
 
 #include "formats/model_loader.h"
+#include "ccma/internal/format.h"
 
 namespace ccma {
 namespace {
 
-std::string MiB(std::size_t bytes) { return std::to_string(bytes >> 20) + " MiB"; }
 
 // Closes a file descriptor on every path out.
 class FileDescriptor {
@@ -67,7 +67,7 @@ bool ReadRegularFile(const std::string& path, std::size_t max_bytes, const char*
     *error = path + ": not a regular file";
     return false;
   }
-  const std::string too_large = path + ": larger than " + MiB(max_bytes) + " (the limit for a " +
+  const std::string too_large = path + ": larger than " + FormatMiB(max_bytes) + " (the limit for a " +
                                 noun + ")";
   if (info.st_size > 0 && static_cast<std::uintmax_t>(info.st_size) > max_bytes) {
     *error = too_large;

@@ -11,6 +11,7 @@
 #include <ceres/iteration_callback.h>
 
 #include "problems/internal/control_linearization.h"
+#include "ccma/internal/elapsed.h"
 #include "problems/internal/control_workspace.h"
 
 namespace ccma {
@@ -58,10 +59,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double Milliseconds(Clock::time_point since) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - since).count();
-}
-
 // Stops BFGS once O certifies the target: sqrt(2 O) bounds every error
 // component, and lambda E <= O.
 class TargetReached final : public ceres::IterationCallback {
@@ -104,7 +101,7 @@ ControlStepResult BfgsLoop::SolveStep(const PoseTarget& target) {
                           if (!control.on_iteration) return;
                           Eigen::VectorXd e;  // the error at the last evaluated (accepted) point
                           p_.workspace_->error.Evaluate(p_.forward_.state(), target, &e, nullptr);
-                          control.on_iteration(summary.iteration, Milliseconds(start), summary.cost,
+                          control.on_iteration(summary.iteration, MillisecondsSince(start), summary.cost,
                                                e.size() > 0 ? e.lpNorm<Eigen::Infinity>() : 0.0);
                         });
   options.callbacks.push_back(&reached);
@@ -123,7 +120,7 @@ ControlStepResult BfgsLoop::SolveStep(const PoseTarget& target) {
   result.singular = lin.singular;
   result.min_singular_value_dX_du = SmallestSingularValueOf(lin.J_e);
   p_.Finish(target, &result);
-  result.time_ms = Milliseconds(start);
+  result.time_ms = MillisecondsSince(start);
   return result;
 }
 

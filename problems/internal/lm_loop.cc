@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "problems/internal/constrained_lm_step.h"
+#include "ccma/internal/elapsed.h"
 #include "problems/internal/control_workspace.h"
 #include "problems/internal/null_space_step.h"
 
@@ -12,10 +13,6 @@ namespace ccma {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double Milliseconds(Clock::time_point since) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - since).count();
-}
 
 // Largest eigenvalue of J^T J: from the eigen-decomposition when there is
 // one, else by power iteration (seeded start, 30 products: a damping scale,
@@ -70,7 +67,7 @@ ControlStepResult LmLoop::SolveStep(const PoseTarget& target) {
   if (secondary.enabled()) result.secondary_objective = p_.SecondaryObjective(target);
   result.forward_solves = p_.forward_solves_ - solves_before;
   p_.Finish(target, &result);
-  result.time_ms = Milliseconds(start);
+  result.time_ms = MillisecondsSince(start);
   return result;
 }
 
@@ -89,7 +86,7 @@ bool LmLoop::ConvergeTask(const PoseTarget& target, ControlStepResult* result, b
            StepConstraintsHold();
   };
   auto report = [&](int iteration) {
-    if (options.on_iteration && report_iterations) options.on_iteration(iteration, Milliseconds(start), O, error_of());
+    if (options.on_iteration && report_iterations) options.on_iteration(iteration, MillisecondsSince(start), O, error_of());
   };
   report(0);
   double mu = -1;
