@@ -11,15 +11,10 @@
 #include "ccma/end_effector.h"
 #include "ccma/internal/constraint_set.h"
 #include "ccma/joint_coordinates.h"
+#include "analyses/internal/dense_rank.h"
 
 namespace ccma {
 namespace {
-
-int Rank(const Eigen::VectorXd& singular_values, double threshold) {
-  int rank = 0;
-  for (int i = 0; i < singular_values.size(); ++i) rank += singular_values[i] > threshold;
-  return rank;
-}
 
 // The null space of J_s (its last n - rank right singular vectors), split
 // body by body as MobilityReport::free_motions describes. The directions
@@ -34,7 +29,7 @@ std::vector<FreeMotion> FreeMotions(const Eigen::MatrixXd& J_s, int rank) {
     // directions into ones that move the body, the others leave it still.
     const Eigen::JacobiSVD<Eigen::MatrixXd> block(unassigned.middleRows(kPoseTangentSize * b, kPoseTangentSize),
                                                   Eigen::ComputeFullV);
-    const int moving = Rank(block.singularValues(), kMovingBodyTolerance);
+    const int moving = RankAbove(block.singularValues(), kMovingBodyTolerance);
     if (moving == 0) continue;
     const Eigen::MatrixXd rotated = unassigned * block.matrixV();
     for (int k = 0; k < moving; ++k) motions.push_back({rotated.col(k), FreeMotionBodies(rotated.col(k))});
@@ -50,10 +45,10 @@ int EndEffectorDof(const Model& model, const State& s, const Eigen::MatrixXd& A,
                    double rank_tolerance, int* free_dof) {
   const int n = model.state_size();
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
-  const int rank = Rank(svd.singularValues(), threshold);
+  const int rank = RankAbove(svd.singularValues(), threshold);
   *free_dof = static_cast<int>(A.cols()) - rank;
   const Eigen::MatrixXd X = EndEffectorJacobian(model, s) * svd.matrixV().rightCols(*free_dof).topRows(n);
-  return X.cols() > 0 ? Rank(Eigen::JacobiSVD<Eigen::MatrixXd>(X).singularValues(), rank_tolerance) : 0;
+  return X.cols() > 0 ? RankAbove(Eigen::JacobiSVD<Eigen::MatrixXd>(X).singularValues(), rank_tolerance) : 0;
 }
 
 // One row over (ds, du_effective) per differential base that constrains the
@@ -72,11 +67,11 @@ Eigen::MatrixXd LateralRows(const Model& model, const State& s, const Eigen::Vec
   held.setZero();
   held.topLeftCorner(J_s.rows(), n) = J_s;
   held.bottomLeftCorner(X_s.rows(), n) = X_s;
-  const int held_rank = Rank(Eigen::JacobiSVD<Eigen::MatrixXd>(held.leftCols(n)).singularValues(), threshold);
+  const int held_rank = RankAbove(Eigen::JacobiSVD<Eigen::MatrixXd>(held.leftCols(n)).singularValues(), threshold);
   for (int b = 0; b < model.num_bases(); ++b) {
     if (model.mobile_bases[b].type != BaseType::kDifferential) continue;
     held.col(n).head(J_s.rows()) = J_u.col(kBaseControlSize * b + 2);
-    if (Rank(Eigen::JacobiSVD<Eigen::MatrixXd>(held).singularValues(), threshold) == held_rank) continue;
+    if (RankAbove(Eigen::JacobiSVD<Eigen::MatrixXd>(held).singularValues(), threshold) == held_rank) continue;
     const double theta = u[kBaseControlSize * b + 2];
     for (int c = 0; c < k; ++c) {
       if (effective[c] == kBaseControlSize * b) L(rows, n + c) = -std::sin(theta);
@@ -144,7 +139,7 @@ MobilityReport AnalyzeMobility(const Model& model, const State& s, const Eigen::
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd_s(J_s);
   const Eigen::VectorXd sigma = svd_s.singularValues();
   const double scale = std::max(1.0, sigma.size() > 0 ? sigma[0] : 0.0);
-  report.constraint_rank = Rank(sigma, rank_tolerance * scale);
+  report.constraint_rank = RankAbove(sigma, rank_tolerance * scale);
   report.dof_with_controls_fixed = n - report.constraint_rank;
   report.rigid_with_controls_fixed = report.dof_with_controls_fixed == 0;
   report.smallest_singular_value =

@@ -12,13 +12,10 @@
 #include "analyses/mobility.h"
 #include "ccma/end_effector.h"
 #include "ccma/internal/constraint_set.h"
+#include "analyses/internal/dense_rank.h"
 
 namespace ccma {
 namespace {
-
-int Rank(const Eigen::VectorXd& singular_values, double threshold) {
-  return static_cast<int>((singular_values.array() > threshold).count());
-}
 
 // Y = dX/ds over an orthonormal basis of the null space of [dC/ds,
 // dC/du_eff] (its state rows), as mobility.cc's EndEffectorDof.
@@ -35,7 +32,7 @@ Eigen::MatrixXd DenseMotions(const Model& model, const State& s, const Eigen::Ve
   A.leftCols(n) = J_s;
   for (std::size_t c = 0; c < effective.size(); ++c) A.col(n + static_cast<Eigen::Index>(c)) = J_u.col(effective[c]);
   const Eigen::BDCSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
-  const int free = static_cast<int>(A.cols()) - Rank(svd.singularValues(), threshold);
+  const int free = static_cast<int>(A.cols()) - RankAbove(svd.singularValues(), threshold);
   return EndEffectorJacobian(model, s) * svd.matrixV().rightCols(free).topRows(n);
 }
 
@@ -47,7 +44,7 @@ int DenseRank(const Eigen::MatrixXd& Y, double threshold, const ComponentSet& ro
     if (rows[r]) picked.row(count++) = Y.row(r);
   }
   if (count == 0 || Y.cols() == 0) return 0;
-  return Rank(Eigen::JacobiSVD<Eigen::MatrixXd>(picked.topRows(count)).singularValues(), threshold);
+  return RankAbove(Eigen::JacobiSVD<Eigen::MatrixXd>(picked.topRows(count)).singularValues(), threshold);
 }
 
 }  // namespace
@@ -69,7 +66,7 @@ MovedComponents AnalyzeMovedComponents(const Model& model, const State& s, const
     rank_of = [&Y, threshold](const ComponentSet& rows) { return DenseRank(Y, threshold, rows); };
   } else {
     sparse = std::make_unique<SparseEndEffectorRanks>(model, s, u, rank_tolerance);
-    rank_of = [&sparse](const ComponentSet& rows) { return sparse->Rank(rows); };
+    rank_of = [&sparse](const ComponentSet& rows) { return sparse->RankAbove(rows); };
   }
   MovedComponents out;
   for (int c = 0; c < 6; ++c) {

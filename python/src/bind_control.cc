@@ -100,7 +100,7 @@ void BindSecondaryOptions(OptionsClass& c) {
   SecondaryField(c, "travel_weight", &S::travel_weight, "base-travel weight (0 = off) [1/m^2]");
 }
 
-void BindOptions(py::module_& m) {
+void BindControlOptions(py::module_& m) {
   OptionsClass c(m, "ControlOptions",
                  "Options of the control solve (problems/control_problem.h); every field "
                  "is a keyword of the constructor, e.g. ControlOptions(method='bfgs').");
@@ -296,7 +296,7 @@ constexpr const char* kTargetForms =
     "order (as `ccma control --target`; the others are ignored); ValueError on another length";
 
 // Setting the controls, one step, a whole move and a path.
-void BindSolves(ProblemClass& c) {
+void BindControlSolves(ProblemClass& c) {
   c.def(py::init<const Model&, const ControlOptions&>(), py::arg("model"), py::arg("options") = ControlOptions(),
         py::keep_alive<1, 2>())
       .def(
@@ -391,12 +391,12 @@ void BindDerivatives(ProblemClass& c) {
           "[x, y, z, roll, pitch, yaw] of the end-effector now");
 }
 
-void BindProblem(py::module_& m) {
+void BindControlProblem(py::module_& m) {
   ProblemClass c(m, "ControlProblem",
                  "Kinematic control: controls u whose assembly puts the end-effector at a target "
                  "(min 1/2 |e|^2 + lambda E, gradients from implicit sensitivities). Keeps the model alive. "
                  "One thread at a time: a call while another thread is inside one raises RuntimeError.");
-  BindSolves(c);
+  BindControlSolves(c);
   BindDerivatives(c);
 }
 
@@ -421,10 +421,10 @@ void BindWaypoints(py::module_& m) {
 }  // namespace
 
 void BindControl(py::module_& m) {
-  BindOptions(m);
+  BindControlOptions(m);
   BindResults(m);
   BindWaypoints(m);
-  BindProblem(m);
+  BindControlProblem(m);
 }
 
 }  // namespace ccma::python

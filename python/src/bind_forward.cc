@@ -42,7 +42,7 @@ void BindPoses(py::module_& m) {
       .def_readonly("within_limits", &JointCoordinateReport::within_limits);
 }
 
-void BindOptions(py::module_& m) {
+void BindForwardOptions(py::module_& m) {
   py::class_<ForwardOptions>(m, "ForwardOptions",
                              "Options of the forward solve (problems/forward_problem.h); every "
                              "field is a keyword of the constructor.")
@@ -151,7 +151,7 @@ ForwardSolution Solved(ForwardProblem& p, Solve solve) {
 using ForwardClass = py::class_<ForwardProblem>;
 
 // solve, assemble and going home.
-void BindSolves(ForwardClass& c) {
+void BindForwardSolves(ForwardClass& c) {
   c.def(py::init<const Model&, const ForwardOptions&>(), py::arg("model"), py::arg("options") = ForwardOptions(),
         py::keep_alive<1, 2>())
       .def(
@@ -266,11 +266,11 @@ void BindQueries(ForwardClass& c) {
           "dX_EE/ds (6 x state_size): rows position [m] then rotation increment [rad]");
 }
 
-void BindProblem(py::module_& m) {
+void BindForwardProblem(py::module_& m) {
   ForwardClass c(m, "ForwardProblem",
                  "Simulation: s_hat(u) = argmin_s E(s, u), warm-started from the last state. Keeps the "
                  "model alive. One thread at a time: a call while another thread is inside one raises RuntimeError.");
-  BindSolves(c);
+  BindForwardSolves(c);
   BindState(c);
   BindQueries(c);
 }
@@ -279,9 +279,9 @@ void BindProblem(py::module_& m) {
 
 void BindForward(py::module_& m) {
   BindPoses(m);
-  BindOptions(m);
+  BindForwardOptions(m);
   BindResult(m);
-  BindProblem(m);
+  BindForwardProblem(m);
 }
 
 }  // namespace ccma::python

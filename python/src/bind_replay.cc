@@ -56,7 +56,7 @@ py::tuple Run(const Model& model, const std::vector<Waypoint>& waypoints, const 
   return py::make_tuple(ToPython(document), arrays);
 }
 
-void BindOptions(py::module_& m) {
+void BindReplayOptions(py::module_& m) {
   py::class_<ReplayOptions>(m, "ReplayOptions",
                             "Options of ccma.replay (execution/replay.h); every field is a keyword of the "
                             "constructor, e.g. ReplayOptions(noise='none', seed=3).")
@@ -110,7 +110,7 @@ void BindOptions(py::module_& m) {
 }  // namespace
 
 void BindReplay(py::module_& m) {
-  BindOptions(m);
+  BindReplayOptions(m);
   m.def("_replay", &Run, py::arg("model"), py::arg("waypoints"), py::arg("options"),
         "Internal: ccma.replay (python/ccma/replay.py) for a list of ccma.Waypoint: (the JSON of `ccma replay` "
         "without files and plots, the samples as arrays).");

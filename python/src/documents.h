@@ -72,6 +72,11 @@ nlohmann::json ReplayDocument(const Model& model, const ReplayOptions& options, 
 // "min_on_path", "pair_on_path").
 void AddPathClearance(const ClearanceSummary& path, nlohmann::json* out);
 
+// Appends `text` to a "; "-separated warning (as the commands join theirs).
+inline void JoinWarning(const std::string& text, std::string* warning) {
+  *warning += (warning->empty() ? "" : "; ") + text;
+}
+
 }  // namespace ccma::python
 
 #endif  // CCMA_PYTHON_SRC_DOCUMENTS_H_

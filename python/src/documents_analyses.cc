@@ -20,10 +20,6 @@ using cli::ToJson;
 
 namespace {
 
-void Join(const std::string& text, std::string* warning) {
-  *warning += (warning->empty() ? "" : "; ") + text;
-}
-
 nlohmann::json Vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
 // apps/statics_command.cc: ReportJson.
@@ -51,17 +47,17 @@ nlohmann::json StaticsReportJson(const StaticsReport& r) {
 // apps/statics_command.cc: Warnings.
 std::string StaticsWarning(const StaticsReport& r, bool assembled, double residual_energy) {
   std::string w;
-  if (!assembled) Join("not assembled (E = " + FormatG(residual_energy) + "): the reactions are not meaningful", &w);
+  if (!assembled) JoinWarning("not assembled (E = " + FormatG(residual_energy) + "): the reactions are not meaningful", &w);
   if (!r.balanced) {
-    Join("the joints cannot hold the loads (" + FormatG(r.residual) +
+    JoinWarning("the joints cannot hold the loads (" + FormatG(r.residual) +
              " N or N*m left over): the mechanism moves freely under them",
          &w);
   }
-  if (!r.determinate) Join("statically indeterminate: the minimum-norm reactions are reported", &w);
+  if (!r.determinate) JoinWarning("statically indeterminate: the minimum-norm reactions are reported", &w);
   if (!r.within_limits) {
     std::string names;
     for (const std::string& n : r.limiting) names += (names.empty() ? "'" : ", '") + n + "'";
-    Join("beyond their effort or push limits: " + names, &w);
+    JoinWarning("beyond their effort or push limits: " + names, &w);
   }
   return w;
 }
@@ -338,7 +334,7 @@ nlohmann::json ReplayDocument(const Model& model, const ReplayOptions& options, 
     out["paper_hardware_rmse"] = paper;
   }
   std::string warning;
-  for (const std::string& failure : cli::ReplayFailures(r)) Join(failure, &warning);
+  for (const std::string& failure : cli::ReplayFailures(r)) JoinWarning(failure, &warning);
   if (!warning.empty()) out["warning"] = warning;
   return out;
 }

@@ -18,10 +18,6 @@ using cli::ToJson;
 
 namespace {
 
-void Join(const std::string& text, std::string* warning) {
-  *warning += (warning->empty() ? "" : "; ") + text;
-}
-
 // The clearance of the configuration, when the model has collision geometry
 // (json_output.h AddClearance, without its stderr line).
 void PutClearance(const Model& model, const State& s, nlohmann::json* out) {
@@ -34,14 +30,14 @@ void PutClearance(const Model& model, const State& s, nlohmann::json* out) {
 std::string SimulateWarning(const ForwardSolution& s) {
   std::string warning;
   if (!s.assembled) {
-    Join("not assembled: residual energy " + FormatG(s.residual_energy) +
+    JoinWarning("not assembled: residual energy " + FormatG(s.residual_energy) +
              " m^2 stays above the assembly tolerance; the controls cannot be reached from this start",
          &warning);
   } else if (!s.converged) {
-    Join("the solver did not report convergence (" + s.message + ")", &warning);
+    JoinWarning("the solver did not report convergence (" + s.message + ")", &warning);
   }
   if (s.branch_jump) {
-    Join("jumped to another assembly branch at sub-step " + std::to_string(s.branch_jump_substep) + " of " +
+    JoinWarning("jumped to another assembly branch at sub-step " + std::to_string(s.branch_jump_substep) + " of " +
              std::to_string(s.substeps) + " (" + FormatG(s.branch_jump_size) + " m or rad beyond the prediction)",
          &warning);
   }
@@ -102,7 +98,7 @@ const nlohmann::json& FromHome(const ControlSolution& s) {
 std::string ControlWarning(const ControlSolution& s) {
   FromHome(s);
   std::string warning = s.warning;
-  if (!s.from_home_warning.empty()) Join(s.from_home_warning, &warning);
+  if (!s.from_home_warning.empty()) JoinWarning(s.from_home_warning, &warning);
   return warning;
 }
 
@@ -222,7 +218,7 @@ nlohmann::json PlanDocument(const ControlProblem& control, const PlanResult& r, 
   std::string warning;
   if (!r.used_plan) warning = "kept the greedy trajectory: " + r.note;
   if (!r.converged) {
-    Join(std::string("not every waypoint was reached") +
+    JoinWarning(std::string("not every waypoint was reached") +
              (r.greedy_warning.empty() ? "" : " (greedy: " + r.greedy_warning + ")"),
          &warning);
   }
