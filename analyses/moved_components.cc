@@ -66,7 +66,7 @@ MovedComponents AnalyzeMovedComponents(const Model& model, const State& s, const
     rank_of = [&Y, threshold](const ComponentSet& rows) { return DenseRank(Y, threshold, rows); };
   } else {
     sparse = std::make_unique<SparseEndEffectorRanks>(model, s, u, rank_tolerance);
-    rank_of = [&sparse](const ComponentSet& rows) { return sparse->RankAbove(rows); };
+    rank_of = [&sparse](const ComponentSet& rows) { return sparse->Rank(rows); };
   }
   MovedComponents out;
   for (int c = 0; c < 6; ++c) {
