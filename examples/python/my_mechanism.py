@@ -83,7 +83,7 @@ def main():
     # 3 bodies x 6 = 18 DOF, minus 3 hinges x 5 and a weld x 6 = 21) says
     # "over-constrained"; but with parallel hinges 3 of those constraints
     # repeat, and the rank of the constraint Jacobian gives the true numbers.
-    m = ccma.analyze_mobility(model)  # at home
+    m = ccma.check(model)  # at home; m.to_dict() is the JSON of `ccma check`
     print("rigid_with_controls_fixed: %s (free motions with the robots still: %d)"
           % (m.rigid_with_controls_fixed, m.dof_with_controls_fixed))
     print("end_effector_dof: %d (x, y, z and yaw; the beam's tilt follows its height)" % m.end_effector_dof)
@@ -108,7 +108,7 @@ def main():
         print("example: unexpected result", file=sys.stderr)
         return 1
     if "--view" in sys.argv:  # the 3D page of the new mechanism, opens offline in a browser
-        print("wrote", ccma.view(model, out="two_robot_lifter.html"))
+        print("wrote", ccma.view(model, out="two_robot_lifter.html").out)
     print("example: ok")
     return 0
 

@@ -1,7 +1,7 @@
 """Trajectory with a plot: follow a waypoint file (by default the paper's
-sequential path, its Fig. 7: y, z, x, then yaw, out and back), write one CSV
-row per control step and plot targets, reached poses and the bases' paths
-with Matplotlib.
+sequential path, its Fig. 7: y, z, x, then yaw, out and back), write the CSV
+of `ccma trajectory` (one row per control step) and plot targets, reached
+poses and the bases' paths with Matplotlib.
 
     PYTHONPATH=build/python python3 examples/python/trajectory_plot.py \\
         [MODEL.yaml WAYPOINTS.csv [OUT_DIR]]
@@ -16,8 +16,6 @@ import importlib.util
 import os
 import sys
 
-import numpy as np
-
 import ccma
 
 
@@ -27,6 +25,9 @@ def plot(model, path, waypoints_name, png_path):
     matplotlib.use("Agg")  # write files only, no window
     import matplotlib.pyplot as plt
 
+    # The columns of the CSV, by their header names (time_s, target_x_m, x_m, u0_x_m, ...).
+    t = path.table
+    time = t["time_s"]
     # Left: the end-effector over time (target dashed, reached solid).
     # Right: seen from above, the bases' paths on the ground and the end-effector's.
     fig = plt.figure(figsize=(13, 8), layout="constrained")
@@ -35,13 +36,10 @@ def plot(model, path, waypoints_name, png_path):
     ax_z = fig.add_subplot(grid[1, 0], sharex=ax_xy)
     ax_yaw = fig.add_subplot(grid[2, 0], sharex=ax_xy)
     ax_top = fig.add_subplot(grid[:, 1])
-    for i, name, color in ((0, "x", "tab:blue"), (1, "y", "tab:orange")):
-        ax_xy.plot(path.time, path.targets[:, i], "--", color=color, lw=2.5, alpha=0.5, label="target " + name)
-        ax_xy.plot(path.time, path.reached[:, i], "-", color=color, lw=1, label="reached " + name)
-    ax_z.plot(path.time, path.targets[:, 2], "--", color="tab:green", lw=2.5, alpha=0.5, label="target z")
-    ax_z.plot(path.time, path.reached[:, 2], "-", color="tab:green", lw=1, label="reached z")
-    ax_yaw.plot(path.time, path.targets[:, 5], "--", color="tab:purple", lw=2.5, alpha=0.5, label="target yaw")
-    ax_yaw.plot(path.time, path.reached[:, 5], "-", color="tab:purple", lw=1, label="reached yaw")
+    for ax, name, color in ((ax_xy, "x_m", "tab:blue"), (ax_xy, "y_m", "tab:orange"), (ax_z, "z_m", "tab:green"),
+                            (ax_yaw, "yaw_rad", "tab:purple")):
+        ax.plot(time, t["target_" + name], "--", color=color, lw=2.5, alpha=0.5, label="target_" + name)
+        ax.plot(time, t[name], "-", color=color, lw=1, label=name + " (reached)")
     for ax, label in ((ax_xy, "end-effector x, y [m]"), (ax_z, "end-effector z [m]"),
                       (ax_yaw, "end-effector yaw [rad]")):
         ax.set_ylabel(label)
@@ -51,11 +49,11 @@ def plot(model, path, waypoints_name, png_path):
     ax_xy.set_title("end-effector: target (dashed) and reached (solid)")
 
     for k, base in enumerate(model.mobile_bases):
-        x, y = path.controls[:, 3 * k], path.controls[:, 3 * k + 1]
+        x, y = t["u%d_x_m" % k], t["u%d_y_m" % k]
         line, = ax_top.plot(x, y, lw=2, label=base.name)
         ax_top.plot(x[0], y[0], "o", color=line.get_color(), mfc="none", ms=8)
-    ax_top.plot(path.targets[:, 0], path.targets[:, 1], "k--", lw=2.5, alpha=0.4, label="end-effector target")
-    ax_top.plot(path.reached[:, 0], path.reached[:, 1], "k-", lw=1, label="end-effector reached")
+    ax_top.plot(t["target_x_m"], t["target_y_m"], "k--", lw=2.5, alpha=0.4, label="end-effector target")
+    ax_top.plot(t["x_m"], t["y_m"], "k-", lw=1, label="end-effector reached")
     ax_top.set_aspect("equal", adjustable="datalim")
     ax_top.set_xlabel("x [m]")
     ax_top.set_ylabel("y [m]")
@@ -77,22 +75,15 @@ def main(model_path, waypoints_path, out_dir):
         print(e, file=sys.stderr)
         return 2
     control = ccma.ControlProblem(model)
-    # follow() walks from waypoint to waypoint in small control steps (10 mm,
-    # 0.005 rad) and returns NumPy arrays with one row per step.
-    path = control.follow(waypoints)
-    print("converged %s: %d steps, max error %.3g m, max E %.3g m^2, %.1f ms"
-          % (path.converged, path.steps, path.max_error, path.max_residual_energy, path.solve_time_ms))
-
-    # The CSV: time, the end-effector's target and reached x y z [m] and yaw
-    # [rad], then each base's x y [m] (controls 3k and 3k+1, k in file order).
+    # follow() is `ccma trajectory`: it walks from waypoint to waypoint in small
+    # control steps (10 mm, 0.005 rad); the result's attributes are the command's
+    # JSON, and out= writes its CSV (one row per step; `ccma view --trajectory` reads it).
     os.makedirs(out_dir, exist_ok=True)
     csv_path = os.path.join(out_dir, "trajectory.csv")
-    bases_xy = path.controls[:, [3 * k + i for k in range(model.num_bases) for i in (0, 1)]]
-    table = np.column_stack([path.time, path.targets[:, [0, 1, 2, 5]], path.reached[:, [0, 1, 2, 5]], bases_xy])
-    header = ["time_s", "target_x_m", "target_y_m", "target_z_m", "target_yaw_rad", "x_m", "y_m", "z_m", "yaw_rad"]
-    header += ["%s_%s" % (b.name, c) for b in model.mobile_bases for c in ("x_m", "y_m")]
-    np.savetxt(csv_path, table, delimiter=",", header=",".join(header), comments="", fmt="%.12g")
-    print("wrote", csv_path, "(%d rows)" % len(table))
+    path = control.follow(waypoints, out=csv_path)
+    print("converged %s: %d steps, max error %.3g m, max E %.3g m^2, %.1f ms"
+          % (path.converged, path.steps, path.max_error, path.max_residual_energy, path.solve_time_ms))
+    print("wrote", path.out, "(%d rows: %s, ...)" % (len(path.table), ", ".join(path.table.names[:4])))
 
     # The plot needs Matplotlib (Debian: python3-matplotlib); without it, only the CSV.
     png_path = os.path.join(out_dir, "trajectory.png")
@@ -108,7 +99,8 @@ def main(model_path, waypoints_path, out_dir):
     if not path.converged:
         print("example: not every waypoint reached:", path.warning, file=sys.stderr)
         return 1
-    if len(table) != path.steps or (png_path and os.path.getsize(png_path) == 0):
+    if len(path.table) != path.steps or not path.table["reached"].all() or \
+            (png_path and os.path.getsize(png_path) == 0):
         print("example: outputs incomplete", file=sys.stderr)
         return 1
     print("example: ok")

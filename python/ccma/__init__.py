@@ -8,8 +8,13 @@ mobile robots (Constrained Collaborative Mobile Agents, after Kumar and Coros).
     control = ccma.ControlProblem(model)
     print(control.move_to([0, 0.05, 0.6, 0, 0, 0]).converged)
 
+Every analysis returns a result whose attributes are the keys of the JSON the
+`ccma` command prints for it, and whose to_dict() is that JSON; one that the
+command writes as CSV carries it as a ccma.Table (to_columns(), to_dataframe()).
+Names are the tool's: a flag that is a Python keyword takes a trailing
+underscore (--lambda: lambda_, --from: from_).
 Units: metres, radians, seconds, E in m^2. Arrays are NumPy float64.
-Reference: docs/python.md; type hints: ccma/_ccma.pyi.
+Reference: docs/python.md; type hints: ccma/_ccma.pyi, ccma/results.py.
 """
 import sys as _sys
 
@@ -30,7 +35,13 @@ except ImportError:  # pragma: no cover - depends on the interpreter
 
 from ._ccma import *  # noqa: F401,F403
 from ._ccma import __version__  # noqa: F401
+from ._records import Record  # noqa: F401
+from ._tables import Table  # noqa: F401
+from .results import (CheckResult, DesignResult, DesignSweepResult, ExportResult, ImportResult,  # noqa: F401
+                      PlanResult, ReplayResult, StaticsResult, TrajectoryResult, ViewResult, WorkspaceResult)
 from .viewer import view  # noqa: F401
 from .workspace import workspace  # noqa: F401
+from .design import design  # noqa: F401
 from .design_sweep import design_sweep  # noqa: F401
-from .robots import import_robot  # noqa: F401
+from .replay import replay  # noqa: F401
+from .robots import export, import_robot  # noqa: F401

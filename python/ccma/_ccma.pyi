@@ -6,10 +6,13 @@ package `ccma`. Checked against the built module by python/tests/test_stub.py.
 Reference: docs/python.md.
 """
 import os
-from typing import Any, Literal, NotRequired, Optional, Sequence, Tuple, TypedDict, overload
+from typing import Any, Literal, Optional, Sequence, Tuple, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+
+from ._records import Record
+from .results import CheckResult, PlanResult, StaticsResult, TrajectoryResult, ViewResult
 
 __version__: str
 """The ccma version, e.g. '0.1.0' (the CMake project version)."""
@@ -328,7 +331,10 @@ class ForwardOptions:
         """(ok, why): whether every field is in range; why names the field and its range ('' if ok)."""
 
 class ForwardResult:
-    """The outcome of ForwardProblem.solve/assemble (and ControlProblem.set_controls). Read-only."""
+    """The outcome of ForwardProblem.solve/assemble (and ControlProblem.set_controls). Read-only.
+
+    The attributes of `ccma simulate`'s JSON, by its keys (to_dict() is that JSON), and the
+    solver's details (newton_steps, gradient_norm, branch_jump_size, ...). Keeps its problem alive."""
 
     @property
     def converged(self) -> bool:
@@ -378,6 +384,32 @@ class ForwardResult:
         """The controls solved at, shape (num_controls,)."""
     def __repr__(self) -> str:
         """<ccma.ForwardResult assembled=... residual_energy=... iterations=...>."""
+    @property
+    def model(self) -> str:
+        """The model's name."""
+    @property
+    def assembly_tolerance(self) -> float:
+        """E [m^2] below which the mechanism counts as assembled."""
+    @property
+    def start(self) -> Literal["home", "current"]:
+        """'home': the solve started from the home configuration; 'current': from the problem's configuration before the call."""
+    @property
+    def bodies(self) -> list[BodyPose]:
+        """Every body's absolute pose after the solve (name, position [m], rpy [rad], quaternion)."""
+    @property
+    def joints(self) -> list[Record]:
+        """Every revolute and prismatic joint: Record {name, type, q [rad or m], actuated, limits?}."""
+    @property
+    def limits_violated(self) -> list[str]:
+        """Names of the joints outside their limits."""
+    @property
+    def clearance(self) -> Optional[Record]:
+        """Record {min [m], pair, margin [m], below_margin}; None without collision geometry."""
+    @property
+    def warning(self) -> str:
+        """Not assembled, not converged, a branch jump ('' when nothing went wrong)."""
+    def to_dict(self) -> dict[str, Any]:
+        """The JSON document `ccma simulate` prints for the same solve (same keys and values)."""
 
 class ForwardProblem:
     """Simulation: s_hat(u) = argmin_s E(s, u), warm-started from the last state.
@@ -461,7 +493,7 @@ class ControlOptions:
     def gradient(self, value: Literal["implicit", "finite_difference"]) -> None: ...
     @property
     def lambda_(self) -> float:
-        """Weight of E in the objective, 0 < lambda < 1 (default 0.5)."""
+        """Weight of E in the objective, 0 < lambda < 1 (default 0.5): the flag --lambda (a Python keyword, hence the underscore)."""
     @lambda_.setter
     def lambda_(self, value: float) -> None: ...
     @property
@@ -560,8 +592,8 @@ class ControlStepResult:
     def residual_energy(self) -> float:
         """E at the returned controls [m^2]."""
     @property
-    def rcond(self) -> float:
-        """Pivot ratio of dG/ds at the last linearisation."""
+    def dG_ds_pivot_ratio(self) -> float:
+        """Pivot ratio of dG/ds at the last linearisation [1]."""
     @property
     def min_singular_value_dX_du(self) -> float:
         """Smallest singular value of dX_controlled/du_effective [m or rad per control unit]; 0 at the workspace edge."""
@@ -581,11 +613,14 @@ class ControlStepResult:
     def limited_by(self) -> str:
         """The joints held at a limit when the step ended ('' if none)."""
     @property
-    def time_ms(self) -> float:
+    def solve_time_ms(self) -> float:
         """Wall time of the step [ms]."""
 
 class ControlResult:
-    """The outcome of ControlProblem.move_to. Read-only."""
+    """The outcome of ControlProblem.move_to. Read-only.
+
+    The attributes of `ccma control`'s JSON, by its keys (to_dict() is that JSON), and the step
+    constraints' measures (max_limit_violation, ...). Keeps its problem alive."""
 
     @property
     def converged(self) -> bool:
@@ -615,14 +650,8 @@ class ControlResult:
     def max_step_residual_energy(self) -> float:
         """The worst E over the path's steps [m^2]."""
     @property
-    def rcond(self) -> float:
-        """Pivot ratio of dG/ds at the end."""
-    @property
-    def min_rcond(self) -> float:
-        """The smallest pivot ratio of dG/ds over the path."""
-    @property
-    def min_singular_value_dX_du(self) -> float:
-        """Smallest singular value of dX_controlled/du_effective at the end [m or rad per control unit]."""
+    def branch_jumps_rejected(self) -> int:
+        """Trial solves rejected for landing on another assembly branch."""
     @property
     def max_limit_violation(self) -> float:
         """The worst joint limit violation over the path's steps [rad or m]."""
@@ -642,9 +671,6 @@ class ControlResult:
     def solve_time_ms(self) -> float:
         """Wall time [ms]."""
     @property
-    def warning(self) -> str:
-        """Why the target was not reached ('' if it was)."""
-    @property
     def target(self) -> NDArray[np.float64]:
         """The target [x, y, z, roll, pitch, yaw], shape (6,) [m, rad]."""
     @property
@@ -655,52 +681,38 @@ class ControlResult:
         """The pose assembled at `controls`."""
     def __repr__(self) -> str:
         """<ccma.ControlResult converged=... steps=... error=...>."""
-
-class TrajectoryResult:
-    """A followed path (ControlProblem.follow): arrays with one row per path step. Read-only."""
-
     @property
-    def converged(self) -> bool:
-        """Every waypoint was reached."""
+    def model(self) -> str:
+        """The model's name."""
     @property
-    def steps(self) -> int:
-        """Path steps taken (rows of the arrays)."""
+    def method(self) -> Literal["lm", "bfgs"]:
+        """The control method."""
     @property
-    def iterations(self) -> int:
-        """Outer iterations, all steps."""
+    def conditioning(self) -> Record:
+        """Record {dG_ds_pivot_ratio, min_dG_ds_pivot_ratio_on_path [1], min_singular_value_dX_du, min_singular_value_dX_du_on_path [m or rad per control unit]}."""
     @property
-    def max_residual_energy(self) -> float:
-        """The worst E over the steps [m^2]."""
+    def secondary(self) -> Optional[Record]:
+        """The null-space objective's weights, null_space_steps and objective; None when off."""
     @property
-    def max_error(self) -> float:
-        """The largest final error over the waypoints [m, rad]."""
+    def bodies(self) -> list[BodyPose]:
+        """Every body's absolute pose at the end."""
     @property
-    def solve_time_ms(self) -> float:
-        """Wall time [ms]."""
+    def joints(self) -> list[Record]:
+        """Every revolute and prismatic joint: Record {name, type, q [rad or m], actuated, limits?}."""
+    @property
+    def limits_violated(self) -> list[str]:
+        """Names of the joints outside their limits."""
+    @property
+    def clearance(self) -> Optional[Record]:
+        """Record {min [m], pair, margin [m], below_margin}; None without collision geometry."""
+    @property
+    def from_home(self) -> Record:
+        """Record {reproducible, end_effector_distance_m [m], max_state_difference}: the controls assembled from home give this configuration (checked when first asked for)."""
     @property
     def warning(self) -> str:
-        """The first waypoint not reached ('' if every one was)."""
-    @property
-    def time(self) -> NDArray[np.float64]:
-        """(steps,) [s], interpolated between the waypoints' times."""
-    @property
-    def targets(self) -> NDArray[np.float64]:
-        """(steps x 6) targets: x y z [m], roll pitch yaw [rad]."""
-    @property
-    def reached(self) -> NDArray[np.float64]:
-        """(steps x 6) end-effector after each step: x y z [m], roll pitch yaw [rad]."""
-    @property
-    def controls(self) -> NDArray[np.float64]:
-        """(steps x num_controls) controls after each step."""
-    @property
-    def residual_energy(self) -> NDArray[np.float64]:
-        """(steps,) E after each step [m^2]."""
-    @property
-    def error(self) -> NDArray[np.float64]:
-        """(steps,) max |e| after each step [m, rad]."""
-    @property
-    def step_reached(self) -> NDArray[np.bool_]:
-        """(steps,) whether each step reached its target."""
+        """Why the target was not reached, or that the controls assemble elsewhere from home ('' when neither)."""
+    def to_dict(self) -> dict[str, Any]:
+        """The JSON document `ccma control` prints for the same move (same keys and values)."""
 
 class ControlProblem:
     """Kinematic control: controls u whose assembly puts the end-effector at a target.
@@ -724,12 +736,14 @@ class ControlProblem:
         model.controlled in that order (as `ccma control --target`, e.g. [x, y, z, yaw] on a 4dof
         model); components not controlled are ignored. ValueError on any other length."""
     @overload
-    def follow(self, waypoints: Sequence[Waypoint]) -> TrajectoryResult:
-        """Follows ccma.Waypoint's (e.g. load_waypoints(path)) from the current controls; stops at the first unreachable one.
+    def follow(self, waypoints: Sequence[Waypoint], out: Optional[str | os.PathLike[str]] = None) -> TrajectoryResult:
+        """`ccma trajectory`: follows ccma.Waypoint's (e.g. load_waypoints(path)) from the current controls; stops at the first unreachable one.
 
-        ValueError (naming the waypoint) on a time not finite, beyond 1e6 s, or smaller than the one before."""
+        Returns a ccma.TrajectoryResult (the command's JSON as attributes, its CSV as `table`);
+        out=PATH writes the CSV too. ValueError (naming the waypoint) on a time not finite,
+        beyond 1e6 s, or smaller than the one before."""
     @overload
-    def follow(self, waypoints: ArrayLike) -> TrajectoryResult:
+    def follow(self, waypoints: ArrayLike, out: Optional[str | os.PathLike[str]] = None) -> TrajectoryResult:
         """The same for an (N x 7) array of rows [time [s], x, y, z [m], roll, pitch, yaw [rad]]."""
     def objective(self, target: ArrayLike) -> Tuple[float, NDArray[np.float64]]:
         """(O, dO/du_eff) at the current controls for target (6 values, or the controlled components); the gradient over the effective controls.
@@ -755,10 +769,10 @@ class ControlProblem:
 # --------------------------------------------------------------- collision ----
 
 @overload
-def clearance(problem: ForwardProblem) -> dict[str, Any] | None:
-    """The smallest clearance at the problem's configuration: {'min', 'pair', 'margin', 'below_margin'}, or None without collision geometry."""
+def clearance(problem: ForwardProblem) -> Record | None:
+    """The smallest clearance at the problem's configuration, as `ccma simulate`'s: Record {min [m], pair, margin [m], below_margin}, or None without collision geometry."""
 @overload
-def clearance(problem: ControlProblem) -> dict[str, Any] | None:
+def clearance(problem: ControlProblem) -> Record | None:
     """The same for a ControlProblem."""
 def plan(
     problem: ControlProblem,
@@ -766,21 +780,22 @@ def plan(
     path_weight: float = 0.01,
     smoothness_weight: float = 1.0,
     travel_weight: float = 0.01,
-    max_iterations: int = 200,
-) -> dict[str, Any]:
-    """Whole-trajectory planning (`ccma plan`): converged, used, note, iterations, greedy, plan, and per step time, controls, reached, clearance."""
+    plan_iterations: int = 200,
+    out: Optional[str | os.PathLike[str]] = None,
+) -> PlanResult:
+    """`ccma plan` (whole-trajectory planning): the command's JSON as attributes (converged, used, iterations, greedy, plan, controls, end_effector, clearance, warning), its CSV as `table`; out=PATH writes the CSV."""
 
 # ----------------------------------------------------------------- statics ----
 
 @overload
 def statics(
     problem: ForwardProblem, wrench: ArrayLike | None = None, mocap_noise_m: float = 0.001, mocap_noise_rad: float = 0.003
-) -> dict[str, Any]:
-    """Joint reactions and control efforts at the problem's configuration (`ccma statics`)."""
+) -> StaticsResult:
+    """`ccma statics`: joint reactions and control efforts at the problem's configuration (the command's JSON as attributes)."""
 @overload
 def statics(
     problem: ControlProblem, wrench: ArrayLike | None = None, mocap_noise_m: float = 0.001, mocap_noise_rad: float = 0.003
-) -> dict[str, Any]:
+) -> StaticsResult:
     """The same for a ControlProblem."""
 
 # --------------------------------------------------------------- waypoints ----
@@ -818,14 +833,14 @@ class FreeMotion:
     def direction(self) -> NDArray[np.float64]:
         """ds (state_size): 6 per body, rotation increment [rad] then translation [m]; unit norm."""
     @property
-    def bodies(self) -> list[int]:
-        """Indices into model.bodies of the bodies it moves, ascending."""
+    def bodies(self) -> list[str]:
+        """Names of the bodies it moves, in model order (as `ccma check`'s free_motions)."""
 
 class MobilityReport:
     """Numerical mobility at a configuration (analyses/mobility.h, `ccma check`). Read-only."""
 
     @property
-    def constraint_rows(self) -> int:
+    def constraints(self) -> int:
         """Rows of C."""
     @property
     def constraint_rank(self) -> int:
@@ -849,7 +864,7 @@ class MobilityReport:
     def smallest_singular_value(self) -> float:
         """Of dC/ds; ~0 means singular."""
     @property
-    def energy(self) -> float:
+    def residual_energy(self) -> float:
         """E(s, u) [m^2]."""
     @property
     def free_motions(self) -> list[FreeMotion]:
@@ -865,6 +880,9 @@ def analyze_mobility(
     rank_tolerance: float = 1e-8,
 ) -> MobilityReport:
     """Ranks of dC/ds and of the end-effector motions at a state ((num_bodies x 7), rows [qw, qx, qy, qz, px, py, pz] as ForwardProblem.state; default home) and controls (default home)."""
+
+def check(model: Model) -> CheckResult:
+    """`ccma check`: the model's counts and its mobility at home (the command's JSON as attributes; to_dict() is that JSON)."""
 
 # ------------------------------------------------------------------ design ----
 
@@ -889,26 +907,6 @@ def evaluate_design(
 ) -> list[dict]:
     """Reachability of targets (N x 6) on the model with the named parameters set to `values` [m]:
     per target reached, error, min_singular_value, within_limits, controls (docs/design.md)."""
-
-def design(
-    model: Model,
-    targets: ArrayLike,
-    vary: Sequence[str] = ...,
-    vary_length: Sequence[str] = ...,
-    max_change: float = 0.5,
-    min_length: float = 0.02,
-    min_singular_value: float = 0.02,
-    target_tolerance: float = 1e-6,
-    max_iterations: int = 30,
-    objective: str = "reach",
-    mocap_noise_m: float = 0.001,
-    mocap_noise_rad: float = 0.003,
-) -> dict:
-    """The design loop of `ccma design` on targets (N x 6: x, y, z [m], roll, pitch, yaw [rad]);
-    keys converged, parameters, old, new [m], iterations, targets_before, targets (per target:
-    reached, error, min_singular_value, within_limits, controls), message, model (the designed Model);
-    with objective 'payload', 'peak_push' or 'ee_std' (docs/statics.md) also objective {name, unit,
-    before, after ({value, limiting} or None), iterations, stopped}."""
 
 # ------------------------------------------------------------------ replay ----
 
@@ -959,89 +957,7 @@ class ReplayOptions:
     @control.setter
     def control(self, value: ControlOptions) -> None: ...
 
-class ReplayResult:
-    """A replay: arrays with one row per output sample. Read-only."""
-
-    def __repr__(self) -> str:
-        """<ccma.ReplayResult converged=... torn=... samples=...>."""
-    @property
-    def converged(self) -> bool:
-        """Every waypoint was reached by the control solution."""
-    @property
-    def warning(self) -> str:
-        """Why not (the plan's message); '' if converged."""
-    @property
-    def failed_step_time(self) -> float:
-        """Time of the first plan step that missed its target [s]; NaN if every waypoint was reached."""
-    @property
-    def torn(self) -> bool:
-        """Some sample's chain could not follow the bases."""
-    @property
-    def first_torn_time(self) -> float:
-        """Time of the first torn sample [s]; NaN if never torn."""
-    @property
-    def max_residual_energy(self) -> float:
-        """The largest chain E over the samples [m^2]."""
-    @property
-    def rmse(self) -> NDArray[np.float64]:
-        """Tracked vs commanded per component, shape (6,): x y z [m], roll pitch yaw [rad]."""
-    @property
-    def duration_s(self) -> float:
-        """Simulated duration [s]."""
-    @property
-    def trustworthy(self) -> bool:
-        """Converged and never torn (with samples): only then does the RMSE measure tracking."""
-    @property
-    def time(self) -> NDArray[np.float64]:
-        """(samples,) [s]."""
-    @property
-    def commanded(self) -> NDArray[np.float64]:
-        """(samples x 6) the control solution's end-effector: x y z [m], roll pitch yaw [rad]."""
-    @property
-    def tracked(self) -> NDArray[np.float64]:
-        """(samples x 6) the driven chain's end-effector: x y z [m], roll pitch yaw [rad]."""
-    @property
-    def set_controls(self) -> NDArray[np.float64]:
-        """(samples x num_controls) the set-points."""
-    @property
-    def true_controls(self) -> NDArray[np.float64]:
-        """(samples x num_controls) where the bases really are."""
-    @property
-    def residual_energy(self) -> NDArray[np.float64]:
-        """(samples,) chain E at the true base poses [m^2]."""
-    @property
-    def torn_samples(self) -> int:
-        """How many samples were torn."""
-    @property
-    def sample_torn(self) -> NDArray[np.bool_]:
-        """(samples,) whether each sample is torn."""
-    @property
-    def sample_assembled(self) -> NDArray[np.bool_]:
-        """(samples,) whether the chain closed exactly (E <= 1e-16 m^2) at each sample."""
-
-@overload
-def replay(model: Model, waypoints: Sequence[Waypoint], options: ReplayOptions = ...) -> ReplayResult:
-    """The paper's closed loop, simulated: bases track the control solution with noise and latency, the chain follows."""
-@overload
-def replay(model: Model, waypoints: ArrayLike, options: ReplayOptions = ...) -> ReplayResult:
-    """The same for an (N x 7) array of rows [time, x, y, z, roll, pitch, yaw] ([s], [m], [rad])."""
-
 # ------------------------------------------------------------------ viewer ----
-
-class _ViewInfo(TypedDict):
-    """The summary view_html returns beside the page (the JSON of `ccma view`, less out and bytes)."""
-
-    frames: int
-    flagged_frames: int
-    not_assembled_frames: int
-    branch_jumps: int
-    source: Literal["model", "trajectory", "replay", "workspace"]
-    beyond_work_bound_frames: NotRequired[int]  # only when some: frames not attempted (the work bound)
-    workspace_points: NotRequired[int]     # only with workspace=: rows drawn
-    workspace_reachable: NotRequired[int]  # of which reachable
-    max_load: NotRequired[float]           # only with color_by='load': the largest joint load [N]
-    unbalanced_frames: NotRequired[int]    # only with color_by='load'
-    indeterminate_frames: NotRequired[int] # only with color_by='load'
 
 def viewer_available() -> bool:
     """Whether this build carries the viewer's JavaScript (else view_html raises RuntimeError)."""
@@ -1054,8 +970,8 @@ def view_html(
     meshes: bool = False,
     color_by: str = "body",
     mesh_root: Optional[str | os.PathLike[str] | Sequence[str | os.PathLike[str]]] = None,
-) -> Tuple[str, _ViewInfo]:
-    """(html, info): the self-contained page of `ccma view`, animated along a trajectory CSV or a replay
+) -> Tuple[str, ViewResult]:
+    """(html, info): the self-contained page of `ccma view` and its summary (a ViewResult: the command's JSON without out), animated along a trajectory CSV or a replay
     directory, or with a `ccma workspace` CSV drawn as a point cloud (at most one of the three);
     meshes=True draws the bodies' STL meshes (`ccma view --meshes`; files relative to the folder of
     the model's file), read only from inside that folder (symlinks resolved) and the folders of

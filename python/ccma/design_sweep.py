@@ -21,6 +21,8 @@ import os
 import numpy as _np
 
 from . import _ccma
+from ._tables import Table
+from .results import DesignSweepResult
 from .workspace import _model_on_worker
 
 
@@ -139,9 +141,11 @@ def design_sweep(model, parameter_grid, targets, client=None, chunk_size=8, targ
     ccma.design: 'JOINT.z', 'ANCHOR:JOINT') on `targets` (N x 6).
 
     `model`: a path (str or os.PathLike) to the model file (its text is what the workers load).
-    Returns a list, one dict per candidate in grid order: `values` ({name: value}), `reached`
-    (one boolean per target), `all_reached`, `min_singular_value` (smallest over the targets, 0
-    when one is unreachable), `feasible` (all reached with min_singular_value >= the threshold).
+    Returns a ccma.DesignSweepResult: `table`, one row per candidate in grid order, with one
+    column per parameter (its value [m]), `all_reached`, `min_singular_value` (smallest over
+    the targets, 0 when one is unreachable) and `feasible` (all reached with
+    min_singular_value >= the threshold); `reached` (candidates x targets, bool);
+    to_columns(), to_records(), to_dataframe().
     `store`: a Zarr directory keeping every finished chunk; the same call again resumes from
     it (a store of another sweep raises ValueError). `progress`: called as
     progress(done_candidates, total). `max_in_flight`: chunks in flight on a client (default
@@ -185,12 +189,12 @@ def design_sweep(model, parameter_grid, targets, client=None, chunk_size=8, targ
         return _evaluate_candidates(text_or_future, names, targets, chunk, target_tolerance)
 
     parts = _run_chunks(chunks, evaluate, client, text, window, kept, progress, len(targets))
-    out = []
-    for i, chunk in enumerate(chunks):
-        for k, values in enumerate(chunk):
-            reached = [bool(x) for x in parts[i]["reached"][k]]
-            sigma = min(float(v) if r else 0.0 for v, r in zip(parts[i]["min_singular_value"][k], reached))
-            out.append({"values": dict(zip(names, values)), "reached": reached, "all_reached": all(reached),
-                        "min_singular_value": sigma,
-                        "feasible": all(reached) and sigma >= min_singular_value})
-    return out
+    reached = _np.concatenate([_np.asarray(p["reached"], dtype=bool) for p in parts])
+    sigma = _np.concatenate([_np.asarray(p["min_singular_value"], dtype=float) for p in parts])
+    sigma = _np.where(reached, sigma, 0.0).min(axis=1)
+    columns = {name: [float(c[k]) for c in candidates] for k, name in enumerate(names)}
+    columns["all_reached"] = reached.all(axis=1)
+    columns["min_singular_value"] = sigma
+    columns["feasible"] = reached.all(axis=1) & (sigma >= min_singular_value)
+    reached.flags.writeable = False
+    return DesignSweepResult(names, Table(columns), reached)

@@ -1,33 +1,77 @@
-"""Robots described elsewhere: ccma.import_robot (docs/import.md)."""
+"""Robots described elsewhere: ccma.import_robot and ccma.export (docs/import.md)."""
 import os as _os
 
 from . import _ccma
+from ._tables import out_path
+from .results import ExportResult, ImportResult
 from .viewer import _write_replacing
 
 
-def import_robot(path, closures=None, actuated=(), end_effector="", point=(0.0, 0.0, 0.0),
-                 controlled=(), out=None):
-    """Converts a URDF (with its closure file, the example-parallel-robots convention) or an
-    SDFormat file into a ccma.Model assembled at home, as `ccma import` does.
+def _end_effector(text):
+    """`--end_effector=LINK[:px,py,pz]` -> (link, point [m]), with the command's checks."""
+    link, point = text, (0.0, 0.0, 0.0)
+    if ":" in text:
+        link, numbers = text.rsplit(":", 1)
+        try:
+            point = tuple(float(v) for v in numbers.split(","))
+        except ValueError:
+            raise ValueError("end_effector: the point needs 3 numbers (LINK:px,py,pz) [m], got %r"
+                             % numbers[:64]) from None
+        if len(point) != 3:
+            raise ValueError("end_effector: the point needs 3 numbers (LINK:px,py,pz) [m]")
+    return link, point
 
-    path: the .urdf or .sdf file; closures: the URDF's closure file (closed_loop, type,
-    name_mot); actuated: joint names (URDF default: the closure file's name_mot);
-    end_effector: the link that carries it (default: the one `ccma export` stored) and
-    point its controlled point in that link's frame [m]; controlled: components among
-    x, y, z, roll, pitch, yaw (default: the ones `ccma export` stored, else those the
-    motors move at home, translations first, as `ccma import` chooses them; the model's
-    `controlled` lists them); components the motors cannot move independently at home
-    raise ccma.ModelError naming those they move. out: also write the model file there
-    (replaced atomically, never through a planted link). Every joint's q equals the
-    source's joint position (q_home). Mesh paths are written relative to the folder of
-    `out` (without `out`: of the robot file), so that the model and its meshes move
-    together; `ccma.view(meshes=True)` reads meshes outside the model's folder only with
-    mesh_root=. Raises ccma.ModelError naming the file, the element
-    and the name."""
-    folder = None if out is None else _os.path.dirname(_os.path.abspath(_os.fspath(out)))
-    model, text = _ccma._import_robot(path, closures, list(actuated), end_effector, point, list(controlled),
-                                      folder)
+
+def import_robot(from_, closures=None, actuated=(), end_effector="", controlled=(), out=None):
+    """`ccma import`: a URDF (with its closure file, the example-parallel-robots convention) or
+    an SDFormat file as a ccma model assembled at home.
+
+    from_: the .urdf or .sdf file (--from; `from` is a Python keyword); closures: the URDF's
+    closure file (closed_loop, type, name_mot); actuated: joint names (URDF default: the
+    closure file's name_mot); end_effector: 'LINK' or 'LINK:px,py,pz', the link that carries
+    it and the controlled point in that link's frame [m] (default: the one `ccma export`
+    stored); controlled: components among x, y, z, roll, pitch, yaw (default: the ones
+    `ccma export` stored, else those the motors move at home, translations first, as
+    `ccma import` chooses them); components the motors cannot move independently at home
+    raise ccma.ModelError naming those they move; out: also write the model file there
+    (replaced atomically, never through a planted link).
+
+    Returns a ccma.ImportResult: the command's JSON as attributes (to_dict()): bodies,
+    joints, closures, actuated, controlled (the model's components), controlled_chosen
+    (True when import chose them), assembled, residual_energy [m^2], controls, and out when
+    written; `new_model` is the imported Model (as loaded back from `out` when written).
+    Every joint's q equals the source's joint position (q_home). Mesh paths are written
+    relative to the folder of `out` (without `out`: of the robot file), so that the model
+    and its meshes move together. The command's warnings are UserWarnings. Raises
+    ccma.ModelError naming the file, the element and the name."""
+    out = out_path(out)
+    folder = None if out is None else _os.path.dirname(_os.path.abspath(out))
+    link, point = _end_effector(str(end_effector))
+    model, text, document = _ccma._import_robot(from_, closures, list(actuated), link, point, list(controlled),
+                                                folder)
+    if out is not None:
+        _write_replacing(out, text.encode("utf-8"))
+        model = _ccma.load_model(out)
+        document["out"] = out
+    return ImportResult(document, new_model=model)
+
+
+def export(model, format, out):
+    """`ccma export`: writes the model as URDF (a spanning tree, with the joints that close
+    its loops in a closure file beside it, OUT with the extension .closures.yaml) or as
+    SDFormat (with its loops). `ccma.import_robot` of the output gives back the mechanism.
+
+    model: a ccma.Model or a model file's path (as --model); format: 'urdf' or 'sdf'; out:
+    the file to write (replaced atomically, never through a planted link). Returns a
+    ccma.ExportResult: the command's JSON as attributes (to_dict()): out, format, closures
+    (the closure file's path, None for sdf), links, joints, loops."""
+    if isinstance(model, (str, _os.PathLike)):
+        model = _ccma.load_model(_os.fspath(model))
+    out = out_path(out)
     if out is None:
-        return model
-    _write_replacing(out, text.encode("utf-8"))
-    return _ccma.load_model(out)
+        raise ValueError("export: out names the file to write")
+    files = _ccma._export(model, str(format), out)
+    for path, text in files.pop("files"):
+        _write_replacing(path, text.encode("utf-8"))
+    files["out"] = out
+    return ExportResult(files)

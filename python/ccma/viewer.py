@@ -85,15 +85,17 @@ def view(model, trajectory=None, replay=None, out=None, height=600, workspace=No
     the model's folder, or by its file name, never by an absolute path.
     color_by: "load" colours the links by their largest joint reaction force
     under the model's masses and payload, as `ccma view --color_by=load`.
-    out: write the self-contained HTML page there and return its path.
-    Without `out`, inside Jupyter the page is displayed inline (an iframe,
-    `height` pixels); elsewhere the HTML text is returned.
+    out: write the self-contained HTML page there and return a ccma.ViewResult,
+    the JSON `ccma view` prints as attributes (out, bytes, frames, source,
+    flagged_frames, ...; to_dict() is that JSON). Without `out`, inside Jupyter
+    the page is displayed inline (an iframe, `height` pixels); elsewhere the
+    HTML text is returned.
     Raises ccma.ViewInputError on a bad trajectory, replay, workspace or mesh
     file, a mesh outside the allowed folders, or a mesh_root that is not a folder.
     """
     if isinstance(model, (str, _os.PathLike)):
         model = _ccma.load_model(_os.fspath(model))
-    page, _info = _ccma.view_html(model,
+    page, info = _ccma.view_html(model,
                                   None if trajectory is None else _os.fspath(trajectory),
                                   None if replay is None else _os.fspath(replay),
                                   None if workspace is None else _os.fspath(workspace),
@@ -101,7 +103,9 @@ def view(model, trajectory=None, replay=None, out=None, height=600, workspace=No
     if out is not None:
         out = _os.fspath(out)
         _write_replacing(out, page.encode("utf-8"))
-        return out
+        document = info.to_dict()
+        document["out"] = out
+        return type(info)(document)
     if _in_notebook():
         from IPython.display import HTML, display  # type: ignore
         frame = ('<iframe srcdoc="%s" style="width:100%%;height:%dpx;border:0"></iframe>'

@@ -3,7 +3,8 @@
     import ccma
     m = ccma.workspace("models/4dof_reduced.yaml", {"z": (0.4, 1.0), "x": (-0.5, 0.5)},
                        resolution=25, threads=2)
-    m["reachable"]  # NumPy bool per sample; m["poses"] n x 6, m["controls"], m["sigma_min"], ...
+    m.reachable, m.samples           # counts, as `ccma workspace` prints them
+    m.table["reachable"]             # NumPy bool per sample; the CSV's columns: x, z, sigma_min, u0, ...
 
     from distributed import Client
     m = ccma.workspace(path, ranges, client=Client("tcp://scheduler:8786"),
@@ -27,6 +28,8 @@ import time
 import numpy as _np
 
 from . import _ccma
+from ._tables import Table, out_path
+from .results import WorkspaceResult
 
 _MODELS = {}  # per worker process: hash of the model text -> Model
 
@@ -266,6 +269,7 @@ def _by_tiles(runner, model, text, args, control, chunk, window, store, progress
         part = pickle.loads(blob)
         if write and kept is not None:
             kept.write(t, _flatten(part))
+        part["ee_std_m"] = _ccma._workspace_ee_std(model, part["states"], part["controls"], part["reachable"])
         _place(out, tiles[t]["rows"], part, n)
         counts["done"] += len(tiles[t]["rows"])
         counts["stored"] += 0 if write else 1
@@ -279,19 +283,78 @@ def _by_tiles(runner, model, text, args, control, chunk, window, store, progress
     out["components"] = [r[0] for r in ranges]
     out["seconds"] = time.perf_counter() - start
     out["tiles"] = len(tiles)
-    out["tiles_from_store"] = counts["stored"]
+    out["tile_size"] = _ccma._workspace_tile_side(model, ranges, resolution, samples, seed, wave_size, tile_size)
+    if store is not None:
+        out["tiles_from_store"] = counts["stored"]
     return out
 
 
+def _finite(values):
+    """A float column as the CSV writes it (apps/workspace_command.cc Cell): NaN for inf."""
+    values = _np.array(values, dtype=float)
+    values[~_np.isfinite(values)] = _np.nan
+    return values
+
+
+def _map_table(model, m):
+    """The columns of `ccma workspace --out` (apps/workspace_command.cc WriteCsv)."""
+    reachable = _np.asarray(m["reachable"], dtype=bool)
+    columns = {}
+    for c, name in enumerate(("x", "y", "z", "roll", "pitch", "yaw")):
+        if name in model.controlled:
+            columns[name] = _finite(m["poses"][:, c])
+    columns["reachable"] = reachable
+    columns["residual_energy"] = _finite(m["residual_energy"])
+    columns["sigma_min"] = _finite(_np.where(reachable, m["sigma_min"], 0.0))
+    columns["error"] = _finite(m["error"])
+    columns["rcond"] = _finite(m["rcond"])
+    columns["max_limit_violation"] = _finite(m["max_limit_violation"])
+    columns["limited_by"] = [str(v).translate(_CSV_SEPARATORS) for v in m["limited_by"]]
+    columns["wave"] = m["wave"]
+    columns["start"] = m["start"]
+    columns["ee_std_m"] = _finite(_np.where(reachable, m["ee_std_m"], 0.0))
+    controls = _finite(m["controls"])
+    controls[~reachable] = _np.nan  # the CSV leaves them empty
+    for k in range(model.num_controls):
+        columns["u%d" % k] = controls[:, k]
+    return Table(columns)
+
+
+_CSV_SEPARATORS = str.maketrans({",": ";", '"': ";", "\n": ";", "\r": ";"})
+
+
+def _result(model, m, threads, samples, out):
+    """The map as a ccma.WorkspaceResult: `ccma workspace`'s JSON and CSV."""
+    document = {"model": model.name, "samples": int(len(m["reachable"])),
+                "reachable": int(_np.count_nonzero(m["reachable"])), "seconds": float(m["seconds"]),
+                "threads": int(threads), "tiles": int(m["tiles"]), "tile_size": int(m["tile_size"]),
+                "mode": "random" if samples > 0 else "grid", "components": list(m["components"])}
+    if "tiles_from_store" in m:
+        document["tiles_from_store"] = int(m["tiles_from_store"])
+    table = _map_table(model, m)
+    details = Table({"converged": m["converged"], "assembled": m["assembled"], "steps": m["steps"],
+                     "tile": m["tile"], "warning": m["warning"]})
+    if out is not None:
+        document["out"] = os.fspath(out)
+        table.to_csv(document["out"])
+    return WorkspaceResult(document, {"workspace": table, "details": details})
+
+
 def workspace(model, ranges, resolution=11, samples=0, seed=1, threads=1, wave_size=64,
-              client=None, chunk_size=1, tile_size=0, progress=None, max_in_flight=None, store=None, **control):
-    """Reachability map over `ranges` ({"z": (lo, hi), ...}; names x y z roll pitch yaw,
-    metres and radians, the model's controlled components): a grid of `resolution` points
-    per range, or `samples` seeded uniform draws. Returns a dict of NumPy arrays, one entry
-    per sample: poses (n x 6), reachable, converged, assembled, controls (n x controls),
-    residual_energy [m^2], error [m or rad], sigma_min, rcond, max_limit_violation, wave,
-    start, steps, tile; lists limited_by and warning; and components, seconds, tiles
-    (with a client or a store also tiles_from_store).
+              client=None, chunk_size=1, tile_size=0, progress=None, max_in_flight=None, store=None, out=None,
+              **control):
+    """`ccma workspace`: the reachability map over `ranges` ({"z": (lo, hi), ...}; names x y z
+    roll pitch yaw, metres and radians, the model's controlled components; the flags --x ...):
+    a grid of `resolution` points per range, or `samples` seeded uniform draws.
+
+    Returns a ccma.WorkspaceResult: the command's JSON as attributes (to_dict()): samples,
+    reachable (the count), seconds, threads, tiles, tile_size, mode, components, and
+    tiles_from_store with a store, out with out=; its CSV, one row per sample, as `table`
+    (to_columns(), to_records(), to_dataframe()): the controlled components by name,
+    reachable (bool), residual_energy [m^2], sigma_min (0 when unreachable), error [m or rad],
+    rcond, max_limit_violation, limited_by, wave, start, ee_std_m [m] (0 when unreachable),
+    u0, u1, ... (NaN when unreachable: the CSV leaves them empty). `details` holds, per
+    sample, converged, assembled, steps, tile and warning. out=PATH writes the CSV there.
 
     `model`: a path (str or os.PathLike) or a ccma.Model; with a Dask `client`
     (distributed.Client) or a `store` it must be a path (its text is sent to the workers
@@ -309,6 +372,15 @@ def workspace(model, ranges, resolution=11, samples=0, seed=1, threads=1, wave_s
     `control`: ControlOptions fields (max_step_m, lambda_, ...). The results do not
     depend on threads, client, chunk_size, max_in_flight, store or interruptions.
     """
+    out = out_path(out)
+    m, model = _map(model, ranges, resolution, samples, seed, threads, wave_size, client, chunk_size, tile_size,
+                    progress, max_in_flight, store, control)
+    return _result(model, m, threads, int(samples), out)
+
+
+def _map(model, ranges, resolution, samples, seed, threads, wave_size, client, chunk_size, tile_size, progress,
+         max_in_flight, store, control):
+    """The map's per-sample arrays (a dict) and the loaded model."""
     path = None
     if isinstance(model, (str, os.PathLike)):
         path = os.fspath(model)
@@ -339,7 +411,7 @@ def workspace(model, ranges, resolution=11, samples=0, seed=1, threads=1, wave_s
         if client is None and store is None:
             return _ccma._workspace_compute(model, range_list, int(resolution), int(samples), int(seed),
                                             int(threads), int(wave_size), options, int(tile_size),
-                                            report if progress else None)
+                                            report if progress else None), model
         with open(path, encoding="utf-8") as f:
             text = f.read()
         if client is None:
@@ -348,6 +420,6 @@ def workspace(model, ranges, resolution=11, samples=0, seed=1, threads=1, wave_s
             runner = _DaskRunner(client, text, args, control)
             window = max(4, 4 * sum(client.nthreads().values()))
         window = int(max_in_flight) if max_in_flight is not None else window
-        return _by_tiles(runner, model, text, args, control, int(chunk_size), window, store, report)
+        return _by_tiles(runner, model, text, args, control, int(chunk_size), window, store, report), model
     finally:
         report.close()

@@ -1,16 +1,20 @@
 // Obstacles and collisions (docs/obstacles.md) in Python: the clearance at a
 // problem's current configuration, and whole-trajectory planning
 // (problems/plan.h) as ccma.plan.
-#include <limits>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
+#include "apps/json_output.h"
+#include "apps/trajectory_csv.h"
 #include "ccma/ccma.h"
 #include "python/src/bindings.h"
 #include "python/src/conversions.h"
+#include "python/src/documents.h"
+#include "python/src/json_to_python.h"
 #include "python/src/usage_guard.h"
 
 namespace py = pybind11;
@@ -18,96 +22,78 @@ namespace py = pybind11;
 namespace ccma::python {
 namespace {
 
-// {"min", "pair", "margin", "below_margin"}, or None without collision geometry.
-py::object ClearanceAt(const Model& model, const State& s) {
-  const CollisionModel collision(model);
-  const ClearanceSummary c = MinimumClearance(collision, s);
-  if (!c.any) return py::none();
-  py::dict d;
-  d["min"] = c.min;
-  d["pair"] = py::make_tuple(c.a, c.b);
-  d["margin"] = collision.margin();
-  d["below_margin"] = c.min < collision.margin() - 1e-9;
-  return std::move(d);
-}
-
-py::dict MeasuresDict(const PathMeasures& m) {
-  py::dict d;
-  d["reached_waypoints"] = m.reached_waypoints;
-  d["travel_m"] = m.travel_m;
-  d["min_clearance_m"] = m.min_clearance_m;  // inf without collision geometry
-  return d;
-}
-
-py::dict Plan(ControlProblem& p, const std::vector<Waypoint>& waypoints, const PlanOptions& options) {
-  PlanResult r;
+// `ccma plan` in Python: the JSON summary and the CSV (as a ccma.Table),
+// written to `out` too when given.
+py::object Plan(ControlProblem& p, const std::vector<Waypoint>& waypoints, const PlanOptions& options,
+                const py::object& out) {
+  const std::string out_path = OutPath(out);
+  std::ostringstream csv_text;
+  nlohmann::json document;
   {
-    const UsageGuard guard(p);
     py::gil_scoped_release release;
-    r = PlanTrajectory(p, waypoints, options);
+    const UsageGuard guard(p);
+    const PlanResult r = PlanTrajectory(p, waypoints, options);
+    cli::TrajectoryCsv csv(p.forward().model(), csv_text);
+    for (const TrajectoryStep& step : r.steps) csv.Write(step);
+    document = PlanDocument(p, r, waypoints.size(), csv.min_clearance());
   }
-  const Model& model = p.forward().model();
-  const CollisionModel collision(model);
-  const int n = static_cast<int>(r.steps.size());
-  Eigen::VectorXd time(n), clearance(n);
-  RowMatrix controls(n, model.num_controls()), reached(n, 6);
-  for (int i = 0; i < n; ++i) {
-    const TrajectoryStep& s = r.steps[static_cast<size_t>(i)];
-    time[i] = s.time;
-    controls.row(i) = s.controls.transpose();
-    reached.row(i) << s.reached.position.transpose(), s.reached.rpy.transpose();
-    const ClearanceSummary c = MinimumClearance(collision, s.state);
-    clearance[i] = c.any ? c.min : std::numeric_limits<double>::infinity();
-  }
-  py::dict d;
-  d["converged"] = r.converged;
-  d["used"] = r.used_plan ? "plan" : "greedy";
-  d["note"] = r.note;
-  d["iterations"] = r.iterations;
-  d["greedy"] = MeasuresDict(r.greedy);
-  d["plan"] = MeasuresDict(r.plan);
-  d["time"] = time;
-  d["controls"] = controls;
-  d["reached"] = reached;
-  d["clearance"] = clearance;
-  d["solve_time_ms"] = r.solve_time_ms;
-  return d;
+  if (!out_path.empty()) document["out"] = out_path;
+  py::dict tables;
+  tables["plan"] = TableFromCsv(csv_text.str(), "plan");
+  py::object result = MakeResult("PlanResult", document, tables);
+  if (!out_path.empty()) result.attr("to_csv")(out_path);
+  return result;
 }
 
 }  // namespace
 
 void BindCollision(py::module_& m) {
   m.def(
-      "clearance", [](const ForwardProblem& p) { return ClearanceAt(p.model(), p.state()); }, py::arg("problem"),
+      "clearance",
+      [](const ForwardProblem& p) {
+        const UsageGuard guard(p);
+        return ToView(cli::ClearanceToJson(p.model(), p.state()));
+      },
+      py::arg("problem"),
       "The smallest clearance over the checked pairs of shapes at the problem's current configuration "
-      "(docs/obstacles.md): {'min': m (negative: overlap depth), 'pair': (a, b), 'margin': m, "
-      "'below_margin': bool}, or None when the model has no collision geometry or obstacles.");
+      "(docs/obstacles.md), as `ccma simulate`'s \"clearance\": a ccma.Record {min [m] (negative: overlap "
+      "depth), pair [a, b], margin [m], below_margin}, or None when the model has no collision geometry or "
+      "obstacles.");
   m.def(
-      "clearance", [](const ControlProblem& p) { return ClearanceAt(p.forward().model(), p.forward().state()); },
+      "clearance",
+      [](const ControlProblem& p) {
+        const UsageGuard guard(p);
+        return ToView(cli::ClearanceToJson(p.forward().model(), p.forward().state()));
+      },
       py::arg("problem"), "The same for a ControlProblem.");
   m.def(
       "plan",
       [](ControlProblem& p, const std::vector<Waypoint>& waypoints, double path_weight, double smoothness_weight,
-         double travel_weight, int max_iterations) {
+         double travel_weight, int plan_iterations, const py::object& out) {
         PlanOptions options;
         options.path_weight = path_weight;
         options.smoothness_weight = smoothness_weight;
         options.travel_weight = travel_weight;
-        options.max_iterations = max_iterations;
+        options.max_iterations = plan_iterations;
         std::string why;
-        if (!options.IsValid(&why)) throw py::value_error("plan: " + why);
+        if (!options.IsValid(&why)) {
+          // The flag's name, as `ccma plan` says it (apps/plan_command.cc).
+          if (why.rfind("max_iterations", 0) == 0) why.replace(0, 14, "plan_iterations");
+          throw py::value_error("plan: " + why);
+        }
         CheckWaypoints(waypoints);
-        return Plan(p, waypoints, options);
+        return Plan(p, waypoints, options, out);
       },
       py::arg("problem"), py::arg("waypoints"), py::arg("path_weight") = 1e-2, py::arg("smoothness_weight") = 1.0,
-      py::arg("travel_weight") = 1e-2, py::arg("max_iterations") = 200,
-      "Whole-trajectory planning from the problem's current controls (`ccma plan`, docs/obstacles.md): "
-      "returns a dict: converged, used ('plan' or 'greedy'), note, iterations, greedy and plan "
-      "(reached_waypoints, travel_m, min_clearance_m), and per step time [s], controls, reached "
-      "(x y z [m] roll pitch yaw [rad]) and clearance [m] (inf without collision geometry). "
-      "Raises ValueError for differential bases, the bfgs method, options out of range or waypoints the "
-      "waypoint CSV refuses (a value not finite or out of range, a time smaller than the one before; the "
-      "message names the waypoint).");
+      py::arg("travel_weight") = 1e-2, py::arg("plan_iterations") = 200, py::arg("out") = py::none(),
+      "`ccma plan`: whole-trajectory planning from the problem's current controls (docs/obstacles.md). "
+      "Returns a ccma.PlanResult: the command's JSON as attributes (to_dict()): converged, used ('plan' or "
+      "'greedy'), iterations, greedy and plan (reached_waypoints, travel_m, min_clearance_m), controls, "
+      "end_effector, clearance, warning; its CSV (the columns of `ccma trajectory`, one row per step) as "
+      "`table`; out=PATH writes that CSV too. Keywords as the flags: path_weight, smoothness_weight, "
+      "travel_weight, plan_iterations. Raises ValueError for differential bases, the bfgs method, options "
+      "out of range or waypoints the waypoint CSV refuses (a value not finite or out of range, a time smaller "
+      "than the one before; the message names the waypoint).");
 }
 
 }  // namespace ccma::python

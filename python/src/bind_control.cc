@@ -1,7 +1,10 @@
 // Kinematic control: ccma.ControlProblem(model).move_to([x, y, z, r, p, y]),
 // one step, path following (waypoints) and the sensitivities ds/du, dX/du.
+#include <algorithm>
 #include <array>
 #include <filesystem>
+#include <limits>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -9,6 +12,8 @@
 #include <pybind11/stl/filesystem.h>
 #include <pybind11/stl.h>
 
+#include "apps/json_output.h"
+#include "apps/trajectory_csv.h"
 #include "ccma/end_effector.h"
 #include "ccma/internal/format.h"
 #include "ccma/model.h"
@@ -17,6 +22,8 @@
 #include "problems/trajectory.h"
 #include "python/src/bindings.h"
 #include "python/src/conversions.h"
+#include "python/src/documents.h"
+#include "python/src/json_to_python.h"
 #include "python/src/pose_types.h"
 #include "python/src/usage_guard.h"
 
@@ -24,8 +31,6 @@ namespace py = pybind11;
 
 namespace ccma::python {
 namespace {
-
-using Vector6d = Eigen::Matrix<double, 6, 1>;
 
 Vector6d AsVector(const PoseTarget& t) {
   Vector6d v;
@@ -68,24 +73,6 @@ PoseTarget TargetFrom(const ControlProblem& p, const Eigen::VectorXd& values) {
   }
   return {full.head<3>(), full.tail<3>()};
 }
-
-// ControlResult plus where it left the mechanism.
-struct ControlSolution : ControlResult {
-  Vector6d target;
-  Eigen::VectorXd controls;
-  EndEffectorPose end_effector;
-};
-
-// A followed path, one row per step (NumPy arrays).
-struct TrajectorySolution : TrajectoryResult {
-  Eigen::VectorXd time;          // s
-  RowMatrix targets;             // steps x 6
-  RowMatrix reached;             // steps x 6: x y z [m], roll pitch yaw [rad]
-  RowMatrix controls;            // steps x num_controls
-  Eigen::VectorXd residual_energy;
-  Eigen::VectorXd error;         // m or rad
-  Eigen::Matrix<bool, Eigen::Dynamic, 1> step_reached;
-};
 
 using OptionsClass = py::class_<ControlOptions>;
 
@@ -138,7 +125,9 @@ void BindOptions(py::module_& m) {
             o.gradient = v == "implicit" ? GradientMethod::kImplicit : GradientMethod::kFiniteDifference;
           },
           "'implicit' (sensitivities, default) or 'finite_difference'")
-      .def_readwrite("lambda_", &ControlOptions::lambda, "weight of E in the objective, 0 < lambda < 1")
+      .def_readwrite("lambda_", &ControlOptions::lambda,
+                     "weight of E in the objective, 0 < lambda < 1 [1]: the flag --lambda (lambda is a Python "
+                     "keyword, hence the trailing underscore)")
       .def_readwrite("max_step_m", &ControlOptions::max_step_m, "path step: translation [m]")
       .def_readwrite("max_step_rad", &ControlOptions::max_step_rad, "path step: rotation [rad]")
       .def_readwrite("max_iterations", &ControlOptions::max_iterations, "outer iterations per step")
@@ -163,7 +152,7 @@ void BindStepResult(py::module_& m) {
       .def_readonly("objective", &ControlStepResult::objective)
       .def_readonly("error", &ControlStepResult::error, "max |e| over the controlled components [m, rad]")
       .def_readonly("residual_energy", &ControlStepResult::residual_energy, "[m^2]")
-      .def_readonly("rcond", &ControlStepResult::rcond, "pivot ratio of dG/ds")
+      .def_readonly("dG_ds_pivot_ratio", &ControlStepResult::rcond, "pivot ratio of dG/ds [1]")
       .def_readonly("min_singular_value_dX_du", &ControlStepResult::min_singular_value_dX_du)
       .def_readonly("max_limit_violation", &ControlStepResult::max_limit_violation, "[rad or m]")
       .def_readonly("max_effort_violation", &ControlStepResult::max_effort_violation, "[N or N*m]")
@@ -171,24 +160,70 @@ void BindStepResult(py::module_& m) {
                     "how far a pair of shapes is below collision.margin [m] (0)")
       .def_readonly("max_lateral_displacement", &ControlStepResult::max_lateral_displacement, "[m]")
       .def_readonly("limited_by", &ControlStepResult::limited_by)
-      .def_readonly("time_ms", &ControlStepResult::time_ms, "[ms]");
+      .def_readonly("solve_time_ms", &ControlStepResult::time_ms, "[ms]");
+}
+
+// The attributes of `ccma control`'s JSON beyond the solve's own numbers
+// (documents.h ControlDocument), computed when asked for.
+void BindControlConfiguration(py::class_<ControlSolution>& c) {
+  c.def_property_readonly("model", [](const ControlSolution& r) { return r.model->name; }, "the model's name")
+      .def_readonly("method", &ControlSolution::method, "'lm' or 'bfgs'")
+      .def_property_readonly(
+          "conditioning", [](const ControlSolution& r) { return ToView(ConditioningJson(r)); },
+          "Record {dG_ds_pivot_ratio, min_dG_ds_pivot_ratio_on_path [1], min_singular_value_dX_du, "
+          "min_singular_value_dX_du_on_path [m or rad per control unit]}: at the end and over the path")
+      .def_property_readonly(
+          "secondary",
+          [](const ControlSolution& r) -> py::object {
+            if (!r.secondary.enabled()) return py::none();
+            return ToView(SecondaryJson(r.secondary, r.null_space_steps, r.secondary_objective));
+          },
+          "Record of the null-space objective (weights, null_space_steps, objective); None when off")
+      .def_property_readonly(
+          "bodies",
+          [](const ControlSolution& r) {
+            std::vector<BodyPose> poses;
+            for (int b = 0; b < r.model->num_bodies(); ++b) poses.push_back(PoseOfBody(*r.model, r.state, b));
+            return poses;
+          },
+          "every body's absolute pose at the end (BodyPose: name, position [m], rpy [rad], quaternion)")
+      .def_property_readonly(
+          "joints", [](const ControlSolution& r) { return ToView(cli::JointsToJson(*r.model, r.state)); },
+          "list of Record {name, type, q [rad or m], actuated, limits?}")
+      .def_property_readonly(
+          "limits_violated", [](const ControlSolution& r) { return LimitsViolated(*r.model, r.state); },
+          "names of the joints outside their limits")
+      .def_property_readonly(
+          "clearance", [](const ControlSolution& r) { return ToView(cli::ClearanceToJson(*r.model, r.state)); },
+          "Record {min [m], pair, margin [m], below_margin}; None without collision geometry")
+      .def_property_readonly(
+          "from_home", [](const ControlSolution& r) { return ToView(FromHome(r)); },
+          "Record {reproducible, end_effector_distance_m [m], end_effector_rotation_rad [rad], "
+          "max_state_difference [m, rad], idle_bodies}: whether the controls, assembled from home, give this "
+          "configuration up to idle motions (the bodies idle_bodies names; checked when first asked for)")
+      .def_property_readonly("warning", &ControlWarning,
+                             "why the target was not reached, or that the controls assemble elsewhere from home "
+                             "('' when neither)")
+      .def(
+          "to_dict", [](const ControlSolution& r) { return ToPython(ControlDocument(r)); },
+          "The JSON document `ccma control` prints for the same move (same keys and values).");
 }
 
 void BindResults(py::module_& m) {
   BindStepResult(m);
-  py::class_<ControlSolution>(m, "ControlResult", "The outcome of ControlProblem.move_to.")
-      .def_readonly("converged", &ControlSolution::converged, "the target was reached")
+  py::class_<ControlSolution> c(m, "ControlResult",
+                                "The outcome of ControlProblem.move_to: the attributes of `ccma control`'s JSON "
+                                "(to_dict() is that JSON), and the step constraints' measures.");
+  c.def_readonly("converged", &ControlSolution::converged, "the target was reached")
       .def_readonly("assembled", &ControlSolution::assembled)
       .def_readonly("steps", &ControlSolution::steps)
       .def_readonly("iterations", &ControlSolution::iterations)
       .def_readonly("forward_solves", &ControlSolution::forward_solves)
-      .def_readonly("objective", &ControlSolution::objective)
+      .def_readonly("branch_jumps_rejected", &ControlSolution::branch_jumps_rejected)
+      .def_readonly("objective", &ControlSolution::objective, "O = 1/2 |e|^2 + lambda E [m^2]")
       .def_readonly("error", &ControlSolution::error, "[m, rad]")
       .def_readonly("residual_energy", &ControlSolution::residual_energy, "[m^2]")
       .def_readonly("max_step_residual_energy", &ControlSolution::max_step_residual_energy, "[m^2]")
-      .def_readonly("rcond", &ControlSolution::rcond)
-      .def_readonly("min_rcond", &ControlSolution::min_rcond)
-      .def_readonly("min_singular_value_dX_du", &ControlSolution::min_singular_value_dX_du)
       .def_readonly("max_limit_violation", &ControlSolution::max_limit_violation, "[rad or m]")
       .def_readonly("max_effort_violation", &ControlSolution::max_effort_violation, "[N or N*m]")
       .def_readonly("max_clearance_violation", &ControlSolution::max_clearance_violation,
@@ -196,7 +231,6 @@ void BindResults(py::module_& m) {
       .def_readonly("max_lateral_displacement", &ControlSolution::max_lateral_displacement, "[m]")
       .def_readonly("limited_by", &ControlSolution::limited_by)
       .def_readonly("solve_time_ms", &ControlSolution::solve_time_ms, "[ms]")
-      .def_readonly("warning", &ControlSolution::warning, "why the target was not reached ('' if it was)")
       .def_readonly("target", &ControlSolution::target, "[x, y, z, roll, pitch, yaw]")
       .def_readonly("controls", &ControlSolution::controls, "all controls at the end")
       .def_readonly("end_effector", &ControlSolution::end_effector, "pose assembled at `controls`")
@@ -205,22 +239,7 @@ void BindResults(py::module_& m) {
                " steps=" + std::to_string(r.steps) + " error=" + FormatG(r.error) +
                " residual_energy=" + FormatG(r.residual_energy) + ">";
       });
-  py::class_<TrajectorySolution>(m, "TrajectoryResult",
-                                 "A followed path (ControlProblem.follow): arrays with one row per step.")
-      .def_readonly("converged", &TrajectorySolution::converged, "every waypoint reached")
-      .def_readonly("steps", &TrajectorySolution::steps)
-      .def_readonly("iterations", &TrajectorySolution::iterations)
-      .def_readonly("max_residual_energy", &TrajectorySolution::max_residual_energy, "[m^2]")
-      .def_readonly("max_error", &TrajectorySolution::max_error, "[m, rad]")
-      .def_readonly("solve_time_ms", &TrajectorySolution::solve_time_ms, "[ms]")
-      .def_readonly("warning", &TrajectorySolution::warning)
-      .def_readonly("time", &TrajectorySolution::time, "(steps,) [s]")
-      .def_readonly("targets", &TrajectorySolution::targets, "(steps x 6) x y z [m] roll pitch yaw [rad]")
-      .def_readonly("reached", &TrajectorySolution::reached, "(steps x 6) end-effector after each step")
-      .def_readonly("controls", &TrajectorySolution::controls, "(steps x num_controls)")
-      .def_readonly("residual_energy", &TrajectorySolution::residual_energy, "(steps,) [m^2]")
-      .def_readonly("error", &TrajectorySolution::error, "(steps,) [m, rad]")
-      .def_readonly("step_reached", &TrajectorySolution::step_reached, "(steps,) bool");
+  BindControlConfiguration(c);
 }
 
 ControlSolution MoveTo(ControlProblem& p, const Eigen::VectorXd& values) {
@@ -231,34 +250,42 @@ ControlSolution MoveTo(ControlProblem& p, const Eigen::VectorXd& values) {
   s.target = AsVector(target);
   s.controls = p.controls();
   s.end_effector = p.forward().end_effector();
+  s.model = &p.forward().model();
+  s.state = p.forward().state();
+  s.method = p.options().method == ControlMethod::kBfgs ? "bfgs" : "lm";
+  s.secondary = p.options().secondary;
   return s;
 }
 
-TrajectorySolution Follow(ControlProblem& p, const std::vector<Waypoint>& waypoints) {
+// `ccma trajectory` in Python: the JSON summary and the CSV (as a ccma.Table),
+// written to `out` too when given.
+py::object Follow(ControlProblem& p, const std::vector<Waypoint>& waypoints, const py::object& out) {
   CheckWaypoints(waypoints);
-  const UsageGuard guard(p);
-  std::vector<TrajectoryStep> steps;
-  TrajectorySolution s;
-  static_cast<TrajectoryResult&>(s) =
-      FollowWaypoints(p, waypoints, [&](const TrajectoryStep& step) { steps.push_back(step); });
-  const int n = static_cast<int>(steps.size());
-  s.time.resize(n);
-  s.targets.resize(n, 6);
-  s.reached.resize(n, 6);
-  s.controls.resize(n, p.forward().model().num_controls());
-  s.residual_energy.resize(n);
-  s.error.resize(n);
-  s.step_reached.resize(n);
-  for (int i = 0; i < n; ++i) {
-    s.time[i] = steps[i].time;
-    s.targets.row(i) = AsVector(steps[i].target).transpose();
-    s.reached.row(i) << steps[i].reached.position.transpose(), steps[i].reached.rpy.transpose();
-    s.controls.row(i) = steps[i].controls.transpose();
-    s.residual_energy[i] = steps[i].result.residual_energy;
-    s.error[i] = steps[i].result.error;
-    s.step_reached[i] = steps[i].result.reached;
+  const std::string out_path = OutPath(out);
+  std::ostringstream csv_text;
+  nlohmann::json document;
+  {
+    py::gil_scoped_release release;
+    const UsageGuard guard(p);
+    cli::TrajectoryCsv csv(p.forward().model(), csv_text);
+    PathSummary path;
+    path.min_sigma = path.min_rcond = std::numeric_limits<double>::infinity();
+    const TrajectoryResult r = FollowWaypoints(p, waypoints, [&](const TrajectoryStep& step) {
+      csv.Write(step);
+      path.min_sigma = std::min(path.min_sigma, step.result.min_singular_value_dX_du);
+      path.min_rcond = std::min(path.min_rcond, step.result.rcond);
+      path.null_space_steps += step.result.null_space_steps;
+      path.secondary_objective = step.result.secondary_objective;
+    });
+    path.path_clearance = csv.min_clearance();
+    document = TrajectoryDocument(p, r, waypoints.size(), path);
   }
-  return s;
+  if (!out_path.empty()) document["out"] = out_path;
+  py::dict tables;
+  tables["trajectory"] = TableFromCsv(csv_text.str(), "trajectory");
+  py::object result = MakeResult("TrajectoryResult", document, tables);
+  if (!out_path.empty()) result.attr("to_csv")(out_path);
+  return result;
 }
 
 using ProblemClass = py::class_<ControlProblem>;
@@ -276,13 +303,11 @@ void BindSolves(ProblemClass& c) {
           "set_controls",
           [](ControlProblem& p, const Eigen::VectorXd& u) {
             const UsageGuard guard(p);
-            ForwardSolution s;
-            static_cast<ForwardResult&>(s) = p.SetControls(u);
-            s.end_effector = p.forward().end_effector();
-            s.controls = p.controls();
-            return s;
+            const bool at_home = AtHome(p.forward());
+            const ForwardResult r = p.SetControls(u);
+            return MakeForwardSolution(p.forward(), r, at_home);
           },
-          py::arg("u"), py::call_guard<py::gil_scoped_release>(),
+          py::arg("u"), py::call_guard<py::gil_scoped_release>(), py::keep_alive<0, 1>(),
           "Assembles the mechanism at u (following the branch) and starts from there.")
       .def(
           "step",
@@ -293,23 +318,23 @@ void BindSolves(ProblemClass& c) {
           py::arg("target"), py::call_guard<py::gil_scoped_release>(),
           (std::string("One solve toward the target without path splitting (for small moves). ") + kTargetForms)
               .c_str())
-      .def("move_to", &MoveTo, py::arg("target"), py::call_guard<py::gil_scoped_release>(),
+      .def("move_to", &MoveTo, py::arg("target"), py::call_guard<py::gil_scoped_release>(), py::keep_alive<0, 1>(),
            (std::string("Walks the end-effector to the target in steps of at most max_step_m and max_step_rad. ") +
             kTargetForms)
                .c_str())
-      .def("follow", &Follow, py::arg("waypoints"), py::call_guard<py::gil_scoped_release>(),
-           "Follows a list of ccma.Waypoint (e.g. ccma.load_waypoints(path)); stops at the first "
-           "waypoint it cannot reach. ValueError (naming the waypoint) on a value the waypoint CSV refuses: "
-           "a time not finite, beyond 1e6 s or smaller than the one before, a position or angle not finite "
-           "or beyond 1e4, more than 1e6 waypoints.")
+      .def("follow", &Follow, py::arg("waypoints"), py::arg("out") = py::none(),
+           "`ccma trajectory`: follows a list of ccma.Waypoint (e.g. ccma.load_waypoints(path)); stops at the "
+           "first waypoint it cannot reach. Returns a ccma.TrajectoryResult: the command's JSON as attributes "
+           "(to_dict()), its CSV, one row per path step, as `table`; out=PATH writes that CSV too. ValueError "
+           "(naming the waypoint) on a value the waypoint CSV refuses: a time not finite, beyond 1e6 s or "
+           "smaller than the one before, a position or angle not finite or beyond 1e4, more than 1e6 waypoints.")
       .def(
           "follow",
-          [](ControlProblem& p, const Eigen::Ref<const RowMatrix>& a) {
-            const std::vector<Waypoint> w = WaypointsFromArray(a);
-            py::gil_scoped_release release;
-            return Follow(p, w);
+          [](ControlProblem& p, const Eigen::Ref<const RowMatrix>& a, const py::object& out) {
+            return Follow(p, WaypointsFromArray(a), out);
           },
-          py::arg("waypoints"), "The same for an (N x 7) array of rows [time, x, y, z, roll, pitch, yaw].");
+          py::arg("waypoints"), py::arg("out") = py::none(),
+          "The same for an (N x 7) array of rows [time, x, y, z, roll, pitch, yaw].");
 }
 
 // The objective, the sensitivities and where the problem is now.

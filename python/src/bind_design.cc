@@ -1,6 +1,7 @@
 // Design parameters (analyses/design.h): ccma.design_parameter_sensitivity
-// (ds/dp, dX_EE/dp at a solved configuration) and ccma.design (the loop of
-// `ccma design`, without writing a file).
+// (ds/dp, dX_EE/dp at a solved configuration), ccma.evaluate_design and the
+// loop of `ccma design` for ccma.design (python/ccma/design.py).
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -10,7 +11,10 @@
 #include "analyses/design.h"
 #include "analyses/design_objective.h"
 #include "ccma/limits.h"
+#include "formats/model_loader.h"
 #include "python/src/bindings.h"
+#include "python/src/documents.h"
+#include "python/src/json_to_python.h"
 #include "python/src/pose_types.h"
 
 namespace py = pybind11;
@@ -115,10 +119,15 @@ py::list EvaluateDesign(const Model& model, const TargetArray& targets, const Ei
   return TargetsList(results);
 }
 
-py::dict RunDesign(const Model& model, const TargetArray& targets, const std::vector<std::string>& vary,
-                   const std::vector<std::string>& vary_length, double max_change, double min_length,
-                   double min_singular_value, double target_tolerance, int max_iterations, const std::string& objective,
-                   double mocap_noise_m, double mocap_noise_rad) {
+// `ccma design` without the file: (document, the designed Model, the patched
+// model text or None). With the model's text, as the command: the numbers are
+// patched into the text, the text loaded back (as `source`) and the targets
+// checked in that model; without, in the designed Model itself.
+py::tuple RunDesign(const Model& model, const std::optional<std::string>& text, const std::string& source,
+                    const TargetArray& targets, const std::vector<std::string>& vary,
+                    const std::vector<std::string>& vary_length, double max_change, double min_length,
+                    double min_singular_value, double target_tolerance, int design_iterations,
+                    const std::string& objective, double mocap_noise_m, double mocap_noise_rad) {
   const DesignParameters params = ParametersFrom(model, vary, vary_length);
   DesignOptions options;
   if (!ParseDesignObjective(objective, &options.objective)) {
@@ -129,43 +138,28 @@ py::dict RunDesign(const Model& model, const TargetArray& targets, const std::ve
   options.min_length = min_length;
   options.min_singular_value = min_singular_value;
   options.target_tolerance = target_tolerance;
-  options.max_iterations = max_iterations;
+  options.max_iterations = design_iterations;
   std::string why;
-  if (!options.IsValid(&why)) throw py::value_error(why);
+  if (!options.IsValid(&why)) {
+    if (why.rfind("max_iterations", 0) == 0) why.replace(0, 14, "design_iterations");  // the flag's name
+    throw py::value_error(why);
+  }
   const std::vector<PoseTarget> poses = PoseTargets(targets);
-  DesignResult r;
+  nlohmann::json document;
+  Model written;
+  std::optional<std::string> new_text;
   {
     py::gil_scoped_release release;
-    r = Design(model, params, poses, options);
+    const DesignResult r = Design(model, params, poses, options);
+    const Model designed = ApplyParameters(model, params, r.p);
+    written = designed;
+    if (text) {
+      new_text = PatchModelText(*text, model, designed, params);
+      written = LoadModelFromString(*new_text, source);
+    }
+    document = DesignDocument(model, designed, params, r, EvaluateTargets(written, poses, options), options);
   }
-  py::dict d;
-  d["converged"] = r.converged;
-  d["parameters"] = Labels(params);
-  d["old"] = r.p0;
-  d["new"] = r.p;
-  d["iterations"] = r.iterations;
-  d["targets_before"] = TargetsList(r.initial);
-  d["targets"] = TargetsList(r.final);
-  d["message"] = r.message;
-  d["model"] = ApplyParameters(model, params, r.p);
-  if (options.objective != DesignObjective::kReach) {
-    auto value = [](const ObjectiveAtTarget& v) -> py::object {
-      if (!v.defined) return py::none();
-      py::dict x;
-      x["value"] = v.value;
-      x["limiting"] = v.limiting;
-      return std::move(x);
-    };
-    py::dict o;
-    o["name"] = DesignObjectiveName(options.objective);
-    o["unit"] = DesignObjectiveUnit(options.objective);
-    o["before"] = value(r.objective_before);
-    o["after"] = value(r.objective_after);
-    o["iterations"] = r.objective_iterations;
-    o["stopped"] = r.objective_message;
-    d["objective"] = o;
-  }
-  return d;
+  return py::make_tuple(ToPython(document), written, new_text ? py::object(py::str(*new_text)) : py::object(py::none()));
 }
 
 }  // namespace
@@ -182,14 +176,12 @@ void BindDesign(py::module_& m) {
         "Reachability of targets (N x 6) on the model with the named parameters set to `values` [m] (one "
         "candidate design, no optimisation): per target reached, error, min_singular_value, within_limits, "
         "controls.");
-  m.def("design", &RunDesign, py::arg("model"), py::arg("targets"), py::arg("vary") = none,
-        py::arg("vary_length") = none, py::arg("max_change") = 0.5, py::arg("min_length") = 0.02,
-        py::arg("min_singular_value") = 0.02, py::arg("target_tolerance") = 1e-6, py::arg("max_iterations") = 30,
-        py::arg("objective") = "reach", py::arg("mocap_noise_m") = 0.001, py::arg("mocap_noise_rad") = 0.003,
-        "The design loop of `ccma design` (docs/design.md) on targets (N x 6: x, y, z, roll, pitch, yaw); "
-        "returns converged, parameters, old/new values [m], per-target results and the designed Model; with "
-        "objective 'payload', 'peak_push' or 'ee_std' (docs/statics.md) also objective {name, unit, before, "
-        "after, iterations, stopped}.");
+  m.def("_design", &RunDesign, py::arg("model"), py::arg("text"), py::arg("source"), py::arg("targets"),
+        py::arg("vary"), py::arg("vary_length"), py::arg("max_change"), py::arg("min_length"),
+        py::arg("min_singular_value"), py::arg("target_tolerance"), py::arg("design_iterations"), py::arg("objective"),
+        py::arg("mocap_noise_m"), py::arg("mocap_noise_rad"),
+        "Internal: ccma.design (python/ccma/design.py): (the JSON of `ccma design` without out, the designed "
+        "Model, the patched model text or None).");
 }
 
 }  // namespace ccma::python

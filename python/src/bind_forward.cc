@@ -2,12 +2,15 @@
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
+#include "apps/json_output.h"
 #include "ccma/end_effector.h"
 #include "ccma/internal/format.h"
 #include "ccma/joint_coordinates.h"
 #include "problems/forward_problem.h"
 #include "python/src/bindings.h"
 #include "python/src/conversions.h"
+#include "python/src/documents.h"
+#include "python/src/json_to_python.h"
 #include "python/src/pose_types.h"
 #include "python/src/usage_guard.h"
 
@@ -75,9 +78,44 @@ void BindOptions(py::module_& m) {
       }, "(ok, why): whether every field is in range");
 }
 
+// The attributes `ccma simulate`'s JSON has beyond the solve's own numbers
+// (documents.h SimulateDocument), computed when asked for.
+void BindResultConfiguration(py::class_<ForwardSolution>& c) {
+  c.def_property_readonly("model", [](const ForwardSolution& r) { return r.model->name; }, "the model's name")
+      .def_readonly("assembly_tolerance", &ForwardSolution::assembly_tolerance,
+                    "E [m^2] below which the mechanism counts as assembled")
+      .def_readonly("start", &ForwardSolution::start,
+                    "'home' (the solve started from the home configuration) or 'current' (from the problem's "
+                    "configuration before the call)")
+      .def_property_readonly(
+          "bodies",
+          [](const ForwardSolution& r) {
+            std::vector<BodyPose> poses;
+            for (int b = 0; b < r.model->num_bodies(); ++b) poses.push_back(PoseOfBody(*r.model, r.state, b));
+            return poses;
+          },
+          "every body's absolute pose after the solve (BodyPose: name, position [m], rpy [rad], quaternion)")
+      .def_property_readonly(
+          "joints", [](const ForwardSolution& r) { return ToView(cli::JointsToJson(*r.model, r.state)); },
+          "list of Record {name, type, q [rad or m], actuated, limits?}: every revolute and prismatic joint")
+      .def_property_readonly(
+          "limits_violated", [](const ForwardSolution& r) { return LimitsViolated(*r.model, r.state); },
+          "names of the joints outside their limits")
+      .def_property_readonly(
+          "clearance", [](const ForwardSolution& r) { return ToView(cli::ClearanceToJson(*r.model, r.state)); },
+          "Record {min [m], pair, margin [m], below_margin}; None without collision geometry")
+      .def_property_readonly("warning", &SimulateWarning,
+                             "what went wrong: not assembled, not converged, a branch jump ('' when nothing)")
+      .def(
+          "to_dict", [](const ForwardSolution& r) { return ToPython(SimulateDocument(r)); },
+          "The JSON document `ccma simulate` prints for the same solve (same keys and values).");
+}
+
 void BindResult(py::module_& m) {
-  py::class_<ForwardSolution>(m, "ForwardResult", "The outcome of ForwardProblem.solve/assemble.")
-      .def_readonly("converged", &ForwardSolution::converged, "dE/ds ~ 0")
+  py::class_<ForwardSolution> c(m, "ForwardResult",
+                                "The outcome of ForwardProblem.solve/assemble: the attributes of `ccma simulate`'s "
+                                "JSON (to_dict() is that JSON), and the solver's details.");
+  c.def_readonly("converged", &ForwardSolution::converged, "dE/ds ~ 0")
       .def_readonly("assembled", &ForwardSolution::assembled, "E below the assembly tolerance")
       .def_readonly("residual_energy", &ForwardSolution::residual_energy, "E [m^2]")
       .def_readonly("iterations", &ForwardSolution::iterations)
@@ -98,14 +136,16 @@ void BindResult(py::module_& m) {
                " residual_energy=" + FormatG(r.residual_energy) + " iterations=" + std::to_string(r.iterations) +
                ">";
       });
+  BindResultConfiguration(c);
 }
 
-ForwardSolution Solved(const ForwardProblem& problem, const ForwardResult& r) {
-  ForwardSolution s;
-  static_cast<ForwardResult&>(s) = r;
-  s.end_effector = problem.end_effector();
-  s.controls = problem.controls();
-  return s;
+// The solve `solve` (Solve or Assemble) at u, as a ForwardSolution.
+template <typename Solve>
+ForwardSolution Solved(ForwardProblem& p, Solve solve) {
+  const UsageGuard guard(p);
+  const bool at_home = AtHome(p);
+  const ForwardResult r = solve(p);
+  return MakeForwardSolution(p, r, at_home);
 }
 
 using ForwardClass = py::class_<ForwardProblem>;
@@ -117,19 +157,17 @@ void BindSolves(ForwardClass& c) {
       .def(
           "solve",
           [](ForwardProblem& p, const Eigen::VectorXd& u) {
-            const UsageGuard guard(p);
-            return Solved(p, p.Solve(u));
+            return Solved(p, [&u](ForwardProblem& q) { return q.Solve(u); });
           },
-          py::arg("u"), py::call_guard<py::gil_scoped_release>(),
+          py::arg("u"), py::call_guard<py::gil_scoped_release>(), py::keep_alive<0, 1>(),
           "One warm-started solve at controls u (3 per base: x [m], y [m], theta [rad]; then the "
           "actuated joints [rad or m]). Raises ValueError on a wrong size or a non-finite entry.")
       .def(
           "assemble",
           [](ForwardProblem& p, const Eigen::VectorXd& u) {
-            const UsageGuard guard(p);
-            return Solved(p, p.Assemble(u));
+            return Solved(p, [&u](ForwardProblem& q) { return q.Assemble(u); });
           },
-          py::arg("u"), py::call_guard<py::gil_scoped_release>(),
+          py::arg("u"), py::call_guard<py::gil_scoped_release>(), py::keep_alive<0, 1>(),
           "Moves the controls to u in small sub-steps, following the assembly branch (what "
           "`ccma simulate` does); reports a branch jump.")
       .def(

@@ -10,10 +10,14 @@
 #include <pybind11/stl/filesystem.h>
 
 #include "analyses/robot_import.h"
+#include "apps/json_output.h"
 #include "ccma/internal/format.h"
 #include "formats/sdformat_reader.h"
+#include "formats/sdformat_writer.h"
 #include "formats/urdf_reader.h"
+#include "formats/urdf_writer.h"
 #include "python/src/bindings.h"
+#include "python/src/json_to_python.h"
 
 namespace py = pybind11;
 
@@ -34,7 +38,9 @@ void CheckNames(const std::vector<std::string>& names, const char* what) {
   }
 }
 
-// (model, model file text); the Python wrapper (ccma/robots.py) writes `out`.
+// (model, model file text, `ccma import`'s JSON without "out"); the Python
+// wrapper (ccma/robots.py) writes `out`. The warnings the command prints on
+// stderr are UserWarnings.
 py::tuple ImportRobotFile(const std::filesystem::path& from, const std::optional<std::filesystem::path>& closures,
                           const std::vector<std::string>& actuated, const std::string& end_effector,
                           const Eigen::Vector3d& point, const std::vector<std::string>& controlled,
@@ -53,17 +59,64 @@ py::tuple ImportRobotFile(const std::filesystem::path& from, const std::optional
   options.controlled = controlled;
   if (model_folder) options.model_folder = model_folder->string();  // mesh paths relative to it
   ImportedRobot imported;
+  std::vector<std::string> warnings;
   {
     py::gil_scoped_release release;
     const RobotDescription robot = sdf ? ReadSdformat(path, actuated) : ReadUrdf(path, closures ? closures->string() : "");
+    warnings = robot.warnings;
     imported = ImportRobot(robot, options);
+    warnings.insert(warnings.end(), imported.warnings.begin(), imported.warnings.end());
   }
-  return py::make_tuple(imported.model, imported.yaml);
+  for (const std::string& w : warnings) {
+    if (PyErr_WarnEx(PyExc_UserWarning, ("import: " + w).c_str(), 1) < 0) throw py::error_already_set();
+  }
+  // apps/import_command.cc: the summary.
+  const nlohmann::json document = {{"bodies", imported.model.num_bodies()},
+                                   {"joints", static_cast<int>(imported.model.joints.size())},
+                                   {"closures", imported.closures},
+                                   {"actuated", imported.actuated},
+                                   {"controlled", imported.controlled},
+                                   {"controlled_chosen", imported.controlled_chosen},
+                                   {"assembled", true},
+                                   {"residual_energy", imported.residual_energy},
+                                   {"controls", cli::ToJson(imported.model.home_controls())}};
+  return py::make_tuple(imported.model, imported.yaml, ToPython(document));
+}
+
+// `ccma export` without the files: its JSON (without "out") and "files", the
+// (path, text) pairs to write (ccma/robots.py writes them).
+py::dict ExportModel(const Model& model, const std::string& format, const std::string& out) {
+  if (format != "urdf" && format != "sdf") throw py::value_error("export: format must be 'urdf' or 'sdf'");
+  py::dict d;
+  py::list files;
+  d["format"] = format;
+  if (format == "urdf") {
+    const UrdfExport urdf = WriteUrdf(model);
+    const std::string closures = ClosureFilePath(out);
+    files.append(py::make_tuple(closures, urdf.closures));
+    files.append(py::make_tuple(out, urdf.urdf));
+    d["closures"] = closures;
+    d["links"] = urdf.links;
+    d["joints"] = urdf.joints;
+    d["loops"] = urdf.loops;
+  } else {
+    const SdformatExport sdf = WriteSdformat(model);
+    files.append(py::make_tuple(out, sdf.sdf));
+    d["closures"] = py::none();
+    d["links"] = sdf.links;
+    d["joints"] = sdf.joints;
+    d["loops"] = sdf.loops;
+  }
+  d["files"] = files;
+  return d;
 }
 
 }  // namespace
 
 void BindImport(py::module_& m) {
+  m.def("_export", &ExportModel, py::arg("model"), py::arg("format"), py::arg("out"),
+        "Internal: ccma.export (python/ccma/robots.py): `ccma export`'s JSON without out, and the files to "
+        "write as (path, text) pairs.");
   m.def("_import_robot", &ImportRobotFile, py::arg("path"), py::arg("closures") = py::none(),
         py::arg("actuated") = std::vector<std::string>{}, py::arg("end_effector") = "",
         py::arg("point") = Eigen::Vector3d::Zero(), py::arg("controlled") = std::vector<std::string>{},
@@ -74,7 +127,8 @@ void BindImport(py::module_& m) {
         "link carrying it and point its controlled point in that link's frame [m]; controlled: "
         "components (default: the stored ones, else those the motors move at home, translations first; "
         "refused when the motors cannot move them); model_folder: the folder the model file will be written to "
-        "(mesh paths are written relative to it; default the robot file's folder). Returns (Model, model file text). Every joint's q "
+        "(mesh paths are written relative to it; default the robot file's folder). Returns (Model, model file text, "
+        "`ccma import`'s JSON without out). Every joint's q "
         "equals the source's joint position (q_home). Raises ccma.ModelError naming the file, "
         "the element and the name.");
 }

@@ -1,8 +1,10 @@
-// The simulated closed loop (paper Section IV): ccma.replay(model, waypoints).
+// The simulated closed loop (paper Section IV): ccma.replay(model, waypoints) (python/ccma/replay.py).
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
 #include "execution/replay.h"
+#include "python/src/documents.h"
+#include "python/src/json_to_python.h"
 #include "python/src/bindings.h"
 #include "python/src/conversions.h"
 
@@ -13,44 +15,45 @@ namespace {
 
 using BoolVector = Eigen::Matrix<bool, Eigen::Dynamic, 1>;
 
-// ReplayResult with its samples as arrays (one row per sample).
-struct ReplaySolution {
-  ReplayResult result;  // its samples moved into the arrays below
-  Eigen::VectorXd time;
-  RowMatrix commanded, tracked, set_controls, true_controls;
-  Eigen::VectorXd residual_energy;
-  BoolVector sample_torn, sample_assembled;
-};
-
-ReplaySolution Run(const Model& model, const std::vector<Waypoint>& waypoints, const ReplayOptions& options) {
+// `ccma replay` without its files: (the command's JSON without "files" and
+// "plots", the samples as arrays: time, commanded, tracked (samples x 6),
+// set_controls, true_controls (samples x controls), residual_energy, torn);
+// ccma.replay (python/ccma/replay.py) makes the CSV tables from them.
+py::tuple Run(const Model& model, const std::vector<Waypoint>& waypoints, const ReplayOptions& options) {
   CheckWaypoints(waypoints);  // positions and angles too, with the messages of follow and plan
   std::string why;
   if (!IsValidReplay(waypoints, options, &why)) throw std::invalid_argument(why);
-  ReplaySolution s;
-  s.result = Replay(model, waypoints, options);
-  const std::vector<ReplaySample>& samples = s.result.samples;
-  const int n = static_cast<int>(samples.size());
-  const int nc = model.num_controls();
-  s.time.resize(n);
-  s.commanded.resize(n, 6);
-  s.tracked.resize(n, 6);
-  s.set_controls.resize(n, nc);
-  s.true_controls.resize(n, nc);
-  s.residual_energy.resize(n);
-  s.sample_torn.resize(n);
-  s.sample_assembled.resize(n);
-  for (int i = 0; i < n; ++i) {
-    s.time[i] = samples[i].time;
-    s.commanded.row(i) = samples[i].commanded.transpose();
-    s.tracked.row(i) = samples[i].tracked.transpose();
-    s.set_controls.row(i) = samples[i].set_controls.transpose();
-    s.true_controls.row(i) = samples[i].true_controls.transpose();
-    s.residual_energy[i] = samples[i].residual_energy;
-    s.sample_torn[i] = samples[i].torn;
-    s.sample_assembled[i] = samples[i].assembled;
+  ReplayResult r;
+  nlohmann::json document;
+  {
+    py::gil_scoped_release release;
+    r = Replay(model, waypoints, options);
+    document = ReplayDocument(model, options, r);
   }
-  s.result.samples.clear();
-  return s;
+  const int n = static_cast<int>(r.samples.size());
+  const int nc = model.num_controls();
+  Eigen::VectorXd time(n), energy(n);
+  RowMatrix commanded(n, 6), tracked(n, 6), set_controls(n, nc), true_controls(n, nc);
+  BoolVector torn(n);
+  for (int i = 0; i < n; ++i) {
+    const ReplaySample& sample = r.samples[static_cast<size_t>(i)];
+    time[i] = sample.time;
+    commanded.row(i) = sample.commanded.transpose();
+    tracked.row(i) = sample.tracked.transpose();
+    set_controls.row(i) = sample.set_controls.transpose();
+    true_controls.row(i) = sample.true_controls.transpose();
+    energy[i] = sample.residual_energy;
+    torn[i] = sample.torn;
+  }
+  py::dict arrays;
+  arrays["time"] = time;
+  arrays["commanded"] = commanded;
+  arrays["tracked"] = tracked;
+  arrays["set_controls"] = set_controls;
+  arrays["true_controls"] = true_controls;
+  arrays["residual_energy"] = energy;
+  arrays["torn"] = torn;
+  return py::make_tuple(ToPython(document), arrays);
 }
 
 void BindOptions(py::module_& m) {
@@ -104,61 +107,19 @@ void BindOptions(py::module_& m) {
           "(ok, why): whether every field is in range");
 }
 
-void BindResult(py::module_& m) {
-  py::class_<ReplaySolution>(m, "ReplayResult", "A replay: arrays with one row per output sample.")
-      .def_property_readonly("converged", [](const ReplaySolution& s) { return s.result.converged; },
-                             "every waypoint reached by the plan")
-      .def_property_readonly("warning", [](const ReplaySolution& s) { return s.result.warning; })
-      .def_property_readonly("failed_step_time", [](const ReplaySolution& s) { return s.result.failed_step_time; },
-                             "[s]; NaN if every waypoint was reached")
-      .def_property_readonly("torn", [](const ReplaySolution& s) { return s.result.torn; },
-                             "some sample's chain could not follow the bases")
-      .def_property_readonly("torn_samples", [](const ReplaySolution& s) { return s.result.torn_samples; },
-                             "how many samples were torn")
-      .def_property_readonly("first_torn_time", [](const ReplaySolution& s) { return s.result.first_torn_time; },
-                             "[s]; NaN if never torn")
-      .def_property_readonly("max_residual_energy",
-                             [](const ReplaySolution& s) { return s.result.max_residual_energy; }, "[m^2]")
-      .def_property_readonly(
-          "rmse", [](const ReplaySolution& s) { return Eigen::Matrix<double, 6, 1>(s.result.rmse.data()); },
-          "tracked vs commanded per component: x y z [m], roll pitch yaw [rad]")
-      .def_property_readonly("duration_s", [](const ReplaySolution& s) { return s.result.duration_s; }, "[s]")
-      .def_property_readonly(
-          "trustworthy", [](const ReplaySolution& s) { return s.result.converged && !s.result.torn && s.time.size() > 0; },
-          "converged and never torn: only then does the RMSE measure tracking")
-      .def_readonly("time", &ReplaySolution::time, "(samples,) [s]")
-      .def_readonly("commanded", &ReplaySolution::commanded, "(samples x 6) the plan's end-effector")
-      .def_readonly("tracked", &ReplaySolution::tracked, "(samples x 6) the driven chain's end-effector")
-      .def_readonly("set_controls", &ReplaySolution::set_controls, "(samples x num_controls)")
-      .def_readonly("true_controls", &ReplaySolution::true_controls,
-                    "(samples x num_controls) where the bases really are")
-      .def_readonly("residual_energy", &ReplaySolution::residual_energy, "(samples,) of the chain [m^2]")
-      .def_readonly("sample_torn", &ReplaySolution::sample_torn, "(samples,) bool")
-      .def_readonly("sample_assembled", &ReplaySolution::sample_assembled, "(samples,) bool: E <= 1e-16 m^2")
-      .def("__repr__", [](const ReplaySolution& s) {
-        return std::string("<ccma.ReplayResult converged=") + (s.result.converged ? "True" : "False") +
-               " torn=" + (s.result.torn ? "True" : "False") + " samples=" + std::to_string(s.time.size()) + ">";
-      });
-}
-
 }  // namespace
 
 void BindReplay(py::module_& m) {
   BindOptions(m);
-  BindResult(m);
-  m.def("replay", &Run, py::arg("model"), py::arg("waypoints"), py::arg("options") = ReplayOptions(),
-        py::call_guard<py::gil_scoped_release>(),
-        "The paper's closed loop, simulated: bases track the control solution with noise and latency, "
-        "the chain follows (execution/replay.h). waypoints: a list of ccma.Waypoint. Raises ValueError "
-        "on waypoints or options out of range.");
+  m.def("_replay", &Run, py::arg("model"), py::arg("waypoints"), py::arg("options"),
+        "Internal: ccma.replay (python/ccma/replay.py) for a list of ccma.Waypoint: (the JSON of `ccma replay` "
+        "without files and plots, the samples as arrays).");
   m.def(
-      "replay",
+      "_replay",
       [](const Model& model, const Eigen::Ref<const RowMatrix>& a, const ReplayOptions& options) {
-        const std::vector<Waypoint> w = WaypointsFromArray(a);
-        py::gil_scoped_release release;
-        return Run(model, w, options);
+        return Run(model, WaypointsFromArray(a), options);
       },
-      py::arg("model"), py::arg("waypoints"), py::arg("options") = ReplayOptions(),
+      py::arg("model"), py::arg("waypoints"), py::arg("options"),
       "The same for an (N x 7) array of rows [time, x, y, z, roll, pitch, yaw].");
 }
 

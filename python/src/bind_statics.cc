@@ -8,14 +8,17 @@
 
 #include "ccma/ccma.h"
 #include "python/src/bindings.h"
+#include "python/src/documents.h"
+#include "python/src/json_to_python.h"
+#include "python/src/usage_guard.h"
 
 namespace py = pybind11;
 
 namespace ccma::python {
 namespace {
 
-py::dict Statics(const Model& model, const State& s, const Eigen::VectorXd& u,
-                 const std::optional<Eigen::VectorXd>& wrench, const BasePoseNoise& noise) {
+// `ccma statics` at the problem's configuration: a ccma.StaticsResult.
+py::object Statics(const ForwardProblem& p, const std::optional<Eigen::VectorXd>& wrench, const BasePoseNoise& noise) {
   ExternalWrench w;
   if (wrench) {
     if (wrench->size() != 6 || !wrench->allFinite() || wrench->cwiseAbs().maxCoeff() > 1e6) {
@@ -24,49 +27,18 @@ py::dict Statics(const Model& model, const State& s, const Eigen::VectorXd& u,
     w.force = wrench->head<3>();
     w.moment = wrench->tail<3>();
   }
-  StaticsReport r;
-  try {
-    r = ComputeStatics(model, s, u, w);
-  } catch (const std::invalid_argument& e) {
-    throw py::value_error(e.what());
-  }
-  py::list joints, actuators;
-  for (const JointReaction& j : r.joints) {
-    py::dict d;
-    d["name"] = j.name;
-    d["point"] = Eigen::Vector3d(j.point);
-    d["force"] = Eigen::Vector3d(j.force);
-    d["moment"] = Eigen::Vector3d(j.moment);
-    joints.append(d);
-  }
-  for (const ActuatorEffort& a : r.actuators) {
-    py::dict d;
-    d["name"] = a.name;
-    d["kind"] = ActuatorKindName(a.kind);
-    d["effort"] = a.effort;
-    actuators.append(d);
-  }
-  py::dict out;
-  out["joints"] = joints;
-  out["actuators"] = actuators;
-  out["determinate"] = r.determinate;
-  out["balanced"] = r.balanced;
-  out["unbalanced_load"] = r.residual;
-  if (r.limits_given) {
-    out["within_limits"] = r.within_limits;
-    out["limiting"] = r.limiting;
-    const PayloadCapacity capacity = ComputePayloadCapacity(model, s, u);
-    if (Reportable(capacity)) {
-      py::dict c;
-      c["mass"] = ReportedMass(capacity);
-      c["limiting"] = capacity.broken_unloaded.empty() ? capacity.limiting : capacity.broken_unloaded;
-      if (!capacity.note.empty()) c["note"] = capacity.note;
-      out["payload_capacity"] = c;
+  nlohmann::json document;
+  {
+    const UsageGuard guard(p);
+    py::gil_scoped_release release;
+    try {
+      document = StaticsDocument(p.model(), p.state(), p.controls(), p.Energy(), p.options().assembly_tolerance, w,
+                                 noise);
+    } catch (const std::invalid_argument& e) {
+      throw py::value_error(std::string("statics: ") + e.what());
     }
   }
-  const Eigen::Matrix<double, 6, 6> covariance = EndEffectorCovariance(model, s, u, noise);
-  if (covariance.allFinite()) out["ee_covariance"] = Eigen::MatrixXd(covariance);
-  return out;
+  return MakeResult("StaticsResult", document);
 }
 
 BasePoseNoise Noise(double position_sigma, double heading_sigma) {
@@ -82,20 +54,21 @@ void BindStatics(py::module_& m) {
   m.def(
       "statics",
       [](const ForwardProblem& p, const std::optional<Eigen::VectorXd>& wrench, double m, double rad) {
-        return Statics(p.model(), p.state(), p.controls(), wrench, Noise(m, rad));
+        return Statics(p, wrench, Noise(m, rad));
       },
       py::arg("problem"), py::arg("wrench") = py::none(), py::arg("mocap_noise_m") = 0.001,
       py::arg("mocap_noise_rad") = 0.003,
-      "Static equilibrium at the problem's current configuration (`ccma statics`, docs/statics.md): a dict "
-      "with joints (name, point [m], force [N], moment [N*m] that between[0] exerts on between[1], world "
-      "frame, moment about point), actuators (name, kind, effort [N or N*m] per control), determinate, "
-      "balanced, unbalanced_load, ee_covariance (6 x 6 [m^2, m rad, rad^2], from the bases' pose noise "
-      "mocap_noise_m [m], mocap_noise_rad [rad]), and within_limits, limiting when the model gives limits. "
-      "wrench: fx, fy, fz [N] at the end-effector point, mx, my, mz [N*m], world frame.");
+      "`ccma statics`: static equilibrium at the problem's current configuration (docs/statics.md). Returns a "
+      "ccma.StaticsResult, the command's JSON as attributes (to_dict()): joints (name, point [m], force [N], "
+      "moment [N*m] that between[0] exerts on between[1], world frame, moment about point), actuators (name, "
+      "kind, effort [N or N*m] per control), determinate, balanced, unbalanced_load, ee_covariance (6 x 6 "
+      "[m^2, m rad, rad^2], from the bases' pose noise mocap_noise_m [m], mocap_noise_rad [rad]), within_limits, "
+      "limiting and payload_capacity when the model gives limits, assembled, residual_energy, bodies, "
+      "clearance, warning. wrench: fx, fy, fz [N] at the end-effector point, mx, my, mz [N*m], world frame.");
   m.def(
       "statics",
       [](const ControlProblem& p, const std::optional<Eigen::VectorXd>& wrench, double m, double rad) {
-        return Statics(p.forward().model(), p.forward().state(), p.controls(), wrench, Noise(m, rad));
+        return Statics(p.forward(), wrench, Noise(m, rad));
       },
       py::arg("problem"), py::arg("wrench") = py::none(), py::arg("mocap_noise_m") = 0.001,
       py::arg("mocap_noise_rad") = 0.003, "The same for a ControlProblem.");

@@ -4,7 +4,10 @@
 
 #include <pybind11/stl.h>
 
+#include <nlohmann/json.hpp>
+
 #include "python/src/bindings.h"
+#include "python/src/json_to_python.h"
 #include "viewer/html.h"
 #include "viewer/mesh_files.h"
 #include "viewer/scene.h"
@@ -30,7 +33,8 @@ std::vector<std::string> MeshRoots(const py::object& mesh_root) {
   return roots;
 }
 
-// view_html: the page and the summary `ccma view` prints (see BindView).
+// view_html: the page and the summary `ccma view` prints (see BindView), as a
+// ccma.ViewResult without "out" (ccma.view adds it when it writes the page).
 py::tuple ViewHtml(const Model& model, std::optional<std::string> trajectory, std::optional<std::string> replay,
                    std::optional<std::string> workspace, bool meshes, const std::string& color_by,
                    const py::object& mesh_root) {
@@ -46,11 +50,11 @@ py::tuple ViewHtml(const Model& model, std::optional<std::string> trajectory, st
   std::string html;
   viewer::SceneSummary summary;
   std::string source = "model";
+  std::optional<viewer::MeshFiles> mesh_files;
   {
     py::gil_scoped_release release;
     std::vector<viewer::ViewFrame> frames;
     std::optional<viewer::WorkspaceCloud> cloud;
-    std::optional<viewer::MeshFiles> mesh_files;
     if (meshes) mesh_files = viewer::ReadMeshFiles(model, roots);  // confined to model.source's folder and roots
     if (workspace) {
       // Drawn over the model at home, as `ccma view --workspace` does.
@@ -68,13 +72,19 @@ py::tuple ViewHtml(const Model& model, std::optional<std::string> trajectory, st
                            mesh_files ? &*mesh_files : nullptr, colors),
         model.name);
   }
-  py::dict info;
-  info["frames"] = summary.frames;
-  info["flagged_frames"] = summary.flagged_frames;
-  info["not_assembled_frames"] = summary.not_assembled;
-  info["branch_jumps"] = summary.branch_jumps;
-  info["source"] = source;
+  // apps/view_command.cc: Result, without "out".
+  nlohmann::json info = {{"bytes", html.size()},
+                         {"frames", summary.frames},
+                         {"source", source},
+                         {"flagged_frames", summary.flagged_frames},
+                         {"not_assembled_frames", summary.not_assembled},
+                         {"branch_jumps", summary.branch_jumps}};
   if (summary.beyond_work_bound > 0) info["beyond_work_bound_frames"] = summary.beyond_work_bound;
+  if (model.collision.enabled) info["clearance_below_margin_frames"] = summary.clearance_below_margin;
+  if (mesh_files) {
+    info["mesh_files"] = mesh_files->files.size();
+    info["mesh_bytes"] = mesh_files->bytes_read;
+  }
   if (colors == viewer::ColorBy::kLoad) {
     info["max_load"] = summary.max_load;
     info["unbalanced_frames"] = summary.unbalanced_frames;
@@ -84,7 +94,7 @@ py::tuple ViewHtml(const Model& model, std::optional<std::string> trajectory, st
     info["workspace_points"] = summary.workspace_points;
     info["workspace_reachable"] = summary.workspace_reachable;
   }
-  return py::make_tuple(html, info);
+  return py::make_tuple(html, MakeResult("ViewResult", info));
 }
 
 }  // namespace
@@ -102,7 +112,8 @@ void BindView(py::module_& m) {
       "view_html", &ViewHtml, py::arg("model"), py::arg("trajectory") = py::none(), py::arg("replay") = py::none(),
       py::arg("workspace") = py::none(), py::arg("meshes") = false, py::arg("color_by") = "body",
       py::arg("mesh_root") = py::none(),
-      "(html, info): the self-contained page of `ccma view` for the model, animated along a "
+      "(html, info): the self-contained page of `ccma view` and its summary, a ccma.ViewResult (the command's "
+      "JSON without out: bytes, frames, source, flagged_frames, ...), for the model, animated along a "
       "trajectory CSV or a replay directory, or with a `ccma workspace` CSV as a point cloud; "
       "meshes=True draws the bodies' STL meshes (`ccma view --meshes`), read only from inside the "
       "model file's folder (symlinks resolved) and the folders of mesh_root (a folder or a list: "

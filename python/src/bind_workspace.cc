@@ -8,6 +8,7 @@
 // as arrays copied bit for bit, so a distributed run gives the same numbers
 // as a local one.
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <tuple>
 #include <string>
@@ -18,6 +19,7 @@
 #include <pybind11/stl.h>
 
 #include "ccma/model.h"
+#include "analyses/precision.h"
 #include "analyses/workspace.h"
 #include "python/src/bindings.h"
 #include "python/src/conversions.h"
@@ -204,6 +206,32 @@ std::vector<WorkspaceSample> SamplesFromDict(const Model& model, const py::dict&
   return out;
 }
 
+// The end-effector's position standard deviation sqrt(trace Sigma_p) [m] of
+// a reached sample, from the bases' pose noise (the replay's defaults), 0
+// where dG/ds is singular: the `ee_std_m` column of `ccma workspace`
+// (apps/workspace_command.cc PositionStd).
+double PositionStd(const Model& model, const State& state, const Eigen::VectorXd& controls) {
+  const Eigen::Matrix<double, 6, 6> sigma = EndEffectorCovariance(model, state, controls, BasePoseNoise());
+  return sigma.allFinite() ? std::sqrt(std::max(0.0, sigma.topLeftCorner<3, 3>().trace())) : 0.0;
+}
+
+// ee_std_m of a tile's samples (SamplesDict with states).
+Eigen::VectorXd TileEeStd(const Model& model, const StateArray& states, const RowMatrix& controls,
+                          const Eigen::Matrix<bool, Eigen::Dynamic, 1>& reachable) {
+  const Eigen::Index n = reachable.size();
+  if (controls.rows() != n || controls.cols() != model.num_controls() || states.rows() != n * model.num_bodies()) {
+    throw std::invalid_argument("workspace: a tile's arrays have the wrong shape");
+  }
+  Eigen::VectorXd out(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    out[i] = reachable[i] ? PositionStd(model, FromArray(model, states.middleRows(i * model.num_bodies(),
+                                                                                  model.num_bodies())),
+                                        controls.row(i).transpose())
+                          : 0.0;
+  }
+  return out;
+}
+
 // Python's progress(done, total), called with the GIL at most about 1000
 // times per map (and always at the end); none when `progress` is None. Holds
 // a reference: `progress` outlives the computation.
@@ -228,6 +256,13 @@ py::dict WorkspaceCompute(const Model& model, const RangeList& ranges, int resol
     r = ComputeWorkspace(model, o, report);
   }
   py::dict d = SamplesDict(model, r.samples, false);
+  Eigen::VectorXd ee_std(static_cast<Eigen::Index>(r.samples.size()));
+  for (size_t i = 0; i < r.samples.size(); ++i) {
+    const WorkspaceSample& s = r.samples[i];
+    ee_std[static_cast<Eigen::Index>(i)] = s.reachable ? PositionStd(model, s.state, s.controls) : 0.0;
+  }
+  d["ee_std_m"] = ee_std;
+  d["tile_size"] = o.TileSide();
   std::vector<std::string> components;
   for (int c : r.components) components.emplace_back(kEndEffectorComponentNames[static_cast<size_t>(c)]);
   d["components"] = components;
@@ -291,6 +326,16 @@ void BindWorkspace(py::module_& m) {
         py::arg("samples"), py::arg("seed"), py::arg("threads"), py::arg("wave_size"), py::arg("control"),
         py::arg("tile_size") = 0, py::arg("progress") = py::none(),
         "Internal: ccma.workspace's map on local threads (analyses/workspace.h ComputeWorkspace).");
+  m.def("_workspace_ee_std", &TileEeStd, py::arg("model"), py::arg("states"), py::arg("controls"),
+        py::arg("reachable"), "Internal: the ee_std_m column [m] of a tile's samples.");
+  m.def(
+      "_workspace_tile_side",
+      [](const Model& model, const RangeList& ranges, int resolution, int samples, std::uint64_t seed, int wave_size,
+         int tile_size) {
+        return Options(model, ranges, resolution, samples, seed, 1, wave_size, ControlOptions(), tile_size).TileSide();
+      },
+      py::arg("model"), py::arg("ranges"), py::arg("resolution"), py::arg("samples"), py::arg("seed"),
+      py::arg("wave_size"), py::arg("tile_size"), "Internal: a tile's side [cells per range].");
   m.def("_workspace_tiles", &WorkspaceTilesList, py::arg("model"), py::arg("ranges"), py::arg("resolution"),
         py::arg("samples"), py::arg("seed"), py::arg("wave_size"), py::arg("tile_size"),
         "Internal: the map's tiles (WorkspaceTiles).");

@@ -1,16 +1,21 @@
 // Small result types the Python API adds to the C++ ones: a solve's result
-// carries the end-effector pose and the controls it was solved at, so a
-// Python user gets one object per call (cli.md, "Python").
+// carries the end-effector pose, the controls it was solved at and the
+// configuration it reached, so a Python user gets one object per call whose
+// to_dict() is the JSON of `ccma simulate` or `ccma control` (cli.md,
+// "Python"; python/src/documents.h).
 #ifndef CCMA_PYTHON_SRC_POSE_TYPES_H_
 #define CCMA_PYTHON_SRC_POSE_TYPES_H_
 
+#include <optional>
 #include <string>
 
 #include <Eigen/Core>
+#include <nlohmann/json.hpp>
 
 #include "ccma/end_effector.h"
 #include "ccma/model.h"
 #include "ccma/state.h"
+#include "problems/control_problem.h"
 #include "problems/forward_problem.h"
 
 namespace ccma::python {
@@ -19,6 +24,36 @@ namespace ccma::python {
 struct ForwardSolution : ForwardResult {
   EndEffectorPose end_effector;
   Eigen::VectorXd controls;
+  // The problem's model: the bound result keeps its problem alive
+  // (py::keep_alive), and the problem keeps the model alive.
+  const Model* model = nullptr;
+  State state;                    // the configuration after the solve
+  double assembly_tolerance = 0;  // of the problem's options [m^2]
+  std::string start;              // "home" (the solve started at home) or "current"
+};
+
+// The solution of `r`, just returned by problem.Solve/Assemble/SetControls;
+// `started_at_home`: the problem was at its home state and controls before.
+ForwardSolution MakeForwardSolution(const ForwardProblem& problem, const ForwardResult& r, bool started_at_home);
+// Whether the problem is at its model's home state and home controls.
+bool AtHome(const ForwardProblem& problem);
+
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+
+// ControlResult plus where it left the mechanism and what `ccma control`
+// prints besides (its method, the secondary objective's settings).
+struct ControlSolution : ControlResult {
+  Vector6d target;  // x y z [m], roll pitch yaw [rad]
+  Eigen::VectorXd controls;
+  EndEffectorPose end_effector;
+  const Model* model = nullptr;  // as in ForwardSolution
+  State state;
+  std::string method;            // "lm" or "bfgs"
+  ControlOptions::Secondary secondary;
+  // `ccma control`'s "from_home" check (documents.h FromHome), made when first
+  // asked for: an assembly from home, as long as a simulate.
+  mutable std::optional<nlohmann::json> from_home;
+  mutable std::string from_home_warning;
 };
 
 // One body's absolute pose.

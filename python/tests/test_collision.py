@@ -19,7 +19,7 @@ def test_load_model_adds_an_obstacles_file_and_clearance_is_the_closed_form():
     problem = ccma.ForwardProblem(model)
     c = ccma.clearance(problem)
     # base2 at (0.504903811, -0.291506351), radius 0.3; the pillar at (1, -0.29), radius 0.1.
-    assert c["pair"] == ("base2", "pillar")
+    assert c.pair == ["base2", "pillar"] and c["pair"] == c.pair
     assert c["min"] == pytest.approx(math.hypot(1 - 0.504903811, 0.291506351 - 0.29) - 0.4, abs=1e-9)
     assert c["margin"] == pytest.approx(0.02)
     assert not c["below_margin"]
@@ -43,10 +43,12 @@ def test_plan_goes_round_the_pillar():
     control = ccma.ControlProblem(model)
     waypoints = ccma.load_waypoints(EXAMPLES / "one_metre_x.csv")
     result = ccma.plan(control, waypoints)
-    assert result["used"] == "plan" and result["converged"]
-    assert result["plan"]["reached_waypoints"] == 2 > result["greedy"]["reached_waypoints"]
-    assert np.all(result["clearance"] >= 0.05 - 1e-9)
-    np.testing.assert_allclose(result["reached"][-1, :3], [1.0, 0.0, 0.6], atol=1e-9)
+    assert result.used == "plan" and result.converged and result.warning == ""
+    assert result.plan.reached_waypoints == 2 > result.greedy.reached_waypoints
+    assert np.all(result.table["clearance_m"] >= 0.05 - 1e-9)
+    assert result.clearance.min_on_path == result.table["clearance_m"].min()
+    np.testing.assert_allclose(result.table.stack(["x_m", "y_m", "z_m"])[-1], [1.0, 0.0, 0.6], atol=1e-9)
+    assert result.table["reached"].all()
     with pytest.raises(ValueError):
         ccma.plan(control, waypoints, path_weight=-1)
 

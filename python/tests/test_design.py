@@ -43,12 +43,12 @@ def test_design_makes_high_targets_reachable():
     targets = np.array([[w.position[0], w.position[1], w.position[2], w.rpy[0], w.rpy[1], w.rpy[2]]
                         for w in ccma.load_waypoints(str(ROOT / "models" / "targets" / "4dof_high_z.csv"))])
     r = ccma.design(model, targets, vary=["joint1.z", "joint4.z", "joint7.z"])
-    assert r["converged"], r["message"]
-    assert not any(t["reached"] for t in r["targets_before"])
-    assert all(t["reached"] and t["min_singular_value"] >= 0.02 for t in r["targets"])
-    assert np.all(r["new"] > r["old"] + 0.1)  # the posts were raised
+    assert r.converged, r.warning
+    assert not r.reached_before.any()
+    assert all(t.reached and t.min_singular_value >= 0.02 for t in r.targets)
+    assert all(c.new > c.old + 0.1 and c.unit == "m" for c in r.changed)  # the posts were raised
     for target in targets:  # a separate controller on the designed model
-        control = ccma.ControlProblem(r["model"])
+        control = ccma.ControlProblem(r.new_model)
         result = control.move_to(target)
         assert result.converged and result.error < 1e-6
 
@@ -71,14 +71,18 @@ GRID = {"joint1.z": [0.35, 0.6], "joint4.z": [0.35, 0.6], "joint7.z": [0.35, 0.6
 
 def test_design_sweep_finds_the_raised_posts_locally():
     sweep = ccma.design_sweep(str(MODEL_PATH), GRID, high_targets(), chunk_size=3)
-    assert len(sweep) == 8
-    assert [c["values"]["joint7.z"] for c in sweep[:2]] == [0.35, 0.6]  # last name fastest
-    assert not sweep[0]["all_reached"]  # the bundled model
-    assert sweep[-1]["feasible"]        # all three posts raised by 0.25 m
+    table = sweep.table
+    assert len(sweep) == len(table) == 8 and sweep.parameters == list(GRID)
+    assert table.names == list(GRID) + ["all_reached", "min_singular_value", "feasible"]
+    assert table["joint7.z"][:2].tolist() == [0.35, 0.6]  # last name fastest
+    assert not table["all_reached"][0]  # the bundled model
+    assert table["feasible"][-1]        # all three posts raised by 0.25 m
+    assert sweep.reached.shape == (8, 3) and sweep.reached.dtype == bool
     # The sweep agrees with evaluate_design on the same candidate.
     direct = ccma.evaluate_design(ccma.load_model(str(MODEL_PATH)), high_targets(), [0.6, 0.6, 0.6],
                                   vary=["joint1.z", "joint4.z", "joint7.z"])
-    assert [r["reached"] for r in direct] == sweep[-1]["reached"]
+    assert [r["reached"] for r in direct] == sweep.reached[-1].tolist()
+    assert sweep.to_records()[-1]["feasible"] is True
 
 
 def test_design_sweep_on_dask_workers_equals_the_local_run():
@@ -103,7 +107,7 @@ def test_design_sweep_called_again_and_again_on_one_client():
                                   dashboard_address=None) as cluster, distributed.Client(cluster) as client:
         for _ in range(10):
             assert ccma.design_sweep(str(MODEL_PATH), grid, targets, client=client, chunk_size=1) == local
-    assert [c["values"]["joint1.z"] for c in local] == [0.35, 0.6]
+    assert local.table["joint1.z"].tolist() == [0.35, 0.6]
 
 
 def test_design_sweep_refuses_a_store_with_a_pickled_array(tmp_path):

@@ -101,8 +101,8 @@ def test_follow_refuses_times_the_waypoint_csv_refuses():
     # Equal times are allowed, as in the CSV: two legs, the second one in no time.
     result = control.follow(rows([0, 1, 1]))
     assert result.converged
-    assert result.time[0] == 0 and result.time[-1] == 1
-    assert np.abs(result.reached[-1, :3] - [p[0], p[1] + 0.02, p[2]]).max() < 1e-9
+    assert result.table["time_s"][0] == 0 and result.table["time_s"][-1] == 1
+    assert np.abs(result.table.stack(["x_m", "y_m", "z_m"])[-1] - [p[0], p[1] + 0.02, p[2]]).max() < 1e-9
 
 
 def test_objective_refuses_a_nan_target():

@@ -13,10 +13,13 @@ ROBOTS = os.path.join(os.path.dirname(__file__), "..", "..", "models", "robots",
 def test_five_bar_imports_assembled_with_source_coordinates(tmp_path):
     folder = os.path.join(ROBOTS, "5bar_linkage")
     out = tmp_path / "5bar.yaml"
-    model = ccma.import_robot(os.path.join(folder, "robot.urdf"), closures=os.path.join(folder, "robot.yaml"),
-                              end_effector="effector", out=str(out))
-    assert out.exists()
-    assert model.num_controls == 2
+    result = ccma.import_robot(os.path.join(folder, "robot.urdf"), closures=os.path.join(folder, "robot.yaml"),
+                               end_effector="effector", out=str(out))
+    assert out.exists() and result.out == str(out)
+    model = result.new_model
+    assert model.num_controls == 2 and sorted(result.actuated) == ["mot1", "mot2"]
+    assert result.controlled == ["y", "z"] and result.controlled_chosen is True
+    assert result.assembled and result.residual_energy < 1e-20 and result.closures == 1
     assert np.allclose(model.home_controls, [0.0, 0.0])
     problem = ccma.ForwardProblem(model)
     result = problem.solve(np.array([0.1, -0.1]))
@@ -40,13 +43,15 @@ def test_import_controls_what_the_motors_move_as_the_cli_does(tmp_path, robot, e
     folder = os.path.join(ROBOTS, robot)
     files = dict(closures=os.path.join(folder, "robot.yaml"), end_effector=end_effector)
     out = tmp_path / "robot.yaml"
-    model = ccma.import_robot(os.path.join(folder, "robot.urdf"), out=str(out), **files)
-    assert model.controlled == moved
+    imported = ccma.import_robot(os.path.join(folder, "robot.urdf"), out=str(out), **files)
+    assert imported.controlled == moved and imported.controlled_chosen is True
+    assert imported.new_model.controlled == moved
     cli = run_tool("import", "--from=" + os.path.join(folder, "robot.urdf"), "--closures=" + files["closures"],
                    "--end_effector=" + end_effector, "--out=" + str(tmp_path / "cli.yaml"))
     assert cli["controlled"] == moved and cli["controlled_chosen"] is True
     assert run_tool("check", "--model=" + str(out))["end_effector_dof"] == len(moved)
-    assert ccma.import_robot(os.path.join(folder, "robot.urdf"), controlled=moved[::-1], **files).controlled == moved
+    given = ccma.import_robot(os.path.join(folder, "robot.urdf"), controlled=moved[::-1], **files)
+    assert given.controlled == moved and given.controlled_chosen is False and given.new_model.controlled == moved
     extra = next(c for c in ("x", "y", "z", "roll", "pitch", "yaw") if c not in moved)
     with pytest.raises(ValueError, match=r"independently at home \(rank %d of %d\): they move %d end-effector DOF, "
                                          r"for example %s " % (len(moved), len(moved) + 1, len(moved), " ".join(moved))) as e:

@@ -13,17 +13,19 @@ def test_replay_matches_cli(tmp_path):
     cli = run_tool("replay", "--model=" + model_path, "--waypoints=" + waypoints, "--out=" + str(tmp_path))
     r = ccma.replay(ccma.load_model(model_path), ccma.load_waypoints(waypoints))
     assert r.trustworthy == cli["trustworthy"]
-    assert len(r.time) == cli["samples"]
-    assert abs(r.rmse[0] * 1000 - cli["rmse"]["x_mm"]) < 1e-12
-    assert abs(r.rmse[2] * 1000 - cli["rmse"]["z_mm"]) < 1e-12
-    assert abs(r.rmse[5] - cli["rmse"]["yaw_rad"]) < 1e-12
+    assert len(r.table) == r.samples == cli["samples"]
+    assert abs(r.rmse.x_mm - cli["rmse"]["x_mm"]) < 1e-12
+    assert abs(r.rmse.z_mm - cli["rmse"]["z_mm"]) < 1e-12
+    assert abs(r.rmse.yaw_rad - cli["rmse"]["yaw_rad"]) < 1e-12
     with open(tmp_path / "end_effector.csv") as f:
         rows = [row for row in csv.reader(line for line in f if not line.startswith("#"))]
     header, data = rows[0], np.array(rows[1:], dtype=float)
-    np.testing.assert_allclose(r.tracked[:, 0], data[:, header.index("x_m")], rtol=0, atol=1e-11)
-    np.testing.assert_allclose(r.commanded[:, 2], data[:, header.index("cmd_z_m")], rtol=0, atol=1e-11)
-    assert r.true_controls.shape == (len(r.time), model_controls(model_path))
-    assert r.sample_torn.dtype == bool and not r.sample_torn.any()
+    ee = r.tables["end_effector"]
+    np.testing.assert_allclose(ee["x_m"], data[:, header.index("x_m")], rtol=0, atol=1e-11)
+    np.testing.assert_allclose(ee["cmd_z_m"], data[:, header.index("cmd_z_m")], rtol=0, atol=1e-11)
+    bases = r.tables["bases"]
+    assert len(bases.names) == 2 + 6 * 3 and len(bases) == r.samples  # time, set and true pose per base, torn
+    assert ee["torn"].dtype == bool and not ee["torn"].any()
     assert r.torn_samples == cli["torn_samples"] == 0
 
 
@@ -33,12 +35,12 @@ def test_replay_takes_an_array_and_options():
     options = ccma.ReplayOptions(noise="none", output_hz=10, seed=7)
     assert (options.noise, options.seed, options.output_hz) == ("none", 7, 10)
     r = ccma.replay(model, waypoints, options)
-    assert r.trustworthy and len(r.time) == 31  # 0 .. 3 s (1 s settling) at 10 Hz
-    assert np.abs(r.tracked - r.commanded).max() < 1e-3
-
-
-def model_controls(path):
-    return ccma.load_model(path).num_controls
+    assert r.trustworthy and r.samples == len(r.table) == 31  # 0 .. 3 s (1 s settling) at 10 Hz
+    ee = r.table
+    tracked = ee.stack(["x_m", "y_m", "z_m"])
+    commanded = ee.stack(["cmd_x_m", "cmd_y_m", "cmd_z_m"])
+    assert np.abs(tracked - commanded).max() < 1e-3
+    assert np.abs(ee["err_y_mm"] - 1000 * (ee["y_m"] - ee["cmd_y_m"])).max() < 1e-9
 
 
 def test_replay_rejects_bad_input():

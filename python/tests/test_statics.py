@@ -16,11 +16,11 @@ TRIPOD = ROOT / "examples" / "statics" / "tripod.yaml"
 def test_tripod_legs_carry_a_third_of_the_weight():
     problem = ccma.ForwardProblem(ccma.load_model(TRIPOD))
     r = ccma.statics(problem)
-    assert r["determinate"] and r["balanced"]
-    for a in r["actuators"]:
-        assert abs(a["effort"]) == pytest.approx(3 * 9.81 * math.sqrt(2) / 3, rel=1e-9)
-    foot0 = r["joints"][0]
-    np.testing.assert_allclose(foot0["force"], [0, -9.81, 9.81], atol=1e-9)
+    assert r.determinate and r.balanced and r.assembled and r.warning == ""
+    for a in r.actuators:
+        assert abs(a.effort) == pytest.approx(3 * 9.81 * math.sqrt(2) / 3, rel=1e-9)
+    foot0 = r.joints[0]
+    np.testing.assert_allclose(foot0.force, [0, -9.81, 9.81], atol=1e-9)
     with pytest.raises(ValueError):
         ccma.statics(problem, wrench=[1, 2, 3])
 
@@ -29,10 +29,10 @@ def test_matches_the_command_line():
     model = ROOT / "models" / "4dof_reduced.yaml"
     cli = run_tool("statics", f"--model={model}", "--wrench=1,2,-20,0.1,0,0")
     r = ccma.statics(ccma.ForwardProblem(ccma.load_model(model)), wrench=[1, 2, -20, 0.1, 0, 0])
-    for a, b in zip(r["actuators"], cli["actuators"]):
-        assert a["name"] == b["name"] and a["kind"] == b["kind"]
-        assert a["effort"] == pytest.approx(b["effort"], abs=1e-9)
-    np.testing.assert_allclose(r["ee_covariance"], cli["ee_covariance"], atol=1e-15)
+    for a, b in zip(r.actuators, cli["actuators"]):
+        assert a.name == b["name"] and a.kind == b["kind"]
+        assert a.effort == pytest.approx(b["effort"], abs=1e-9)
+    np.testing.assert_allclose(r.ee_covariance, cli["ee_covariance"], atol=1e-15)
 
 
 PAYLOAD = ROOT / "examples" / "statics" / "4dof_payload.yaml"
@@ -42,18 +42,18 @@ PAYLOAD_TARGETS = ROOT / "examples" / "statics" / "4dof_payload_targets.csv"
 def test_payload_capacity_puts_the_limiting_push_on_its_limit():
     model = ccma.load_model(PAYLOAD)
     r = ccma.statics(ccma.ForwardProblem(model))
-    capacity = r["payload_capacity"]
+    capacity = r.payload_capacity
     cli = run_tool("statics", f"--model={PAYLOAD}")
-    assert capacity["mass"] == pytest.approx(cli["payload_capacity"]["mass"], rel=1e-12)
-    assert capacity["limiting"] == cli["payload_capacity"]["limiting"]
+    assert capacity.mass == pytest.approx(cli["payload_capacity"]["mass"], rel=1e-12)
+    assert capacity.limiting == cli["payload_capacity"]["limiting"]
     # Pushes are linear in the payload: at the capacity the limiting base pushes exactly 60 N.
-    text = PAYLOAD.read_text().replace("payload: {mass: 4}", f"payload: {{mass: {capacity['mass']!r}}}")
+    text = PAYLOAD.read_text().replace("payload: {mass: 4}", f"payload: {{mass: {capacity.mass!r}}}")
     at_capacity = ccma.statics(ccma.ForwardProblem(ccma.load_model_from_string(text, "at_capacity.yaml")))
     pushes = {}
-    for a in at_capacity["actuators"]:
-        if a["kind"] in ("base_x", "base_y"):
-            pushes[a["name"]] = pushes.get(a["name"], 0.0) + a["effort"] ** 2
-    assert math.sqrt(pushes[capacity["limiting"]]) == pytest.approx(60.0, rel=1e-9)
+    for a in at_capacity.actuators:
+        if a.kind in ("base_x", "base_y"):
+            pushes[a.name] = pushes.get(a.name, 0.0) + a.effort ** 2
+    assert math.sqrt(pushes[capacity.limiting]) == pytest.approx(60.0, rel=1e-9)
     assert max(math.sqrt(p) for p in pushes.values()) == pytest.approx(60.0, rel=1e-9)
 
 
@@ -63,9 +63,9 @@ def test_design_raises_the_payload():
     r = ccma.design(ccma.load_model(PAYLOAD), targets,
                     vary_length=["joint2:joint1", "joint5:joint4", "joint8:joint7"],
                     max_change=0.3, objective="payload")
-    assert r["converged"]
-    o = r["objective"]
-    assert o["name"] == "payload" and o["unit"] == "kg"
-    assert o["after"]["value"] > o["before"]["value"] + 1.0
+    assert r.converged
+    o = r.objective
+    assert o.name == "payload" and o.unit == "kg"
+    assert o.after.value > o.before.value + 1.0
     with pytest.raises(ValueError):
         ccma.design(ccma.load_model(PAYLOAD), targets, vary_length=["joint2:joint1"], objective="stiffness")

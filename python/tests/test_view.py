@@ -17,11 +17,11 @@ def test_view_matches_the_cli(tmp_path):
     run_tool("trajectory", "--model=%s" % MODEL, "--waypoints=%s" % waypoints, "--out=%s" % csv)
     cli = run_tool("view", "--model=%s" % MODEL, "--trajectory=%s" % csv, "--out=%s" % (tmp_path / "cli.html"))
     out = ccma.view(MODEL, trajectory=csv, out=tmp_path / "py.html")
-    assert out == str(tmp_path / "py.html")
+    assert out.out == str(tmp_path / "py.html")
     assert (tmp_path / "py.html").read_bytes() == (tmp_path / "cli.html").read_bytes()
     page, info = ccma.view_html(ccma.load_model(MODEL), str(csv))
-    assert info["frames"] == cli["frames"] and info["source"] == "trajectory"
-    assert len(page.encode()) == cli["bytes"]
+    assert info.frames == cli["frames"] and info.source == "trajectory"
+    assert len(page.encode()) == cli["bytes"] == info.bytes
 
 
 def test_view_returns_the_page_outside_jupyter():
@@ -78,12 +78,12 @@ def test_view_draws_a_workspace_map_like_the_cli(tmp_path):
     header = rows[0].split(",")
     reachable = sum(int(r.split(",")[header.index("reachable")]) for r in rows[1:])
     cli = run_tool("view", "--model=%s" % MODEL, "--workspace=%s" % csv, "--out=%s" % (tmp_path / "cli.html"))
-    assert ccma.view(MODEL, workspace=csv, out=tmp_path / "py.html") == str(tmp_path / "py.html")
+    assert ccma.view(MODEL, workspace=csv, out=tmp_path / "py.html").out == str(tmp_path / "py.html")
     assert (tmp_path / "py.html").read_bytes() == (tmp_path / "cli.html").read_bytes()
     _page, info = ccma.view_html(ccma.load_model(MODEL), workspace=str(csv))
-    assert info["source"] == "workspace"
-    assert info["workspace_points"] == len(rows) - 1 == cli["workspace_points"] == 25
-    assert info["workspace_reachable"] == reachable == cli["workspace_reachable"]
+    assert info.source == "workspace"
+    assert info.workspace_points == len(rows) - 1 == cli["workspace_points"] == 25
+    assert info.workspace_reachable == reachable == cli["workspace_reachable"]
     assert 0 < reachable < 25
     with pytest.raises(ValueError, match="one of"):
         ccma.view(MODEL, trajectory=csv, workspace=csv)
@@ -103,10 +103,10 @@ def test_view_bounds_the_work_of_far_jumps(tmp_path):
         rows.append(",".join(repr(float(v)) for v in [i] + u + [shift, 0, 0.6, shift, 0, 0.6, 1]))
     csv.write_text("\n".join(rows) + "\n")
     _, info = ccma.view_html(model, str(csv))
-    assert info["frames"] == 3
-    assert info["beyond_work_bound_frames"] == 1
-    assert info["not_assembled_frames"] == 1 and info["flagged_frames"] == 1
-    assert "beyond_work_bound_frames" not in ccma.view_html(model)[1]
+    assert info.frames == 3
+    assert info.beyond_work_bound_frames == 1
+    assert info.not_assembled_frames == 1 and info.flagged_frames == 1
+    assert "beyond_work_bound_frames" not in ccma.view_html(model)[1].to_dict()
 
 
 def test_view_out_replaces_the_file_safely(tmp_path):
@@ -121,7 +121,7 @@ def test_view_out_replaces_the_file_safely(tmp_path):
     # A link at the name an in-place or predictable writer would open.
     (tmp_path / ("page.html.partial.%d" % os.getpid())).symlink_to(victim)
     before = os.stat(out).st_ino
-    assert ccma.view(MODEL, out=out) == str(out)
+    assert ccma.view(MODEL, out=out).out == str(out)
     assert os.stat(out).st_ino != before  # replaced, never rewritten in place
     assert stat.S_IMODE(os.stat(out).st_mode) == 0o600
     assert out.read_text(encoding="utf-8") == ccma.view(ccma.load_model(MODEL))
@@ -188,7 +188,7 @@ def test_view_colours_by_load_like_the_cli(tmp_path):
     ccma.view(model, color_by="load", out=tmp_path / "py.html")
     assert (tmp_path / "py.html").read_bytes() == (tmp_path / "cli.html").read_bytes()
     _page, info = ccma.view_html(ccma.load_model(str(model)), color_by="load")
-    assert info["max_load"] == pytest.approx(3 * 9.81 * 2 ** 0.5 / 3, rel=1e-6)
-    assert info["max_load"] == pytest.approx(cli["max_load"], rel=1e-12)
+    assert info.max_load == pytest.approx(3 * 9.81 * 2 ** 0.5 / 3, rel=1e-6)
+    assert info.max_load == pytest.approx(cli["max_load"], rel=1e-12)
     with pytest.raises(ValueError, match="color_by"):
         ccma.view_html(ccma.load_model(str(model)), color_by="stress")

@@ -16,26 +16,28 @@ RANGES = {"x": (-0.2, 0.2), "z": (0.4, 1.1)}
 
 def test_grid_matches_leg_reach_and_the_tool(tmp_path):
     m = ccma.workspace(MODEL, RANGES, resolution=8, threads=2)
-    assert m["components"] == ["x", "z"]
-    z = m["poses"][:, 2]
-    assert len(z) == 64
-    np.testing.assert_array_equal(m["reachable"], z < 0.85)
-    assert np.all(m["residual_energy"][m["reachable"]] < 1e-20)
-    assert np.all(m["sigma_min"][m["reachable"]] > 1e-3)
-    assert np.all(m["sigma_min"][~m["reachable"]] == 0)
+    t = m.table
+    assert m.components == ["x", "z"] and t.names[:4] == ["x", "y", "z", "yaw"]  # the controlled components
+    z, reachable = t["z"], t["reachable"]
+    assert len(z) == m.samples == 64
+    np.testing.assert_array_equal(reachable, z < 0.85)
+    assert m.reachable == reachable.sum()
+    assert np.all(t["residual_energy"][reachable] < 1e-20)
+    assert np.all(t["sigma_min"][reachable] > 1e-3)
+    assert np.all(t["sigma_min"][~reachable] == 0)
     # The tool gives the same rows (same waves and starts): controls to 1e-15 m.
     out = tmp_path / "w.csv"
     j = run_tool("workspace", "--model=" + MODEL, "--out=" + str(out), "--z=0.4:1.1", "--x=-0.2:0.2",
                  "--resolution=8")
-    assert j["samples"] == 64 and j["reachable"] == int(m["reachable"].sum())
+    assert j["samples"] == 64 and j["reachable"] == m.reachable
     with open(out) as f:
         rows = list(csv.DictReader(f))
     for i, row in enumerate(rows):
         assert float(row["z"]) == z[i]
-        assert int(row["reachable"]) == int(m["reachable"][i])
-        if m["reachable"][i]:
+        assert int(row["reachable"]) == int(reachable[i])
+        if reachable[i]:
             u = np.array([float(row[f"u{k}"]) for k in range(9)])
-            np.testing.assert_allclose(u, m["controls"][i], rtol=0, atol=1e-15)
+            np.testing.assert_allclose(u, t.stack([f"u{k}" for k in range(9)])[i], rtol=0, atol=1e-15)
 
 
 def test_bad_arguments_raise():
@@ -51,14 +53,10 @@ def test_bad_arguments_raise():
         ccma.workspace(ccma.load_model(MODEL), {"z": (0.4, 0.5)}, client=object())
 
 
-KEYS = ("reachable", "controls", "residual_energy", "sigma_min", "rcond", "start", "wave", "tile", "steps", "poses")
-
-
 def assert_same_map(a, b):
-    for key in KEYS:
-        np.testing.assert_array_equal(a[key], b[key], err_msg=key)
-    assert a["warning"] == b["warning"] and a["limited_by"] == b["limited_by"]
-    assert a["tiles"] == b["tiles"]
+    assert a.table == b.table  # every column of the CSV, sample by sample (NaN where unreachable)
+    assert a.details == b.details  # converged, assembled, steps, tile, warning
+    assert a.tiles == b.tiles and a.tile_size == b.tile_size
 
 
 def test_dask_local_cluster_gives_the_local_results():
@@ -68,7 +66,7 @@ def test_dask_local_cluster_gives_the_local_results():
     draws = dict(ranges={"x": (-0.3, 0.3), "y": (-0.3, 0.3), "z": (0.45, 0.95)}, samples=60, seed=3,
                  wave_size=8, tile_size=2)
     local = {name: ccma.workspace(MODEL, threads=1, **kw) for name, kw in (("grid", grid), ("draws", draws))}
-    assert local["grid"]["tiles"] == 16 and local["draws"]["tiles"] > 4
+    assert local["grid"].tiles == 16 and local["draws"].tiles > 4
     seen = []
     two = ccma.workspace(MODEL, threads=2, progress=lambda done, total: seen.append((done, total)), **grid)
     assert_same_map(local["grid"], two)
@@ -88,10 +86,10 @@ def test_dask_local_cluster_gives_the_local_results():
         loaded = client.run(lambda: len(__import__("sys").modules["ccma.workspace"]._MODELS))
         assert sorted(loaded.values()) in ([0, 1], [1, 1])
     # z up to the legs' reach (0.85 m); the same count as one tile, the global continuation.
-    assert local["grid"]["reachable"].sum() == 156
+    assert local["grid"].reachable == 156
     single = ccma.workspace(MODEL, **dict(grid, tile_size=16))
-    assert single["tiles"] == 1 and single["reachable"].sum() == 156
-    assert 0 < local["draws"]["reachable"].sum() < 60
+    assert single.tiles == 1 and single.reachable == 156
+    assert 0 < local["draws"].reachable < 60
 
 
 def test_progress_and_chunk_arguments_are_checked():
@@ -106,6 +104,6 @@ def test_progress_and_chunk_arguments_are_checked():
 def test_samples_too_many_path_steps_away_are_unreachable_not_an_error():
     # 2 km in steps of 10 mm is more than the 100,000 path steps of one walk.
     m = ccma.workspace(MODEL, {"x": (0.0, 2000.0), "z": (0.5, 0.75)}, resolution=2)
-    np.testing.assert_array_equal(m["reachable"], [True, True, False, False])
-    assert all("100000 steps" in w for w in m["warning"][2:])
-    np.testing.assert_array_equal(m["steps"][2:], [0, 0])
+    np.testing.assert_array_equal(m.table["reachable"], [True, True, False, False])
+    assert all("100000 steps" in w for w in m.details["warning"][2:])
+    np.testing.assert_array_equal(m.details["steps"][2:], [0, 0])

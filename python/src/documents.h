@@ -1,0 +1,77 @@
+// The JSON documents of the `ccma` commands, for the Python results'
+// to_dict(): the keys and values the command prints for the same inputs
+// (docs/cli.md; python/tests/test_cli_agreement.py holds them equal, key by
+// key). They are built from the command's own helpers where those are free of
+// command-line flags (apps/json_output.h, apps/trajectory_csv.h,
+// apps/replay_report.h, compiled into the module too); the lines each command
+// adds around them are mirrored here, one function per command, each naming
+// the command file it follows. A change to a command's JSON is made in both.
+#ifndef CCMA_PYTHON_SRC_DOCUMENTS_H_
+#define CCMA_PYTHON_SRC_DOCUMENTS_H_
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "analyses/design.h"
+#include "ccma/ccma.h"
+#include "python/src/pose_types.h"
+
+namespace ccma::python {
+
+// apps/simulate_command.cc: RunSimulate and WarnOnFailure.
+nlohmann::json SimulateDocument(const ForwardSolution& s);
+std::string SimulateWarning(const ForwardSolution& s);
+
+// apps/control_command.cc: RunControl. The from_home check is made once,
+// when first asked for (FromHome), and adds to the warning when it fails.
+nlohmann::json ControlDocument(const ControlSolution& s);
+const nlohmann::json& FromHome(const ControlSolution& s);
+std::string ControlWarning(const ControlSolution& s);
+nlohmann::json ConditioningJson(const ControlResult& r);
+// apps/secondary_flags.cc: SecondaryJson.
+nlohmann::json SecondaryJson(const ControlOptions::Secondary& secondary, int null_space_steps, double objective);
+
+// What `ccma trajectory` gathers over the steps it writes.
+struct PathSummary {
+  int steps = 0;
+  double min_sigma = 0;  // smallest min_singular_value_dX_du over the steps
+  double min_rcond = 0;  // smallest dG/ds pivot ratio over the steps
+  int null_space_steps = 0;
+  double secondary_objective = 0;  // the last step's
+  ClearanceSummary path_clearance;  // the smallest over the steps (TrajectoryCsv::min_clearance)
+};
+
+// apps/trajectory_command.cc: RunTrajectory (without "out": the caller adds it).
+nlohmann::json TrajectoryDocument(const ControlProblem& control, const TrajectoryResult& r, std::size_t waypoints,
+                                  const PathSummary& path);
+// apps/plan_command.cc: RunPlan (without "out").
+nlohmann::json PlanDocument(const ControlProblem& control, const PlanResult& r, std::size_t waypoints,
+                            const ClearanceSummary& path_clearance);
+
+// apps/statics_command.cc: RunStatics, at a configuration (state, controls)
+// whose assembly left residual energy `residual_energy` [m^2].
+nlohmann::json StaticsDocument(const Model& model, const State& s, const Eigen::VectorXd& u, double residual_energy,
+                               double assembly_tolerance, const ExternalWrench& wrench, const BasePoseNoise& noise);
+
+// apps/check_command.cc: RunCheck (the model at home).
+nlohmann::json CheckDocument(const Model& model);
+
+// apps/design_command.cc: RunDesign (without "out"); `final_check`: the
+// targets evaluated in the model as written.
+nlohmann::json DesignDocument(const Model& model, const Model& designed, const DesignParameters& params,
+                              const DesignResult& r, const std::vector<DesignTargetResult>& final_check,
+                              const DesignOptions& options);
+
+// apps/replay_command.cc: ReplayJson without "files" and "plots" (Python
+// writes no files).
+nlohmann::json ReplayDocument(const Model& model, const ReplayOptions& options, const ReplayResult& r);
+
+// Sets `out[key]` to a clearance summary's numbers (apps/trajectory_command.cc:
+// "min_on_path", "pair_on_path").
+void AddPathClearance(const ClearanceSummary& path, nlohmann::json* out);
+
+}  // namespace ccma::python
+
+#endif  // CCMA_PYTHON_SRC_DOCUMENTS_H_
