@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>
 #include <string>
 
+#include "analyses/internal/import_collision.h"
 #include "analyses/internal/import_mesh_paths.h"
 #include "analyses/internal/robot_model_builder.h"
 #include "analyses/moved_components.h"
@@ -235,6 +236,12 @@ ImportedRobot ImportRobot(const RobotDescription& robot, const ImportOptions& op
                                  ? std::filesystem::absolute(robot.source).parent_path().string()
                                  : options.model_folder;
   const std::string outside = internal::RelateMeshPaths(folder, robot.source, &home);
+  if (options.collision_radius > 0) {
+    const internal::ImportCollisionCounts counts =
+        internal::AddImportCollision(options.collision_radius, robot.source, &home);
+    out.collision_capsules = counts.capsules;
+    out.collision_ignored_pairs = counts.ignored_pairs;
+  }
   out.yaml = WriteModelYaml(home, "Written by `ccma import` from " + robot.source +
                                       ". Joint positions q equal the source's (q_home).");
   out.model = LoadModelFromString(out.yaml, robot.source + " (imported)");

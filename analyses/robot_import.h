@@ -49,6 +49,12 @@ struct ImportOptions {
   // and its meshes can be moved together. Empty: the robot file's folder,
   // against which ImportedRobot::model's source also resolves them.
   std::string model_folder;
+  // > 0: every body that is not a mobile base gets capsules of this radius
+  // [m] along the segments between its joint points, and pairs closer than
+  // the margin at home are ignored (analyses/internal/import_collision.h);
+  // 0: no collision geometry (robot files give meshes, which clearance does
+  // not use).
+  double collision_radius = 0;
 };
 
 struct ImportedRobot {
@@ -61,6 +67,8 @@ struct ImportedRobot {
   std::vector<std::string> controlled;  // the model's controlled components, x y z roll pitch yaw order
   bool controlled_chosen = false;       // true when ImportRobot chose them (none given or stored)
   std::vector<std::string> warnings;  // e.g. the motors had to move to close the loops
+  int collision_capsules = 0;       // with collision_radius: capsules written
+  int collision_ignored_pairs = 0;  // with collision_radius: body pairs touching at home, ignored
 };
 
 // Throws ModelError naming the source, the element and the name: an unknown

@@ -141,7 +141,8 @@ Command GenerateCommand() {
 Command ImportCommand() {
   return {"import", "convert a URDF (with a closure file) or SDFormat robot into a model file",
           "ccma import --from=FILE.urdf|FILE.sdf [--closures=FILE.yaml] [--actuated=J,...]\n"
-          "            --end_effector=LINK[:px,py,pz] [--controlled=x,y,z,roll,pitch,yaw] --out=MODEL.yaml",
+          "            --end_effector=LINK[:px,py,pz] [--controlled=x,y,z,roll,pitch,yaw] [--collision_radius=R]\n"
+          "            --out=MODEL.yaml",
           "Converts a robot described elsewhere into a model file (docs/import.md): every link a body, every\n"
           "joint kept, each loop closure (URDF: the closure file's closed_loop pairs; SDFormat: its own\n"
           "loops) a fixed (6d) or spherical (3d) joint. The written model is assembled at home (the source's\n"
@@ -150,9 +151,12 @@ Command ImportCommand() {
           "reports is the source's joint position. Without --end_effector, the one `ccma export` stored.\n"
           "Without --controlled (and none stored), the end-effector components the motors move at home,\n"
           "x y z roll pitch yaw in this order, each kept if it raises the rank (said on stderr).\n"
+          "With --collision_radius, every body gets capsules of that radius along the segments between its\n"
+          "joint points (robot files' collision meshes are not used), so that --obstacles and clearance\n"
+          "work; pairs of bodies closer than the margin at home are ignored (they touch by design).\n"
           "Exit 2 naming the file, the element and the name for a malformed source, an unknown name, a\n"
           "closure that cannot be assembled, or --controlled components the motors cannot move.",
-          {"from", "closures", "actuated", "end_effector", "controlled", "out"}, RunImport,
+          {"from", "closures", "actuated", "end_effector", "controlled", "collision_radius", "out"}, RunImport,
           {{"from", "the robot file: URDF (.urdf, .xml) or SDFormat (.sdf), at most 16 MiB [path]"},
            {"out", "the model file to write (YAML); mesh paths are written relative to its folder [path]"}}};
 

@@ -1,5 +1,5 @@
 // `ccma import --from=FILE.urdf|FILE.sdf [--closures=FILE.yaml] [--actuated=J,...]
-//  --end_effector=LINK[:px,py,pz] [--controlled=x,y,z,...] --out=MODEL.yaml`:
+//  --end_effector=LINK[:px,py,pz] [--controlled=x,y,z,...] [--collision_radius=R] --out=MODEL.yaml`:
 // a robot described elsewhere -> a model file assembled at home
 // (analyses/robot_import.h, docs/import.md).
 #include <filesystem>
@@ -28,6 +28,10 @@ DEFINE_string(end_effector, "",
 DEFINE_string(controlled, "",
               "import: the controlled components; default the ones the controls move at home, translations "
               "first [x,y,z,roll,pitch,yaw]");
+
+DEFINE_double(collision_radius, 0,
+              "import: give every body capsules of this radius along the segments between its joint points "
+              "(0: no collision geometry) [m, 0 or in [1e-4, 10]]");
 
 namespace ccma::cli {
 namespace {
@@ -76,6 +80,10 @@ int RunImport(const std::vector<std::string>& args) {
   options.actuated = SplitNames(FLAGS_actuated, "actuated");
   options.controlled = SplitNames(FLAGS_controlled, "controlled");
   if (!FLAGS_end_effector.empty()) ParseEndEffector(FLAGS_end_effector, &options);
+  if (!(FLAGS_collision_radius == 0 || (FLAGS_collision_radius >= 1e-4 && FLAGS_collision_radius <= 10))) {
+    throw UsageError("--collision_radius: must be 0 or in [1e-4, 10] m, got " + FormatG(FLAGS_collision_radius));
+  }
+  options.collision_radius = FLAGS_collision_radius;
   OutputFile out(out_path, "out");  // checked before the work
   // Mesh paths relative to the model file: the two can be moved together.
   options.model_folder = std::filesystem::absolute(out_path).parent_path().string();
@@ -101,6 +109,10 @@ int RunImport(const std::vector<std::string>& args) {
                             {"assembled", true},
                             {"residual_energy", imported.residual_energy},
                             {"controls", ToJson(imported.model.home_controls())}};
+  if (options.collision_radius > 0) {
+    summary["collision_capsules"] = imported.collision_capsules;
+    summary["collision_ignored_pairs"] = imported.collision_ignored_pairs;
+  }
   PrintJson(summary);
   return 0;
 }

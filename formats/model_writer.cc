@@ -78,7 +78,9 @@ void WriteBodies(const Model& model, std::ostringstream& out) {
 void WriteBases(const Model& model, std::ostringstream& out) {
   if (model.mobile_bases.empty()) return;
   out << "mobile_bases:\n";
-  for (const MobileBase& base : model.mobile_bases) {
+  const CollisionGeometry& collision = model.collision;
+  for (std::size_t k = 0; k < model.mobile_bases.size(); ++k) {
+    const MobileBase& base = model.mobile_bases[k];
     const bool differential = base.type == BaseType::kDifferential;
     out << "  - name: " << YamlName(base.name) << "\n    type: " << (differential ? "differential" : "omni")
         << "\n    actuation: " << (base.actuation == Actuation::kReduced ? "reduced" : "complete")
@@ -86,6 +88,9 @@ void WriteBases(const Model& model, std::ostringstream& out) {
     if (differential) {
       out << "    wheels: {track: " << Num(base.differential.track) << ", radius: " << Num(base.differential.radius)
           << "}\n";
+    }
+    if (collision.enabled && k < collision.base_radii.size() && collision.base_radii[k] != collision.base_radius) {
+      out << "    radius: " << Num(collision.base_radii[k]) << "\n";
     }
     WriteMeshes(model.bodies[base.body], out);
   }
@@ -120,6 +125,39 @@ void WriteEndEffector(const Model& model, std::ostringstream& out) {
   out << "]\n";
 }
 
+void WriteObstacles(const Model& model, std::ostringstream& out) {
+  if (model.collision.obstacles.empty()) return;
+  out << "obstacles:\n";
+  for (const Obstacle& o : model.collision.obstacles) {
+    out << "  - {name: " << o.name << ", ";
+    if (o.shape == ObstacleShape::kCylinder) {
+      out << "cylinder: {center: [" << Num(o.center.x()) << ", " << Num(o.center.y()) << "], radius: " << Num(o.radius)
+          << ", height: " << Num(o.z_max) << "}}\n";
+    } else {
+      out << "box: {center: " << Vec(o.center) << ", size: " << Vec(o.size) << ", yaw: " << Num(o.yaw) << "}}\n";
+    }
+  }
+}
+
+// `collision:` (capsule ends in world coordinates at home) and `obstacles:`,
+// when the model has collision geometry.
+void WriteCollision(const Model& model, std::ostringstream& out) {
+  const CollisionGeometry& c = model.collision;
+  if (!c.enabled) return;
+  out << "collision:\n  margin: " << Num(c.margin) << "\n  base_radius: " << Num(c.base_radius)
+      << "\n  base_height: " << Num(c.base_height) << "\n";
+  if (!c.links.empty()) out << "  links:\n";
+  for (const CollisionCapsule& capsule : c.links) {
+    const Body& body = model.bodies[capsule.body];
+    out << "    - {body: " << body.name << ", from: " << Vec(body.R_WB_home * capsule.a_B + body.p_WB_home)
+        << ", to: " << Vec(body.R_WB_home * capsule.b_B + body.p_WB_home) << ", radius: " << Num(capsule.radius)
+        << "}\n";
+  }
+  if (!c.ignore.empty()) out << "  ignore:\n";
+  for (const auto& pair : c.ignore) out << "    - [" << pair.first << ", " << pair.second << "]\n";
+  WriteObstacles(model, out);
+}
+
 }  // namespace
 
 std::string WriteModelYaml(const Model& model, const std::string& header) {
@@ -133,6 +171,7 @@ std::string WriteModelYaml(const Model& model, const std::string& header) {
   out << "joints:\n";
   for (const Joint& joint : model.joints) WriteJoint(model, joint, out);
   WriteEndEffector(model, out);
+  WriteCollision(model, out);
   return out.str();
 }
 

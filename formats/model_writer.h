@@ -3,7 +3,9 @@
 // 17 significant digits, so LoadModelFromString(WriteModelYaml(m)) gives back
 // m's geometry to rounding. Every revolute and prismatic joint carries
 // `q_home` (0 included). Omni bases are written with their default wheels
-// (the wheel list is not written).
+// (the wheel list is not written). Collision geometry is written when the
+// model has it (`collision:` with every capsule, ignored pairs, `obstacles:`);
+// a base's own `radius:` where it differs from base_radius.
 #ifndef CCMA_FORMATS_MODEL_WRITER_H_
 #define CCMA_FORMATS_MODEL_WRITER_H_
 

@@ -339,6 +339,42 @@ TEST_F(ImportCli, ClosureFileQuirksOfTheCollectionAreRead) {
   EXPECT_EQ(nlohmann::json::parse(r.out)["closures"], 1);
 }
 
+// --collision_radius gives the five-bar capsules (JSON counts them), so that
+// an --obstacles ledge under its effector is measured by check, at 0.05 m
+// minus the radius; a radius out of range is refused.
+TEST_F(ImportCli, CollisionRadiusGivesCapsulesThatObstaclesAreMeasuredAgainst) {
+  const std::string five = kRobots + "5bar_linkage/";
+  const std::vector<std::string> args = {"import", "--from=" + five + "robot.urdf", "--closures=" + five + "robot.yaml",
+                                         "--end_effector=effector", "--out=" + Out()};
+  for (const char* bad : {"-0.01", "nan", "11", "1e-5"}) {
+    std::vector<std::string> hostile = args;
+    hostile.push_back(std::string("--collision_radius=") + bad);
+    ExpectRefused(hostile, "--collision_radius");
+  }
+  std::vector<std::string> with = args;
+  with.push_back("--collision_radius=0.02");
+  const ToolRun r = RunTool(with);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["collision_capsules"], 10);  // built 2, rod 1, rod_2 1, rod_3 1, end_rod 2, 3 one-point bodies
+  EXPECT_EQ(j["collision_ignored_pairs"], 3);
+  const Model m = LoadModel(Out());
+  const Eigen::Vector3d p = m.end_effector.p_W_home;
+  const std::string obstacles =
+      Write("ledge.yaml", "obstacles:\n  - {name: ledge, box: {center: [" + std::to_string(p.x()) + ", " +
+                              std::to_string(p.y()) + ", " + std::to_string(p.z() - 0.075) +
+                              "], size: [1, 1, 0.05], yaw: 0}}\n");
+  const ToolRun check = RunTool({"check", "--model=" + Out(), "--obstacles=" + obstacles});
+  ASSERT_EQ(check.status, 0) << check.err;
+  const nlohmann::json c = nlohmann::json::parse(check.out)["clearance"];
+  EXPECT_NEAR(c["min"].get<double>(), 0.03, 2e-6);  // std::to_string keeps 6 decimals
+  EXPECT_EQ(c["pair"][1], "ledge");
+  const ToolRun without = RunTool({"import", "--from=" + five + "robot.urdf", "--closures=" + five + "robot.yaml",
+                                   "--end_effector=effector", "--out=" + Out()});
+  ASSERT_EQ(without.status, 0) << without.err;
+  EXPECT_FALSE(nlohmann::json::parse(without.out).contains("collision_capsules"));
+}
+
 TEST_F(ImportCli, HostileSourcesAreRefusedWithFileLineAndName) {
   const std::string five = kRobots + "5bar_linkage/";
   std::ifstream in(five + "robot.urdf");

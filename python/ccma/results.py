@@ -230,6 +230,10 @@ class ImportResult(Result):
     assembled = Field("assembled", "assembled at home (always True: import refuses otherwise)")
     residual_energy = Field("residual_energy", "E at home [m^2]")
     controls = Field("controls", "the home controls")
+    collision_capsules = Field("collision_capsules", "with collision_radius: capsules written to collision.links; "
+                               "None without")
+    collision_ignored_pairs = Field("collision_ignored_pairs", "with collision_radius: body pairs closer than "
+                                    "the margin at home, written to collision.ignore; None without")
 
     @property
     def new_model(self):

@@ -22,7 +22,7 @@ def _end_effector(text):
     return link, point
 
 
-def import_robot(from_, closures=None, actuated=(), end_effector="", controlled=(), out=None):
+def import_robot(from_, closures=None, actuated=(), end_effector="", controlled=(), collision_radius=0.0, out=None):
     """`ccma import`: a URDF (with its closure file, the example-parallel-robots convention) or
     an SDFormat file as a ccma model assembled at home.
 
@@ -33,12 +33,16 @@ def import_robot(from_, closures=None, actuated=(), end_effector="", controlled=
     stored); controlled: components among x, y, z, roll, pitch, yaw (default: the ones
     `ccma export` stored, else those the motors move at home, translations first, as
     `ccma import` chooses them); components the motors cannot move independently at home
-    raise ccma.ModelError naming those they move; out: also write the model file there
-    (replaced atomically, never through a planted link).
+    raise ccma.ModelError naming those they move; collision_radius: > 0 gives every body
+    capsules of that radius [m] along the segments between its joint points, so that
+    obstacles and clearance apply (0 or [1e-4, 10] m; --collision_radius,
+    docs/import.md#collision-geometry); out: also write the model file there (replaced
+    atomically, never through a planted link).
 
     Returns a ccma.ImportResult: the command's JSON as attributes (to_dict()): bodies,
     joints, closures, actuated, controlled (the model's components), controlled_chosen
-    (True when import chose them), assembled, residual_energy [m^2], controls, and out when
+    (True when import chose them), assembled, residual_energy [m^2], controls,
+    collision_capsules and collision_ignored_pairs with collision_radius, and out when
     written; `new_model` is the imported Model (as loaded back from `out` when written).
     Every joint's q equals the source's joint position (q_home). Mesh paths are written
     relative to the folder of `out` (without `out`: of the robot file), so that the model
@@ -48,7 +52,7 @@ def import_robot(from_, closures=None, actuated=(), end_effector="", controlled=
     folder = None if out is None else _os.path.dirname(_os.path.abspath(out))
     link, point = _end_effector(str(end_effector))
     model, text, document = _ccma._import_robot(from_, closures, list(actuated), link, point, list(controlled),
-                                                folder)
+                                                folder, float(collision_radius))
     if out is not None:
         _write_replacing(out, text.encode("utf-8"))
         model = _ccma.load_model(out)

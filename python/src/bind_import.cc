@@ -44,7 +44,7 @@ void CheckNames(const std::vector<std::string>& names, const char* what) {
 py::tuple ImportRobotFile(const std::filesystem::path& from, const std::optional<std::filesystem::path>& closures,
                           const std::vector<std::string>& actuated, const std::string& end_effector,
                           const Eigen::Vector3d& point, const std::vector<std::string>& controlled,
-                          const std::optional<std::filesystem::path>& model_folder) {
+                          const std::optional<std::filesystem::path>& model_folder, double collision_radius) {
   const std::string path = from.string();
   const bool sdf = EndsWith(path, ".sdf") || EndsWith(path, ".world");
   if (sdf && closures) throw py::value_error("closures is for URDF (SDFormat holds its loops)");
@@ -58,6 +58,11 @@ py::tuple ImportRobotFile(const std::filesystem::path& from, const std::optional
   options.end_effector_point_L = point;
   options.controlled = controlled;
   if (model_folder) options.model_folder = model_folder->string();  // mesh paths relative to it
+  // apps/import_command.cc's range for --collision_radius.
+  if (!(collision_radius == 0 || (collision_radius >= 1e-4 && collision_radius <= 10))) {
+    throw py::value_error("collision_radius: must be 0 or in [1e-4, 10] m, got " + FormatG(collision_radius));
+  }
+  options.collision_radius = collision_radius;
   ImportedRobot imported;
   std::vector<std::string> warnings;
   {
@@ -71,7 +76,7 @@ py::tuple ImportRobotFile(const std::filesystem::path& from, const std::optional
     if (PyErr_WarnEx(PyExc_UserWarning, ("import: " + w).c_str(), 1) < 0) throw py::error_already_set();
   }
   // apps/import_command.cc: the summary.
-  const nlohmann::json document = {{"bodies", imported.model.num_bodies()},
+  nlohmann::json document = {{"bodies", imported.model.num_bodies()},
                                    {"joints", static_cast<int>(imported.model.joints.size())},
                                    {"closures", imported.closures},
                                    {"actuated", imported.actuated},
@@ -80,6 +85,10 @@ py::tuple ImportRobotFile(const std::filesystem::path& from, const std::optional
                                    {"assembled", true},
                                    {"residual_energy", imported.residual_energy},
                                    {"controls", cli::ToJson(imported.model.home_controls())}};
+  if (collision_radius > 0) {
+    document["collision_capsules"] = imported.collision_capsules;
+    document["collision_ignored_pairs"] = imported.collision_ignored_pairs;
+  }
   return py::make_tuple(imported.model, imported.yaml, ToPython(document));
 }
 
@@ -120,14 +129,15 @@ void BindImport(py::module_& m) {
   m.def("_import_robot", &ImportRobotFile, py::arg("path"), py::arg("closures") = py::none(),
         py::arg("actuated") = std::vector<std::string>{}, py::arg("end_effector") = "",
         py::arg("point") = Eigen::Vector3d::Zero(), py::arg("controlled") = std::vector<std::string>{},
-        py::arg("model_folder") = py::none(),
+        py::arg("model_folder") = py::none(), py::arg("collision_radius") = 0.0,
         "Private: ccma.import_robot. Converts a URDF (with its closure file, the example-parallel-robots convention) or an "
         "SDFormat file into a Model assembled at home, as `ccma import` (docs/import.md): "
         "actuated: joint names (URDF default: the closure file's name_mot); end_effector: the "
         "link carrying it and point its controlled point in that link's frame [m]; controlled: "
         "components (default: the stored ones, else those the motors move at home, translations first; "
         "refused when the motors cannot move them); model_folder: the folder the model file will be written to "
-        "(mesh paths are written relative to it; default the robot file's folder). Returns (Model, model file text, "
+        "(mesh paths are written relative to it; default the robot file's folder); collision_radius: > 0 gives every "
+        "body capsules of that radius [m] between its joint points (--collision_radius). Returns (Model, model file text, "
         "`ccma import`'s JSON without out). Every joint's q "
         "equals the source's joint position (q_home). Raises ccma.ModelError naming the file, "
         "the element and the name.");

@@ -63,6 +63,28 @@ def test_import_controls_what_the_motors_move_as_the_cli_does(tmp_path, robot, e
     assert refused.stderr == "ccma import: " + str(e.value) + "\n"
 
 
+def test_collision_radius_writes_the_same_capsules_as_the_cli(tmp_path):
+    """collision_radius= is --collision_radius: the same JSON (capsule and ignored-pair
+    counts), the same model file, and a model whose capsules obstacles are measured
+    against; a radius out of [1e-4, 10] m (other than 0) is a ValueError."""
+    folder = os.path.join(ROBOTS, "5bar_linkage")
+    urdf, closures = os.path.join(folder, "robot.urdf"), os.path.join(folder, "robot.yaml")
+    imported = ccma.import_robot(urdf, closures=closures, end_effector="effector", collision_radius=0.02,
+                                 out=str(tmp_path / "py.yaml"))
+    cli = run_tool("import", "--from=" + urdf, "--closures=" + closures, "--end_effector=effector",
+                   "--collision_radius=0.02", "--out=" + str(tmp_path / "cli.yaml"))
+    assert imported.collision_capsules == cli["collision_capsules"] == 10
+    assert imported.collision_ignored_pairs == cli["collision_ignored_pairs"] == 3
+    assert (tmp_path / "py.yaml").read_text() == (tmp_path / "cli.yaml").read_text()
+    clearance = ccma.clearance(ccma.ForwardProblem(imported.new_model))
+    assert clearance is not None and clearance.min >= clearance.margin
+    plain = ccma.import_robot(urdf, closures=closures, end_effector="effector")
+    assert plain.collision_capsules is None and ccma.clearance(ccma.ForwardProblem(plain.new_model)) is None
+    for bad in (-0.01, float("nan"), 11.0, 1e-5):
+        with pytest.raises(ValueError, match="collision_radius"):
+            ccma.import_robot(urdf, closures=closures, end_effector="effector", collision_radius=bad)
+
+
 def test_unknown_actuated_joint_raises_model_error():
     folder = os.path.join(ROBOTS, "5bar_linkage")
     with pytest.raises(ccma.ModelError, match="mot9"):
