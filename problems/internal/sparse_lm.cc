@@ -29,13 +29,13 @@ constexpr double kMinDiagonal = 1e-6;
 constexpr double kMaxDiagonal = 1e32;
 // Convergence, all at rounding level so that two solvers that reach it
 // agree to ~1e-13 (tests/forward_solvers_test.cc):
-//  - E at or below kEnergyFloor: |C| ~ 4e-16, the rounding of the constraint
+//  - E at or below kAssembledEnergyFloor: |C| ~ 4e-16, the rounding of the constraint
 //    rows themselves (coordinates of order 1 m);
 //  - the next step below kStepTolerance (m or rad);
 //  - a relative decrease of E below kRelativeDecrease (a stationary point
 //    with E > 0: Gauss-Newton converges linearly there, and the Newton
 //    polish of forward_problem.cc takes over).
-constexpr double kEnergyFloor = 1e-31;
+constexpr double kAssembledEnergyFloor = 1e-31;
 constexpr double kStepTolerance = 1e-14;
 constexpr double kRelativeDecrease = 1e-15;
 // A step this small (m or rad) that does not lower E is rounding noise.
@@ -331,7 +331,7 @@ void SparseLevenbergMarquardt::Plus(const State& s, const Eigen::VectorXd& ds, S
 bool SparseLevenbergMarquardt::AfterAcceptedStep(State* s, const Eigen::VectorXd& u, double step, double decrease,
                                                  int max_iterations, bool stop_when_linear, double* energy,
                                                  double* last_ratio, SparseLmSummary* summary) {
-  if (*energy <= kEnergyFloor || decrease <= kRelativeDecrease * (*energy + decrease)) {
+  if (*energy <= kAssembledEnergyFloor || decrease <= kRelativeDecrease * (*energy + decrease)) {
     summary->converged = true;
     return true;
   }
@@ -403,7 +403,7 @@ SparseLmSummary SparseLevenbergMarquardt::Solve(State* s, const Eigen::VectorXd&
   Gradient();
   bool have_normal = false;  // J^T J at *s in normal_
   double mu = 0;
-  if (energy <= std::max(kEnergyFloor, converged_energy)) summary.converged = true;
+  if (energy <= std::max(kAssembledEnergyFloor, converged_energy)) summary.converged = true;
   while (!summary.converged && summary.iterations < max_iterations) {
     if (!have_normal) {
       AccumulateNormal();
