@@ -2,6 +2,7 @@
 // the controls of all the steps of a waypoint path optimised together
 // (problems/plan.h), from the greedy trajectory; the same CSV as trajectory.
 #include <iostream>
+#include <memory>
 #include <string>
 
 #include "apps/cli.h"
@@ -10,15 +11,22 @@
 #include "apps/json_output.h"
 #include "apps/output_file.h"
 #include "apps/trajectory_csv.h"
+#include "ccma/internal/format.h"
 
 DEFINE_int32(plan_iterations, 200, "plan: Gauss-Newton iterations of the whole path, [1, 10000] [count]");
 DEFINE_double(path_weight, 1e-2,
               "plan: weight of the end-effector error between waypoints (the straight path), [0, 1e6] [1]");
 DEFINE_double(smoothness_weight, 1.0, "plan: weight of the bases' second differences, [0, 1e6] [1]");
 DEFINE_double(travel_weight, 1e-2, "plan: weight of the bases' step lengths squared, [0, 1e6] [1]");
+DEFINE_double(plan_time_s, 120,
+              "plan: wall-clock bound on the detour seeds and the optimisation, [0, 1e6]; when reached the plan "
+              "is finished from where it is and the JSON's stopped_by says so [s]");
 
 namespace ccma::cli {
 namespace {
+
+// Seconds between two progress lines of a long plan.
+constexpr double kProgressEvery = 10.0;
 
 PlanOptions PlanOptionsFromFlags() {
   PlanOptions options;
@@ -26,12 +34,35 @@ PlanOptions PlanOptionsFromFlags() {
   options.smoothness_weight = FLAGS_smoothness_weight;
   options.travel_weight = FLAGS_travel_weight;
   options.max_iterations = FLAGS_plan_iterations;
+  options.max_seconds = FLAGS_plan_time_s;
   std::string why;
   if (!options.IsValid(&why)) {
     if (why.rfind("max_iterations", 0) == 0) why.replace(0, 14, "plan_iterations");
+    if (why.rfind("max_seconds", 0) == 0) why.replace(0, 11, "plan_time_s");
     throw UsageError("ccma plan: --" + why);
   }
+  // A line on stderr at least every kProgressEvery seconds of a long plan.
+  auto last = std::make_shared<double>(0.0);
+  options.on_progress = [last](const PlanProgress& p) {
+    if (p.elapsed_s - *last < kProgressEvery) return;
+    *last = p.elapsed_s;
+    std::cerr << "ccma plan: " << p.phase << " " << p.done << "/" << p.total << " after " << FormatG(p.elapsed_s, 3)
+              << " s\n";
+  };
   return options;
+}
+
+nlohmann::json ShortfallJson(const PlanShortfall& f) {
+  nlohmann::json j = {{"step", f.step}, {"midpoint", f.midpoint}, {"time_s", f.time_s}, {"torn", f.torn}};
+  if (f.torn) {
+    j["residual_energy"] = f.residual_energy;
+  } else {
+    j["pair"] = {f.a, f.b};
+    j["clearance_m"] = f.clearance_m;
+    j["floor_m"] = f.floor_m;
+    j["shortfall_m"] = f.shortfall_m;
+  }
+  return j;
 }
 
 nlohmann::json MeasuresJson(const PathMeasures& m) {
@@ -71,6 +102,9 @@ int RunPlan(const std::vector<std::string>& args) {
   out["waypoints"] = waypoints.size();
   out["steps"] = result.steps.size();
   out["iterations"] = result.iterations;
+  out["stopped_by"] = result.stopped_by;
+  out["finishing"] = {{"repaired_rows", result.repaired_rows}, {"inserted_rows", result.inserted_rows}};
+  if (result.shortfall.any) out["shortfall"] = ShortfallJson(result.shortfall);
   out["greedy"] = MeasuresJson(result.greedy);
   out["plan"] = MeasuresJson(result.plan);
   out["solve_time_ms"] = result.solve_time_ms;
@@ -84,6 +118,10 @@ int RunPlan(const std::vector<std::string>& args) {
   }
   std::string warning;
   if (!result.used_plan) warning = "kept the greedy trajectory: " + result.note;
+  if (result.stopped_by == "plan_time_s") {
+    std::cerr << "ccma plan: note: the optimisation stopped at the time bound --plan_time_s=" << FormatG(FLAGS_plan_time_s)
+              << " after " << result.iterations << " iterations; the plan was finished from there\n";
+  }
   if (!result.converged) {
     warning += std::string(warning.empty() ? "" : "; ") + "not every waypoint was reached" +
                (result.greedy_warning.empty() ? "" : " (greedy: " + result.greedy_warning + ")");

@@ -64,6 +64,26 @@ py::dict Plan(ControlProblem& p, const std::vector<Waypoint>& waypoints, const P
   d["used"] = r.used_plan ? "plan" : "greedy";
   d["note"] = r.note;
   d["iterations"] = r.iterations;
+  d["stopped_by"] = r.stopped_by;
+  d["finishing"] = py::dict(py::arg("repaired_rows") = r.repaired_rows, py::arg("inserted_rows") = r.inserted_rows);
+  d["shortfall"] = py::none();
+  if (r.shortfall.any) {
+    const PlanShortfall& f = r.shortfall;
+    py::dict s;
+    s["step"] = f.step;
+    s["midpoint"] = f.midpoint;
+    s["time_s"] = f.time_s;
+    s["torn"] = f.torn;
+    if (f.torn) {
+      s["residual_energy"] = f.residual_energy;
+    } else {
+      s["pair"] = py::make_tuple(f.a, f.b);
+      s["clearance_m"] = f.clearance_m;
+      s["floor_m"] = f.floor_m;
+      s["shortfall_m"] = f.shortfall_m;
+    }
+    d["shortfall"] = s;
+  }
   d["greedy"] = MeasuresDict(r.greedy);
   d["plan"] = MeasuresDict(r.plan);
   d["time"] = time;
@@ -88,8 +108,9 @@ void BindCollision(py::module_& m) {
   m.def(
       "plan",
       [](ControlProblem& p, const std::vector<Waypoint>& waypoints, double path_weight, double smoothness_weight,
-         double travel_weight, int max_iterations) {
+         double travel_weight, int max_iterations, double max_seconds) {
         PlanOptions options;
+        options.max_seconds = max_seconds;
         options.path_weight = path_weight;
         options.smoothness_weight = smoothness_weight;
         options.travel_weight = travel_weight;
@@ -100,9 +121,12 @@ void BindCollision(py::module_& m) {
         return Plan(p, waypoints, options);
       },
       py::arg("problem"), py::arg("waypoints"), py::arg("path_weight") = 1e-2, py::arg("smoothness_weight") = 1.0,
-      py::arg("travel_weight") = 1e-2, py::arg("max_iterations") = 200,
+      py::arg("travel_weight") = 1e-2, py::arg("max_iterations") = 200, py::arg("max_seconds") = 120.0,
       "Whole-trajectory planning from the problem's current controls (`ccma plan`, docs/obstacles.md): "
-      "returns a dict: converged, used ('plan' or 'greedy'), note, iterations, greedy and plan "
+      "returns a dict: converged, used ('plan' or 'greedy'), note, iterations, stopped_by ('converged', "
+      "'plan_iterations' or 'plan_time_s': max_seconds [s] bounds the seeds and the optimisation), finishing "
+      "(repaired_rows, inserted_rows), shortfall (None, or where the finished plan is below the margin, as the "
+      "CLI's JSON), greedy and plan "
       "(reached_waypoints, travel_m, min_clearance_m), and per step time [s], controls, reached "
       "(x y z [m] roll pitch yaw [rad]) and clearance [m] (inf without collision geometry). "
       "Raises ValueError for differential bases, the bfgs method, options out of range or waypoints the "

@@ -47,8 +47,20 @@ def test_plan_goes_round_the_pillar():
     assert result["plan"]["reached_waypoints"] == 2 > result["greedy"]["reached_waypoints"]
     assert np.all(result["clearance"] >= 0.05 - 1e-9)
     np.testing.assert_allclose(result["reached"][-1, :3], [1.0, 0.0, 0.6], atol=1e-9)
+    assert result["stopped_by"] == "converged" and result["shortfall"] is None
+    assert result["finishing"] == {"repaired_rows": 0, "inserted_rows": 0}
     with pytest.raises(ValueError):
         ccma.plan(control, waypoints, path_weight=-1)
+    with pytest.raises(ValueError):
+        ccma.plan(control, waypoints, max_seconds=-1)
+
+
+def test_plan_time_bound_says_where_it_stopped():
+    """issue 35: max_seconds=0 stops before the first iteration, and says so."""
+    model = ccma.load_model(EXAMPLES / "pillar_detour.yaml")
+    control = ccma.ControlProblem(model)
+    result = ccma.plan(control, ccma.load_waypoints(EXAMPLES / "one_metre_x.csv"), max_seconds=0)
+    assert result["stopped_by"] == "plan_time_s" and result["iterations"] == 0
 
 
 def test_plan_refuses_waypoints_the_csv_refuses():
