@@ -19,8 +19,8 @@ DEFINE_double(path_weight, 1e-2,
 DEFINE_double(smoothness_weight, 1.0, "plan: weight of the bases' second differences, [0, 1e6] [1]");
 DEFINE_double(travel_weight, 1e-2, "plan: weight of the bases' step lengths squared, [0, 1e6] [1]");
 DEFINE_double(plan_time_s, 120,
-              "plan: wall-clock bound on the detour seeds and the optimisation, [0, 1e6]; when reached the plan "
-              "is finished from where it is and the JSON's stopped_by says so [s]");
+              "plan: wall-clock bound on the detour seeds and the optimisation, [0, 1e6]; when "
+              "reached the plan is finished from where it is and the JSON's stopped_by says so [s]");
 
 namespace ccma::cli {
 namespace {
@@ -46,14 +46,15 @@ PlanOptions PlanOptionsFromFlags() {
   options.on_progress = [last](const PlanProgress& p) {
     if (p.elapsed_s - *last < kProgressEvery) return;
     *last = p.elapsed_s;
-    std::cerr << "ccma plan: " << p.phase << " " << p.done << "/" << p.total << " after " << FormatG(p.elapsed_s, 3)
-              << " s\n";
+    std::cerr << "ccma plan: " << p.phase << " " << p.done << "/" << p.total << " after "
+              << FormatG(p.elapsed_s, 3) << " s\n";
   };
   return options;
 }
 
 nlohmann::json ShortfallJson(const PlanShortfall& f) {
-  nlohmann::json j = {{"step", f.step}, {"midpoint", f.midpoint}, {"time_s", f.time_s}, {"torn", f.torn}};
+  nlohmann::json j = {
+      {"step", f.step}, {"midpoint", f.midpoint}, {"time_s", f.time_s}, {"torn", f.torn}};
   if (f.torn) {
     j["residual_energy"] = f.residual_energy;
   } else {
@@ -69,6 +70,20 @@ nlohmann::json MeasuresJson(const PathMeasures& m) {
   nlohmann::json j = {{"reached_waypoints", m.reached_waypoints}, {"travel_m", m.travel_m}};
   if (std::isfinite(m.min_clearance_m)) j["min_clearance_m"] = m.min_clearance_m;
   return j;
+}
+
+// How the optimisation stopped and the plan was finished (JSON stopped_by,
+// finishing, shortfall); a note on stderr when the time bound stopped it.
+void AddFinishing(const PlanResult& result, nlohmann::json* out) {
+  (*out)["stopped_by"] = result.stopped_by;
+  (*out)["finishing"] = {{"repaired_rows", result.repaired_rows},
+                         {"inserted_rows", result.inserted_rows}};
+  if (result.shortfall.any) (*out)["shortfall"] = ShortfallJson(result.shortfall);
+  if (result.stopped_by == "plan_time_s") {
+    std::cerr << "ccma plan: note: the optimisation stopped at the time bound --plan_time_s="
+              << FormatG(FLAGS_plan_time_s) << " after " << result.iterations
+              << " iterations; the plan was finished from there\n";
+  }
 }
 
 }  // namespace
@@ -102,9 +117,7 @@ int RunPlan(const std::vector<std::string>& args) {
   out["waypoints"] = waypoints.size();
   out["steps"] = result.steps.size();
   out["iterations"] = result.iterations;
-  out["stopped_by"] = result.stopped_by;
-  out["finishing"] = {{"repaired_rows", result.repaired_rows}, {"inserted_rows", result.inserted_rows}};
-  if (result.shortfall.any) out["shortfall"] = ShortfallJson(result.shortfall);
+  AddFinishing(result, &out);
   out["greedy"] = MeasuresJson(result.greedy);
   out["plan"] = MeasuresJson(result.plan);
   out["solve_time_ms"] = result.solve_time_ms;
@@ -118,10 +131,6 @@ int RunPlan(const std::vector<std::string>& args) {
   }
   std::string warning;
   if (!result.used_plan) warning = "kept the greedy trajectory: " + result.note;
-  if (result.stopped_by == "plan_time_s") {
-    std::cerr << "ccma plan: note: the optimisation stopped at the time bound --plan_time_s=" << FormatG(FLAGS_plan_time_s)
-              << " after " << result.iterations << " iterations; the plan was finished from there\n";
-  }
   if (!result.converged) {
     warning += std::string(warning.empty() ? "" : "; ") + "not every waypoint was reached" +
                (result.greedy_warning.empty() ? "" : " (greedy: " + result.greedy_warning + ")");

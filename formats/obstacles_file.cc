@@ -38,7 +38,8 @@ void AddObstaclesFromString(const std::string& text, const std::string& path, Mo
     std::vector<Obstacle> obstacles = model->collision.obstacles;
     internal::ParseObstacles(r, r.Require(root, "obstacles", ""), "obstacles", &taken, &obstacles);
     // The model's bases would overlap at home with the default radius.
-    if (!model->collision.base_radius_unfit.empty()) throw ModelError(model->collision.base_radius_unfit);
+    if (!model->collision.base_radius_unfit.empty())
+      throw ModelError(model->collision.base_radius_unfit);
     model->collision.obstacles = std::move(obstacles);
     model->collision.enabled = true;
   } catch (const YAML::Exception& e) {
@@ -47,9 +48,10 @@ void AddObstaclesFromString(const std::string& text, const std::string& path, Mo
   if (warnings == nullptr) return;
   magnitudes.AppendWarnings(warnings);
   if (model->num_bases() == 0 && model->collision.links.empty()) {
-    warnings->push_back(path + ": model " + Quote(model->name) +
-                        " has no mobile bases and no collision.links: none of its bodies is checked against the "
-                        "obstacles");
+    warnings->push_back(
+        path + ": model " + Quote(model->name) +
+        " has no mobile bases and no collision.links: none of its bodies is checked against the "
+        "obstacles");
   }
 }
 

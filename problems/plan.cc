@@ -129,7 +129,8 @@ std::vector<TrajectoryStep> Rows(ControlProblem& problem, const std::vector<Wayp
 // The wall clock of one plan and its progress reports.
 class PlanClock {
  public:
-  explicit PlanClock(const PlanOptions& options) : options_(options), start_(std::chrono::steady_clock::now()) {}
+  explicit PlanClock(const PlanOptions& options)
+      : options_(options), start_(std::chrono::steady_clock::now()) {}
   double Elapsed() const {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   }
@@ -161,29 +162,35 @@ void CheckPlanInputs(const ControlProblem& problem, const PlanOptions& options) 
   }
   for (const MobileBase& base : problem.forward().model().mobile_bases) {
     if (base.type == BaseType::kDifferential) {
-      throw std::invalid_argument("plan: differential bases (their arcs tie neighbouring steps) are not planned yet");
+      throw std::invalid_argument(
+          "plan: differential bases (their arcs tie neighbouring steps) are not planned yet");
     }
   }
 }
 
 // Chooses between the finished plan (`rows`) and the greedy walk.
-void Choose(const Model& model, std::vector<TrajectoryStep> rows, std::vector<TrajectoryStep> greedy,
-            PlanResult* result) {
+void Choose(const Model& model, std::vector<TrajectoryStep> rows,
+            std::vector<TrajectoryStep> greedy, PlanResult* result) {
   const double margin = model.collision.margin;
-  const bool close = !(result->plan.min_clearance_m >= std::min(result->greedy.min_clearance_m, margin) - 1e-9);
+  const bool close =
+      !(result->plan.min_clearance_m >= std::min(result->greedy.min_clearance_m, margin) - 1e-9);
   const bool more = result->plan.reached_waypoints > result->greedy.reached_waypoints;
   const bool as_many = result->plan.reached_waypoints == result->greedy.reached_waypoints;
   const bool safe = !result->shortfall.any && !close;
-  result->used_plan = safe && (more || (as_many && result->plan.travel_m <= result->greedy.travel_m + 1e-9));
+  result->used_plan =
+      safe && (more || (as_many && result->plan.travel_m <= result->greedy.travel_m + 1e-9));
   if (result->used_plan) {
     result->steps = std::move(rows);
     return;
   }
   result->note = result->shortfall.any ? DescribeShortfall(result->shortfall, margin)
-                 : close ? "the plan's smallest clearance " + FormatG(result->plan.min_clearance_m) +
-                               " m is below the greedy walk's " + FormatG(result->greedy.min_clearance_m) + " m"
-                 : result->plan.reached_waypoints < result->greedy.reached_waypoints ? "the plan reached fewer waypoints"
-                                                                                      : "the plan travelled further";
+                 : close
+                     ? "the plan's smallest clearance " + FormatG(result->plan.min_clearance_m) +
+                           " m is below the greedy walk's " +
+                           FormatG(result->greedy.min_clearance_m) + " m"
+                 : result->plan.reached_waypoints < result->greedy.reached_waypoints
+                     ? "the plan reached fewer waypoints"
+                     : "the plan travelled further";
   result->steps = std::move(greedy);
 }
 
@@ -226,7 +233,8 @@ PlanResult PlanTrajectory(ControlProblem& problem, const std::vector<Waypoint>& 
     clock.Report("detour seeds", done, total);
     return clock.TimeLeft();
   };
-  if (!walked.converged && model.collision.enabled) seed = WalkWithDetours(problem, waypoints, u0, s0, 4, after_walk);
+  if (!walked.converged && model.collision.enabled)
+    seed = WalkWithDetours(problem, waypoints, u0, s0, 4, after_walk);
   std::vector<PlannedStep> planned =
       StartingSteps(problem, seed.path, seed.steps, seed.result.reached_waypoints, u0, s0, start_pose);
   const long unknowns = static_cast<long>(planned.size()) * static_cast<long>(problem.effective_controls().size());
@@ -239,13 +247,13 @@ PlanResult PlanTrajectory(ControlProblem& problem, const std::vector<Waypoint>& 
     clock.Report("optimisation", done, options.max_iterations);
     return clock.TimeLeft();
   };
-  result.iterations =
-      TrajectoryPlanner(&problem, options).Optimize(u0, s0, &planned, after_iteration, &result.stopped_by);
+  result.iterations = TrajectoryPlanner(&problem, options)
+                          .Optimize(u0, s0, &planned, after_iteration, &result.stopped_by);
   int reached = 0;
   std::vector<TrajectoryStep> rows = Rows(problem, waypoints, &planned, &reached);
-  clock.Report("finishing", 0, static_cast<int>(rows.size()));
-  result.shortfall = FinishPlan(problem, u0, s0, waypoints.front().time, &rows, &result.inserted_rows,
-                                &result.repaired_rows);
+  result.shortfall = FinishPlan(
+      problem, u0, s0, waypoints.front().time, &rows, &result.inserted_rows, &result.repaired_rows,
+      [&](int done, int total) { clock.Report("finishing", done, total); });
   result.plan = Measure(model, u0, rows, ReachedWaypoints(rows));
   Choose(model, std::move(rows), std::move(greedy), &result);
   const TrajectoryStep* last = result.steps.empty() ? nullptr : &result.steps.back();

@@ -31,9 +31,9 @@ namespace ccma {
 
 // Where a plan stands, for a progress line (PlanOptions::on_progress).
 struct PlanProgress {
-  std::string phase;  // "greedy walk", "detour seeds", "optimisation", "finishing"
-  int done = 0;       // walks, iterations or rows done in this phase
-  int total = 0;      // of at most this many
+  std::string phase;     // "greedy walk", "detour seeds", "optimisation", "finishing"
+  int done = 0;          // walks, iterations or rows done in this phase
+  int total = 0;         // of at most this many
   double elapsed_s = 0;  // since the plan began [s]
 };
 
@@ -70,10 +70,10 @@ struct PlanShortfall {
   bool torn = false;       // the midpoint does not assemble (residual energy >= 1e-6 m^2)
   std::string a, b;        // the pair: bodies, bases or obstacles
   double clearance_m = 0;  // its clearance there [m]
-  double floor_m = 0;      // what it had to keep: the margin, or less where the pair began below it [m]
-  double shortfall_m = 0;  // floor_m - clearance_m [m]
+  double floor_m = 0;  // what it had to keep: the margin, or less where the pair began below it [m]
+  double shortfall_m = 0;      // floor_m - clearance_m [m]
   double residual_energy = 0;  // at a midpoint [m^2]
-  double time_s = 0;       // of the row, or half way [s]
+  double time_s = 0;           // of the row, or half way [s]
 };
 
 struct PlanResult {
@@ -84,9 +84,9 @@ struct PlanResult {
   PathMeasures greedy, plan;          // plan: as optimised (before the choice)
   std::string greedy_warning;         // the greedy trajectory's, if it stopped
   std::string note;                   // why the greedy trajectory was kept, or ""
-  PlanShortfall shortfall;            // where the finished plan is below the margin (any: kept the greedy)
-  int repaired_rows = 0;              // rows brought back to the margin by the finishing
-  int inserted_rows = 0;              // midpoint rows the finishing inserted
+  PlanShortfall shortfall;  // where the finished plan is below the margin (any: kept the greedy)
+  int repaired_rows = 0;    // rows brought back to the margin by the finishing
+  int inserted_rows = 0;    // midpoint rows the finishing inserted
   // "converged" (the objective stopped decreasing), "plan_iterations" (the
   // iteration bound) or "plan_time_s" (the time bound).
   std::string stopped_by;

@@ -71,7 +71,8 @@ double MechanismMinimum(const Model& model, const State& s) {
   double least = INFINITY;
   for (int i = 0; i < collision.num_shapes(); ++i) {
     for (int j = i + 1; j < collision.num_shapes(); ++j) {
-      if (collision.Checked(i, j) && collision.BodyOf(i) != kWorld && collision.BodyOf(j) != kWorld) {
+      if (collision.Checked(i, j) && collision.BodyOf(i) != kWorld &&
+          collision.BodyOf(j) != kWorld) {
         least = std::min(least, Distance(shapes[i], shapes[j]).distance);
       }
     }
@@ -79,14 +80,17 @@ double MechanismMinimum(const Model& model, const State& s) {
   return least;
 }
 
-const char* kFarPillar = "obstacles:\n  - {name: far, cylinder: {center: [40, 40], radius: 0.1, height: 1.0}}\n";
+const char* kFarPillar =
+    "obstacles:\n  - {name: far, cylinder: {center: [40, 40], radius: 0.1, height: 1.0}}\n";
 
 // The smallest distance between two bases' home positions.
 double SmallestSpacing(const Model& model) {
   double least = INFINITY;
   for (int a = 0; a < model.num_bases(); ++a) {
     for (int b = a + 1; b < model.num_bases(); ++b) {
-      least = std::min(least, (model.mobile_bases[a].home_pose - model.mobile_bases[b].home_pose).head<2>().norm());
+      least = std::min(
+          least,
+          (model.mobile_bases[a].home_pose - model.mobile_bases[b].home_pose).head<2>().norm());
     }
   }
   return least;
@@ -140,7 +144,8 @@ TEST(ClearanceControl, DefaultBaseRadiusFollowsTheBasesSpacing) {
 TEST(ClearanceControl, BasesTooCloseForADefaultRadiusAreRefusedNamingTheKey) {
   const std::string text =
       "name: close_pair\nbodies:\n  - {name: bar, position: [0, 0, 0.5]}\n"
-      "mobile_bases:\n  - {name: left, type: omni, actuation: complete, pose: [0, 0, 0]}\n  - {name: right, type: omni, actuation: complete, pose: [0.03, 0, 0]}\n"
+      "mobile_bases:\n  - {name: left, type: omni, actuation: complete, pose: [0, 0, 0]}\n  - "
+      "{name: right, type: omni, actuation: complete, pose: [0.03, 0, 0]}\n"
       "joints:\n  - {type: spherical, between: [left, bar], point: [0, 0, 0.5]}\n"
       "  - {type: spherical, between: [right, bar], point: [0.03, 0, 0.5]}\n"
       "end_effector: {body: bar, point: [0, 0, 0.5], controlled: [x, y]}\n";
@@ -156,13 +161,15 @@ TEST(ClearanceControl, BasesTooCloseForADefaultRadiusAreRefusedNamingTheKey) {
   Model plain = LoadModelFromString(text, "close.yaml");  // no clearance asked: loads
   EXPECT_THROW(AddObstaclesFromString(kFarPillar, "far.yaml", &plain), ModelError);
   EXPECT_TRUE(plain.collision.obstacles.empty());
-  EXPECT_NO_THROW(LoadModelFromString(text + "collision: {base_radius: 0.01}\n" + kFarPillar, "close.yaml"));
-  EXPECT_NO_THROW(LoadModelFromString(text + "collision: {ignore: [[left, right]]}\n" + kFarPillar, "close.yaml"));
+  EXPECT_NO_THROW(
+      LoadModelFromString(text + "collision: {base_radius: 0.01}\n" + kFarPillar, "close.yaml"));
+  EXPECT_NO_THROW(LoadModelFromString(text + "collision: {ignore: [[left, right]]}\n" + kFarPillar,
+                                      "close.yaml"));
   const std::string dir = ::testing::TempDir();
   std::ofstream(dir + "/close.yaml") << text;
   std::ofstream(dir + "/far.yaml") << kFarPillar;
-  const testing::ToolRun run =
-      testing::RunTool({"check", "--model=" + dir + "/close.yaml", "--obstacles=" + dir + "/far.yaml"});
+  const testing::ToolRun run = testing::RunTool(
+      {"check", "--model=" + dir + "/close.yaml", "--obstacles=" + dir + "/far.yaml"});
   EXPECT_EQ(run.status, 2);
   EXPECT_TRUE(run.out.empty());
   EXPECT_NE(run.err.find("collision.base_radius"), std::string::npos) << run.err;
@@ -172,7 +179,8 @@ TEST(ClearanceControl, BasesTooCloseForADefaultRadiusAreRefusedNamingTheKey) {
 // (--obstacles): every step keeps the margin, base1 goes round the pillar,
 // and no two bases are ever the pair that stops it.
 TEST(ClearanceControl, SixAgentsWithAPillarAddedGoRoundItNotThroughEachOther) {
-  const std::string obstacles = std::string(CCMA_MODELS_DIR) + "/../examples/obstacles/pillar_six_agents.yaml";
+  const std::string obstacles =
+      std::string(CCMA_MODELS_DIR) + "/../examples/obstacles/pillar_six_agents.yaml";
   Model model = LoadModel(std::string(CCMA_MODELS_DIR) + "/6dof_six_agents.yaml");
   AddObstaclesFromFile(obstacles, &model);
   const Walk walk = Follow(model, AlongX());
@@ -181,12 +189,15 @@ TEST(ClearanceControl, SixAgentsWithAPillarAddedGoRoundItNotThroughEachOther) {
   const double base_radius = model.collision.base_radii[1];
   for (const TrajectoryStep& s : walk.steps) {
     EXPECT_GE(BruteForceMinimum(model, s.state), model.collision.margin - 1e-9);
-    EXPECT_GE((s.controls.segment<2>(3) - pillar).norm(), 0.1 + base_radius + model.collision.margin - 1e-9);
+    EXPECT_GE((s.controls.segment<2>(3) - pillar).norm(),
+              0.1 + base_radius + model.collision.margin - 1e-9);
   }
   const std::string dir = ::testing::TempDir();
   const testing::ToolRun run = testing::RunTool(
-      {"trajectory", "--model=" + std::string(CCMA_MODELS_DIR) + "/6dof_six_agents.yaml", "--obstacles=" + obstacles,
-       "--waypoints=" + std::string(CCMA_MODELS_DIR) + "/../examples/obstacles/path_x.csv", "--out=" + dir + "/six.csv"});
+      {"trajectory", "--model=" + std::string(CCMA_MODELS_DIR) + "/6dof_six_agents.yaml",
+       "--obstacles=" + obstacles,
+       "--waypoints=" + std::string(CCMA_MODELS_DIR) + "/../examples/obstacles/path_x.csv",
+       "--out=" + dir + "/six.csv"});
   ASSERT_EQ(run.status, 0) << run.err;
   EXPECT_NE(run.out.find("\"converged\": true"), std::string::npos) << run.out;
   EXPECT_EQ(run.err.find("below the margin"), std::string::npos) << run.err;

@@ -160,18 +160,19 @@ TEST(Plan, FinishingNamesThePairTheRowAndTheShortfallOfAJumpThroughAWall) {
   ASSERT_GE(Clearance(model, row.state), 0.05);
   std::vector<TrajectoryStep> rows = {row};
   int inserted = 0, repaired = 0;
-  const PlanShortfall f =
-      FinishPlan(problem, model.home_controls(), State::Home(model), 0.0, &rows, &inserted, &repaired);
+  const PlanShortfall f = FinishPlan(problem, model.home_controls(), State::Home(model), 0.0, &rows,
+                                     &inserted, &repaired);
   ASSERT_TRUE(f.any);
   EXPECT_TRUE(f.midpoint);
   EXPECT_FALSE(f.torn);
   EXPECT_TRUE(f.a == "wall" || f.b == "wall") << f.a << " " << f.b;
   EXPECT_GE(f.step, 1);
-  EXPECT_EQ(f.step, 1 + [&] {  // the rows inserted before the midpoint
-    int before = 0;
-    for (size_t k = 0; k + 1 < rows.size() && rows[k].time < f.time_s; ++k) ++before;
-    return before;
-  }());
+  EXPECT_EQ(
+      f.step, 1 + [&] {  // the rows inserted before the midpoint
+        int before = 0;
+        for (size_t k = 0; k + 1 < rows.size() && rows[k].time < f.time_s; ++k) ++before;
+        return before;
+      }());
   EXPECT_GT(f.time_s, 0.0);
   EXPECT_LT(f.time_s, 1.0);
   EXPECT_EQ(f.floor_m, 0.05);
@@ -183,7 +184,8 @@ TEST(Plan, FinishingNamesThePairTheRowAndTheShortfallOfAJumpThroughAWall) {
   between << "half way between the plan's rows " << f.step - 1 << " and " << f.step;
   EXPECT_NE(text.find(between.str()), std::string::npos) << text;
   EXPECT_NE(text.find("'wall'"), std::string::npos) << text;
-  EXPECT_NE(text.find(FormatG(f.shortfall_m) + " m below the margin 0.05 m"), std::string::npos) << text;
+  EXPECT_NE(text.find(FormatG(f.shortfall_m) + " m below the margin 0.05 m"), std::string::npos)
+      << text;
 }
 
 // The time bound stops the seeds and the optimisation and says so; the
@@ -195,7 +197,8 @@ TEST(Plan, TimeBoundStopsTheOptimisationAndProgressIsReported) {
   PlanOptions options;
   std::vector<PlanProgress> seen;
   options.on_progress = [&](const PlanProgress& p) { seen.push_back(p); };
-  const PlanResult plan = PlanTrajectory(problem, LoadWaypoints(kExamples + "one_metre_x.csv"), options);
+  const PlanResult plan =
+      PlanTrajectory(problem, LoadWaypoints(kExamples + "one_metre_x.csv"), options);
   ASSERT_TRUE(plan.used_plan) << plan.note;
   EXPECT_EQ(plan.stopped_by, "converged");
   std::vector<std::string> phases;
@@ -203,20 +206,23 @@ TEST(Plan, TimeBoundStopsTheOptimisationAndProgressIsReported) {
     if (phases.empty() || phases.back() != p.phase) phases.push_back(p.phase);
     EXPECT_LE(p.done, p.total) << p.phase;
   }
-  EXPECT_EQ(phases, std::vector<std::string>({"greedy walk", "detour seeds", "optimisation", "finishing"}));
+  EXPECT_EQ(phases,
+            std::vector<std::string>({"greedy walk", "detour seeds", "optimisation", "finishing"}));
   for (size_t i = 1; i < seen.size(); ++i) EXPECT_GE(seen[i].elapsed_s, seen[i - 1].elapsed_s);
 
   const std::string dir = ::testing::TempDir();
   const testing::ToolRun run =
-      testing::RunTool({"plan", "--model=" + kExamples + "pillar_detour.yaml", "--waypoints=" + kExamples +
-                        "one_metre_x.csv", "--out=" + dir + "/bounded.csv", "--plan_time_s=0"});
+      testing::RunTool({"plan", "--model=" + kExamples + "pillar_detour.yaml",
+                        "--waypoints=" + kExamples + "one_metre_x.csv",
+                        "--out=" + dir + "/bounded.csv", "--plan_time_s=0"});
   ASSERT_EQ(run.status, 0) << run.err;
   EXPECT_NE(run.out.find("\"stopped_by\": \"plan_time_s\""), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("\"iterations\": 0"), std::string::npos) << run.out;
   EXPECT_NE(run.err.find("--plan_time_s=0"), std::string::npos) << run.err;
-  const testing::ToolRun bad = testing::RunTool({"plan", "--model=" + kExamples + "pillar_detour.yaml",
-                                                 "--waypoints=" + kExamples + "one_metre_x.csv",
-                                                 "--out=" + dir + "/no.csv", "--plan_time_s=-1"});
+  const testing::ToolRun bad =
+      testing::RunTool({"plan", "--model=" + kExamples + "pillar_detour.yaml",
+                        "--waypoints=" + kExamples + "one_metre_x.csv", "--out=" + dir + "/no.csv",
+                        "--plan_time_s=-1"});
   EXPECT_EQ(bad.status, 2);
   EXPECT_TRUE(bad.out.empty());
   EXPECT_NE(bad.err.find("--plan_time_s"), std::string::npos) << bad.err;

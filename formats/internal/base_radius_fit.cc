@@ -10,13 +10,15 @@ namespace {
 
 using NamePair = std::pair<std::string, std::string>;
 
-NamePair Ordered(const std::string& a, const std::string& b) { return a < b ? NamePair{a, b} : NamePair{b, a}; }
+NamePair Ordered(const std::string& a, const std::string& b) {
+  return a < b ? NamePair{a, b} : NamePair{b, a};
+}
 
 }  // namespace
 
 BaseRadiusFit FitDefaultBaseRadius(const Model& model, const std::vector<double>& given,
-                                   const std::vector<std::pair<std::string, std::string>>& ignored, double gap,
-                                   double cap) {
+                                   const std::vector<std::pair<std::string, std::string>>& ignored,
+                                   double gap, double cap) {
   BaseRadiusFit fit;
   fit.radius = cap;
   const int n = model.num_bases();

@@ -19,8 +19,8 @@ namespace ccma {
 namespace internal {
 
 struct BaseRadiusFit {
-  double radius = 0;  // m: <= cap; <= 0 when no radius keeps the gap
-  int a = -1, b = -1;  // the bases (indices into mobile_bases) that bound it, or -1 when cap does
+  double radius = 0;    // m: <= cap; <= 0 when no radius keeps the gap
+  int a = -1, b = -1;   // the bases (indices into mobile_bases) that bound it, or -1 when cap does
   double distance = 0;  // m: their distance at home
 };
 
@@ -31,8 +31,8 @@ struct BaseRadiusFit {
 // their own radius do not bound it. Sort and sweep along x: near-linear in
 // the number of bases.
 BaseRadiusFit FitDefaultBaseRadius(const Model& model, const std::vector<double>& given,
-                                   const std::vector<std::pair<std::string, std::string>>& ignored, double gap,
-                                   double cap);
+                                   const std::vector<std::pair<std::string, std::string>>& ignored,
+                                   double gap, double cap);
 
 }  // namespace internal
 }  // namespace ccma

@@ -44,7 +44,8 @@ void ModelParser::ParseCollision(const YAML::Node& root) {
     r_.CheckKeys(map, {"margin", "base_radius", "base_height", "links", "ignore"}, "collision");
     if (YamlReader::Has(map, "margin")) geometry.margin = NonNegative(r_, map, "margin", "collision", true);
     radius_given = YamlReader::Has(map, "base_radius");
-    if (radius_given) geometry.base_radius = NonNegative(r_, map, "base_radius", "collision", false);
+    if (radius_given)
+      geometry.base_radius = NonNegative(r_, map, "base_radius", "collision", false);
     if (YamlReader::Has(map, "base_height")) {
       geometry.base_height = NonNegative(r_, map, "base_height", "collision", false);
     }
@@ -61,7 +62,8 @@ void ModelParser::ParseCollision(const YAML::Node& root) {
     ParseIgnoredPairs(root["collision"]["ignore"], "collision.ignore");
   }
   if (!radius_given) FitDefaultBaseRadius(root);
-  for (double given : base_radius_given_) geometry.base_radii.push_back(given > 0 ? given : geometry.base_radius);
+  for (double given : base_radius_given_)
+    geometry.base_radii.push_back(given > 0 ? given : geometry.base_radius);
 }
 
 // Without collision.base_radius, bases that give no `radius:` get the
@@ -71,20 +73,22 @@ void ModelParser::ParseCollision(const YAML::Node& root) {
 void ModelParser::FitDefaultBaseRadius(const YAML::Node& root) {
   CollisionGeometry& geometry = model_.collision;
   const double gap = 2.0 * std::max(geometry.margin, kDefaultMargin);
-  const BaseRadiusFit fit = internal::FitDefaultBaseRadius(model_, base_radius_given_, geometry.ignore, gap,
-                                                           geometry.base_radius);
+  const BaseRadiusFit fit = internal::FitDefaultBaseRadius(
+      model_, base_radius_given_, geometry.ignore, gap, geometry.base_radius);
   if (fit.radius > 0) {
     geometry.base_radius = fit.radius;
     return;
   }
-  const std::string why = "not given, and no default fits: bases " +
-                          Quote(model_.mobile_bases[static_cast<size_t>(fit.a)].name) + " and " +
-                          Quote(model_.mobile_bases[static_cast<size_t>(fit.b)].name) + " stand " +
-                          FormatG(fit.distance) + " m apart at home, which leaves no room for the " + FormatG(gap) +
-                          " m a default radius keeps between bases (twice the margin, at least 0.04 m); set "
-                          "collision.base_radius, or a radius: on each base";
-  if (geometry.enabled) r_.Fail(YamlReader::Has(root, "collision") ? root["collision"] : root["obstacles"],
-                                "collision.base_radius", why);
+  const std::string why =
+      "not given, and no default fits: bases " +
+      Quote(model_.mobile_bases[static_cast<size_t>(fit.a)].name) + " and " +
+      Quote(model_.mobile_bases[static_cast<size_t>(fit.b)].name) + " stand " +
+      FormatG(fit.distance) + " m apart at home, which leaves no room for the " + FormatG(gap) +
+      " m a default radius keeps between bases (twice the margin, at least 0.04 m); set "
+      "collision.base_radius, or a radius: on each base";
+  if (geometry.enabled)
+    r_.Fail(YamlReader::Has(root, "collision") ? root["collision"] : root["obstacles"],
+            "collision.base_radius", why);
   geometry.base_radius_unfit = model_.source + ": collision.base_radius: " + why;
 }
 

@@ -65,8 +65,9 @@ int SeededPath::OriginalAmong(int reached) const {
   return count;
 }
 
-SeededWalk WalkWithDetours(ControlProblem& problem, const std::vector<Waypoint>& waypoints, const Eigen::VectorXd& u0,
-                           const State& s0, int max_bends, const std::function<bool(int, int)>& after_walk) {
+SeededWalk WalkWithDetours(ControlProblem& problem, const std::vector<Waypoint>& waypoints,
+                           const Eigen::VectorXd& u0, const State& s0, int max_bends,
+                           const std::function<bool(int, int)>& after_walk) {
   const std::vector<double> amplitudes = {0.15, -0.15, 0.3, -0.3, 0.5, -0.5, 0.8, -0.8};
   const int most = 1 + max_bends * static_cast<int>(amplitudes.size());
   int walks = 0;

@@ -39,8 +39,8 @@ struct SeededWalk {
 // above (at most `max_bends` of them). `after_walk(walks done, at most)`
 // (optional) is called after every walk; when it returns false no further
 // seed is walked. Leaves the problem at the best walk's end.
-SeededWalk WalkWithDetours(ControlProblem& problem, const std::vector<Waypoint>& waypoints, const Eigen::VectorXd& u0,
-                           const State& s0, int max_bends,
+SeededWalk WalkWithDetours(ControlProblem& problem, const std::vector<Waypoint>& waypoints,
+                           const Eigen::VectorXd& u0, const State& s0, int max_bends,
                            const std::function<bool(int, int)>& after_walk = nullptr);
 
 }  // namespace ccma

@@ -51,11 +51,14 @@ bool LmLoop::StepConstraintsHold() const {
 
 ControlStepResult LmLoop::SolveStep(const PoseTarget& target) {
   StepConstraints& step_constraints = p_.workspace_->step_constraints;
-  if (!step_constraints.empty()) step_constraints.Begin(p_.forward_.controls(), p_.forward_.state());
+  if (!step_constraints.empty()) {
+    step_constraints.Begin(p_.forward_.controls(), p_.forward_.state());
+  }
   return SolveBegunStep(target, /*project_first=*/false);
 }
 
-ControlStepResult LmLoop::SolveStepFrom(const PoseTarget& target, const Eigen::VectorXd& u0, const State& s0) {
+ControlStepResult LmLoop::SolveStepFrom(const PoseTarget& target, const Eigen::VectorXd& u0,
+                                        const State& s0) {
   StepConstraints& step_constraints = p_.workspace_->step_constraints;
   if (!step_constraints.empty()) step_constraints.Begin(u0, s0);
   return SolveBegunStep(target, /*project_first=*/true);

@@ -26,7 +26,8 @@ class LmLoop {
   // of a path) instead of at the current solution: a current solution below
   // a floor (a clearance under the margin) is brought back to it, where
   // SolveStep would keep its shortfall as the floor.
-  ControlStepResult SolveStepFrom(const PoseTarget& target, const Eigen::VectorXd& u0, const State& s0);
+  ControlStepResult SolveStepFrom(const PoseTarget& target, const Eigen::VectorXd& u0,
+                                  const State& s0);
   // The LM iterations on the end-effector task alone from the current
   // solution; returns whether it reached the target tolerance. Adds its
   // iterations, branch jumps, rcond and sigma to `result`.

@@ -79,7 +79,8 @@ class Finisher {
     row->controls = p_.controls();
     row->state = p_.forward().state();
     row->reached = p_.forward().end_effector();
-    if (!waypoint) row->result.error = (row->reached.position - row->target.position).lpNorm<Eigen::Infinity>();
+    if (!waypoint)
+      row->result.error = (row->reached.position - row->target.position).lpNorm<Eigen::Infinity>();
     return true;
   }
 
@@ -105,7 +106,8 @@ class Finisher {
           Shortfall(from.s, mid.state).shortfall_m <= kRowSlack) {
         Split(from, mid, depth + 1, rows_before, inserted, worst);
         inserted->push_back(mid);
-        Split(Point{mid.controls, mid.state, mid.time}, to, depth + 1, rows_before, inserted, worst);
+        Split(Point{mid.controls, mid.state, mid.time}, to, depth + 1, rows_before, inserted,
+              worst);
         return;
       }
     }
@@ -130,8 +132,9 @@ bool EndsLeg(const std::vector<TrajectoryStep>& rows, size_t k) {
 
 }  // namespace
 
-PlanShortfall FinishPlan(ControlProblem& problem, const Eigen::VectorXd& u0, const State& s0, double start_time,
-                         std::vector<TrajectoryStep>* rows, int* inserted_rows, int* repaired_rows) {
+PlanShortfall FinishPlan(ControlProblem& problem, const Eigen::VectorXd& u0, const State& s0,
+                         double start_time, std::vector<TrajectoryStep>* rows, int* inserted_rows,
+                         int* repaired_rows, const std::function<void(int, int)>& progress) {
   Finisher finisher(problem);
   PlanShortfall worst;
   std::vector<TrajectoryStep> out;
@@ -143,8 +146,9 @@ PlanShortfall FinishPlan(ControlProblem& problem, const Eigen::VectorXd& u0, con
     TrajectoryStep row = (*rows)[k];
     const bool waypoint = EndsLeg(*rows, k);
     if (finisher.Shortfall(from.s, row.state).shortfall_m > 0) {
-      finisher.Restore(from, waypoint ? row.target : PoseTarget{row.reached.position, row.reached.rpy}, waypoint,
-                       &row);
+      finisher.Restore(from,
+                       waypoint ? row.target : PoseTarget{row.reached.position, row.reached.rpy},
+                       waypoint, &row);
       ++*repaired_rows;
     }
     PlanShortfall left = finisher.Shortfall(from.s, row.state);
@@ -160,6 +164,7 @@ PlanShortfall FinishPlan(ControlProblem& problem, const Eigen::VectorXd& u0, con
       Keep(left, &worst);
     }
     from = Point{row.controls, row.state, row.time};
+    if (progress) progress(static_cast<int>(k) + 1, static_cast<int>(rows->size()));
   }
   *rows = std::move(out);
   return worst;
@@ -167,17 +172,18 @@ PlanShortfall FinishPlan(ControlProblem& problem, const Eigen::VectorXd& u0, con
 
 std::string DescribeShortfall(const PlanShortfall& f, double margin) {
   const std::string where =
-      (f.midpoint ? "half way between the plan's rows " + std::to_string(f.step - 1) + " and " + std::to_string(f.step)
+      (f.midpoint ? "half way between the plan's rows " + std::to_string(f.step - 1) + " and " +
+                        std::to_string(f.step)
                   : "at the plan's row " + std::to_string(f.step)) +
       " (time " + FormatG(f.time_s) + " s)";
   if (f.torn) {
-    return where + " the mechanism does not assemble (residual energy " + FormatG(f.residual_energy) +
-           " m^2): the plan jumps between rows";
+    return where + " the mechanism does not assemble (residual energy " +
+           FormatG(f.residual_energy) + " m^2): the plan jumps between rows";
   }
-  return where + " the clearance between " + Quote(f.a) + " and " + Quote(f.b) + " is " + FormatG(f.clearance_m) +
-         " m, " + FormatG(f.shortfall_m) + " m below " +
-         (f.floor_m < margin ? "its clearance at the row before, " : "the margin ") + FormatG(f.floor_m) +
-         " m, and the finishing could not restore it";
+  return where + " the clearance between " + Quote(f.a) + " and " + Quote(f.b) + " is " +
+         FormatG(f.clearance_m) + " m, " + FormatG(f.shortfall_m) + " m below " +
+         (f.floor_m < margin ? "its clearance at the row before, " : "the margin ") +
+         FormatG(f.floor_m) + " m, and the finishing could not restore it";
 }
 
 }  // namespace ccma

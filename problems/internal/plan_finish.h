@@ -17,6 +17,7 @@
 #ifndef CCMA_PROBLEMS_INTERNAL_PLAN_FINISH_H_
 #define CCMA_PROBLEMS_INTERNAL_PLAN_FINISH_H_
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -40,8 +41,11 @@ constexpr int kMaxMidpointSplits = 4;
 // a leg) are waypoint rows, solved to their target, the others to the pose
 // they have. Returns the worst shortfall left (shortfall_m <= 1e-9 at rows
 // and <= kMidpointSlack half way between them when the plan is finished).
-PlanShortfall FinishPlan(ControlProblem& problem, const Eigen::VectorXd& u0, const State& s0, double start_time,
-                         std::vector<TrajectoryStep>* rows, int* inserted_rows, int* repaired_rows);
+// `progress(rows done, rows)` (optional) is called after every row.
+PlanShortfall FinishPlan(ControlProblem& problem, const Eigen::VectorXd& u0, const State& s0,
+                         double start_time, std::vector<TrajectoryStep>* rows, int* inserted_rows,
+                         int* repaired_rows,
+                         const std::function<void(int, int)>& progress = nullptr);
 
 // What a shortfall means, for a warning: where (the plan's row, or half way
 // between two rows, and the time), the pair, its clearance, and how far

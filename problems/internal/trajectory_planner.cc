@@ -142,8 +142,10 @@ bool TrajectoryPlanner::Trial(const Eigen::VectorXd& u0, const State& s0, const 
   return true;
 }
 
-int TrajectoryPlanner::Optimize(const Eigen::VectorXd& u0, const State& s0, std::vector<PlannedStep>* steps,
-                                const std::function<bool(int)>& keep_going, std::string* stopped_by) {
+int TrajectoryPlanner::Optimize(const Eigen::VectorXd& u0, const State& s0,
+                                std::vector<PlannedStep>* steps,
+                                const std::function<bool(int)>& keep_going,
+                                std::string* stopped_by) {
   u0_effective_ = p_.EffectiveControls(u0);
   double f = Objective(*steps), mu = -1;
   *stopped_by = "plan_iterations";

@@ -65,7 +65,8 @@ py::dict Plan(ControlProblem& p, const std::vector<Waypoint>& waypoints, const P
   d["note"] = r.note;
   d["iterations"] = r.iterations;
   d["stopped_by"] = r.stopped_by;
-  d["finishing"] = py::dict(py::arg("repaired_rows") = r.repaired_rows, py::arg("inserted_rows") = r.inserted_rows);
+  d["finishing"] = py::dict(py::arg("repaired_rows") = r.repaired_rows,
+                            py::arg("inserted_rows") = r.inserted_rows);
   d["shortfall"] = py::none();
   if (r.shortfall.any) {
     const PlanShortfall& f = r.shortfall;
@@ -107,8 +108,8 @@ void BindCollision(py::module_& m) {
       py::arg("problem"), "The same for a ControlProblem.");
   m.def(
       "plan",
-      [](ControlProblem& p, const std::vector<Waypoint>& waypoints, double path_weight, double smoothness_weight,
-         double travel_weight, int max_iterations, double max_seconds) {
+      [](ControlProblem& p, const std::vector<Waypoint>& waypoints, double path_weight,
+         double smoothness_weight, double travel_weight, int max_iterations, double max_seconds) {
         PlanOptions options;
         options.max_seconds = max_seconds;
         options.path_weight = path_weight;
@@ -120,17 +121,24 @@ void BindCollision(py::module_& m) {
         CheckWaypoints(waypoints);
         return Plan(p, waypoints, options);
       },
-      py::arg("problem"), py::arg("waypoints"), py::arg("path_weight") = 1e-2, py::arg("smoothness_weight") = 1.0,
-      py::arg("travel_weight") = 1e-2, py::arg("max_iterations") = 200, py::arg("max_seconds") = 120.0,
-      "Whole-trajectory planning from the problem's current controls (`ccma plan`, docs/obstacles.md): "
-      "returns a dict: converged, used ('plan' or 'greedy'), note, iterations, stopped_by ('converged', "
-      "'plan_iterations' or 'plan_time_s': max_seconds [s] bounds the seeds and the optimisation), finishing "
-      "(repaired_rows, inserted_rows), shortfall (None, or where the finished plan is below the margin, as the "
+      py::arg("problem"), py::arg("waypoints"), py::arg("path_weight") = 1e-2,
+      py::arg("smoothness_weight") = 1.0, py::arg("travel_weight") = 1e-2,
+      py::arg("max_iterations") = 200, py::arg("max_seconds") = 120.0,
+      "Whole-trajectory planning from the problem's current controls (`ccma plan`, "
+      "docs/obstacles.md): "
+      "returns a dict: converged, used ('plan' or 'greedy'), note, iterations, stopped_by "
+      "('converged', "
+      "'plan_iterations' or 'plan_time_s': max_seconds [s] bounds the seeds and the optimisation), "
+      "finishing "
+      "(repaired_rows, inserted_rows), shortfall (None, or where the finished plan is below the "
+      "margin, as the "
       "CLI's JSON), greedy and plan "
       "(reached_waypoints, travel_m, min_clearance_m), and per step time [s], controls, reached "
       "(x y z [m] roll pitch yaw [rad]) and clearance [m] (inf without collision geometry). "
-      "Raises ValueError for differential bases, the bfgs method, options out of range or waypoints the "
-      "waypoint CSV refuses (a value not finite or out of range, a time smaller than the one before; the "
+      "Raises ValueError for differential bases, the bfgs method, options out of range or "
+      "waypoints the "
+      "waypoint CSV refuses (a value not finite or out of range, a time smaller than the one "
+      "before; the "
       "message names the waypoint).");
 }
 
