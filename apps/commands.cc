@@ -96,17 +96,21 @@ Command TrajectoryCommand() {
 Command PlanCommand() {
   return {"plan", "optimise a waypoint path's controls together (smooth, short, round obstacles)",
           "ccma plan --model=FILE --waypoints=FILE.csv --out=FILE.csv [--controls=...] [--obstacles=FILE]\n"
-          "          [--plan_iterations=200] [--path_weight=0.01] [--smoothness_weight=1] [--travel_weight=0.01]\n"
-          "          [--max_step_m=0.01] [--max_step_rad=0.005] [--lambda=0.5]",
+          "          [--plan_iterations=200] [--plan_time_s=120] [--path_weight=0.01] [--smoothness_weight=1]\n"
+          "          [--travel_weight=0.01] [--max_step_m=0.01] [--max_step_rad=0.005] [--lambda=0.5]",
           "Whole-trajectory planning: walks the waypoints greedily as ccma trajectory does, then optimises\n"
           "the controls of all the steps together: end-effector error at the waypoints (and, weakly, on the\n"
           "straight path between them), smoothness and travel of the bases, with every step's joint limits\n"
           "and clearance >= collision.margin held. Between waypoints the end-effector may leave the straight\n"
-          "path, so the plan finds its way round an obstacle where the greedy walk stalls. The plan is kept\n"
-          "only if it is no worse than the greedy trajectory (waypoints reached, base travel, clearance, also\n"
-          "half-way between steps); otherwise the greedy one is written, with a warning. Same CSV as\n"
-          "trajectory. Models with differential bases are refused (exit 2).",
-          {"model", "waypoints", "out", "controls", "obstacles", "plan_iterations", "path_weight",
+          "path, so the plan finds its way round an obstacle where the greedy walk stalls. The plan is then\n"
+          "finished: every step below the margin is re-solved back to it, and where the clearance half way\n"
+          "between two steps falls more than 1e-6 m below it, that midpoint becomes a step of its own. The\n"
+          "plan is kept only if it is no worse than the greedy trajectory (waypoints reached, base travel,\n"
+          "clearance); otherwise the greedy one is written, with a warning that names the pair, the step and\n"
+          "the shortfall. A line on stderr every 10 s tells a long plan's progress; --plan_time_s bounds the\n"
+          "seeds and the optimisation (JSON stopped_by). Same CSV as trajectory. Models with differential\n"
+          "bases are refused (exit 2).",
+          {"model", "waypoints", "out", "controls", "obstacles", "plan_iterations", "plan_time_s", "path_weight",
            "smoothness_weight", "travel_weight", "max_step_m", "max_step_rad", "lambda"},
           RunPlan, {{"out", "the CSV to write, one row per step, as ccma trajectory's [path]"}}};
 }

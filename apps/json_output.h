@@ -36,6 +36,10 @@ void AddClearance(const Model& model, const State& s, const std::string& command
 State StateFromJson(const Model& model, const nlohmann::json& document, const std::string& source);
 
 // Prints one JSON document on stdout.
+// How `ccma plan` stopped and was finished (docs/cli.md): stopped_by,
+// finishing and, only when the finished plan stayed below the margin, shortfall.
+void AddPlanFinishing(const PlanResult& result, nlohmann::json* out);
+
 void PrintJson(const nlohmann::json& document);
 
 }  // namespace ccma::cli

@@ -43,18 +43,29 @@ struct Obstacle {
   int line = 0;
 };
 
+// The margin a model gets when it gives none [m].
+constexpr double kDefaultMargin = 0.02;
+
 struct CollisionGeometry {
   // Whether clearance is computed and kept: the model has a `collision:` or
   // an `obstacles:` key, or obstacles were added (--obstacles).
   bool enabled = false;
-  double margin = 0.02;       // m: control keeps every clearance >= margin
-  double base_radius = 0.3;   // m: the default radius of a base's cylinder
+  double margin = kDefaultMargin;  // m: control keeps every clearance >= margin
+  // m: the radius of the cylinder of a base without its own `radius:`;
+  // collision.base_radius, or 0.3 m where that leaves every two bases twice
+  // the margin apart at home, else the largest radius that does
+  // (formats/internal/base_radius_fit.h).
+  double base_radius = 0.3;
   double base_height = 0.2;   // m: every base's cylinder spans [0, base_height]
   std::vector<double> base_radii;  // per mobile base [m]: its own `radius:` or base_radius
   std::vector<CollisionCapsule> links;
   std::vector<Obstacle> obstacles;
   // Pairs of names (bodies, bases, obstacles) never checked.
   std::vector<std::pair<std::string, std::string>> ignore;
+  // Why no default base radius fits (bases closer at home than twice the
+  // margin), as a "file: key: what" message, or "": clearance cannot be
+  // turned on (--obstacles) without collision.base_radius then.
+  std::string base_radius_unfit;
 };
 
 }  // namespace ccma

@@ -2,6 +2,7 @@
 
 #include <set>
 
+#include "ccma/internal/format.h"
 #include "ccma/limits.h"
 #include "formats/internal/magnitude_checks.h"
 #include "formats/internal/obstacle_parser.h"
@@ -36,12 +37,22 @@ void AddObstaclesFromString(const std::string& text, const std::string& path, Mo
     for (const Obstacle& o : model->collision.obstacles) taken.insert(o.name);
     std::vector<Obstacle> obstacles = model->collision.obstacles;
     internal::ParseObstacles(r, r.Require(root, "obstacles", ""), "obstacles", &taken, &obstacles);
+    // The model's bases would overlap at home with the default radius.
+    if (!model->collision.base_radius_unfit.empty())
+      throw ModelError(model->collision.base_radius_unfit);
     model->collision.obstacles = std::move(obstacles);
     model->collision.enabled = true;
   } catch (const YAML::Exception& e) {
     throw ModelError(internal::WithLine(path, e.mark) + ": " + e.msg);
   }
-  if (warnings != nullptr) magnitudes.AppendWarnings(warnings);
+  if (warnings == nullptr) return;
+  magnitudes.AppendWarnings(warnings);
+  if (model->num_bases() == 0 && model->collision.links.empty()) {
+    warnings->push_back(
+        path + ": model " + Quote(model->name) +
+        " has no mobile bases and no collision.links: none of its bodies is checked against the "
+        "obstacles");
+  }
 }
 
 }  // namespace ccma

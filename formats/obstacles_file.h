@@ -14,7 +14,9 @@ namespace ccma {
 // Reads the obstacles of the file at `path` (a regular file of at most
 // kMaxObstacleFileBytes) and appends them to model->collision.obstacles,
 // which turns clearance on (model->collision.enabled). Names must differ
-// from the model's bodies, bases and obstacles. Throws ModelError
+// from the model's bodies, bases and obstacles. A model whose bases stand
+// too close at home for a default radius (collision.base_radius_unfit) is
+// refused: it must give collision.base_radius. Throws ModelError
 // "path:line: key: what" on any problem; unknown keys are appended to
 // `warnings` (may be null) as the model loader does.
 void AddObstaclesFromFile(const std::string& path, Model* model, std::vector<std::string>* warnings = nullptr);

@@ -10,6 +10,7 @@
 #include "collision/clearance.h"
 #include "problems/internal/control_workspace.h"
 #include "problems/internal/detour_seeds.h"
+#include "problems/internal/plan_finish.h"
 #include "problems/internal/trajectory_planner.h"
 #include "problems/path.h"
 
@@ -125,29 +126,72 @@ std::vector<TrajectoryStep> Rows(ControlProblem& problem, const std::vector<Wayp
   return rows;
 }
 
-// The smallest clearance at the midpoints of consecutive steps' controls
-// (a plan must not jump through an obstacle between two steps); +inf when
-// nothing is checked.
-double MidpointClearance(ControlProblem& problem, const Eigen::VectorXd& u0, const State& s0,
-                         const std::vector<TrajectoryStep>& rows) {
-  const CollisionModel collision(problem.forward().model());
-  double least = std::numeric_limits<double>::infinity();
-  if (!collision.enabled()) return least;
-  Eigen::VectorXd u = u0;
-  State s = s0;
-  for (const TrajectoryStep& row : rows) {
-    problem.forward().SetState(s);
-    const ForwardResult r = problem.forward().Solve(0.5 * (u + row.controls));
-    const ClearanceSummary c = MinimumClearance(collision, problem.forward().state());
-    // Averaged controls need not assemble exactly (a model whose controls
-    // are tied): the least-squares configuration stands for the midpoint
-    // unless it is torn by more than 1 mm.
-    if (!(r.residual_energy < 1e-6)) least = -std::numeric_limits<double>::infinity();
-    if (c.any) least = std::min(least, c.min);
-    u = row.controls;
-    s = row.state;
+// The wall clock of one plan and its progress reports.
+class PlanClock {
+ public:
+  explicit PlanClock(const PlanOptions& options)
+      : options_(options), start_(std::chrono::steady_clock::now()) {}
+  double Elapsed() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   }
-  return least;
+  bool TimeLeft() const { return Elapsed() < options_.max_seconds; }
+  void Report(const std::string& phase, int done, int total) const {
+    if (options_.on_progress) options_.on_progress(PlanProgress{phase, done, total, Elapsed()});
+  }
+
+ private:
+  const PlanOptions& options_;
+  const std::chrono::steady_clock::time_point start_;
+};
+
+// Waypoints reached in order: legs whose last row reached its waypoint.
+int ReachedWaypoints(const std::vector<TrajectoryStep>& rows) {
+  int reached = 0;
+  for (size_t k = 0; k < rows.size(); ++k) {
+    const bool ends_leg = k + 1 == rows.size() || rows[k + 1].leg != rows[k].leg;
+    if (ends_leg && rows[k].result.reached && rows[k].leg == reached) ++reached;
+  }
+  return reached;
+}
+
+void CheckPlanInputs(const ControlProblem& problem, const PlanOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument("plan options: " + why);
+  if (problem.options().method != ControlMethod::kLevenbergMarquardt) {
+    throw std::invalid_argument("plan: the whole-path optimisation uses the lm method");
+  }
+  for (const MobileBase& base : problem.forward().model().mobile_bases) {
+    if (base.type == BaseType::kDifferential) {
+      throw std::invalid_argument(
+          "plan: differential bases (their arcs tie neighbouring steps) are not planned yet");
+    }
+  }
+}
+
+// Chooses between the finished plan (`rows`) and the greedy walk.
+void Choose(const Model& model, std::vector<TrajectoryStep> rows,
+            std::vector<TrajectoryStep> greedy, PlanResult* result) {
+  const double margin = model.collision.margin;
+  const bool close =
+      !(result->plan.min_clearance_m >= std::min(result->greedy.min_clearance_m, margin) - 1e-9);
+  const bool more = result->plan.reached_waypoints > result->greedy.reached_waypoints;
+  const bool as_many = result->plan.reached_waypoints == result->greedy.reached_waypoints;
+  const bool safe = !result->shortfall.any && !close;
+  result->used_plan =
+      safe && (more || (as_many && result->plan.travel_m <= result->greedy.travel_m + 1e-9));
+  if (result->used_plan) {
+    result->steps = std::move(rows);
+    return;
+  }
+  result->note = result->shortfall.any ? DescribeShortfall(result->shortfall, margin)
+                 : close
+                     ? "the plan's smallest clearance " + FormatG(result->plan.min_clearance_m) +
+                           " m is below the greedy walk's " +
+                           FormatG(result->greedy.min_clearance_m) + " m"
+                 : result->plan.reached_waypoints < result->greedy.reached_waypoints
+                     ? "the plan reached fewer waypoints"
+                     : "the plan travelled further";
+  result->steps = std::move(greedy);
 }
 
 }  // namespace
@@ -162,22 +206,14 @@ bool PlanOptions::IsValid(std::string* why) const {
   if (!InRange(smoothness_weight, 0, 1e6)) return fail("smoothness_weight must lie in [0, 1e6]");
   if (!InRange(travel_weight, 0, 1e6)) return fail("travel_weight must lie in [0, 1e6]");
   if (max_iterations < 1 || max_iterations > 10000) return fail("max_iterations must lie in [1, 10000]");
+  if (!InRange(max_seconds, 0, 1e6)) return fail("max_seconds must lie in [0, 1e6]");
   return true;
 }
 
 PlanResult PlanTrajectory(ControlProblem& problem, const std::vector<Waypoint>& waypoints, const PlanOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
-  std::string why;
-  if (!options.IsValid(&why)) throw std::invalid_argument("plan options: " + why);
-  if (problem.options().method != ControlMethod::kLevenbergMarquardt) {
-    throw std::invalid_argument("plan: the whole-path optimisation uses the lm method");
-  }
+  CheckPlanInputs(problem, options);
+  const PlanClock clock(options);
   const Model& model = problem.forward().model();
-  for (const MobileBase& base : model.mobile_bases) {
-    if (base.type == BaseType::kDifferential) {
-      throw std::invalid_argument("plan: differential bases (their arcs tie neighbouring steps) are not planned yet");
-    }
-  }
   PlanResult result;
   if (waypoints.empty()) return result;
   const Eigen::VectorXd u0 = problem.controls();
@@ -185,12 +221,20 @@ PlanResult PlanTrajectory(ControlProblem& problem, const std::vector<Waypoint>& 
   const PoseTarget start_pose = problem.CurrentPose();
   // The greedy trajectory: the start, and what the plan must not be worse than.
   std::vector<TrajectoryStep> greedy;
-  const TrajectoryResult walked = FollowWaypoints(problem, waypoints, [&](const TrajectoryStep& s) { greedy.push_back(s); });
+  const TrajectoryResult walked = FollowWaypoints(problem, waypoints, [&](const TrajectoryStep& s) {
+    greedy.push_back(s);
+    clock.Report("greedy walk", s.leg + 1, static_cast<int>(waypoints.size()));
+  });
   result.greedy = Measure(model, u0, greedy, walked.reached_waypoints);
   result.greedy_warning = walked.warning;
   // Where the greedy walk stalls, the plan starts from a detour (detour_seeds.h).
   SeededWalk seed{{waypoints, std::vector<bool>(waypoints.size(), true)}, walked, greedy, result.greedy.travel_m};
-  if (!walked.converged && model.collision.enabled) seed = WalkWithDetours(problem, waypoints, u0, s0, 4);
+  const auto after_walk = [&](int done, int total) {
+    clock.Report("detour seeds", done, total);
+    return clock.TimeLeft();
+  };
+  if (!walked.converged && model.collision.enabled)
+    seed = WalkWithDetours(problem, waypoints, u0, s0, 4, after_walk);
   std::vector<PlannedStep> planned =
       StartingSteps(problem, seed.path, seed.steps, seed.result.reached_waypoints, u0, s0, start_pose);
   const long unknowns = static_cast<long>(planned.size()) * static_cast<long>(problem.effective_controls().size());
@@ -199,29 +243,24 @@ PlanResult PlanTrajectory(ControlProblem& problem, const std::vector<Waypoint>& 
                                 std::to_string(problem.effective_controls().size()) + " controls exceed " +
                                 std::to_string(kMaxPlanUnknowns) + " unknowns; use fewer or longer steps (--max_step_m)");
   }
-  result.iterations = TrajectoryPlanner(&problem, options).Optimize(u0, s0, &planned);
+  const auto after_iteration = [&](int done) {
+    clock.Report("optimisation", done, options.max_iterations);
+    return clock.TimeLeft();
+  };
+  result.iterations = TrajectoryPlanner(&problem, options)
+                          .Optimize(u0, s0, &planned, after_iteration, &result.stopped_by);
   int reached = 0;
   std::vector<TrajectoryStep> rows = Rows(problem, waypoints, &planned, &reached);
-  result.plan = Measure(model, u0, rows, reached);
-  result.plan.min_clearance_m = std::min(result.plan.min_clearance_m, MidpointClearance(problem, u0, s0, rows));
-  const double margin = model.collision.margin;
-  const bool safe = result.plan.min_clearance_m >= std::min(result.greedy.min_clearance_m, margin) - 1e-9;
-  const bool more = result.plan.reached_waypoints > result.greedy.reached_waypoints;
-  const bool as_many = result.plan.reached_waypoints == result.greedy.reached_waypoints;
-  result.used_plan = safe && (more || (as_many && result.plan.travel_m <= result.greedy.travel_m + 1e-9));
-  if (result.used_plan) {
-    result.steps = std::move(rows);
-  } else {
-    result.note = !safe ? "the plan came closer to an obstacle than the margin (between or at steps)"
-                  : result.plan.reached_waypoints < result.greedy.reached_waypoints ? "the plan reached fewer waypoints"
-                                                                                     : "the plan travelled further";
-    result.steps = std::move(greedy);
-  }
+  result.shortfall = FinishPlan(
+      problem, u0, s0, waypoints.front().time, &rows, &result.inserted_rows, &result.repaired_rows,
+      [&](int done, int total) { clock.Report("finishing", done, total); });
+  result.plan = Measure(model, u0, rows, ReachedWaypoints(rows));
+  Choose(model, std::move(rows), std::move(greedy), &result);
   const TrajectoryStep* last = result.steps.empty() ? nullptr : &result.steps.back();
   if (last != nullptr) problem.forward().Restore(last->state, last->controls);
   const int reached_final = result.used_plan ? result.plan.reached_waypoints : result.greedy.reached_waypoints;
   result.converged = reached_final == static_cast<int>(waypoints.size());
-  result.solve_time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  result.solve_time_ms = 1e3 * clock.Elapsed();
   return result;
 }
 

@@ -9,13 +9,17 @@
 // it may leave it to get round an obstacle). Every step keeps its joint
 // limits and every clearance >= collision.margin (the step constraints, all
 // steps at once). Each waypoint's step is then solved exactly (a control
-// step from the planned controls). The plan is returned only when it is no
+// step from the planned controls) and the plan is finished: every row back
+// at the margin exactly, midpoints between rows within 1e-6 m of it
+// (problems/internal/plan_finish.h). The plan is returned only when it is no
 // worse than the greedy trajectory: at least as many waypoints reached, and
 // with as many, no more base travel and no less clearance; otherwise the
-// greedy trajectory is.
+// greedy trajectory is, and `note` says why (naming the pair, the row and
+// the shortfall when it is the clearance).
 #ifndef CCMA_PROBLEMS_PLAN_H_
 #define CCMA_PROBLEMS_PLAN_H_
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -25,12 +29,26 @@
 
 namespace ccma {
 
+// Where a plan stands, for a progress line (PlanOptions::on_progress).
+struct PlanProgress {
+  std::string phase;     // "greedy walk", "detour seeds", "optimisation", "finishing"
+  int done = 0;          // walks, iterations or rows done in this phase
+  int total = 0;         // of at most this many
+  double elapsed_s = 0;  // since the plan began [s]
+};
+
 struct PlanOptions {
   double waypoint_weight = 1.0;    // [1], in (0, 1e6]
   double path_weight = 1e-2;       // [1], in [0, 1e6]
   double smoothness_weight = 1.0;  // [1], in [0, 1e6]
   double travel_weight = 1e-2;     // [1], in [0, 1e6]
   int max_iterations = 200;        // Gauss-Newton iterations of the whole path, in [1, 10000]
+  // Wall-clock bound [s] on the detour seeds and the optimisation, in
+  // [0, 1e6]: when it is reached the plan goes on from where they are
+  // (PlanResult::stopped_by). The greedy walk and the finishing always run.
+  double max_seconds = 120;
+  // Called after every walk, iteration and finished row (optional).
+  std::function<void(const PlanProgress&)> on_progress;
   // True if every field is in range; otherwise false and `why` (if not null) names it.
   bool IsValid(std::string* why) const;
 };
@@ -42,6 +60,22 @@ struct PathMeasures {
   double min_clearance_m = 0;     // smallest over the steps (+inf without collision geometry)
 };
 
+// The worst place where a finished plan (problems/internal/plan_finish.h)
+// is still below the margin: a row more than 1e-9 m below its floor, or a
+// midpoint between rows more than 1e-6 m below it or torn.
+struct PlanShortfall {
+  bool any = false;
+  int step = 0;            // the row (1-based, as the CSV's data rows); a midpoint lies before it
+  bool midpoint = false;   // half way between rows step - 1 and step (row 0: the start)
+  bool torn = false;       // the midpoint does not assemble (residual energy >= 1e-6 m^2)
+  std::string a, b;        // the pair: bodies, bases or obstacles
+  double clearance_m = 0;  // its clearance there [m]
+  double floor_m = 0;  // what it had to keep: the margin, or less where the pair began below it [m]
+  double shortfall_m = 0;      // floor_m - clearance_m [m]
+  double residual_energy = 0;  // at a midpoint [m^2]
+  double time_s = 0;           // of the row, or half way [s]
+};
+
 struct PlanResult {
   std::vector<TrajectoryStep> steps;  // the returned trajectory (plan or greedy)
   bool converged = false;             // every waypoint reached
@@ -50,6 +84,12 @@ struct PlanResult {
   PathMeasures greedy, plan;          // plan: as optimised (before the choice)
   std::string greedy_warning;         // the greedy trajectory's, if it stopped
   std::string note;                   // why the greedy trajectory was kept, or ""
+  PlanShortfall shortfall;  // where the finished plan is below the margin (any: kept the greedy)
+  int repaired_rows = 0;    // rows brought back to the margin by the finishing
+  int inserted_rows = 0;    // midpoint rows the finishing inserted
+  // "converged" (the objective stopped decreasing), "plan_iterations" (the
+  // iteration bound) or "plan_time_s" (the time bound).
+  std::string stopped_by;
   double solve_time_ms = 0;
 };
 

@@ -6,6 +6,7 @@
 // never made worse, and every CSV row's clearance is what the row's
 // controls give.
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -15,6 +16,7 @@
 
 #include "collision/clearance.h"
 #include "formats/model_loader.h"
+#include "formats/obstacles_file.h"
 #include "formats/waypoints.h"
 #include "problems/control_problem.h"
 #include "problems/forward_problem.h"
@@ -59,6 +61,156 @@ Walk Follow(const Model& model, const std::vector<Waypoint>& path) {
   Walk walk;
   walk.result = FollowWaypoints(control, path, [&](const TrajectoryStep& s) { walk.steps.push_back(s); });
   return walk;
+}
+
+// The smallest clearance between two shapes of the mechanism (no obstacle).
+double MechanismMinimum(const Model& model, const State& s) {
+  const CollisionModel collision(model);
+  std::vector<PlacedShape> shapes;
+  collision.PlaceShapes(s, &shapes);
+  double least = INFINITY;
+  for (int i = 0; i < collision.num_shapes(); ++i) {
+    for (int j = i + 1; j < collision.num_shapes(); ++j) {
+      if (collision.Checked(i, j) && collision.BodyOf(i) != kWorld &&
+          collision.BodyOf(j) != kWorld) {
+        least = std::min(least, Distance(shapes[i], shapes[j]).distance);
+      }
+    }
+  }
+  return least;
+}
+
+const char* kFarPillar =
+    "obstacles:\n  - {name: far, cylinder: {center: [40, 40], radius: 0.1, height: 1.0}}\n";
+
+// The smallest distance between two bases' home positions.
+double SmallestSpacing(const Model& model) {
+  double least = INFINITY;
+  for (int a = 0; a < model.num_bases(); ++a) {
+    for (int b = a + 1; b < model.num_bases(); ++b) {
+      least = std::min(
+          least,
+          (model.mobile_bases[a].home_pose - model.mobile_bases[b].home_pose).head<2>().norm());
+    }
+  }
+  return least;
+}
+
+// Every bundled model, obstacles added, starts with its own shapes apart:
+// the default base radius never makes two bases overlap at home.
+TEST(ClearanceControl, EveryBundledModelKeepsItsShapesApartAtHomeWithObstacles) {
+  int with_shapes = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(CCMA_MODELS_DIR)) {
+    if (entry.path().extension() != ".yaml") continue;
+    const std::string name = entry.path().filename().string();
+    Model model = LoadModel(entry.path().string());
+    AddObstaclesFromString(kFarPillar, "far.yaml", &model);
+    const double least = MechanismMinimum(model, State::Home(model));
+    if (model.num_bases() == 0) {  // planar_3rpr, stewart_gough_6ups: nothing of theirs is a shape
+      EXPECT_EQ(least, INFINITY) << name;
+      continue;
+    }
+    ++with_shapes;
+    // At least twice the margin: each base may move a margin towards the other.
+    EXPECT_GE(least, 2 * model.collision.margin - 1e-12) << name;
+    for (double r : model.collision.base_radii) {
+      EXPECT_GT(r, 0.05) << name;
+      EXPECT_LE(r, 0.3) << name;
+    }
+  }
+  EXPECT_GE(with_shapes, 7);
+}
+
+// The default radius: 0.3 m where the bases stand far apart, the largest
+// that leaves twice the margin between the closest bases otherwise; a given
+// base_radius wins.
+TEST(ClearanceControl, DefaultBaseRadiusFollowsTheBasesSpacing) {
+  const Model far_apart = LoadModel(std::string(CCMA_MODELS_DIR) + "/4dof_reduced.yaml");
+  EXPECT_EQ(far_apart.collision.base_radii, std::vector<double>(3, 0.3));
+  const std::string six = Bundled("6dof_six_agents");
+  const Model close = LoadModelFromString(six, "six.yaml");
+  const double d = SmallestSpacing(close);
+  EXPECT_NEAR(d, 0.2263513, 1e-6);
+  for (double r : close.collision.base_radii) EXPECT_NEAR(r, 0.5 * d - 0.02, 1e-12);
+  const Model wide_margin = LoadModelFromString(six + "collision: {margin: 0.05}\n", "six.yaml");
+  for (double r : wide_margin.collision.base_radii) EXPECT_NEAR(r, 0.5 * d - 0.05, 1e-12);
+  EXPECT_NEAR(MechanismMinimum(wide_margin, State::Home(wide_margin)), 0.1, 1e-9);
+  const Model given = LoadModelFromString(six + "collision: {base_radius: 0.12}\n", "six.yaml");
+  EXPECT_EQ(given.collision.base_radii, std::vector<double>(6, 0.12));
+}
+
+// Two bases 3 cm apart leave no room for a default radius: with clearance
+// on, the model is refused and the message names the key to set.
+TEST(ClearanceControl, BasesTooCloseForADefaultRadiusAreRefusedNamingTheKey) {
+  const std::string text =
+      "name: close_pair\nbodies:\n  - {name: bar, position: [0, 0, 0.5]}\n"
+      "mobile_bases:\n  - {name: left, type: omni, actuation: complete, pose: [0, 0, 0]}\n  - "
+      "{name: right, type: omni, actuation: complete, pose: [0.03, 0, 0]}\n"
+      "joints:\n  - {type: spherical, between: [left, bar], point: [0, 0, 0.5]}\n"
+      "  - {type: spherical, between: [right, bar], point: [0.03, 0, 0.5]}\n"
+      "end_effector: {body: bar, point: [0, 0, 0.5], controlled: [x, y]}\n";
+  try {
+    LoadModelFromString(text + kFarPillar, "close.yaml");
+    ADD_FAILURE() << "loaded";
+  } catch (const ModelError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("close.yaml:"), std::string::npos) << what;
+    EXPECT_NE(what.find("collision.base_radius"), std::string::npos) << what;
+    EXPECT_NE(what.find("'left' and 'right' stand 0.03 m apart"), std::string::npos) << what;
+  }
+  Model plain = LoadModelFromString(text, "close.yaml");  // no clearance asked: loads
+  EXPECT_THROW(AddObstaclesFromString(kFarPillar, "far.yaml", &plain), ModelError);
+  EXPECT_TRUE(plain.collision.obstacles.empty());
+  EXPECT_NO_THROW(
+      LoadModelFromString(text + "collision: {base_radius: 0.01}\n" + kFarPillar, "close.yaml"));
+  EXPECT_NO_THROW(LoadModelFromString(text + "collision: {ignore: [[left, right]]}\n" + kFarPillar,
+                                      "close.yaml"));
+  const std::string dir = ::testing::TempDir();
+  std::ofstream(dir + "/close.yaml") << text;
+  std::ofstream(dir + "/far.yaml") << kFarPillar;
+  const testing::ToolRun run = testing::RunTool(
+      {"check", "--model=" + dir + "/close.yaml", "--obstacles=" + dir + "/far.yaml"});
+  EXPECT_EQ(run.status, 2);
+  EXPECT_TRUE(run.out.empty());
+  EXPECT_NE(run.err.find("collision.base_radius"), std::string::npos) << run.err;
+}
+
+// The bundled 6-agent model with a pillar added on the command line
+// (--obstacles): every step keeps the margin, base1 goes round the pillar,
+// and no two bases are ever the pair that stops it.
+TEST(ClearanceControl, SixAgentsWithAPillarAddedGoRoundItNotThroughEachOther) {
+  const std::string obstacles =
+      std::string(CCMA_MODELS_DIR) + "/../examples/obstacles/pillar_six_agents.yaml";
+  Model model = LoadModel(std::string(CCMA_MODELS_DIR) + "/6dof_six_agents.yaml");
+  AddObstaclesFromFile(obstacles, &model);
+  const Walk walk = Follow(model, AlongX());
+  EXPECT_TRUE(walk.result.converged) << walk.result.warning;
+  const Eigen::Vector2d pillar(-0.05, 0.26);
+  const double base_radius = model.collision.base_radii[1];
+  for (const TrajectoryStep& s : walk.steps) {
+    EXPECT_GE(BruteForceMinimum(model, s.state), model.collision.margin - 1e-9);
+    EXPECT_GE((s.controls.segment<2>(3) - pillar).norm(),
+              0.1 + base_radius + model.collision.margin - 1e-9);
+  }
+  const std::string dir = ::testing::TempDir();
+  const testing::ToolRun run = testing::RunTool(
+      {"trajectory", "--model=" + std::string(CCMA_MODELS_DIR) + "/6dof_six_agents.yaml",
+       "--obstacles=" + obstacles,
+       "--waypoints=" + std::string(CCMA_MODELS_DIR) + "/../examples/obstacles/path_x.csv",
+       "--out=" + dir + "/six.csv"});
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_NE(run.out.find("\"converged\": true"), std::string::npos) << run.out;
+  EXPECT_EQ(run.err.find("below the margin"), std::string::npos) << run.err;
+  std::istringstream csv(testing::Slurp(dir + "/six.csv"));
+  std::string line;
+  std::getline(csv, line);
+  int rows = 0;
+  for (; std::getline(csv, line); ++rows) {
+    const size_t pair = line.rfind(',');
+    const double clearance = std::stod(line.substr(line.rfind(',', pair - 1) + 1));
+    EXPECT_GE(clearance, model.collision.margin - 1e-9) << line.substr(pair + 1);
+  }
+  EXPECT_EQ(rows, 100);
 }
 
 // 6dof_six_agents (12 controls for 6 components): base1's straight path

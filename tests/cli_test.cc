@@ -374,7 +374,7 @@ TEST(Cli, EachCommandHasItsOwnHelpWithUnits) {
                    "pivot_threshold", "secondary", "secondary_weight", "clearance_m", "method", "max_step_m",
                    "max_step_rad", "lambda"}},
       {"statics", {"model", "controls", "wrench", "mocap_noise_m", "mocap_noise_rad", "obstacles"}},
-      {"plan", {"model", "waypoints", "out", "controls", "obstacles", "plan_iterations", "path_weight",
+      {"plan", {"model", "waypoints", "out", "controls", "obstacles", "plan_iterations", "plan_time_s", "path_weight",
                 "smoothness_weight", "travel_weight", "max_step_m", "max_step_rad", "lambda"}},
       {"trajectory", {"model", "waypoints", "out", "controls", "obstacles", "singularity_weight", "singularity_threshold",
                       "pivot_weight", "pivot_threshold", "secondary", "secondary_weight", "clearance_m", "method",

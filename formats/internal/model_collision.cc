@@ -2,11 +2,13 @@
 // obstacles"): the margin, the bases' cylinders, capsules fixed in bodies,
 // pairs never checked, and the obstacles. Read after the bodies, bases and
 // joints, whose names they use.
+#include <algorithm>
 #include <set>
 #include <string>
 
 #include "ccma/internal/format.h"
 #include "ccma/limits.h"
+#include "formats/internal/base_radius_fit.h"
 #include "formats/internal/model_parser.h"
 #include "formats/internal/obstacle_parser.h"
 
@@ -36,19 +38,19 @@ double ModelParser::BaseRadius(const YAML::Node& base, const std::string& path) 
 void ModelParser::ParseCollision(const YAML::Node& root) {
   CollisionGeometry& geometry = model_.collision;
   geometry.enabled = YamlReader::Has(root, "collision") || YamlReader::Has(root, "obstacles");
+  bool radius_given = false;
   if (YamlReader::Has(root, "collision")) {
     const YAML::Node map = r_.Map(root["collision"], "collision");
     r_.CheckKeys(map, {"margin", "base_radius", "base_height", "links", "ignore"}, "collision");
     if (YamlReader::Has(map, "margin")) geometry.margin = NonNegative(r_, map, "margin", "collision", true);
-    if (YamlReader::Has(map, "base_radius")) {
+    radius_given = YamlReader::Has(map, "base_radius");
+    if (radius_given)
       geometry.base_radius = NonNegative(r_, map, "base_radius", "collision", false);
-    }
     if (YamlReader::Has(map, "base_height")) {
       geometry.base_height = NonNegative(r_, map, "base_height", "collision", false);
     }
     if (YamlReader::Has(map, "links")) ParseCollisionLinks(map["links"], "collision.links");
   }
-  for (double given : base_radius_given_) geometry.base_radii.push_back(given > 0 ? given : geometry.base_radius);
   if (YamlReader::Has(root, "obstacles")) {
     std::set<std::string> taken;
     for (const Body& body : model_.bodies) taken.insert(body.name);
@@ -59,6 +61,35 @@ void ModelParser::ParseCollision(const YAML::Node& root) {
   if (YamlReader::Has(root, "collision") && YamlReader::Has(root["collision"], "ignore")) {
     ParseIgnoredPairs(root["collision"]["ignore"], "collision.ignore");
   }
+  if (!radius_given) FitDefaultBaseRadius(root);
+  for (double given : base_radius_given_)
+    geometry.base_radii.push_back(given > 0 ? given : geometry.base_radius);
+}
+
+// Without collision.base_radius, bases that give no `radius:` get the
+// largest radius up to 0.3 m that leaves every two checked bases twice the
+// margin (at least 0.04 m) apart at home: the contract's 0.3 m would make
+// bases that stand close together overlap before they move.
+void ModelParser::FitDefaultBaseRadius(const YAML::Node& root) {
+  CollisionGeometry& geometry = model_.collision;
+  const double gap = 2.0 * std::max(geometry.margin, kDefaultMargin);
+  const BaseRadiusFit fit = internal::FitDefaultBaseRadius(
+      model_, base_radius_given_, geometry.ignore, gap, geometry.base_radius);
+  if (fit.radius > 0) {
+    geometry.base_radius = fit.radius;
+    return;
+  }
+  const std::string why =
+      "not given, and no default fits: bases " +
+      Quote(model_.mobile_bases[static_cast<size_t>(fit.a)].name) + " and " +
+      Quote(model_.mobile_bases[static_cast<size_t>(fit.b)].name) + " stand " +
+      FormatG(fit.distance) + " m apart at home, which leaves no room for the " + FormatG(gap) +
+      " m a default radius keeps between bases (twice the margin, at least 0.04 m); set "
+      "collision.base_radius, or a radius: on each base";
+  if (geometry.enabled)
+    r_.Fail(YamlReader::Has(root, "collision") ? root["collision"] : root["obstacles"],
+            "collision.base_radius", why);
+  geometry.base_radius_unfit = model_.source + ": collision.base_radius: " + why;
 }
 
 void ModelParser::ParseCollisionLinks(const YAML::Node& node, const std::string& path) {

@@ -128,6 +128,7 @@ class ModelParser {
   void ParseCollisionLinks(const YAML::Node& node, const std::string& path);
   void ParseIgnoredPairs(const YAML::Node& node, const std::string& path);
   double BaseRadius(const YAML::Node& base, const std::string& path) const;
+  void FitDefaultBaseRadius(const YAML::Node& root);
 
   MagnitudeChecks magnitudes_;
   std::vector<std::string>* warnings_;

@@ -65,19 +65,30 @@ int SeededPath::OriginalAmong(int reached) const {
   return count;
 }
 
-SeededWalk WalkWithDetours(ControlProblem& problem, const std::vector<Waypoint>& waypoints, const Eigen::VectorXd& u0,
-                           const State& s0, int max_bends) {
+SeededWalk WalkWithDetours(ControlProblem& problem, const std::vector<Waypoint>& waypoints,
+                           const Eigen::VectorXd& u0, const State& s0, int max_bends,
+                           const std::function<bool(int, int)>& after_walk) {
+  const std::vector<double> amplitudes = {0.15, -0.15, 0.3, -0.3, 0.5, -0.5, 0.8, -0.8};
+  const int most = 1 + max_bends * static_cast<int>(amplitudes.size());
+  int walks = 0;
+  bool go_on = true;
+  auto walked = [&] {
+    ++walks;
+    go_on = go_on && (!after_walk || after_walk(walks, most));
+  };
   problem.forward().Restore(s0, u0);
   const PoseTarget start = problem.CurrentPose();
   SeededPath plain{waypoints, std::vector<bool>(waypoints.size(), true)};
   SeededWalk best = Walk(problem, plain, u0, s0);
-  for (int bend = 0; bend < max_bends && !best.result.converged; ++bend) {
+  walked();
+  for (int bend = 0; bend < max_bends && !best.result.converged && go_on; ++bend) {
     const int leg = best.result.reached_waypoints;
     const Waypoint from = leg == 0 ? Waypoint{waypoints.front().time, start.position, start.rpy}
                                    : best.path.waypoints[static_cast<size_t>(leg - 1)];
     SeededWalk chosen = best;
-    for (double amplitude : {0.15, -0.15, 0.3, -0.3, 0.5, -0.5, 0.8, -0.8}) {
-      const SeededWalk seeded = Walk(problem, Bend(best.path, leg, from, amplitude), u0, s0);
+    for (size_t a = 0; a < amplitudes.size() && go_on; ++a) {
+      const SeededWalk seeded = Walk(problem, Bend(best.path, leg, from, amplitudes[a]), u0, s0);
+      walked();
       if (Better(seeded, chosen)) chosen = seeded;
     }
     if (!Better(chosen, best)) break;

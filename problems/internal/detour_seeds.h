@@ -10,6 +10,7 @@
 #ifndef CCMA_PROBLEMS_INTERNAL_DETOUR_SEEDS_H_
 #define CCMA_PROBLEMS_INTERNAL_DETOUR_SEEDS_H_
 
+#include <functional>
 #include <vector>
 
 #include "formats/waypoints.h"
@@ -35,9 +36,12 @@ struct SeededWalk {
 };
 
 // The greedy walk of `waypoints` from (u0, s0), its stalled legs bent as
-// above (at most `max_bends` of them). Leaves the problem at the walk's end.
-SeededWalk WalkWithDetours(ControlProblem& problem, const std::vector<Waypoint>& waypoints, const Eigen::VectorXd& u0,
-                           const State& s0, int max_bends);
+// above (at most `max_bends` of them). `after_walk(walks done, at most)`
+// (optional) is called after every walk; when it returns false no further
+// seed is walked. Leaves the problem at the best walk's end.
+SeededWalk WalkWithDetours(ControlProblem& problem, const std::vector<Waypoint>& waypoints,
+                           const Eigen::VectorXd& u0, const State& s0, int max_bends,
+                           const std::function<bool(int, int)>& after_walk = nullptr);
 
 }  // namespace ccma
 

@@ -47,12 +47,30 @@ bool LmLoop::StepConstraintsHold() const {
 }
 
 ControlStepResult LmLoop::SolveStep(const PoseTarget& target) {
+  StepConstraints& step_constraints = p_.workspace_->step_constraints;
+  if (!step_constraints.empty()) {
+    step_constraints.Begin(p_.forward_.controls(), p_.forward_.state());
+  }
+  return SolveBegunStep(target, /*project_first=*/false);
+}
+
+ControlStepResult LmLoop::SolveStepFrom(const PoseTarget& target, const Eigen::VectorXd& u0,
+                                        const State& s0) {
+  StepConstraints& step_constraints = p_.workspace_->step_constraints;
+  if (!step_constraints.empty()) step_constraints.Begin(u0, s0);
+  return SolveBegunStep(target, /*project_first=*/true);
+}
+
+ControlStepResult LmLoop::SolveBegunStep(const PoseTarget& target, bool project_first) {
   const auto start = Clock::now();
   const int solves_before = p_.forward_solves_;
   ControlStepResult result;
-  StepConstraints& step_constraints = p_.workspace_->step_constraints;
-  if (!step_constraints.empty()) step_constraints.Begin(p_.forward_.controls(), p_.forward_.state());
+  const StepConstraints& step_constraints = p_.workspace_->step_constraints;
   p_.workspace_->active = step_constraints.NoneActive();
+  // A start below a floor (SolveStepFrom): back onto the constraints first,
+  // so that the descent starts where they hold (its objective cannot
+  // decrease on the way there when the start is on target).
+  if (project_first && !StepConstraintsHold()) ProjectOntoStepConstraints(&result);
   const bool reached = ConvergeTask(target, &result, /*report_iterations=*/true);
   if (!StepConstraintsHold()) ProjectOntoStepConstraints(&result);
   // Redundancy resolution once the task holds (see ControlOptions::Secondary).
@@ -172,10 +190,14 @@ void LmLoop::ProjectOntoStepConstraints(ControlStepResult* result) {
   const StepConstraints& constraints = p_.workspace_->step_constraints;
   if (constraints.empty()) return;
   ForwardProblem& forward = p_.forward_;
+  // Items once held stay held: releasing one that sits at its bound would
+  // let the next Newton step push it past (two pairs at the margin round
+  // one base), and the projection would only converge linearly.
+  ActiveSet held = p_.workspace_->active;
   for (int it = 0; it < 8; ++it) {
     if (StepConstraintsHold()) break;
     const Eigen::MatrixXd ds_du = p_.StateSensitivity();
-    const ActiveSet held = constraints.AtOrBeyond(forward.controls(), forward.state(), p_.workspace_->active);
+    held = constraints.AtOrBeyond(forward.controls(), forward.state(), held);
     const LinearConstraints rows = constraints.Linearize(forward.controls(), forward.state(), ds_du, held);
     const Eigen::MatrixXd none = Eigen::MatrixXd::Zero(ds_du.cols(), ds_du.cols());
     const Eigen::VectorXd d = ConstrainedLmStep(none, Eigen::VectorXd::Zero(ds_du.cols()), 1.0, rows);

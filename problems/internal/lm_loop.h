@@ -22,6 +22,12 @@ class LmLoop {
 
   // One control step toward `target` from the current solution.
   ControlStepResult SolveStep(const PoseTarget& target);
+  // The same step, its step constraints begun at (u0, s0) (the previous row
+  // of a path) instead of at the current solution: a current solution below
+  // a floor (a clearance under the margin) is brought back to it, where
+  // SolveStep would keep its shortfall as the floor.
+  ControlStepResult SolveStepFrom(const PoseTarget& target, const Eigen::VectorXd& u0,
+                                  const State& s0);
   // The LM iterations on the end-effector task alone from the current
   // solution; returns whether it reached the target tolerance. Adds its
   // iterations, branch jumps, rcond and sigma to `result`.
@@ -38,6 +44,9 @@ class LmLoop {
   // Newton steps on the step constraints alone until they hold to 1e-10.
   void ProjectOntoStepConstraints(ControlStepResult* result);
   bool StepConstraintsHold() const;
+  // SolveStep after the step constraints have begun; project_first: onto
+  // them before the descent.
+  ControlStepResult SolveBegunStep(const PoseTarget& target, bool project_first);
 
   ControlProblem& p_;
 };

@@ -142,11 +142,18 @@ bool TrajectoryPlanner::Trial(const Eigen::VectorXd& u0, const State& s0, const 
   return true;
 }
 
-int TrajectoryPlanner::Optimize(const Eigen::VectorXd& u0, const State& s0, std::vector<PlannedStep>* steps) {
+int TrajectoryPlanner::Optimize(const Eigen::VectorXd& u0, const State& s0,
+                                std::vector<PlannedStep>* steps,
+                                const std::function<bool(int)>& keep_going,
+                                std::string* stopped_by) {
   u0_effective_ = p_.EffectiveControls(u0);
   double f = Objective(*steps), mu = -1;
-  int iterations = 0;
-  for (; iterations < options_.max_iterations; ++iterations) {
+  *stopped_by = "plan_iterations";
+  for (int iterations = 0; iterations < options_.max_iterations; ++iterations) {
+    if (keep_going && !keep_going(iterations)) {
+      *stopped_by = "plan_time_s";
+      return iterations;
+    }
     const PlanSystem system = Linearize(u0, s0, *steps);
     if (mu < 0) {
       double largest = 0;
@@ -158,8 +165,7 @@ int TrajectoryPlanner::Optimize(const Eigen::VectorXd& u0, const State& s0, std:
       Eigen::VectorXd d;
       std::vector<PlannedStep> next;
       const bool solved = SolvePlanSystem(system, mu, kMaxChange, 200, &d);
-      if (solved && d.lpNorm<Eigen::Infinity>() > 1e-14 &&
-          Trial(u0, s0, d, *steps, &next)) {
+      if (solved && d.lpNorm<Eigen::Infinity>() > 1e-14 && Trial(u0, s0, d, *steps, &next)) {
         const double f_new = Objective(next);
         if (f_new < f) {
           accepted = true;
@@ -167,15 +173,21 @@ int TrajectoryPlanner::Optimize(const Eigen::VectorXd& u0, const State& s0, std:
           const double decrease = f - f_new;
           f = f_new;
           mu = std::max(mu * 0.1, 1e-30);
-          if (decrease <= 1e-14 * (1.0 + f)) return iterations + 1;
+          if (decrease <= 1e-14 * (1.0 + f)) {
+            *stopped_by = "converged";
+            return iterations + 1;
+          }
           continue;
         }
       }
       mu = mu * 10 + 1e-30;
     }
-    if (!accepted) break;
+    if (!accepted) {
+      *stopped_by = "converged";
+      return iterations;
+    }
   }
-  return iterations;
+  return options_.max_iterations;
 }
 
 }  // namespace ccma

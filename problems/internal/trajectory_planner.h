@@ -6,6 +6,8 @@
 #ifndef CCMA_PROBLEMS_INTERNAL_TRAJECTORY_PLANNER_H_
 #define CCMA_PROBLEMS_INTERNAL_TRAJECTORY_PLANNER_H_
 
+#include <functional>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -32,8 +34,12 @@ class TrajectoryPlanner {
  public:
   TrajectoryPlanner(ControlProblem* problem, const PlanOptions& options);
   // Improves `steps` (assembled) from the start (u0, s0); returns the
-  // iterations taken.
-  int Optimize(const Eigen::VectorXd& u0, const State& s0, std::vector<PlannedStep>* steps);
+  // iterations taken. `keep_going(iterations done)` is asked before each
+  // iteration (false: stop now). *stopped_by: "converged" (the objective
+  // stopped decreasing), "plan_iterations" (options.max_iterations) or
+  // "plan_time_s" (keep_going said stop).
+  int Optimize(const Eigen::VectorXd& u0, const State& s0, std::vector<PlannedStep>* steps,
+               const std::function<bool(int)>& keep_going, std::string* stopped_by);
 
  private:
   // The objective at `steps` (their energies filled in).

@@ -781,6 +781,7 @@ def plan(
     smoothness_weight: float = 1.0,
     travel_weight: float = 0.01,
     plan_iterations: int = 200,
+    plan_time_s: float = 120.0,
     out: Optional[str | os.PathLike[str]] = None,
 ) -> PlanResult:
     """`ccma plan` (whole-trajectory planning): the command's JSON as attributes (converged, used, iterations, greedy, plan, controls, end_effector, clearance, warning), its CSV as `table`; out=PATH writes the CSV."""

@@ -74,6 +74,12 @@ class PlanResult(_Tabled):
     waypoints = Field("waypoints", "how many waypoints were given")
     steps = Field("steps", "path steps (the table's rows)")
     iterations = Field("iterations", "Gauss-Newton iterations of the whole path")
+    stopped_by = Field("stopped_by", "why the optimisation stopped: 'converged', 'plan_iterations' or 'plan_time_s'")
+    finishing = Field("finishing", "Record {repaired_rows, inserted_rows}: rows brought back to the margin, "
+                                   "midpoint rows added")
+    shortfall = Field("shortfall", "only when the finished plan stayed below the margin: Record {step, midpoint, "
+                                   "time_s [s], torn, then residual_energy [m^2] or pair, clearance_m [m], "
+                                   "floor_m [m], shortfall_m [m]}; None otherwise", None)
     greedy = Field("greedy", "Record {reached_waypoints, travel_m [m], min_clearance_m [m] (with collision "
                              "geometry)}: the greedy trajectory's measures")
     plan = Field("plan", "Record, the same measures of the optimised trajectory")

@@ -69,8 +69,9 @@ void BindCollision(py::module_& m) {
   m.def(
       "plan",
       [](ControlProblem& p, const std::vector<Waypoint>& waypoints, double path_weight, double smoothness_weight,
-         double travel_weight, int plan_iterations, const py::object& out) {
+         double travel_weight, int plan_iterations, double plan_time_s, const py::object& out) {
         PlanOptions options;
+        options.max_seconds = plan_time_s;
         options.path_weight = path_weight;
         options.smoothness_weight = smoothness_weight;
         options.travel_weight = travel_weight;
@@ -85,15 +86,18 @@ void BindCollision(py::module_& m) {
         return Plan(p, waypoints, options, out);
       },
       py::arg("problem"), py::arg("waypoints"), py::arg("path_weight") = 1e-2, py::arg("smoothness_weight") = 1.0,
-      py::arg("travel_weight") = 1e-2, py::arg("plan_iterations") = 200, py::arg("out") = py::none(),
+      py::arg("travel_weight") = 1e-2, py::arg("plan_iterations") = 200, py::arg("plan_time_s") = 120.0,
+      py::arg("out") = py::none(),
       "`ccma plan`: whole-trajectory planning from the problem's current controls (docs/obstacles.md). "
       "Returns a ccma.PlanResult: the command's JSON as attributes (to_dict()): converged, used ('plan' or "
-      "'greedy'), iterations, greedy and plan (reached_waypoints, travel_m, min_clearance_m), controls, "
-      "end_effector, clearance, warning; its CSV (the columns of `ccma trajectory`, one row per step) as "
-      "`table`; out=PATH writes that CSV too. Keywords as the flags: path_weight, smoothness_weight, "
-      "travel_weight, plan_iterations. Raises ValueError for differential bases, the bfgs method, options "
-      "out of range or waypoints the waypoint CSV refuses (a value not finite or out of range, a time smaller "
-      "than the one before; the message names the waypoint).");
+      "'greedy'), iterations, stopped_by ('converged', 'plan_iterations' or 'plan_time_s'), finishing "
+      "(repaired_rows, inserted_rows), shortfall (only when the finished plan stayed below the margin), "
+      "greedy and plan (reached_waypoints, travel_m, min_clearance_m), controls, end_effector, clearance, "
+      "warning; its CSV (the columns of `ccma trajectory`, one row per step) as `table`; out=PATH writes "
+      "that CSV too. Keywords as the flags: path_weight, smoothness_weight, travel_weight, plan_iterations, "
+      "plan_time_s [s] (bounds the detour seeds and the optimisation). Raises ValueError for differential "
+      "bases, the bfgs method, options out of range or waypoints the waypoint CSV refuses (a value not "
+      "finite or out of range, a time smaller than the one before; the message names the waypoint).");
 }
 
 }  // namespace ccma::python

@@ -208,6 +208,7 @@ nlohmann::json PlanDocument(const ControlProblem& control, const PlanResult& r, 
   out["waypoints"] = waypoints;
   out["steps"] = r.steps.size();
   out["iterations"] = r.iterations;
+  cli::AddPlanFinishing(r, &out);
   out["greedy"] = MeasuresJson(r.greedy);
   out["plan"] = MeasuresJson(r.plan);
   out["solve_time_ms"] = r.solve_time_ms;

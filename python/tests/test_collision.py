@@ -49,8 +49,21 @@ def test_plan_goes_round_the_pillar():
     assert result.clearance.min_on_path == result.table["clearance_m"].min()
     np.testing.assert_allclose(result.table.stack(["x_m", "y_m", "z_m"])[-1], [1.0, 0.0, 0.6], atol=1e-9)
     assert result.table["reached"].all()
+    document = result.to_dict()
+    assert document["stopped_by"] == "converged" and "shortfall" not in document
+    assert document["finishing"] == {"repaired_rows": 0, "inserted_rows": 0}
     with pytest.raises(ValueError):
         ccma.plan(control, waypoints, path_weight=-1)
+    with pytest.raises(ValueError):
+        ccma.plan(control, waypoints, plan_time_s=-1)
+
+
+def test_plan_time_bound_says_where_it_stopped():
+    """plan_time_s=0 stops before the first iteration, and says so."""
+    model = ccma.load_model(EXAMPLES / "pillar_detour.yaml")
+    control = ccma.ControlProblem(model)
+    result = ccma.plan(control, ccma.load_waypoints(EXAMPLES / "one_metre_x.csv"), plan_time_s=0)
+    assert result.stopped_by == "plan_time_s" and result.iterations == 0
 
 
 def test_plan_refuses_waypoints_the_csv_refuses():
