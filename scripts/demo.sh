@@ -10,7 +10,7 @@
 #   scripts/demo.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
-echo "demo: set-up and build of the ccma tool first (about 3 minutes on 2 cores the first time), then about 20 s of runs"
+echo "demo: set-up and build of the ccma tool first (about 6 minutes on 2 cores the first time), then about 20 s of runs"
 scripts/setup.sh --tool
 ccma=build/apps/ccma
 out=build/demo

@@ -71,11 +71,11 @@ command -v ccache > /dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 parts=(-DCCMA_BUILD_TESTS=ON -DCCMA_BUILD_BENCHMARKS=ON -DCCMA_BUILD_EXAMPLES=ON -DCCMA_BUILD_PYTHON=ON)
 target_args=()
 what="everything (library, tool, tests, benchmarks, examples, Python module)"
-estimate="about 8 minutes on 2 cores the first time"
+estimate="about 15 minutes on 2 cores the first time"
 if ((tool_only)); then
   target_args=(--target ccma_tool)
   what="the ccma tool"
-  estimate="about 3 minutes on 2 cores the first time"
+  estimate="about 6 minutes on 2 cores the first time"
   if grep -qs '^CCMA_BUILD_TESTS:BOOL=ON' build/CMakeCache.txt; then
     parts=()
   else
