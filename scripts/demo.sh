@@ -5,7 +5,7 @@
 #   a target 3 cm and 0.05 rad away, the paper's two 4-DOF paths with
 #   trajectory, a simulated replay of the first with plots, and 3D pages of
 #   every model and of the replay (ccma view: open them in a browser).
-# It builds only the `ccma` tool (about 3 minutes on 2 cores the first time;
+# It builds only the `ccma` tool (about 6 minutes on 2 cores the first time;
 # the runs take about 20 s); scripts/test.sh builds and runs everything else.
 #   scripts/demo.sh
 set -euo pipefail
