@@ -26,8 +26,9 @@ def test_replay_releases_the_gil():
     worker.join()
     # Holding the GIL for its whole C++ call, the worker would leave this
     # thread the ticks of a few milliseconds at most (~4e4 here); released,
-    # about 3e6 in the ~0.5 s of the call.
-    assert ticks > 1000000
+    # about 3e6 in the ~0.5 s of the call on an idle machine, and 9e5 seen
+    # with ctest -j2 running other tests on the other core.
+    assert ticks > 250000
 
 
 MODEL = str(ROOT / "models" / "4dof_reduced.yaml")
