@@ -6,7 +6,8 @@
 #   scripts/setup.sh --tool               # only what the `ccma` tool needs (the demo's choice):
 #                                         #   fewer packages, no tests, Python or benchmarks
 #   scripts/setup.sh --register-python    # also make `import ccma` work without PYTHONPATH
-#   CCMA_EXTRA_PACKAGES="chromium" scripts/setup.sh   # more packages
+#   CCMA_EXTRA_PACKAGES="..." scripts/setup.sh        # more packages, before the build
+#   CCMA_LATE_PACKAGES="chromium" scripts/setup.sh     # more packages, installed while it builds
 # Without --register-python nothing is written outside this clone: use
 # PYTHONPATH=build/python python3 ... (docs/python.md).
 set -euo pipefail
@@ -18,54 +19,84 @@ for arg in "$@"; do
   case "$arg" in
     --register-python) register=1 ;;
     --tool) tool_only=1 ;;
-    -h|--help) sed -n '2,11p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,12p' "$0"; exit 0 ;;
     *) echo "setup: unknown argument '$arg' (see scripts/setup.sh --help)" >&2; exit 2 ;;
   esac
 done
 
 # What the library and the `ccma` tool need to build and run.
 PACKAGES=(g++ make cmake pkg-config
+          ninja-build  # the generator of a new build/: it compiles a target's files while the libraries it links still build
           libceres-dev libeigen3-dev libgoogle-glog-dev libgflags-dev
           libyaml-cpp-dev nlohmann-json3-dev
           liburdfdom-dev libsdformat-dev  # ccma import: URDF and SDFormat robot files
           gnuplot-nox)  # gnuplot: plots of `ccma bench --out` and `ccma replay` (optional at run time)
+# What only running the tests needs: installed in the background while the
+# build runs (the build needs none of them), waited for before setup ends.
+LATE_PACKAGES=()
 # What the tests, benchmarks, examples and the Python module add.
 if ((!tool_only)); then
   PACKAGES+=(libgtest-dev libbenchmark-dev
-             pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module and its tests
-             python3-matplotlib  # the Python trajectory example's plot
-             python3-distributed  # ccma.workspace on a Dask cluster (and its local-cluster test)
-             python3-zarr python3-tqdm  # sweeps: finished chunks kept for resuming; the progress bar
+             pybind11-dev python3-dev python3-numpy  # the Python module
+             python3-matplotlib  # the Python trajectory example's plot (its test expects the plot when present)
              libfcl-dev)  # tests: FCL's distances, the independent check of ccma's clearances
+  LATE_PACKAGES+=(python3-pytest  # the Python tests
+                  python3-distributed  # ccma.workspace on a Dask cluster (and its local-cluster test)
+                  python3-zarr python3-tqdm)  # sweeps: finished chunks kept for resuming; the progress bar
 fi
 # The viewer's JavaScript is bundled with npm (three.js from the npm registry).
 command -v npm > /dev/null || PACKAGES+=(npm)
 # shellcheck disable=SC2206
 PACKAGES+=(${CCMA_EXTRA_PACKAGES:-})
+# shellcheck disable=SC2206
+LATE_PACKAGES+=(${CCMA_LATE_PACKAGES:-})
 
-missing=()
-for p in "${PACKAGES[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if ((${#missing[@]})); then
-  echo "setup: installing ${#missing[@]} Debian packages (apt-get, about 2-4 minutes): ${missing[*]}"
-  SUDO=""
-  [ "$(id -u)" -ne 0 ] && SUDO="sudo"
-  $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" \
-    > apt.log 2>&1 &
-  apt_pid=$!
-  while kill -0 "$apt_pid" 2> /dev/null; do
-    sleep 20
-    kill -0 "$apt_pid" 2> /dev/null && echo "setup: still installing ($(grep -c '^Setting up' apt.log || true) set up)"
+SUDO=""
+[ "$(id -u)" -ne 0 ] && SUDO="sudo"
+apt_updated=0
+# missing_of NAME...: the packages among NAME... that are not installed.
+missing_of() {
+  local p
+  for p in "$@"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || echo "$p"
   done
-  wait "$apt_pid" || { tail -30 apt.log; exit 1; }
+}
+# install LOG WHAT NAME...: apt-get install, a line at least every 20 s.
+install() {
+  local log=$1 what=$2 pid
+  shift 2
+  ((apt_updated)) || $SUDO apt-get update -qq
+  apt_updated=1
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "$@" > "$log" 2>&1 &
+  pid=$!
+  while kill -0 "$pid" 2> /dev/null; do
+    sleep 20
+    kill -0 "$pid" 2> /dev/null && echo "setup: still installing $what ($(grep -c '^Setting up' "$log" || true) set up)"
+  done
+  wait "$pid" || { tail -30 "$log"; return 1; }
+}
+mapfile -t missing < <(missing_of "${PACKAGES[@]}")
+if ((${#missing[@]})); then
+  echo "setup: installing ${#missing[@]} Debian packages (apt-get, about 1-3 minutes): ${missing[*]}"
+  install apt.log "the build's packages" "${missing[@]}" || exit 1
+fi
+mapfile -t late < <(missing_of "${LATE_PACKAGES[@]}")
+late_pid=""
+if ((${#late[@]})); then
+  ((apt_updated)) || $SUDO apt-get update -qq
+  echo "setup: installing ${#late[@]} packages the tests need while the build runs (apt-late.log): ${late[*]}"
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${late[@]}" \
+    > apt-late.log 2>&1 &
+  late_pid=$!
 fi
 
 BUILD_TYPE="${CCMA_BUILD_TYPE:-Release}"
 launcher=()
 # ccache, when installed, makes a second clone's or a rebuilt branch's build fast.
 command -v ccache > /dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+# A new build/ uses Ninja; an existing one keeps the generator it was made with.
+generator=()
+[ -f build/CMakeCache.txt ] || ! command -v ninja > /dev/null || generator=(-G Ninja)
 # --tool configures without the parts that need the test packages, unless
 # build/ already has them (a later --tool run never takes tests away).
 parts=(-DCCMA_BUILD_TESTS=ON -DCCMA_BUILD_BENCHMARKS=ON -DCCMA_BUILD_EXAMPLES=ON -DCCMA_BUILD_PYTHON=ON)
@@ -83,7 +114,7 @@ if ((tool_only)); then
   fi
 fi
 echo "setup: configuring build/ (CMake, a few seconds)"
-cmake -S . -B build -DCMAKE_BUILD_TYPE="$BUILD_TYPE" "${launcher[@]}" "${parts[@]}" > build.log 2>&1 \
+cmake -S . -B build "${generator[@]}" -DCMAKE_BUILD_TYPE="$BUILD_TYPE" "${launcher[@]}" "${parts[@]}" > build.log 2>&1 \
   || { cat build.log; exit 1; }
 echo "setup: building $what into build/ ($BUILD_TYPE), $estimate; log in build.log"
 
@@ -111,11 +142,21 @@ while kill -0 "$build_pid" 2> /dev/null; do
   fi
 done
 if ! wait "$build_pid"; then
+  # A half-finished apt-get must not be cut off (dpkg would be left locked mid-install).
+  [ -z "$late_pid" ] || wait "$late_pid" || true
   grep -E 'error|Error' build.log | head -20
   tail -30 build.log
   exit 1
 fi
 echo "setup: built $what in $((SECONDS - start)) s (build/apps/ccma; log in build.log)"
+if [ -n "$late_pid" ]; then
+  while kill -0 "$late_pid" 2> /dev/null; do
+    echo "setup: waiting for the tests' packages ($(grep -c '^Setting up' apt-late.log || true) set up; apt-late.log)"
+    sleep 10
+  done
+  wait "$late_pid" || { tail -30 apt-late.log; exit 1; }
+  echo "setup: installed the tests' packages"
+fi
 
 # `import ccma` without PYTHONPATH, on request only: a ccma-build.pth file in
 # the site-packages of the python3 the module was built for adds build/python

@@ -9,6 +9,6 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # chromium: the viewer's real-browser test.
-CCMA_EXTRA_PACKAGES="chromium ${CCMA_EXTRA_PACKAGES:-}" scripts/setup.sh
+CCMA_LATE_PACKAGES="chromium ${CCMA_LATE_PACKAGES:-}" scripts/setup.sh
 echo "test: running the suite (ctest -j$(nproc); about 4 minutes on 2 cores; a line per test)"
 (cd build && ctest --output-on-failure -j"$(nproc)" "$@")

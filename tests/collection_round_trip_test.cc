@@ -26,11 +26,11 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/SVD>
 #include <gtest/gtest.h>
 
 #include "analyses/robot_import.h"
 #include "ccma/internal/constraint_set.h"
+#include "ccma/internal/dense_factorizations.h"
 #include "ccma/joint_coordinates.h"
 #include "formats/model_loader.h"
 #include "formats/sdformat_reader.h"
@@ -117,7 +117,7 @@ std::set<int> FreeBodies(const Model& model) {
   Eigen::VectorXd C;
   Eigen::MatrixXd J_s, J_u;
   ConstraintSet(model).Evaluate(State::Home(model), model.home_controls(), &C, &J_s, &J_u);
-  const Eigen::BDCSVD<Eigen::MatrixXd> svd(J_s, Eigen::ComputeFullV);
+  const BdcSvd svd(J_s, Eigen::ComputeFullV);
   const Eigen::VectorXd& sigma = svd.singularValues();
   int rank = 0;
   while (rank < sigma.size() && sigma[rank] > 1e-8 * std::max(1.0, sigma[0])) ++rank;

@@ -6,9 +6,9 @@
 #include <unistd.h>
 #include <string>
 
-#include <Eigen/SVD>
 #include <gtest/gtest.h>
 
+#include "ccma/internal/dense_factorizations.h"
 #include "formats/model_loader.h"
 #include "ccma/rotation.h"
 #include "formats/waypoints.h"
@@ -181,7 +181,7 @@ TEST(Control, RedundantControlsChangeByTheLeastNorm) {
   const PoseTarget home = control.CurrentPose();
   error.Evaluate(control.forward().state(), home, &e, &de_ds);
   const Eigen::MatrixXd dX_du = de_ds * ds_du;  // 6 x 9
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(dX_du, Eigen::ComputeFullV);
+  const JacobiSvd svd(dX_du, Eigen::ComputeFullV);
   const Eigen::MatrixXd null_space = svd.matrixV().rightCols(3);
   EXPECT_LT(svd.singularValues()[5], 1e6);
 

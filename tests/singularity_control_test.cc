@@ -10,10 +10,10 @@
 #include <random>
 #include <string>
 
-#include <Eigen/SVD>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "ccma/internal/dense_factorizations.h"
 #include "formats/model_loader.h"
 #include "problems/control_problem.h"
 #include "problems/internal/end_effector_error.h"
@@ -47,7 +47,7 @@ Eigen::Vector2d TwoSmallestSingularValues(ControlProblem& control, const PoseTar
   Eigen::VectorXd e;
   Eigen::MatrixXd de_ds;
   error.Evaluate(control.forward().state(), target, &e, &de_ds);
-  const Eigen::VectorXd sv = Eigen::JacobiSVD<Eigen::MatrixXd>(de_ds * control.StateSensitivity()).singularValues();
+  const Eigen::VectorXd sv = JacobiSvd(de_ds * control.StateSensitivity()).singularValues();
   return {sv[sv.size() - 1], sv[sv.size() - 2]};
 }
 

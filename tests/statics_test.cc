@@ -12,10 +12,10 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <Eigen/Geometry>
-#include <Eigen/SVD>
 
 #include "analyses/statics.h"
 #include "ccma/internal/constraint_set.h"
+#include "ccma/internal/dense_factorizations.h"
 #include "ccma/internal/format.h"
 #include "bundled_models.h"
 #include "formats/model_loader.h"
@@ -167,7 +167,7 @@ Eigen::MatrixXd FeasibleMotions(const Model& model, const State& s, const Eigen:
   set.Evaluate(s, u, &C, &J_s, &J_u);
   Eigen::MatrixXd J(J_s.rows(), J_s.cols() + J_u.cols());
   J << J_s, J_u;
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeFullV);
+  JacobiSvd svd(J, Eigen::ComputeFullV);
   const int rank = static_cast<int>((svd.singularValues().array() > 1e-9 * svd.singularValues()[0]).count());
   return svd.matrixV().rightCols(J.cols() - rank);
 }

@@ -35,53 +35,14 @@ std::unique_ptr<ceres::CostFunction> MakeJointCost(const Joint& j) {
   return nullptr;
 }
 
-std::unique_ptr<ceres::CostFunction> MakeJointTwin(const Joint& j) {
-  switch (j.type) {
-    case JointType::kRevolute:
-      return std::unique_ptr<ceres::CostFunction>(MakeRevoluteJointAutoDiff(j.p_A, j.p_B, j.a_A, j.a_B));
-    case JointType::kSpherical:
-      return std::unique_ptr<ceres::CostFunction>(MakeSphericalJointAutoDiff(j.p_A, j.p_B));
-    case JointType::kUniversal:
-      return std::unique_ptr<ceres::CostFunction>(MakeUniversalJointAutoDiff(j.p_A, j.p_B, j.a_A, j.b_B));
-    case JointType::kPrismatic:
-      return std::unique_ptr<ceres::CostFunction>(
-          MakePrismaticJointAutoDiff(j.p_A, j.p_B, j.a_A, j.d1_A, j.d1_B, j.d2_A, j.d2_B));
-    case JointType::kFixed:
-      return std::unique_ptr<ceres::CostFunction>(
-          MakeFixedJointAutoDiff(j.p_A, j.p_B, j.d1_A, j.d1_B, j.d2_A, j.d2_B));
-  }
-  return nullptr;
-}
-
 std::unique_ptr<ceres::CostFunction> MakeActuatorCost(const Joint& j) {
   if (j.type == JointType::kRevolute) return std::make_unique<ActuatedRevoluteCost>(j.e1_A, j.e2_A, j.w_B, j.q_home);
   return std::make_unique<ActuatedPrismaticCost>(j.p_A, j.p_B, j.a_A, j.q_home);
 }
 
-std::unique_ptr<ceres::CostFunction> MakeActuatorTwin(const Joint& j) {
-  if (j.type == JointType::kRevolute) {
-    return std::unique_ptr<ceres::CostFunction>(MakeActuatedRevoluteAutoDiff(j.e1_A, j.e2_A, j.w_B, j.q_home));
-  }
-  return std::unique_ptr<ceres::CostFunction>(MakeActuatedPrismaticAutoDiff(j.p_A, j.p_B, j.a_A, j.q_home));
-}
-
 }  // namespace
 
 const double ConstraintSet::kWorldPose[kPoseAmbientSize] = {0, 0, 0, 1, 0, 0, 0};
-
-std::vector<std::unique_ptr<ceres::CostFunction>> ConstraintSet::MakeAutoDiffTwins(
-    const Model& model) const {
-  std::vector<std::unique_ptr<ceres::CostFunction>> twins;
-  for (const Joint& joint : model.joints) {
-    twins.push_back(MakeJointTwin(joint));
-    if (joint.actuated) twins.push_back(MakeActuatorTwin(joint));
-  }
-  for (int k = 0; k < model.num_bases(); ++k) {
-    twins.emplace_back(MakeOmniBasePlanarAutoDiff());
-    twins.emplace_back(MakeOmniBaseMotorAutoDiff());
-  }
-  return twins;
-}
 
 ConstraintSet::ConstraintSet(const Model& model)
     : state_size_(model.state_size()), num_controls_(model.num_controls()) {

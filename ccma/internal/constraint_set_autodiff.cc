@@ -1,0 +1,65 @@
+// ConstraintSet::MakeAutoDiffTwins: every constraint block's cost as
+// ceres::AutoDiffCostFunction over its templated residual (`ccma bench`
+// compares them with the analytic costs; the derivative tests check one
+// against the other). A file of its own: the twins' Jet instantiations are
+// a third of the constraint set's compile time, and here they compile in
+// parallel with the rest of the library.
+#include <memory>
+#include <vector>
+
+#include "ccma/internal/constraint_set.h"
+#include "cost_functions/actuated_prismatic_cost.h"
+#include "cost_functions/actuated_revolute_cost.h"
+#include "cost_functions/fixed_joint_cost.h"
+#include "cost_functions/omni_base_motor_cost.h"
+#include "cost_functions/omni_base_planar_cost.h"
+#include "cost_functions/prismatic_joint_cost.h"
+#include "cost_functions/revolute_joint_cost.h"
+#include "cost_functions/spherical_joint_cost.h"
+#include "cost_functions/universal_joint_cost.h"
+
+namespace ccma {
+namespace {
+
+std::unique_ptr<ceres::CostFunction> MakeJointTwin(const Joint& j) {
+  switch (j.type) {
+    case JointType::kRevolute:
+      return std::unique_ptr<ceres::CostFunction>(MakeRevoluteJointAutoDiff(j.p_A, j.p_B, j.a_A, j.a_B));
+    case JointType::kSpherical:
+      return std::unique_ptr<ceres::CostFunction>(MakeSphericalJointAutoDiff(j.p_A, j.p_B));
+    case JointType::kUniversal:
+      return std::unique_ptr<ceres::CostFunction>(MakeUniversalJointAutoDiff(j.p_A, j.p_B, j.a_A, j.b_B));
+    case JointType::kPrismatic:
+      return std::unique_ptr<ceres::CostFunction>(
+          MakePrismaticJointAutoDiff(j.p_A, j.p_B, j.a_A, j.d1_A, j.d1_B, j.d2_A, j.d2_B));
+    case JointType::kFixed:
+      return std::unique_ptr<ceres::CostFunction>(
+          MakeFixedJointAutoDiff(j.p_A, j.p_B, j.d1_A, j.d1_B, j.d2_A, j.d2_B));
+  }
+  return nullptr;
+}
+
+std::unique_ptr<ceres::CostFunction> MakeActuatorTwin(const Joint& j) {
+  if (j.type == JointType::kRevolute) {
+    return std::unique_ptr<ceres::CostFunction>(MakeActuatedRevoluteAutoDiff(j.e1_A, j.e2_A, j.w_B, j.q_home));
+  }
+  return std::unique_ptr<ceres::CostFunction>(MakeActuatedPrismaticAutoDiff(j.p_A, j.p_B, j.a_A, j.q_home));
+}
+
+}  // namespace
+
+std::vector<std::unique_ptr<ceres::CostFunction>> ConstraintSet::MakeAutoDiffTwins(
+    const Model& model) const {
+  std::vector<std::unique_ptr<ceres::CostFunction>> twins;
+  for (const Joint& joint : model.joints) {
+    twins.push_back(MakeJointTwin(joint));
+    if (joint.actuated) twins.push_back(MakeActuatorTwin(joint));
+  }
+  for (int k = 0; k < model.num_bases(); ++k) {
+    twins.emplace_back(MakeOmniBasePlanarAutoDiff());
+    twins.emplace_back(MakeOmniBaseMotorAutoDiff());
+  }
+  return twins;
+}
+
+}  // namespace ccma
