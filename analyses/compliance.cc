@@ -19,12 +19,27 @@ constexpr double kComplianceRigid = 1e-14;
 constexpr double kComplianceSingular = 1e-10;
 constexpr double kComplianceUnheld = 1e-8;
 
-// The unit eigenvector of the largest eigenvalue of C's translational block,
-// its largest component positive (the first of equals).
+// The unit eigenvector of the largest eigenvalue of C's translational block.
+// Where several directions are equally soft (a symmetric mechanism), the
+// one of their plane (or space) nearest the x axis (else y, else z), so
+// that the answer does not depend on rounding; its largest component
+// positive (the first of equals).
 void MostCompliant(const Eigen::Matrix<double, 6, 6>& C, ComplianceReport* out) {
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(C.topLeftCorner<3, 3>());
-  out->most_compliant = std::max(0.0, eig.eigenvalues()[2]);
-  Eigen::Vector3d v = eig.eigenvectors().col(2).normalized();
+  const Eigen::Vector3d lambda = eig.eigenvalues();
+  out->most_compliant = std::max(0.0, lambda[2]);
+  int first = 2;  // the eigenvectors first..2 share the largest eigenvalue
+  while (first > 0 && lambda[2] - lambda[first - 1] <= 1e-9 * std::abs(lambda[2])) --first;
+  const Eigen::MatrixXd E = eig.eigenvectors().rightCols(3 - first);
+  Eigen::Vector3d v = eig.eigenvectors().col(2);
+  for (int axis = 0; axis < 3 && first < 2; ++axis) {
+    const Eigen::Vector3d projected = E * (E.transpose() * Eigen::Vector3d::Unit(axis));
+    if (projected.norm() > 1e-6) {
+      v = projected;
+      break;
+    }
+  }
+  v.normalize();
   int largest = 0;
   for (int i = 1; i < 3; ++i) {
     if (std::abs(v[i]) > std::abs(v[largest]) + 1e-12) largest = i;

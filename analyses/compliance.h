@@ -39,7 +39,8 @@ struct ComplianceReport {
   Eigen::Matrix<double, 6, 6> ee_stiffness = Eigen::Matrix<double, 6, 6>::Zero();
   std::string stiffness_note;  // why ee_stiffness is not given
   // The largest eigenvalue of C's translational 3 x 3 block [m/N] and its
-  // unit eigenvector (largest component positive).
+  // unit eigenvector (largest component positive; where several directions
+  // are equally soft, the one of them nearest the x axis, else y, else z).
   Eigen::Vector3d most_compliant_direction = Eigen::Vector3d::UnitX();
   double most_compliant = 0;
   // Every motion that no spring resists leaves the end-effector in place;

@@ -6,6 +6,7 @@
 // of the compliant mechanism, and rigid models left as they were.
 #include <cmath>
 #include <fstream>
+#include <random>
 #include <set>
 #include <sstream>
 #include <string>
@@ -270,6 +271,71 @@ TEST(Compliance, AMechanismItsSpringsDoNotHoldIsReportedWithoutNaN) {
   const StaticsReport r = StaticsAtHome(model);
   EXPECT_TRUE(r.compliance.ee_compliance.allFinite());
   EXPECT_FALSE(r.compliance.held);
+}
+
+// Two actuated vertical slides at the same point carry one weight: rigid,
+// any split is an equilibrium (indeterminate, the minimum-norm one is half
+// each); compliant, the motors share it in proportion to their stiffness.
+TEST(Compliance, SpringsShareARedundantLoadInProportionToTheirStiffness) {
+  const double k1 = 1e4, k2 = 3e4, W = 5 * 9.81;
+  const std::string legs =
+      "  - {name: left, type: prismatic, actuated: true, STIFF1between: [world, slider], point: [0, 0, 0], "
+      "axis: [0, 0, 1]}\n"
+      "  - {name: right, type: prismatic, actuated: true, STIFF2between: [world, slider], point: [0, 0, 0], "
+      "axis: [0, 0, 1]}\n";
+  const std::string head = "name: slides\nbodies:\n  - {name: slider, position: [0, 0, 0.5], mass: 5}\njoints:\n";
+  const std::string tail = "end_effector: {body: slider, point: [0, 0, 0.5], controlled: [z]}\n";
+  auto text = [&](const std::string& s1, const std::string& s2) {
+    std::string t = head + legs + tail;
+    t.replace(t.find("STIFF1"), 6, s1);
+    t.replace(t.find("STIFF2"), 6, s2);
+    return t;
+  };
+  const StaticsReport rigid = StaticsAtHome(LoadModelFromString(text("", ""), "rigid.yaml"));
+  EXPECT_FALSE(rigid.determinate);
+  EXPECT_NEAR(rigid.actuators[0].effort, W / 2, 1e-9);
+  const std::string springs = "translation: 1.0e6, rotation: 1.0e4}, ";
+  const StaticsReport r = StaticsAtHome(LoadModelFromString(
+      text("stiffness: {axis: 1.0e4, " + springs, "stiffness: {axis: 3.0e4, " + springs), "compliant.yaml"));
+  EXPECT_TRUE(r.determinate);
+  EXPECT_NEAR(r.actuators[0].effort, W * k1 / (k1 + k2), 1e-9);
+  EXPECT_NEAR(r.actuators[1].effort, W * k2 / (k1 + k2), 1e-9);
+  EXPECT_NEAR(r.compliance.deflection[2], -W / (k1 + k2), 1e-12);
+  EXPECT_NEAR(r.joints[0].force.z() + r.joints[1].force.z(), W, 1e-9);
+}
+
+// Virtual work with rigid controls: along every motion (w, du) the rigid rows
+// allow (A w + A_u du = 0), the efforts, the loads and the springs do no work
+// together: e . du = w . (H y - f).
+TEST(Compliance, EffortsOfRigidControlsObeyVirtualWork) {
+  Model model = LoadModelFromString(ReadModel("6dof_asymmetric"), "6dof.yaml");
+  for (Joint& joint : model.joints) {
+    if (joint.type == JointType::kRevolute) joint.stiffness.rotation = {3e3, 4e3};
+  }
+  model.end_effector.payload.mass = 2.0;
+  ForwardProblem forward(model);
+  ASSERT_TRUE(forward.Solve(model.home_controls()).assembled);
+  const ConstraintSet set(model);
+  const CompliantEquilibrium system(model, set, forward.state(), forward.controls());
+  ASSERT_TRUE(system.compliant_controls().empty());
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(system.size());
+  f.head(model.state_size()) = GeneralizedLoads(model, forward.state());
+  const Eigen::VectorXd y = system.Displacement(f);
+  const StaticsReport r = ComputeStatics(model, forward.state(), forward.controls());
+  Eigen::VectorXd e(model.num_controls());
+  for (int c = 0; c < e.size(); ++c) e[c] = r.actuators[static_cast<size_t>(c)].effort;
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(system.A());
+  cod.setThreshold(1e-10);
+  std::mt19937 rng(36);
+  std::normal_distribution<double> normal;
+  for (int trial = 0; trial < 5; ++trial) {
+    Eigen::VectorXd du(model.num_controls());
+    for (int c = 0; c < du.size(); ++c) du[c] = normal(rng);
+    const Eigen::VectorXd w = cod.solve(-system.A_u() * du);
+    ASSERT_LT((system.A() * w + system.A_u() * du).norm(), 1e-9) << "a feasible motion";
+    const double work = w.dot(system.SpringForce(y) - f);
+    EXPECT_NEAR(e.dot(du), work, 1e-8 * (1 + std::abs(work))) << trial;
+  }
 }
 
 // A model without stiffness keys: statics has none of the compliance keys
