@@ -186,9 +186,53 @@ TEST(Compliance, AMobileBaseYieldsAlongItsControls) {
   EXPECT_FALSE(r.compliance.stiffness_defined);
 }
 
+// The springs' energy minus the wrench's work, V(u') = 1/2 (u' - u0)^T K
+// (u' - u0) - w . (X(u') - X(u0)) with X from the rigid forward problem, is
+// stationary at the yielded controls u along every control change the
+// mechanism allows (dC/ds ds + dC/du du = 0): central differences of V over
+// re-solved forward problems, against the size of either term.
+void ExpectEnergyStationary(const Model& model, const Eigen::VectorXd& u, const ExternalWrench& w,
+                            const std::string& stem) {
+  const Eigen::VectorXd u0 = model.home_controls();
+  Eigen::VectorXd k(model.num_controls());
+  for (int c = 0; c < k.size(); ++c) k[c] = model.mobile_bases[static_cast<size_t>(c / 3)].stiffness.k[c % 3];
+  ForwardProblem forward(model);
+  EXPECT_TRUE(forward.Solve(u0).assembled);
+  const EndEffectorPose home = forward.end_effector();
+  auto energy = [&](const Eigen::VectorXd& v) {
+    EXPECT_LT(forward.Solve(v).residual_energy, 1e-20);
+    const EndEffectorPose pose = forward.end_effector();
+    const Eigen::Vector3d turn = QuaternionLog(Eigen::Quaterniond(pose.rotation * home.rotation.transpose()));
+    const Eigen::VectorXd d = v - u0;
+    return 0.5 * d.dot(k.asDiagonal() * d) - w.force.dot(pose.position - home.position) - w.moment.dot(turn);
+  };
+  EXPECT_TRUE(forward.Solve(u).assembled);
+  Eigen::VectorXd C;
+  Eigen::MatrixXd J_s, J_u;
+  ConstraintSet(model).Evaluate(forward.state(), u, &C, &J_s, &J_u);
+  Eigen::MatrixXd J(J_s.rows(), J_s.cols() + J_u.cols());
+  J << J_s, J_u;
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(J);
+  lu.setThreshold(1e-10);
+  const Eigen::MatrixXd allowed = lu.kernel().bottomRows(J_u.cols());
+  const Eigen::VectorXd force = k.asDiagonal() * (u - u0);  // the springs' pull, -effort
+  int stretching = 0;
+  for (int i = 0; i < allowed.cols(); ++i) {
+    if (allowed.col(i).norm() < 1e-6) continue;  // an idle motion: the controls stay
+    const Eigen::VectorXd du = allowed.col(i).normalized();
+    const double h = 1e-4;
+    const double slope = (energy(u + h * du) - energy(u - h * du)) / (2 * h);
+    EXPECT_LT(std::abs(slope), 1e-4 * force.norm()) << stem << " direction " << i;
+    if (std::abs(force.dot(du)) > 1e-2 * force.norm()) ++stretching;  // a direction that tests something
+  }
+  const int checked = stretching;
+  EXPECT_GT(checked, 0) << stem;
+}
+
 // The four-agent CCMA with stiff bases: the bases' yields (delta = -effort /
 // k) re-assembled by the rigid forward problem put the end-effector where the
-// linear deflection says, and the mechanism assembles there (compatible).
+// linear deflection says, the mechanism assembles there (compatible), and the
+// energy is stationary there (ExpectEnergyStationary).
 TEST(Compliance, FourAgentBasesYieldCompatiblyAndMoveTheEndEffectorAsPredicted) {
   for (const std::string stem : {"4dof_complete", "4dof_reduced"}) {
     const std::string text = InsertAfterEach(ReadModel(stem), "type: omni,",
@@ -213,6 +257,7 @@ TEST(Compliance, FourAgentBasesYieldCompatiblyAndMoveTheEndEffectorAsPredicted) 
     const Eigen::Vector3d predicted = r.compliance.deflection.head<3>();
     EXPECT_GT(predicted.norm(), 1e-8) << stem;
     EXPECT_LT((moved - predicted).norm(), 1e-4 * predicted.norm()) << stem << "\n" << moved << "\n" << predicted;
+    ExpectEnergyStationary(model, u, w, stem);
   }
 }
 
