@@ -9,6 +9,7 @@
 
 #include "ccma/end_effector.h"
 #include "ccma/internal/constraint_set.h"
+#include "problems/internal/compliant_equilibrium.h"
 #include "problems/internal/equilibrium.h"
 
 namespace ccma {
@@ -37,18 +38,19 @@ Eigen::Matrix<double, 6, 1> OnBody(const ConstraintSet& set, const std::vector<i
   return g;
 }
 
-JointReaction Reaction(const Model& model, const ConstraintSet& set, const State& s, const Joint& joint,
-                       const std::vector<int>& blocks, const Eigen::MatrixXd& J_s, const Eigen::VectorXd& lambda) {
+// The reaction of `joint` from the generalized force [M; F] its rows put on
+// a body (on_body(body)).
+template <typename OnBodyFn>
+JointReaction Reaction(const State& s, const Joint& joint, const OnBodyFn& on_body) {
   JointReaction r;
   r.name = joint.name;
   r.point = joint.body_a == kWorld ? joint.p_A : Eigen::Vector3d(s.R_WB(joint.body_a) * joint.p_A + s.p_WB(joint.body_a));
   // On between[1]; when that is the ground, minus what between[0] receives.
   const bool on_b = joint.body_b != kWorld;
   const int body = on_b ? joint.body_b : joint.body_a;
-  const Eigen::Matrix<double, 6, 1> g = (on_b ? 1.0 : -1.0) * OnBody(set, blocks, J_s, lambda, body);
+  const Eigen::Matrix<double, 6, 1> g = (on_b ? 1.0 : -1.0) * on_body(body);
   r.force = g.tail<3>();
   r.moment = g.head<3>() - (r.point - s.p_WB(body)).cross(r.force);
-  (void)model;
   return r;
 }
 
@@ -97,22 +99,67 @@ bool HasLoads(const Model& model) {
   return false;
 }
 
-StaticsReport ComputeStatics(const Model& model, const State& s, const Eigen::VectorXd& u,
-                             const ExternalWrench& wrench) {
+namespace {
+
+// The rigid mechanism: reactions, determinacy and balance into `out`; the
+// efforts.
+Eigen::VectorXd RigidStatics(const Model& model, const State& s, const Eigen::VectorXd& u, const Eigen::VectorXd& Q,
+                             StaticsReport* out) {
   const ConstraintSet set(model);
   const Equilibrium equilibrium(set, s, u);
   const Eigen::MatrixXd& J_s = equilibrium.J_s();
-  const Eigen::VectorXd Q = GeneralizedLoads(model, s, wrench);
   const Eigen::VectorXd lambda = equilibrium.Multipliers(Q);
-  StaticsReport out;
-  out.determinate = equilibrium.rank() == J_s.rows() || ReactionsDetermined(set, J_s, equilibrium.J_u());
-  out.residual = Q.size() > 0 ? (J_s.transpose() * lambda + Q).lpNorm<Eigen::Infinity>() : 0.0;
-  out.balanced = out.residual <= 1e-8 * (1.0 + (Q.size() > 0 ? Q.lpNorm<Eigen::Infinity>() : 0.0));
+  out->determinate = equilibrium.rank() == J_s.rows() || ReactionsDetermined(set, J_s, equilibrium.J_u());
+  out->residual = Q.size() > 0 ? (J_s.transpose() * lambda + Q).lpNorm<Eigen::Infinity>() : 0.0;
+  out->balanced = out->residual <= 1e-8 * (1.0 + (Q.size() > 0 ? Q.lpNorm<Eigen::Infinity>() : 0.0));
   const std::vector<std::vector<int>> blocks = JointBlocks(model);
   for (size_t j = 0; j < model.joints.size(); ++j) {
-    out.joints.push_back(Reaction(model, set, s, model.joints[j], blocks[j], J_s, lambda));
+    out->joints.push_back(Reaction(s, model.joints[j], [&](int body) { return OnBody(set, blocks[j], J_s, lambda, body); }));
   }
-  const Eigen::VectorXd effort = equilibrium.Efforts(lambda);
+  return equilibrium.Efforts(lambda);
+}
+
+// The compliant mechanism (problems/internal/compliant_equilibrium.h): a
+// joint's reaction is its rigid rows' A^T lambda plus its springs' -S^T k S y.
+Eigen::VectorXd CompliantStatics(const Model& model, const State& s, const Eigen::VectorXd& u,
+                                 const Eigen::VectorXd& Q, StaticsReport* out) {
+  const ConstraintSet set(model);
+  const CompliantEquilibrium system(model, set, s, u);
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(system.size());
+  f.head(Q.size()) = Q;
+  const Eigen::VectorXd y = system.Displacement(f);
+  const Eigen::VectorXd lambda = system.Multipliers(y, f);
+  const Eigen::VectorXd stretch = system.k().asDiagonal() * (system.S() * y);  // spring forces
+  const Eigen::VectorXd unbalanced = system.SpringForce(y) - f - system.A().transpose() * lambda;
+  out->compliant = true;
+  out->determinate = system.determinate();
+  out->residual = unbalanced.size() > 0 ? unbalanced.lpNorm<Eigen::Infinity>() : 0.0;
+  out->balanced = out->residual <= 1e-8 * (1.0 + (Q.size() > 0 ? Q.lpNorm<Eigen::Infinity>() : 0.0));
+  for (size_t j = 0; j < model.joints.size(); ++j) {
+    const CompliantJointRows& r = system.joint_rows()[j];
+    out->joints.push_back(Reaction(s, model.joints[j], [&](int body) {
+      const int c = kPoseTangentSize * body;
+      Eigen::Matrix<double, 6, 1> g =
+          system.A().block(r.a_row, c, r.a_rows, 6).transpose() * lambda.segment(r.a_row, r.a_rows) +
+          system.A().block(r.motor_row, c, r.motor_rows, 6).transpose() * lambda.segment(r.motor_row, r.motor_rows);
+      g -= system.S().block(r.s_row, c, r.s_rows, 6).transpose() * stretch.segment(r.s_row, r.s_rows);
+      return g;
+    }));
+  }
+  Eigen::VectorXd effort = -system.A_u().transpose() * lambda;
+  const std::vector<int>& compliant = system.compliant_controls();
+  for (size_t i = 0; i < compliant.size(); ++i) effort[compliant[i]] = -stretch[static_cast<int>(i)];
+  out->compliance = ComputeCompliance(model, s, system, f);
+  return effort;
+}
+
+}  // namespace
+
+StaticsReport ComputeStatics(const Model& model, const State& s, const Eigen::VectorXd& u,
+                             const ExternalWrench& wrench) {
+  const Eigen::VectorXd Q = GeneralizedLoads(model, s, wrench);
+  StaticsReport out;
+  const Eigen::VectorXd effort = model.compliant() ? CompliantStatics(model, s, u, Q, &out) : RigidStatics(model, s, u, Q, &out);
   for (int k = 0; k < model.num_bases(); ++k) {
     const std::string& name = model.mobile_bases[static_cast<size_t>(k)].name;
     out.actuators.push_back({name, ActuatorKind::kBaseX, effort[3 * k]});

@@ -14,6 +14,12 @@
 // every motion that keeps the constraints (J_s ds + J_u du = 0). Analytic:
 // the Jacobians of the cost functions, no finite differences.
 //
+// A compliant model (any `stiffness` key, analyses/compliance.h) is solved
+// as such: the reactions and efforts are the compliant mechanism's (its
+// springs share the loads, which makes them unique wherever the springs
+// remove the indeterminacy), with the springs' forces in the reactions of
+// compliant joints, and `compliance` holds its deflection and compliance.
+//
 // Units: N, N*m, m, kg.
 #ifndef CCMA_ANALYSES_STATICS_H_
 #define CCMA_ANALYSES_STATICS_H_
@@ -23,6 +29,7 @@
 
 #include <Eigen/Core>
 
+#include "analyses/compliance.h"
 #include "ccma/limits.h"
 #include "ccma/loads.h"
 #include "ccma/model.h"
@@ -59,6 +66,8 @@ struct StaticsReport {
   bool limits_given = false;  // some effort_limits or push_limit
   bool within_limits = true;
   std::vector<std::string> limiting;  // actuators beyond their limits
+  bool compliant = false;     // the model has stiffness: the compliant mechanism's reactions
+  ComplianceReport compliance;  // when compliant
 };
 
 // Whether the model gives anything statics weighs or limits: a mass, a

@@ -128,8 +128,12 @@ Command StaticsCommand() {
           "minimum-norm reactions (determinate: false); effort_limits and push_limit are checked\n"
           "(within_limits, limiting) and payload_capacity {mass [kg], limiting} is the largest payload they\n"
           "allow here. ee_covariance: the end-effector pose's 6x6 covariance from the bases'\n"
-          "pose noise (the replay's motion-capture model) through dX/du. Warns when not assembled,\n"
-          "unbalanced, indeterminate or beyond a limit.",
+          "pose noise (the replay's motion-capture model) through dX/du. With stiffness keys in the model\n"
+          "(compliance) the reactions and efforts are the compliant mechanism's (compliant_reactions), and\n"
+          "deflection {end_effector [m, rad], max_body_m, held}, ee_compliance (6x6), ee_stiffness (its\n"
+          "inverse, or null with ee_stiffness_note) and most_compliant {direction, compliance [m/N]} give\n"
+          "how far the loads make it yield with the controls held (linear). Warns when not assembled,\n"
+          "unbalanced, indeterminate, beyond a limit or not held by its springs.",
           {"model", "controls", "wrench", "mocap_noise_m", "mocap_noise_rad", "obstacles"}, RunStatics, kPoseNoiseHelp};
 }
 

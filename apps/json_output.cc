@@ -191,4 +191,32 @@ void AddPlanFinishing(const PlanResult& result, nlohmann::json* out) {
   if (result.shortfall.any) (*out)["shortfall"] = ShortfallJson(result.shortfall);
 }
 
+namespace {
+
+nlohmann::json MatrixRows(const Eigen::Matrix<double, 6, 6>& m) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (int r = 0; r < 6; ++r) rows.push_back(ToJson(Eigen::VectorXd(m.row(r).transpose())));
+  return rows;
+}
+
+}  // namespace
+
+void AddComplianceJson(const StaticsReport& report, nlohmann::json* out) {
+  if (!report.compliant) return;
+  const ComplianceReport& c = report.compliance;
+  (*out)["compliant_reactions"] = true;
+  (*out)["deflection"] = {{"end_effector", ToJson(Eigen::VectorXd(c.deflection))},
+                          {"max_body_m", c.max_body_m},
+                          {"held", c.held}};
+  (*out)["ee_compliance"] = MatrixRows(c.ee_compliance);
+  if (c.stiffness_defined) {
+    (*out)["ee_stiffness"] = MatrixRows(c.ee_stiffness);
+  } else {
+    (*out)["ee_stiffness"] = nullptr;
+    (*out)["ee_stiffness_note"] = c.stiffness_note;
+  }
+  (*out)["most_compliant"] = {{"direction", ToJson(Eigen::VectorXd(c.most_compliant_direction))},
+                              {"compliance", c.most_compliant}};
+}
+
 }  // namespace ccma::cli

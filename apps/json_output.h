@@ -35,11 +35,17 @@ void AddClearance(const Model& model, const State& s, const std::string& command
 // naming `source` and the offending key.
 State StateFromJson(const Model& model, const nlohmann::json& document, const std::string& source);
 
-// Prints one JSON document on stdout.
+// The compliance keys of `ccma statics` (cli.md, "Compliance in `ccma
+// statics`") into `out` when the report is a compliant mechanism's:
+// compliant_reactions, deflection, ee_compliance, ee_stiffness (null with
+// ee_stiffness_note when singular), most_compliant. Nothing otherwise.
+void AddComplianceJson(const StaticsReport& report, nlohmann::json* out);
+
 // How `ccma plan` stopped and was finished (docs/cli.md): stopped_by,
 // finishing and, only when the finished plan stayed below the margin, shortfall.
 void AddPlanFinishing(const PlanResult& result, nlohmann::json* out);
 
+// Prints one JSON document on stdout.
 void PrintJson(const nlohmann::json& document);
 
 }  // namespace ccma::cli

@@ -57,6 +57,10 @@ ExternalWrench WrenchFlag() {
   return w;
 }
 
+// The warning of a compliant mechanism that does not hold its end-effector.
+constexpr const char* kNotHeld =
+    "the loaded mechanism is not held: a motion that no spring resists moves the end-effector";
+
 nlohmann::json Vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
 nlohmann::json ReportJson(const StaticsReport& r) {
@@ -89,6 +93,7 @@ std::string Warnings(const StaticsReport& r, const ForwardResult& assembly) {
     add("the joints cannot hold the loads (" + FormatG(r.residual) + " N or N*m left over): the mechanism moves freely under them");
   }
   if (!r.determinate) add("statically indeterminate: the minimum-norm reactions are reported");
+  if (r.compliant && !r.compliance.held) add(kNotHeld);
   if (!r.within_limits) {
     std::string names;
     for (const std::string& n : r.limiting) names += (names.empty() ? "'" : ", '") + n + "'";
@@ -114,6 +119,7 @@ int RunStatics(const std::vector<std::string>& args) {
     throw UsageError(std::string("ccma statics: ") + e.what());
   }
   nlohmann::json out = ReportJson(report);
+  AddComplianceJson(report, &out);
   out["model"] = model.name;
   out["assembled"] = assembly.assembled;
   out["residual_energy"] = assembly.residual_energy;

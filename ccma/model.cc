@@ -43,6 +43,21 @@ int ActuatorResidualCount(const Joint& joint) {
                                              : ActuatedPrismaticCost::kNumResiduals;
 }
 
+int TranslationSpringCount(JointType type) {
+  return type == JointType::kPrismatic ? 2 : 3;
+}
+
+int RotationSpringCount(JointType type) {
+  switch (type) {
+    case JointType::kRevolute: return 2;
+    case JointType::kUniversal: return 1;
+    case JointType::kPrismatic: return 3;
+    case JointType::kFixed: return 3;
+    case JointType::kSpherical: return 0;
+  }
+  return 0;
+}
+
 int BaseResidualCount() {
   return OmniBasePlanarCost::kNumResiduals + OmniBaseMotorCost::kNumResiduals;
 }
@@ -90,6 +105,16 @@ Eigen::VectorXd Model::home_controls() const {
     if (joint.actuated) u[joint.control] = joint.q_home;
   }
   return u;
+}
+
+bool Model::compliant() const {
+  for (const MobileBase& base : mobile_bases) {
+    if (base.stiffness.given()) return true;
+  }
+  for (const Joint& joint : joints) {
+    if (joint.stiffness.given()) return true;
+  }
+  return false;
 }
 
 int Model::FindBody(const std::string& body_name) const {

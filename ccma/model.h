@@ -18,6 +18,7 @@
 #include "ccma/collision_geometry.h"
 #include "ccma/mass_properties.h"
 #include "ccma/omni_wheels.h"
+#include "ccma/stiffness.h"
 
 namespace ccma {
 
@@ -45,6 +46,10 @@ int BaseResidualCount();
 struct Joint;
 // Constraint rows of a joint's motor (0 unless actuated).
 int ActuatorResidualCount(const Joint& joint);
+// The directions a joint of this type does not allow, translations and
+// rotations (ccma/stiffness.h): one stiffness value each.
+int TranslationSpringCount(JointType type);
+int RotationSpringCount(JointType type);
 
 // A visual mesh fixed in a body (the `meshes:` key of bodies and bases),
 // drawn by `ccma view --meshes`; no other tool reads it.
@@ -88,6 +93,8 @@ struct MobileBase {
   // The largest horizontal force the base can exert [N] (`push_limit`);
   // 0: not given.
   double push_limit = 0;
+  // Its `stiffness` (ccma/stiffness.h); rigid when not given.
+  BaseStiffness stiffness;
 };
 
 // A joint of the passive chain between bodies A and B (file order of
@@ -124,6 +131,8 @@ struct Joint {
   double lower = 0, upper = 0;
   // Actuated joints: the range of the motor's effort (`effort_limits`).
   EffortLimits effort;
+  // Its `stiffness` (ccma/stiffness.h); rigid when not given.
+  JointStiffness stiffness;
   int line = 0;  // source line in the model file (for messages)
 
   // Revolute and prismatic joints have a coordinate q.
@@ -176,6 +185,8 @@ struct Model {
   Eigen::VectorXd home_controls() const;
   // Index of the body with this name, or -1.
   int FindBody(const std::string& name) const;
+  // Whether any base or joint has a `stiffness` (the mechanism is compliant).
+  bool compliant() const;
 };
 
 }  // namespace ccma

@@ -174,6 +174,7 @@ def runs(tmp, f):
         ("statics", ["--model=" + example("statics/4dof_payload.yaml")]),
         ("statics", ["--model=" + example("statics/stewart_gough_loaded.yaml"), "--wrench=0,0,-2000,0,0,0"]),
         ("statics", ["--model=" + example("statics/tripod.yaml")]),
+        ("statics", ["--model=" + example("statics/stewart_gough_compliant.yaml"), "--wrench=0,0,-100,0,0,0"]),
         ("statics", ["--model=" + example("statics/4dof_payload.yaml"), "--obstacles=" + f["pillar"]]),
         ("generate", ["--agents=4", o("four.yaml")]),
         ("generate", ["--agents=6", "--kind=stewart_gough", o("sg.yaml")]),

@@ -30,7 +30,6 @@
 
 #include "analyses/robot_import.h"
 #include "ccma/internal/constraint_set.h"
-#include "ccma/internal/dense_factorizations.h"
 #include "ccma/joint_coordinates.h"
 #include "formats/model_loader.h"
 #include "formats/sdformat_reader.h"
@@ -38,6 +37,7 @@
 #include "formats/urdf_reader.h"
 #include "formats/urdf_writer.h"
 #include "problems/forward_problem.h"
+#include "tests/dense_factorizations.h"
 #include "tests/tool_run.h"
 
 namespace ccma {

@@ -8,13 +8,13 @@
 
 #include <gtest/gtest.h>
 
-#include "ccma/internal/dense_factorizations.h"
 #include "formats/model_loader.h"
 #include "ccma/rotation.h"
 #include "formats/waypoints.h"
 #include "problems/control_problem.h"
 #include "problems/internal/end_effector_error.h"
 #include "problems/trajectory.h"
+#include "tests/dense_factorizations.h"
 
 namespace ccma {
 namespace {

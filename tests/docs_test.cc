@@ -422,7 +422,9 @@ TEST(ModelFormatDocs, EveryLoaderKeyIsDocumented) {
       "collision", "margin", "base_radius", "base_height", "links", "from", "to", "ignore", "obstacles",
       "cylinder", "box", "center", "height", "size", "yaw",
       // masses and loads
-      "mass", "com", "payload", "gravity", "effort_limits", "push_limit"};
+      "mass", "com", "payload", "gravity", "effort_limits", "push_limit",
+      // compliance
+      "stiffness", "translation", "rotation"};
   const std::string doc = ReadDoc("model_format.md");
   for (const std::string& key : keys) {
     EXPECT_NE(doc.find("`" + key + "`"), std::string::npos)

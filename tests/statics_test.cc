@@ -15,11 +15,11 @@
 
 #include "analyses/statics.h"
 #include "ccma/internal/constraint_set.h"
-#include "ccma/internal/dense_factorizations.h"
 #include "ccma/internal/format.h"
 #include "bundled_models.h"
 #include "formats/model_loader.h"
 #include "problems/forward_problem.h"
+#include "tests/dense_factorizations.h"
 #include "tool_run.h"
 
 namespace ccma {

@@ -37,7 +37,7 @@ void ModelParser::ParseBases(const YAML::Node& bases_node, std::size_t num_bodie
 
 MobileBase ModelParser::ParseBase(const YAML::Node& at, const std::string& path) {
   const YAML::Node node = r_.Map(at, path);
-  r_.CheckKeys(node, {"name", "type", "actuation", "pose", "wheels", "meshes", "radius", "mass", "com", "push_limit"}, path);
+  r_.CheckKeys(node, {"name", "type", "actuation", "pose", "wheels", "meshes", "radius", "mass", "com", "push_limit", "stiffness"}, path);
   MobileBase base;
   base.name = AddBodyName(r_.Require(node, "name", path), path + ".name");
   base.body = model_.num_bodies();
@@ -52,6 +52,7 @@ MobileBase ModelParser::ParseBase(const YAML::Node& at, const std::string& path)
   }
   ParseActuation(node, path, &base);
   base.push_limit = ParsePushLimit(node, path);
+  base.stiffness = ParseBaseStiffness(node, path);
   base.home_pose = r_.Vector3(r_.Require(node, "pose", path), path + ".pose", {"m", "m", "rad"});
   if (YamlReader::Has(node, "wheels")) {
     if (base.type == BaseType::kDifferential) {

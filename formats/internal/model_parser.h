@@ -12,6 +12,7 @@
 //   model_meshes.cc          bodies' and bases' meshes (visual only)
 //   model_collision.cc       collision (margin, base cylinders, link capsules, ignore) and obstacles
 //   model_masses.cc          mass, com, payload, gravity, effort_limits, push_limit
+//   model_stiffness.cc       stiffness of bases and joints (compliance)
 // Shared checks (keys, numbers, vectors, messages): yaml_checks.h.
 //
 // Internal to the library: formats/model_loader.h is the public API.
@@ -122,6 +123,13 @@ class ModelParser {
   void ParseEffortLimits(const YAML::Node& node, const std::string& path, Joint* joint) const;
   double ParsePushLimit(const YAML::Node& node, const std::string& path) const;
   void ParseLoads(const YAML::Node& root, const YAML::Node& end_effector);
+
+  // model_stiffness.cc
+  double StiffnessValue(const YAML::Node& node, const std::string& path, const char* unit) const;
+  std::vector<double> StiffnessValues(const YAML::Node& node, const std::string& path, int count,
+                                      const char* unit) const;
+  BaseStiffness ParseBaseStiffness(const YAML::Node& node, const std::string& path) const;
+  void ParseJointStiffness(const YAML::Node& node, const std::string& path, Joint* joint) const;
 
   // model_collision.cc
   void ParseCollision(const YAML::Node& root);

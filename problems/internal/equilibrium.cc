@@ -3,7 +3,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "ccma/internal/dense_factorizations.h"
 #include "ccma/loads.h"
 
 namespace ccma {
@@ -20,7 +19,7 @@ Equilibrium::Equilibrium(const ConstraintSet& set, const State& s, const Eigen::
   cod_.compute(J_s_.transpose());
 }
 
-const MinimumNormSolver& Equilibrium::TransposedFactor() const {
+const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>& Equilibrium::TransposedFactor() const {
   if (cod_t_.rows() != J_s_.rows() || cod_t_.cols() != J_s_.cols()) {
     cod_t_.setThreshold(1e-10);
     cod_t_.compute(J_s_);

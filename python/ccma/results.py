@@ -116,6 +116,19 @@ class StaticsResult(Result):
     payload_capacity = Field("payload_capacity", "Record {mass [kg], limiting, note?}; None without limits")
     clearance = Field("clearance", "Record {min [m], pair, margin [m], below_margin}; None without collision "
                                    "geometry")
+    compliant_reactions = Field("compliant_reactions", "True when the model has stiffness keys: joints, actuators "
+                                                       "and determinate are the compliant mechanism's; None "
+                                                       "otherwise")
+    deflection = Field("deflection", "Record {end_effector [dx, dy, dz [m], rx, ry, rz [rad]], max_body_m [m], "
+                                     "held}: the linear yield under the loads, controls held; None without "
+                                     "stiffness")
+    ee_compliance = Field("ee_compliance", "6x6 end-effector compliance [m/N, m/(N*m), rad/(N*m)], symmetric "
+                                           "positive semi-definite; None without stiffness")
+    ee_stiffness = Field("ee_stiffness", "6x6 inverse of ee_compliance [N/m, N, N*m/rad]; None when it is "
+                                         "singular (ee_stiffness_note says why) or without stiffness")
+    ee_stiffness_note = Field("ee_stiffness_note", "why ee_stiffness is None; None when it is given")
+    most_compliant = Field("most_compliant", "Record {direction (unit), compliance [m/N]}: the largest eigenvalue "
+                                             "of ee_compliance's translational block; None without stiffness")
     warning = Field("warning", "what makes the reactions doubtful ('' when nothing)", "")
 
 

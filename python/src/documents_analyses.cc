@@ -54,6 +54,9 @@ std::string StaticsWarning(const StaticsReport& r, bool assembled, double residu
          &w);
   }
   if (!r.determinate) JoinWarning("statically indeterminate: the minimum-norm reactions are reported", &w);
+  if (r.compliant && !r.compliance.held) {
+    JoinWarning("the loaded mechanism is not held: a motion that no spring resists moves the end-effector", &w);
+  }
   if (!r.within_limits) {
     std::string names;
     for (const std::string& n : r.limiting) names += (names.empty() ? "'" : ", '") + n + "'";
@@ -69,6 +72,7 @@ nlohmann::json StaticsDocument(const Model& model, const State& s, const Eigen::
   const StaticsReport report = ComputeStatics(model, s, u, wrench);  // std::invalid_argument: ValueError
   const bool assembled = residual_energy < assembly_tolerance;
   nlohmann::json out = StaticsReportJson(report);
+  cli::AddComplianceJson(report, &out);
   out["model"] = model.name;
   out["assembled"] = assembled;
   out["residual_energy"] = residual_energy;

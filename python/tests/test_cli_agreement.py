@@ -232,6 +232,7 @@ def test_plan_and_design_take_the_flags_names():
     ("models/4dof_reduced.yaml", [1, 2, -20, 0.1, 0, 0]),
     ("examples/statics/tripod.yaml", None),
     ("examples/statics/4dof_payload.yaml", None),
+    ("examples/statics/stewart_gough_compliant.yaml", [3, -2, -40, 0.5, 0.2, 0.1]),
 ])
 def test_statics_equals_cli(model_file, wrench):
     path = str(ROOT / model_file)

@@ -69,3 +69,29 @@ def test_design_raises_the_payload():
     assert o.after.value > o.before.value + 1.0
     with pytest.raises(ValueError):
         ccma.design(ccma.load_model(PAYLOAD), targets, vary_length=["joint2:joint1"], objective="stiffness")
+
+
+COMPLIANT = ROOT / "examples" / "statics" / "stewart_gough_compliant.yaml"
+
+
+def test_compliance_keys_of_a_compliant_model():
+    text = (ROOT / "models" / "stewart_gough_6ups.yaml").read_text()
+    text = text.replace("type: prismatic, actuated: true,", "type: prismatic, actuated: true, stiffness: 1.0e5,")
+    model = ccma.load_model_from_string(text, "sg_compliant.yaml")
+    r = ccma.statics(ccma.ForwardProblem(model), wrench=[0, 0, -100, 0, 0, 0])
+    assert r.compliant_reactions and r.deflection.held
+    # Six equal legs at the same slope share a vertical push: k_z = 6 k cos^2(slope).
+    cos_slope = 0.870134687151
+    assert r.ee_compliance[2][2] == pytest.approx(1 / (6 * 1e5 * cos_slope ** 2), rel=1e-9)
+    assert r.deflection.end_effector[2] == pytest.approx(-100 * r.ee_compliance[2][2], rel=1e-9)
+    np.testing.assert_allclose(np.array(r.ee_stiffness) @ np.array(r.ee_compliance), np.eye(6), atol=1e-8)
+    assert r.ee_stiffness_note is None
+    rigid = ccma.statics(ccma.ForwardProblem(ccma.load_model(ROOT / "models" / "stewart_gough_6ups.yaml")))
+    assert rigid.deflection is None and rigid.compliant_reactions is None
+
+
+def test_compliant_example_matches_the_command_line():
+    cli = run_tool("statics", f"--model={COMPLIANT}")
+    r = ccma.statics(ccma.ForwardProblem(ccma.load_model(COMPLIANT)))
+    assert r.to_dict()["ee_compliance"] == cli["ee_compliance"]
+    assert r.most_compliant.compliance == cli["most_compliant"]["compliance"]

@@ -1,4 +1,4 @@
-#include "ccma/internal/dense_factorizations.h"
+#include "tests/dense_factorizations.h"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
@@ -84,5 +84,16 @@ Eigen::Index MinimumNormSolver::cols() const { return impl_->cod.cols(); }
 Eigen::Index MinimumNormSolver::rank() const { return impl_->cod.rank(); }
 Eigen::VectorXd MinimumNormSolver::solve(const Eigen::VectorXd& b) const { return impl_->cod.solve(b); }
 Eigen::MatrixXd MinimumNormSolver::solveMatrix(const Eigen::MatrixXd& B) const { return impl_->cod.solve(B); }
+Eigen::MatrixXd MinimumNormSolver::nullSpace() const {
+  const Eigen::Index n = cols(), r = rank();
+  return impl_->cod.colsPermutation() * impl_->cod.matrixZ().transpose().rightCols(n - r);
+}
+Eigen::MatrixXd MinimumNormSolver::leftNullSpace() const {
+  const Eigen::Index m = rows(), r = rank();
+  Eigen::MatrixXd basis = Eigen::MatrixXd::Zero(m, m - r);
+  basis.bottomRows(m - r).setIdentity();
+  basis.applyOnTheLeft(impl_->cod.householderQ());
+  return basis;
+}
 
 }  // namespace ccma

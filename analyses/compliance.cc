@@ -1,0 +1,99 @@
+#include "analyses/compliance.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+
+#include "ccma/end_effector.h"
+#include "problems/internal/compliant_equilibrium.h"
+
+namespace ccma {
+namespace {
+
+// Relative thresholds: a compliance this far below the largest is a rigid
+// direction (rounding of the null space), and an end-effector motion no
+// spring resists this small is rounding too.
+constexpr double kComplianceRigid = 1e-14;
+constexpr double kComplianceSingular = 1e-10;
+constexpr double kComplianceUnheld = 1e-8;
+
+// The unit eigenvector of the largest eigenvalue of C's translational block.
+// Where several directions are equally soft (a symmetric mechanism), the
+// one of their plane (or space) nearest the x axis (else y, else z), so
+// that the answer does not depend on rounding; its largest component
+// positive (the first of equals).
+void MostCompliant(const Eigen::Matrix<double, 6, 6>& C, ComplianceReport* out) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(C.topLeftCorner<3, 3>());
+  const Eigen::Vector3d lambda = eig.eigenvalues();
+  out->most_compliant = std::max(0.0, lambda[2]);
+  int first = 2;  // the eigenvectors first..2 share the largest eigenvalue
+  while (first > 0 && lambda[2] - lambda[first - 1] <= 1e-9 * std::abs(lambda[2])) --first;
+  const Eigen::MatrixXd E = eig.eigenvectors().rightCols(3 - first);
+  Eigen::Vector3d v = eig.eigenvectors().col(2);
+  for (int axis = 0; axis < 3 && first < 2; ++axis) {
+    const Eigen::Vector3d projected = E * (E.transpose() * Eigen::Vector3d::Unit(axis));
+    if (projected.norm() > 1e-6) {
+      v = projected;
+      break;
+    }
+  }
+  v.normalize();
+  int largest = 0;
+  for (int i = 1; i < 3; ++i) {
+    if (std::abs(v[i]) > std::abs(v[largest]) + 1e-12) largest = i;
+  }
+  if (v[largest] < 0) v = -v;
+  out->most_compliant_direction = v;
+}
+
+// C^-1 when C is regular: no direction rigid (a diagonal entry negligible
+// against the largest) and its correlation matrix (unit-free) regular.
+void StiffnessFromCompliance(const Eigen::Matrix<double, 6, 6>& C, ComplianceReport* out) {
+  if (!out->held) {
+    out->stiffness_note = "the mechanism is not held: some motion no spring resists moves the end-effector";
+    return;
+  }
+  const Eigen::Matrix<double, 6, 1> d = C.diagonal();
+  const double largest = d.maxCoeff();
+  if (!(largest > 0) || d.minCoeff() <= kComplianceRigid * largest) {
+    out->stiffness_note = "the compliance is singular: the mechanism holds some direction rigidly (compliance 0)";
+    return;
+  }
+  const Eigen::Matrix<double, 6, 1> scale = d.cwiseSqrt().cwiseInverse();
+  const Eigen::Matrix<double, 6, 6> correlation = scale.asDiagonal() * C * scale.asDiagonal();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig(correlation);
+  if (eig.eigenvalues()[0] <= kComplianceSingular * eig.eigenvalues()[5]) {
+    out->stiffness_note = "the compliance is singular: some combination of directions is held rigidly";
+    return;
+  }
+  const Eigen::Matrix<double, 6, 6> K = C.ldlt().solve(Eigen::Matrix<double, 6, 6>::Identity());
+  out->ee_stiffness = 0.5 * (K + K.transpose());
+  out->stiffness_defined = out->ee_stiffness.allFinite();
+  if (!out->stiffness_defined) out->stiffness_note = "the compliance is singular";
+}
+
+}  // namespace
+
+Eigen::MatrixXd EndEffectorMotion(const Model& model, const State& s, int system_size) {
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(6, system_size);
+  G.leftCols(model.state_size()) = EndEffectorJacobian(model, s);
+  return G;
+}
+
+ComplianceReport ComputeCompliance(const Model& model, const State& s, const CompliantEquilibrium& system,
+                                   const Eigen::VectorXd& f) {
+  ComplianceReport out;
+  const Eigen::MatrixXd G = EndEffectorMotion(model, s, system.size());
+  const Eigen::VectorXd y = system.Displacement(f);
+  out.deflection = G * y;
+  for (int b = 0; b < model.num_bodies(); ++b) out.max_body_m = std::max(out.max_body_m, y.segment<3>(6 * b + 3).norm());
+  out.ee_compliance = system.Compliance(G);
+  out.held = system.UnheldMotion(G) <= kComplianceUnheld;
+  MostCompliant(out.ee_compliance, &out);
+  StiffnessFromCompliance(out.ee_compliance, &out);
+  return out;
+}
+
+}  // namespace ccma

@@ -1,0 +1,205 @@
+#include "problems/internal/compliant_equilibrium.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include <Eigen/SVD>
+
+#include "ccma/internal/joint_spring_directions.h"
+#include "ccma/limits.h"
+
+namespace ccma {
+namespace {
+
+constexpr double kCompliantRankThreshold = 1e-10;  // relative, as equilibrium.h
+
+void CheckCompliantSize(long rows, long cols, const char* what) {
+  if (rows * cols > kMaxStaticsEntries) {
+    throw std::invalid_argument(std::string("statics: ") + std::to_string(rows) + " " + what + " x " +
+                                std::to_string(cols) + " coordinates exceed " + std::to_string(kMaxStaticsEntries) +
+                                " entries");
+  }
+}
+
+// Rows of A and S a spring joint adds: its rigid and its spring directions.
+void CountJointRows(const Joint& joint, int* rigid, int* springs) {
+  const int t = TranslationSpringCount(joint.type), r = RotationSpringCount(joint.type);
+  const int spring = (joint.stiffness.translation.empty() ? 0 : t) + (joint.stiffness.rotation.empty() ? 0 : r);
+  *springs += spring;
+  *rigid += t + r - spring;
+}
+
+}  // namespace
+
+CompliantEquilibrium::CompliantEquilibrium(const Model& model, const ConstraintSet& set, const State& s,
+                                           const Eigen::VectorXd& u)
+    : n_(set.state_size()), delta_of_control_(static_cast<size_t>(model.num_controls()), -1) {
+  std::vector<double> control_k;
+  for (int b = 0; b < model.num_bases(); ++b) {
+    const BaseStiffness& st = model.mobile_bases[static_cast<size_t>(b)].stiffness;
+    if (!st.given()) continue;
+    for (int i = 0; i < kBaseControlSize; ++i) {
+      delta_of_control_[static_cast<size_t>(kBaseControlSize * b + i)] = static_cast<int>(compliant_.size());
+      compliant_.push_back(kBaseControlSize * b + i);
+      control_k.push_back(st.k[i]);
+    }
+  }
+  for (const Joint& joint : model.joints) {
+    if (!joint.actuated || !(joint.stiffness.axis > 0)) continue;
+    delta_of_control_[static_cast<size_t>(joint.control)] = static_cast<int>(compliant_.size());
+    compliant_.push_back(joint.control);
+    control_k.push_back(joint.stiffness.axis);
+  }
+  int rows = set.num_rows(), springs = static_cast<int>(compliant_.size());
+  for (size_t j = 0, b = 0; j < model.joints.size(); ++j) {
+    const Joint& joint = model.joints[j];
+    if (joint.stiffness.has_springs()) {
+      rows -= set.blocks()[b].rows;
+      CountJointRows(joint, &rows, &springs);
+    }
+    b += joint.actuated ? 2 : 1;
+  }
+  const int N = n_ + static_cast<int>(compliant_.size());
+  CheckCompliantSize(rows, N, "rigid rows");
+  CheckCompliantSize(springs, N, "springs");
+  CheckCompliantSize(N, N, "variables");
+  A_ = Eigen::MatrixXd::Zero(rows, N);
+  A_u_ = Eigen::MatrixXd::Zero(rows, model.num_controls());
+  S_ = Eigen::MatrixXd::Zero(springs, N);
+  k_ = Eigen::VectorXd::Zero(springs);
+  for (size_t i = 0; i < compliant_.size(); ++i) {
+    S_(static_cast<int>(i), n_ + static_cast<int>(i)) = 1.0;
+    k_[static_cast<int>(i)] = control_k[i];
+  }
+  Eigen::VectorXd C;
+  Eigen::MatrixXd J_s, J_u;
+  set.Evaluate(s, u, &C, &J_s, &J_u);
+  AddBlocks(model, set, J_s, J_u, s);
+  Factorize();
+}
+
+void CompliantEquilibrium::AddBlocks(const Model& model, const ConstraintSet& set, const Eigen::MatrixXd& J_s,
+                                     const Eigen::MatrixXd& J_u, const State& s) {
+  int a_row = 0, s_row = static_cast<int>(compliant_.size());
+  auto add_block = [&](const ConstraintBlock& block) {
+    A_.block(a_row, 0, block.rows, n_) = J_s.middleRows(block.row, block.rows);
+    A_u_.middleRows(a_row, block.rows) = J_u.middleRows(block.row, block.rows);
+    for (int c = block.control_offset; c >= 0 && c < block.control_offset + block.control_size; ++c) {
+      const int d = delta_of_control_[static_cast<size_t>(c)];
+      if (d >= 0) A_.block(a_row, n_ + d, block.rows, 1) = J_u.block(block.row, c, block.rows, 1);
+    }
+    a_row += block.rows;
+  };
+  size_t b = 0;
+  for (const Joint& joint : model.joints) {
+    CompliantJointRows r;
+    r.a_row = a_row;
+    r.s_row = s_row;
+    if (!joint.stiffness.has_springs()) {
+      add_block(set.blocks()[b]);
+    } else {
+      const SpringDirections d = JointSpringDirections(joint, s);
+      for (int i = 0; i < d.rows(); ++i) {
+        const bool translation = i < d.translations;
+        const std::vector<double>& values = translation ? joint.stiffness.translation : joint.stiffness.rotation;
+        Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(A_.cols());
+        if (joint.body_a != kWorld) row.segment<6>(6 * joint.body_a) = d.D.block<1, 6>(i, 0);
+        if (joint.body_b != kWorld) row.segment<6>(6 * joint.body_b) = d.D.block<1, 6>(i, 6);
+        if (values.empty()) {
+          A_.row(a_row++) = row;
+        } else {
+          S_.row(s_row) = row;
+          k_[s_row++] = values[static_cast<size_t>(translation ? i : i - d.translations)];
+        }
+      }
+    }
+    r.a_rows = a_row - r.a_row;
+    r.s_rows = s_row - r.s_row;
+    ++b;
+    r.motor_row = a_row;
+    if (joint.actuated) add_block(set.blocks()[b++]);
+    r.motor_rows = a_row - r.motor_row;
+    if (r.a_rows > 0) groups_.emplace_back(r.a_row, r.a_rows);
+    if (r.motor_rows > 0) groups_.emplace_back(r.motor_row, r.motor_rows);
+    joint_rows_.push_back(r);
+  }
+  for (; b < set.blocks().size(); ++b) add_block(set.blocks()[b]);
+}
+
+void CompliantEquilibrium::Factorize() {
+  const int N = size();
+  Eigen::MatrixXd Z;
+  int rank = 0;
+  if (A_.rows() > 0) {
+    cod_.setThreshold(kCompliantRankThreshold);
+    cod_.compute(A_.transpose());
+    rank = static_cast<int>(cod_.rank());
+  }
+  // null(A): the columns of A^T's Q beyond its rank.
+  Z = Eigen::MatrixXd::Zero(N, N - rank);
+  Z.bottomRows(N - rank).setIdentity();
+  if (A_.rows() > 0) Z.applyOnTheLeft(cod_.householderQ());
+  const Eigen::MatrixXd M = S_ * Z;
+  int stretching = 0;
+  Eigen::MatrixXd V = Eigen::MatrixXd::Identity(Z.cols(), Z.cols());
+  if (M.size() > 0) {
+    Eigen::BDCSVD<Eigen::MatrixXd> svd(M, Eigen::ComputeFullV);
+    const Eigen::VectorXd& sigma = svd.singularValues();
+    while (stretching < sigma.size() && sigma[stretching] > kCompliantRankThreshold * sigma[0]) ++stretching;
+    V = svd.matrixV();
+  }
+  Z1_ = Z * V.leftCols(stretching);
+  Z0_ = Z * V.rightCols(V.cols() - stretching);
+  const Eigen::MatrixXd B = S_ * Z1_;
+  K1_.compute(B.transpose() * k_.asDiagonal() * B);
+  determinate_ = Determinate(rank);
+}
+
+// null(A^T) = P Z^T [0; I] of the decomposition A^T P = Q [T 0; 0 0] Z; a
+// null vector that moves no joint's reaction and no effort only reshuffles
+// what a base's planar and motor rows hold (both lock its tilt), which
+// nothing reports.
+bool CompliantEquilibrium::Determinate(int rank) const {
+  const int m = static_cast<int>(A_.rows());
+  if (rank == m) return true;
+  const Eigen::MatrixXd kernel = cod_.colsPermutation() * cod_.matrixZ().transpose().rightCols(m - rank);
+  const double scale = std::max(1.0, std::max(A_.cwiseAbs().maxCoeff(), A_u_.size() ? A_u_.cwiseAbs().maxCoeff() : 0.0));
+  const double tolerance = 1e-8 * scale;
+  if (A_u_.size() > 0 && (A_u_.transpose() * kernel).cwiseAbs().maxCoeff() > tolerance) return false;
+  for (const auto& [row, count] : groups_) {
+    if ((A_.middleRows(row, count).transpose() * kernel.middleRows(row, count)).cwiseAbs().maxCoeff() > tolerance) {
+      return false;
+    }
+  }
+  return true;
+}
+
+Eigen::VectorXd CompliantEquilibrium::Displacement(const Eigen::VectorXd& f) const {
+  if (Z1_.cols() == 0) return Eigen::VectorXd::Zero(size());
+  return Z1_ * K1_.solve(Z1_.transpose() * f);
+}
+
+Eigen::VectorXd CompliantEquilibrium::SpringForce(const Eigen::VectorXd& y) const {
+  return S_.transpose() * (k_.asDiagonal() * (S_ * y));
+}
+
+Eigen::VectorXd CompliantEquilibrium::Multipliers(const Eigen::VectorXd& y, const Eigen::VectorXd& f) const {
+  if (A_.rows() == 0) return Eigen::VectorXd();
+  return cod_.solve(SpringForce(y) - f);
+}
+
+Eigen::MatrixXd CompliantEquilibrium::Compliance(const Eigen::MatrixXd& G) const {
+  if (Z1_.cols() == 0) return Eigen::MatrixXd::Zero(G.rows(), G.rows());
+  const Eigen::MatrixXd GZ = G * Z1_;
+  const Eigen::MatrixXd C = GZ * K1_.solve(GZ.transpose());
+  return 0.5 * (C + C.transpose());
+}
+
+double CompliantEquilibrium::UnheldMotion(const Eigen::MatrixXd& G) const {
+  if (Z0_.cols() == 0 || G.size() == 0) return 0.0;
+  const double scale = std::max(1.0, G.cwiseAbs().maxCoeff());
+  return (G * Z0_).cwiseAbs().maxCoeff() / scale;
+}
+
+}  // namespace ccma

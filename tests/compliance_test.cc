@@ -1,0 +1,418 @@
+// Linear compliance in statics (analyses/compliance.h, `ccma statics`):
+// Gosselin's stiffness mapping C = Jx diag(1/k) Jx^T on a Stewart-Gough
+// platform and a planar 3-RPR (Jx = dX/du by finite differences of re-solved
+// forward problems), springs in series on a cantilever, a mobile base's
+// closed form, the four-agent CCMA's yielded bases re-assembled, virtual work
+// of the compliant mechanism, and rigid models left as they were.
+#include <cmath>
+#include <fstream>
+#include <random>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <Eigen/LU>
+
+#include "analyses/statics.h"
+#include "bundled_models.h"
+#include "ccma/internal/constraint_set.h"
+#include "ccma/loads.h"
+#include "ccma/rotation.h"
+#include "formats/model_loader.h"
+#include "problems/forward_problem.h"
+#include "problems/internal/compliant_equilibrium.h"
+#include "tool_run.h"
+
+namespace ccma {
+namespace {
+
+std::string ReadModel(const std::string& stem) {
+  std::ifstream in(std::string(CCMA_MODELS_DIR) + "/" + stem + ".yaml");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// `text` with the i-th occurrence of `what` followed by `extra` (i = 0, 1, ...).
+std::string InsertAfterEach(std::string text, const std::string& what, const std::vector<std::string>& extra) {
+  size_t at = 0;
+  for (const std::string& e : extra) {
+    at = text.find(what, at);
+    EXPECT_NE(at, std::string::npos) << what;
+    if (at == std::string::npos) return text;
+    at += what.size();
+    text.insert(at, e);
+    at += e.size();
+  }
+  return text;
+}
+
+// X = [p; rotation vector] differences: dX/du by central differences of
+// forward problems re-solved at u +- h e_i.
+Eigen::MatrixXd ControlJacobianByDifferences(const Model& model, const Eigen::VectorXd& u, double h) {
+  ForwardProblem forward(model);
+  Eigen::MatrixXd J(6, u.size());
+  for (int i = 0; i < u.size(); ++i) {
+    Eigen::VectorXd up = u, down = u;
+    up[i] += h;
+    down[i] -= h;
+    EXPECT_TRUE(forward.Solve(up).assembled);
+    const EndEffectorPose plus = forward.end_effector();
+    EXPECT_TRUE(forward.Solve(down).assembled);
+    const EndEffectorPose minus = forward.end_effector();
+    J.block<3, 1>(0, i) = (plus.position - minus.position) / (2 * h);
+    J.block<3, 1>(3, i) = QuaternionLog(Eigen::Quaterniond(plus.rotation * minus.rotation.transpose())) / (2 * h);
+  }
+  return J;
+}
+
+StaticsReport StaticsAtHome(const Model& model, const ExternalWrench& wrench = {}) {
+  ForwardProblem forward(model);
+  EXPECT_TRUE(forward.Solve(model.home_controls()).assembled);
+  return ComputeStatics(model, forward.state(), forward.controls(), wrench);
+}
+
+// Gosselin: the legs are the only springs, so C = Jx diag(1/k) Jx^T.
+void ExpectGosselin(const Model& model, const std::vector<double>& k) {
+  const StaticsReport r = StaticsAtHome(model);
+  ASSERT_TRUE(r.compliant);
+  const Eigen::MatrixXd Jx = ControlJacobianByDifferences(model, model.home_controls(), 1e-4);
+  Eigen::VectorXd inverse_k(static_cast<int>(k.size()));
+  for (size_t i = 0; i < k.size(); ++i) inverse_k[static_cast<int>(i)] = 1.0 / k[i];
+  const Eigen::MatrixXd expected = Jx * inverse_k.asDiagonal() * Jx.transpose();
+  const Eigen::Matrix<double, 6, 6>& C = r.compliance.ee_compliance;
+  const double scale = expected.cwiseAbs().maxCoeff();
+  EXPECT_LT((C - expected).cwiseAbs().maxCoeff(), 1e-6 * scale) << "C\n" << C << "\nexpected\n" << expected;
+  EXPECT_EQ((C - C.transpose()).cwiseAbs().maxCoeff(), 0.0);  // symmetric exactly
+  EXPECT_TRUE(r.compliance.held);
+  EXPECT_TRUE(r.balanced);
+}
+
+TEST(Compliance, StewartGoughLegStiffnessIsGosselinsMapping) {
+  const std::vector<double> k = {1e5, 2e5, 0.5e5, 1.5e5, 3e5, 0.8e5};
+  std::vector<std::string> extra;
+  for (double v : k) extra.push_back(" stiffness: " + std::to_string(v) + ",");
+  const Model model = LoadModelFromString(
+      InsertAfterEach(ReadModel("stewart_gough_6ups"), "type: prismatic, actuated: true,", extra), "sg.yaml");
+  ExpectGosselin(model, k);
+  const StaticsReport r = StaticsAtHome(model);
+  ASSERT_TRUE(r.compliance.stiffness_defined);  // six legs hold all six directions
+  const Eigen::Matrix<double, 6, 6> product = r.compliance.ee_stiffness * r.compliance.ee_compliance;
+  EXPECT_LT((product - Eigen::Matrix<double, 6, 6>::Identity()).cwiseAbs().maxCoeff(), 1e-8);
+}
+
+TEST(Compliance, PlanarThreeRprIsGosselinsMappingAndRigidOutOfPlane) {
+  const std::vector<double> k = {1e5, 2e5, 3e5};
+  std::vector<std::string> extra;
+  for (double v : k) extra.push_back(" stiffness: " + std::to_string(v) + ",");
+  const Model model = LoadModelFromString(
+      InsertAfterEach(ReadModel("planar_3rpr"), "type: prismatic, actuated: true,", extra), "rpr.yaml");
+  ExpectGosselin(model, k);
+  const StaticsReport r = StaticsAtHome(model);
+  const Eigen::Matrix<double, 6, 6>& C = r.compliance.ee_compliance;
+  for (int out_of_plane : {2, 3, 4}) {  // z, roll, pitch
+    EXPECT_LT(C.row(out_of_plane).cwiseAbs().maxCoeff(), 1e-12 * C.cwiseAbs().maxCoeff()) << out_of_plane;
+  }
+  EXPECT_GT(C(0, 0), 0.0);
+  EXPECT_FALSE(r.compliance.stiffness_defined);
+  EXPECT_NE(r.compliance.stiffness_note.find("singular"), std::string::npos);
+  EXPECT_NEAR(r.compliance.most_compliant_direction.z(), 0.0, 1e-9);  // the softest push is in the plane
+}
+
+// A motor (revolute about y at the origin, k1) turns a hub; a beam is welded
+// to it at x = a (rotation k2, optionally translation kt); a tip force F
+// down at x = L. Beam theory of rigid links on rotational springs:
+//   tip deflection = F (L^2 / k1 + (L - a)^2 / k2 + 1 / kt).
+std::string Cantilever(double k1, double a, const std::string& weld, double L) {
+  std::ostringstream m;
+  m.precision(17);
+  m << "name: cantilever\ngravity: [0, 0, 0]\nbodies:\n  - {name: hub, position: [" << a / 2 << ", 0, 0]}\n"
+    << "  - {name: beam, position: [" << (a + L) / 2 << ", 0, 0]}\njoints:\n"
+    << "  - {name: motor, type: revolute, actuated: true, stiffness: " << k1
+    << ", between: [world, hub], point: [0, 0, 0], axis: [0, 1, 0]}\n"
+    << "  - {name: weld, type: fixed, between: [hub, beam], point: [" << a << ", 0, 0], stiffness: " << weld << "}\n"
+    << "end_effector: {body: beam, point: [" << L << ", 0, 0], controlled: [x, z, pitch]}\n";
+  return m.str();
+}
+
+TEST(Compliance, SpringsInSeriesOnACantileverAddTheirCompliances) {
+  const double k1 = 2e3, k2 = 5e3, kt = 4e5, a = 0.3, L = 1.2, F = 7.0;
+  ExternalWrench down;
+  down.force = Eigen::Vector3d(0, 0, -F);
+  for (const bool with_translation : {false, true}) {
+    const std::string weld = with_translation ? "{rotation: 5000, translation: 400000}" : "{rotation: 5000}";
+    const Model model = LoadModelFromString(Cantilever(k1, a, weld, L), "cantilever.yaml");
+    const StaticsReport r = StaticsAtHome(model, down);
+    const double compliance = L * L / k1 + (L - a) * (L - a) / k2 + (with_translation ? 1 / kt : 0.0);
+    EXPECT_NEAR(r.compliance.deflection[2], -F * compliance, 1e-12) << with_translation;
+    EXPECT_NEAR(r.compliance.ee_compliance(2, 2), compliance, 1e-14);
+    EXPECT_NEAR(r.compliance.ee_compliance(4, 4), 1 / k1 + 1 / k2, 1e-14);  // pitch
+    EXPECT_NEAR(r.compliance.most_compliant, compliance, 1e-14);
+    EXPECT_NEAR(r.compliance.most_compliant_direction.z(), 1.0, 1e-12);
+    // The motor holds F L; the weld holds F and the moment F (L - a) on the beam.
+    EXPECT_NEAR(std::abs(r.actuators[0].effort), F * L, 1e-9);
+    EXPECT_NEAR(r.joints[1].force.z(), F, 1e-9);
+    EXPECT_NEAR(r.joints[1].moment.y(), -F * (L - a), 1e-9);
+    EXPECT_TRUE(r.determinate);
+    EXPECT_TRUE(r.balanced);
+  }
+}
+
+// One omni base (k = [kx, ky, ktheta]) carries a welded post; the end-effector
+// is R out along x: a push F along y yields F / ky plus R^2 F / ktheta.
+TEST(Compliance, AMobileBaseYieldsAlongItsControls) {
+  const double kx = 2e4, ky = 3e4, kt = 500, R = 0.4;
+  const std::string text =
+      "name: one_base\ngravity: [0, 0, 0]\nbodies:\n  - {name: post, position: [0.2, 0, 0.5]}\n"
+      "mobile_bases:\n  - {name: base0, type: omni, actuation: complete, pose: [0, 0, 0], stiffness: [20000, 30000, "
+      "500]}\njoints:\n  - {type: fixed, between: [base0, post], point: [0, 0, 0.2]}\n"
+      "end_effector: {body: post, point: [0.4, 0, 0.9], controlled: [x, y, z, yaw]}\n";
+  const Model model = LoadModelFromString(text, "one_base.yaml");
+  ExternalWrench push;
+  push.force = Eigen::Vector3d(0, 10, 0);
+  const StaticsReport r = StaticsAtHome(model, push);
+  const Eigen::Matrix<double, 6, 6>& C = r.compliance.ee_compliance;
+  EXPECT_NEAR(C(0, 0), 1 / kx, 1e-15);
+  EXPECT_NEAR(C(1, 1), 1 / ky + R * R / kt, 1e-15);
+  EXPECT_NEAR(C(1, 5), R / kt, 1e-15);
+  EXPECT_NEAR(C(5, 5), 1 / kt, 1e-15);
+  EXPECT_LT(C(2, 2), 1e-18);  // the floor holds it vertically
+  EXPECT_NEAR(r.compliance.deflection[1], 10 * (1 / ky + R * R / kt), 1e-15);
+  // Efforts: the base's y motor holds -10 N and its heading -R 10 N*m (e = -k delta).
+  EXPECT_NEAR(r.actuators[1].effort, -10.0, 1e-9);
+  EXPECT_NEAR(r.actuators[2].effort, -10.0 * R, 1e-9);
+  EXPECT_FALSE(r.compliance.stiffness_defined);
+}
+
+// The springs' energy minus the wrench's work, V(u') = 1/2 (u' - u0)^T K
+// (u' - u0) - w . (X(u') - X(u0)) with X from the rigid forward problem, is
+// stationary at the yielded controls u along every control change the
+// mechanism allows (dC/ds ds + dC/du du = 0): central differences of V over
+// re-solved forward problems, against the size of either term.
+void ExpectEnergyStationary(const Model& model, const Eigen::VectorXd& u, const ExternalWrench& w,
+                            const std::string& stem) {
+  const Eigen::VectorXd u0 = model.home_controls();
+  Eigen::VectorXd k(model.num_controls());
+  for (int c = 0; c < k.size(); ++c) k[c] = model.mobile_bases[static_cast<size_t>(c / 3)].stiffness.k[c % 3];
+  ForwardProblem forward(model);
+  EXPECT_TRUE(forward.Solve(u0).assembled);
+  const EndEffectorPose home = forward.end_effector();
+  auto energy = [&](const Eigen::VectorXd& v) {
+    EXPECT_LT(forward.Solve(v).residual_energy, 1e-20);
+    const EndEffectorPose pose = forward.end_effector();
+    const Eigen::Vector3d turn = QuaternionLog(Eigen::Quaterniond(pose.rotation * home.rotation.transpose()));
+    const Eigen::VectorXd d = v - u0;
+    return 0.5 * d.dot(k.asDiagonal() * d) - w.force.dot(pose.position - home.position) - w.moment.dot(turn);
+  };
+  EXPECT_TRUE(forward.Solve(u).assembled);
+  Eigen::VectorXd C;
+  Eigen::MatrixXd J_s, J_u;
+  ConstraintSet(model).Evaluate(forward.state(), u, &C, &J_s, &J_u);
+  Eigen::MatrixXd J(J_s.rows(), J_s.cols() + J_u.cols());
+  J << J_s, J_u;
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(J);
+  lu.setThreshold(1e-10);
+  const Eigen::MatrixXd allowed = lu.kernel().bottomRows(J_u.cols());
+  const Eigen::VectorXd force = k.asDiagonal() * (u - u0);  // the springs' pull, -effort
+  int stretching = 0;
+  for (int i = 0; i < allowed.cols(); ++i) {
+    if (allowed.col(i).norm() < 1e-6) continue;  // an idle motion: the controls stay
+    const Eigen::VectorXd du = allowed.col(i).normalized();
+    const double h = 1e-4;
+    const double slope = (energy(u + h * du) - energy(u - h * du)) / (2 * h);
+    EXPECT_LT(std::abs(slope), 1e-4 * force.norm()) << stem << " direction " << i;
+    if (std::abs(force.dot(du)) > 1e-2 * force.norm()) ++stretching;  // a direction that tests something
+  }
+  const int checked = stretching;
+  EXPECT_GT(checked, 0) << stem;
+}
+
+// The four-agent CCMA with stiff bases: the bases' yields (delta = -effort /
+// k) re-assembled by the rigid forward problem put the end-effector where the
+// linear deflection says, the mechanism assembles there (compatible), and the
+// energy is stationary there (ExpectEnergyStationary).
+TEST(Compliance, FourAgentBasesYieldCompatiblyAndMoveTheEndEffectorAsPredicted) {
+  for (const std::string stem : {"4dof_complete", "4dof_reduced"}) {
+    const std::string text = InsertAfterEach(ReadModel(stem), "type: omni,",
+                                             {" stiffness: [2.0e4, 3.0e4, 600],", " stiffness: [1.0e4, 1.0e4, 400],",
+                                              " stiffness: [3.0e4, 2.0e4, 900],"});
+    const Model model = LoadModelFromString(text, stem + ".yaml");
+    ExternalWrench w;
+    w.force = Eigen::Vector3d(0.003, -0.002, -0.004);
+    w.moment = Eigen::Vector3d(0.0, 0.0, 0.001);
+    const StaticsReport r = StaticsAtHome(model, w);
+    ASSERT_TRUE(r.compliant);
+    Eigen::VectorXd u = model.home_controls();
+    for (int c = 0; c < model.num_controls(); ++c) {
+      u[c] -= r.actuators[static_cast<size_t>(c)].effort / model.mobile_bases[static_cast<size_t>(c / 3)].stiffness.k[c % 3];
+    }
+    ForwardProblem forward(model);
+    ASSERT_TRUE(forward.Solve(model.home_controls()).assembled);
+    const EndEffectorPose before = forward.end_effector();
+    const ForwardResult yielded = forward.Solve(u);
+    EXPECT_LT(yielded.residual_energy, 1e-20) << stem;  // the yields are compatible
+    const Eigen::Vector3d moved = forward.end_effector().position - before.position;
+    const Eigen::Vector3d predicted = r.compliance.deflection.head<3>();
+    EXPECT_GT(predicted.norm(), 1e-8) << stem;
+    EXPECT_LT((moved - predicted).norm(), 1e-4 * predicted.norm()) << stem << "\n" << moved << "\n" << predicted;
+    ExpectEnergyStationary(model, u, w, stem);
+  }
+}
+
+// Virtual work in the compliant mechanism: along every motion the rigid rows
+// allow, the loads and the springs do no work (f - H y is orthogonal to it),
+// and the reported reactions balance every body.
+TEST(Compliance, LoadsAndSpringsDoNoWorkAlongAllowedMotions) {
+  const std::string text = InsertAfterEach(ReadModel("6dof_asymmetric"), "type: omni,",
+                                           {" stiffness: [2.0e4, 3.0e4, 600],", " stiffness: [1.0e4, 1.0e4, 400],",
+                                            " stiffness: [3.0e4, 2.0e4, 900],"});
+  Model model = LoadModelFromString(text, "6dof.yaml");
+  for (Joint& joint : model.joints) {
+    if (joint.type == JointType::kRevolute) joint.stiffness.rotation = {3e3, 4e3};
+  }
+  model.end_effector.payload.mass = 2.0;
+  ForwardProblem forward(model);
+  ASSERT_TRUE(forward.Solve(model.home_controls()).assembled);
+  const ConstraintSet set(model);
+  const CompliantEquilibrium system(model, set, forward.state(), forward.controls());
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(system.size());
+  f.head(model.state_size()) = GeneralizedLoads(model, forward.state());
+  const Eigen::VectorXd y = system.Displacement(f);
+  const Eigen::VectorXd g = f - system.SpringForce(y);
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(system.A());
+  lu.setThreshold(1e-10);
+  const Eigen::MatrixXd Z = lu.kernel();
+  ASSERT_GT(Z.cols(), 0);
+  EXPECT_LT((Z.transpose() * g).cwiseAbs().maxCoeff(), 1e-9 * f.cwiseAbs().maxCoeff());
+  EXPECT_LT((system.A() * y).cwiseAbs().maxCoeff(), 1e-12);  // the deflection keeps the rigid rows
+  const StaticsReport r = ComputeStatics(model, forward.state(), forward.controls());
+  EXPECT_TRUE(r.balanced);
+  EXPECT_TRUE(r.determinate);  // the springs decide how the redundant legs share the load
+}
+
+// An arm on a free vertical hinge: with the base held by its springs the arm
+// still spins freely, which moves the end-effector: not held, said in a flag
+// and a warning, no stiffness, and no NaN anywhere.
+TEST(Compliance, AMechanismItsSpringsDoNotHoldIsReportedWithoutNaN) {
+  const std::string path = ::testing::TempDir() + "/free_arm.yaml";
+  std::ofstream(path) << "name: free_arm\nbodies:\n  - {name: post, position: [0, 0, 0.5]}\n"
+                         "  - {name: arm, position: [0.3, 0, 1.0], mass: 1}\nmobile_bases:\n"
+                         "  - {name: base0, type: omni, actuation: complete, pose: [0, 0, 0], stiffness: [2.0e4, 2.0e4, "
+                         "500]}\njoints:\n  - {type: fixed, between: [base0, post], point: [0, 0, 0.2]}\n"
+                         "  - {name: spin, type: revolute, between: [post, arm], point: [0, 0, 1.0], axis: [0, 0, 1]}\n"
+                         "end_effector: {body: arm, point: [0.6, 0, 1.0], controlled: [x, y, z]}\n";
+  const testing::ToolRun run = testing::RunTool({"statics", "--model=" + path});
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_EQ(run.out.find("NaN"), std::string::npos);
+  EXPECT_EQ(run.out.find("nan"), std::string::npos);
+  const nlohmann::json out = nlohmann::json::parse(run.out);
+  EXPECT_FALSE(out.at("deflection").at("held").get<bool>());
+  EXPECT_TRUE(out.at("ee_stiffness").is_null());
+  EXPECT_NE(out.at("ee_stiffness_note").get<std::string>().find("not held"), std::string::npos);
+  EXPECT_NE(run.err.find("ccma statics: warning: the loaded mechanism is not held"), std::string::npos) << run.err;
+  const Model model = LoadModel(path);
+  const StaticsReport r = StaticsAtHome(model);
+  EXPECT_TRUE(r.compliance.ee_compliance.allFinite());
+  EXPECT_FALSE(r.compliance.held);
+}
+
+// Two actuated vertical slides at the same point carry one weight: rigid,
+// any split is an equilibrium (indeterminate, the minimum-norm one is half
+// each); compliant, the motors share it in proportion to their stiffness.
+TEST(Compliance, SpringsShareARedundantLoadInProportionToTheirStiffness) {
+  const double k1 = 1e4, k2 = 3e4, W = 5 * 9.81;
+  const std::string legs =
+      "  - {name: left, type: prismatic, actuated: true, STIFF1between: [world, slider], point: [0, 0, 0], "
+      "axis: [0, 0, 1]}\n"
+      "  - {name: right, type: prismatic, actuated: true, STIFF2between: [world, slider], point: [0, 0, 0], "
+      "axis: [0, 0, 1]}\n";
+  const std::string head = "name: slides\nbodies:\n  - {name: slider, position: [0, 0, 0.5], mass: 5}\njoints:\n";
+  const std::string tail = "end_effector: {body: slider, point: [0, 0, 0.5], controlled: [z]}\n";
+  auto text = [&](const std::string& s1, const std::string& s2) {
+    std::string t = head + legs + tail;
+    t.replace(t.find("STIFF1"), 6, s1);
+    t.replace(t.find("STIFF2"), 6, s2);
+    return t;
+  };
+  const StaticsReport rigid = StaticsAtHome(LoadModelFromString(text("", ""), "rigid.yaml"));
+  EXPECT_FALSE(rigid.determinate);
+  EXPECT_NEAR(rigid.actuators[0].effort, W / 2, 1e-9);
+  const std::string springs = "translation: 1.0e6, rotation: 1.0e4}, ";
+  const StaticsReport r = StaticsAtHome(LoadModelFromString(
+      text("stiffness: {axis: 1.0e4, " + springs, "stiffness: {axis: 3.0e4, " + springs), "compliant.yaml"));
+  EXPECT_TRUE(r.determinate);
+  EXPECT_NEAR(r.actuators[0].effort, W * k1 / (k1 + k2), 1e-9);
+  EXPECT_NEAR(r.actuators[1].effort, W * k2 / (k1 + k2), 1e-9);
+  EXPECT_NEAR(r.compliance.deflection[2], -W / (k1 + k2), 1e-12);
+  EXPECT_NEAR(r.joints[0].force.z() + r.joints[1].force.z(), W, 1e-9);
+}
+
+// Virtual work with rigid controls: along every motion (w, du) the rigid rows
+// allow (A w + A_u du = 0), the efforts, the loads and the springs do no work
+// together: e . du = w . (H y - f).
+TEST(Compliance, EffortsOfRigidControlsObeyVirtualWork) {
+  Model model = LoadModelFromString(ReadModel("6dof_asymmetric"), "6dof.yaml");
+  for (Joint& joint : model.joints) {
+    if (joint.type == JointType::kRevolute) joint.stiffness.rotation = {3e3, 4e3};
+  }
+  model.end_effector.payload.mass = 2.0;
+  ForwardProblem forward(model);
+  ASSERT_TRUE(forward.Solve(model.home_controls()).assembled);
+  const ConstraintSet set(model);
+  const CompliantEquilibrium system(model, set, forward.state(), forward.controls());
+  ASSERT_TRUE(system.compliant_controls().empty());
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(system.size());
+  f.head(model.state_size()) = GeneralizedLoads(model, forward.state());
+  const Eigen::VectorXd y = system.Displacement(f);
+  const StaticsReport r = ComputeStatics(model, forward.state(), forward.controls());
+  Eigen::VectorXd e(model.num_controls());
+  for (int c = 0; c < e.size(); ++c) e[c] = r.actuators[static_cast<size_t>(c)].effort;
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(system.A());
+  cod.setThreshold(1e-10);
+  std::mt19937 rng(36);
+  std::normal_distribution<double> normal;
+  for (int trial = 0; trial < 5; ++trial) {
+    Eigen::VectorXd du(model.num_controls());
+    for (int c = 0; c < du.size(); ++c) du[c] = normal(rng);
+    const Eigen::VectorXd w = cod.solve(-system.A_u() * du);
+    ASSERT_LT((system.A() * w + system.A_u() * du).norm(), 1e-9) << "a feasible motion";
+    const double work = w.dot(system.SpringForce(y) - f);
+    EXPECT_NEAR(e.dot(du), work, 1e-8 * (1 + std::abs(work))) << trial;
+  }
+}
+
+// A model without stiffness keys: statics has none of the compliance keys
+// (its JSON is the rigid one, byte for byte: checked against the tool before
+// compliance when it was added).
+TEST(Compliance, RigidModelsReportNoComplianceKeys) {
+  for (const std::string& stem : testing::BundledModels()) {
+    const testing::ToolRun run =
+        testing::RunTool({"statics", "--model=" + std::string(CCMA_MODELS_DIR) + "/" + stem + ".yaml"});
+    ASSERT_EQ(run.status, 0) << stem << run.err;
+    const nlohmann::json out = nlohmann::json::parse(run.out);
+    for (const char* key : {"deflection", "ee_compliance", "ee_stiffness", "ee_stiffness_note", "most_compliant",
+                            "compliant_reactions"}) {
+      EXPECT_FALSE(out.contains(key)) << stem << " " << key;
+    }
+  }
+}
+
+TEST(Compliance, TheToolReportsTheComplianceKeys) {
+  const std::string path = ::testing::TempDir() + "/cantilever_tool.yaml";
+  std::ofstream(path) << Cantilever(2e3, 0.3, "{rotation: 5000}", 1.2);
+  const testing::ToolRun run = testing::RunTool({"statics", "--model=" + path, "--wrench=0,0,-7,0,0,0"});
+  ASSERT_EQ(run.status, 0) << run.err;
+  const nlohmann::json out = nlohmann::json::parse(run.out);
+  EXPECT_TRUE(out.at("compliant_reactions").get<bool>());
+  EXPECT_NEAR(out.at("deflection").at("end_effector")[2].get<double>(), -7 * (1.44 / 2e3 + 0.81 / 5e3), 1e-12);
+  EXPECT_TRUE(out.at("deflection").at("held").get<bool>());
+  EXPECT_EQ(out.at("ee_compliance").size(), 6u);
+  EXPECT_TRUE(out.at("ee_stiffness").is_null());  // y and roll, yaw are held rigidly
+  EXPECT_FALSE(out.at("ee_stiffness_note").get<std::string>().empty());
+  EXPECT_NEAR(out.at("most_compliant").at("compliance").get<double>(), 1.44 / 2e3 + 0.81 / 5e3, 1e-14);
+}
+
+}  // namespace
+}  // namespace ccma

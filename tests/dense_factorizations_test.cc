@@ -1,0 +1,88 @@
+// The compiled-once wrappers of Eigen's dense decompositions
+// (tests/dense_factorizations.h) against what defines them: A = U S V^T
+// with orthonormal factors, A v = lambda v, the minimum-norm least-squares
+// solution and null spaces, on seeded random rank-deficient matrices.
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "tests/dense_factorizations.h"
+
+namespace ccma {
+namespace {
+
+// rows x cols of rank r (r <= min(rows, cols)), entries of order 1.
+Eigen::MatrixXd RankDeficient(int rows, int cols, int r, std::mt19937* rng) {
+  std::normal_distribution<double> normal;
+  Eigen::MatrixXd L(rows, r), R(r, cols);
+  for (int i = 0; i < L.size(); ++i) L.data()[i] = normal(*rng);
+  for (int i = 0; i < R.size(); ++i) R.data()[i] = normal(*rng);
+  return L * R;
+}
+
+double Orthonormality(const Eigen::MatrixXd& Q) {
+  return (Q.transpose() * Q - Eigen::MatrixXd::Identity(Q.cols(), Q.cols())).cwiseAbs().maxCoeff();
+}
+
+TEST(DenseFactorizations, SvdsRebuildTheMatrix) {
+  std::mt19937 rng(7);
+  const Eigen::MatrixXd A = RankDeficient(9, 6, 4, &rng);
+  const JacobiSvd jacobi(A, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  const BdcSvd bdc(A, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  EXPECT_LT((jacobi.matrixU() * jacobi.singularValues().asDiagonal() * jacobi.matrixV().transpose() - A)
+                .cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_LT(Orthonormality(bdc.matrixU()), 1e-12);
+  EXPECT_LT(Orthonormality(bdc.matrixV()), 1e-12);
+  EXPECT_LT((jacobi.singularValues() - bdc.singularValues()).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_LT(jacobi.singularValues()[4], 1e-12);  // rank 4
+  EXPECT_GT(jacobi.singularValues()[3], 1e-3);
+  EXPECT_EQ(JacobiSvd(A).singularValues(), jacobi.singularValues());  // values alone: the same numbers
+}
+
+TEST(DenseFactorizations, SymmetricEigenSolverDiagonalises) {
+  std::mt19937 rng(8);
+  const Eigen::MatrixXd B = RankDeficient(7, 7, 7, &rng);
+  const Eigen::MatrixXd A = B + B.transpose();
+  SymmetricEigenSolver eigen;
+  eigen.compute(A);
+  const Eigen::MatrixXd& V = eigen.eigenvectors();
+  EXPECT_LT((A * V - V * eigen.eigenvalues().asDiagonal()).cwiseAbs().maxCoeff(), 1e-11);
+  EXPECT_LT(Orthonormality(V), 1e-12);
+  for (int i = 1; i < 7; ++i) EXPECT_LE(eigen.eigenvalues()[i - 1], eigen.eigenvalues()[i]);
+  const SymmetricEigenSolver copy = eigen;  // deep copy: the same numbers
+  EXPECT_EQ(copy.eigenvalues(), eigen.eigenvalues());
+}
+
+TEST(DenseFactorizations, MinimumNormSolverAndNullSpaces) {
+  std::mt19937 rng(9);
+  for (const auto& [rows, cols, r] : {std::tuple{8, 5, 3}, std::tuple{5, 8, 3}, std::tuple{6, 6, 6}}) {
+    const Eigen::MatrixXd A = RankDeficient(rows, cols, r, &rng);
+    MinimumNormSolver solver;
+    solver.setThreshold(1e-10).compute(A);
+    ASSERT_EQ(solver.rank(), r);
+    const Eigen::MatrixXd N = solver.nullSpace(), L = solver.leftNullSpace();
+    ASSERT_EQ(N.rows(), cols);
+    ASSERT_EQ(N.cols(), cols - r);
+    ASSERT_EQ(L.rows(), rows);
+    ASSERT_EQ(L.cols(), rows - r);
+    if (N.size() > 0) {
+      EXPECT_LT((A * N).cwiseAbs().maxCoeff(), 1e-12);
+      EXPECT_LT(Orthonormality(N), 1e-12);
+    }
+    if (L.size() > 0) {
+      EXPECT_LT((A.transpose() * L).cwiseAbs().maxCoeff(), 1e-12);
+      EXPECT_LT(Orthonormality(L), 1e-12);
+    }
+    // Least squares (normal equations) and minimum norm (nothing along null(A)).
+    Eigen::VectorXd b(rows);
+    for (int i = 0; i < rows; ++i) b[i] = std::normal_distribution<double>()(rng);
+    const Eigen::VectorXd x = solver.solve(b);
+    EXPECT_LT((A.transpose() * (A * x - b)).cwiseAbs().maxCoeff(), 1e-11);
+    if (N.size() > 0) EXPECT_LT((N.transpose() * x).cwiseAbs().maxCoeff(), 1e-12);
+    const Eigen::MatrixXd X = solver.solveMatrix(Eigen::MatrixXd(b.replicate(1, 2)));
+    EXPECT_LT((X.col(1) - x).cwiseAbs().maxCoeff(), 1e-14);
+  }
+}
+
+}  // namespace
+}  // namespace ccma
