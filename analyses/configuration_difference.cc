@@ -3,12 +3,12 @@
 #include <algorithm>
 
 #include <Eigen/Geometry>
-#include <Eigen/SVD>
 
 #include "analyses/internal/sparse_mobility.h"
 #include "analyses/mobility.h"
 #include "ccma/end_effector.h"
 #include "ccma/internal/constraint_set.h"
+#include "ccma/internal/dense_factorizations.h"
 #include "ccma/rotation.h"
 
 namespace ccma {
@@ -26,7 +26,7 @@ Eigen::MatrixXd DenseIdleMotions(const Model& model, const State& s, const Eigen
   const Eigen::MatrixXd X = EndEffectorJacobian(model, s);
   Eigen::MatrixXd M(J_s.rows() + X.rows(), J_s.cols());
   M << J_s, X;
-  const Eigen::BDCSVD<Eigen::MatrixXd> svd(M, Eigen::ComputeFullV);
+  const BdcSvd svd(M, Eigen::ComputeFullV);
   const Eigen::VectorXd sigma = svd.singularValues();
   const double threshold = kRankTolerance * std::max(1.0, sigma.size() > 0 ? sigma[0] : 0.0);
   const int rank = static_cast<int>((sigma.array() > threshold).count());

@@ -4,9 +4,9 @@
 #include <functional>
 #include <vector>
 
-#include <Eigen/QR>
 
 #include "analyses/payload.h"
+#include "ccma/internal/dense_factorizations.h"
 #include "ccma/loads.h"
 #include "problems/internal/end_effector_error.h"
 #include "problems/internal/equilibrium.h"
@@ -93,8 +93,8 @@ bool TargetTangent(const Model& model, const DesignParameters& params, const Eig
   Eigen::VectorXd e;
   Eigen::MatrixXd de_ds;
   EndEffectorError(at_p).Evaluate(s, {pose.position, pose.rpy}, &e, &de_ds);
-  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(de_ds * ds_du);
-  *du = -cod.solve(de_ds * sens.ds_dp);
+  MinimumNormSolver cod(de_ds * ds_du);
+  *du = -cod.solveMatrix(de_ds * sens.ds_dp);
   *ds = sens.ds_dp + ds_du * *du;
   return ds->allFinite() && du->allFinite();
 }

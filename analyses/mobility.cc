@@ -5,11 +5,11 @@
 #include <stdexcept>
 #include <string>
 
-#include <Eigen/SVD>
 
 #include "analyses/internal/sparse_mobility.h"
 #include "ccma/end_effector.h"
 #include "ccma/internal/constraint_set.h"
+#include "ccma/internal/dense_factorizations.h"
 #include "ccma/joint_coordinates.h"
 #include "analyses/internal/dense_rank.h"
 
@@ -21,13 +21,13 @@ namespace {
 // stay orthonormal: each split is a rotation within the unassigned span.
 std::vector<FreeMotion> FreeMotions(const Eigen::MatrixXd& J_s, int rank) {
   const int n = static_cast<int>(J_s.cols());
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(J_s, Eigen::ComputeFullV);
+  const JacobiSvd svd(J_s, Eigen::ComputeFullV);
   Eigen::MatrixXd unassigned = svd.matrixV().rightCols(n - rank);
   std::vector<FreeMotion> motions;
   for (int b = 0; b < n / kPoseTangentSize && unassigned.cols() > 0; ++b) {
     // Right singular vectors of this body's rows: the first `moving` mix the
     // directions into ones that move the body, the others leave it still.
-    const Eigen::JacobiSVD<Eigen::MatrixXd> block(unassigned.middleRows(kPoseTangentSize * b, kPoseTangentSize),
+    const JacobiSvd block(unassigned.middleRows(kPoseTangentSize * b, kPoseTangentSize),
                                                   Eigen::ComputeFullV);
     const int moving = RankAbove(block.singularValues(), kMovingBodyTolerance);
     if (moving == 0) continue;
@@ -44,11 +44,11 @@ std::vector<FreeMotion> FreeMotions(const Eigen::MatrixXd& J_s, int rank) {
 int EndEffectorDof(const Model& model, const State& s, const Eigen::MatrixXd& A, double threshold,
                    double rank_tolerance, int* free_dof) {
   const int n = model.state_size();
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
+  const JacobiSvd svd(A, Eigen::ComputeFullV);
   const int rank = RankAbove(svd.singularValues(), threshold);
   *free_dof = static_cast<int>(A.cols()) - rank;
   const Eigen::MatrixXd X = EndEffectorJacobian(model, s) * svd.matrixV().rightCols(*free_dof).topRows(n);
-  return X.cols() > 0 ? RankAbove(Eigen::JacobiSVD<Eigen::MatrixXd>(X).singularValues(), rank_tolerance) : 0;
+  return X.cols() > 0 ? RankAbove(JacobiSvd(X).singularValues(), rank_tolerance) : 0;
 }
 
 // One row over (ds, du_effective) per differential base that constrains the
@@ -67,11 +67,11 @@ Eigen::MatrixXd LateralRows(const Model& model, const State& s, const Eigen::Vec
   held.setZero();
   held.topLeftCorner(J_s.rows(), n) = J_s;
   held.bottomLeftCorner(X_s.rows(), n) = X_s;
-  const int held_rank = RankAbove(Eigen::JacobiSVD<Eigen::MatrixXd>(held.leftCols(n)).singularValues(), threshold);
+  const int held_rank = RankAbove(JacobiSvd(held.leftCols(n)).singularValues(), threshold);
   for (int b = 0; b < model.num_bases(); ++b) {
     if (model.mobile_bases[b].type != BaseType::kDifferential) continue;
     held.col(n).head(J_s.rows()) = J_u.col(kBaseControlSize * b + 2);
-    if (RankAbove(Eigen::JacobiSVD<Eigen::MatrixXd>(held).singularValues(), threshold) == held_rank) continue;
+    if (RankAbove(JacobiSvd(held).singularValues(), threshold) == held_rank) continue;
     const double theta = u[kBaseControlSize * b + 2];
     for (int c = 0; c < k; ++c) {
       if (effective[c] == kBaseControlSize * b) L(rows, n + c) = -std::sin(theta);
@@ -136,7 +136,7 @@ MobilityReport AnalyzeMobility(const Model& model, const State& s, const Eigen::
   constraints.Evaluate(s, u, &C, &J_s, &J_u);
   report.energy = 0.5 * C.squaredNorm();
 
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd_s(J_s);
+  const JacobiSvd svd_s(J_s);
   const Eigen::VectorXd sigma = svd_s.singularValues();
   const double scale = std::max(1.0, sigma.size() > 0 ? sigma[0] : 0.0);
   report.constraint_rank = RankAbove(sigma, rank_tolerance * scale);

@@ -6,13 +6,13 @@
 #include <stdexcept>
 #include <string>
 
-#include <Eigen/SVD>
 
 #include "analyses/internal/sparse_mobility.h"
 #include "analyses/mobility.h"
 #include "ccma/end_effector.h"
 #include "ccma/internal/constraint_set.h"
 #include "analyses/internal/dense_rank.h"
+#include "ccma/internal/dense_factorizations.h"
 
 namespace ccma {
 namespace {
@@ -25,13 +25,13 @@ Eigen::MatrixXd DenseMotions(const Model& model, const State& s, const Eigen::Ve
   Eigen::MatrixXd J_s, J_u;
   constraints.Evaluate(s, u, &C, &J_s, &J_u);
   const int n = model.state_size();
-  const Eigen::VectorXd sigma = Eigen::BDCSVD<Eigen::MatrixXd>(J_s).singularValues();
+  const Eigen::VectorXd sigma = BdcSvd(J_s).singularValues();
   const double threshold = rank_tolerance * std::max(1.0, sigma.size() > 0 ? sigma[0] : 0.0);
   const std::vector<int> effective = model.effective_control_indices();
   Eigen::MatrixXd A(J_s.rows(), n + static_cast<Eigen::Index>(effective.size()));
   A.leftCols(n) = J_s;
   for (std::size_t c = 0; c < effective.size(); ++c) A.col(n + static_cast<Eigen::Index>(c)) = J_u.col(effective[c]);
-  const Eigen::BDCSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
+  const BdcSvd svd(A, Eigen::ComputeFullV);
   const int free = static_cast<int>(A.cols()) - RankAbove(svd.singularValues(), threshold);
   return EndEffectorJacobian(model, s) * svd.matrixV().rightCols(free).topRows(n);
 }
@@ -44,7 +44,7 @@ int DenseRank(const Eigen::MatrixXd& Y, double threshold, const ComponentSet& ro
     if (rows[r]) picked.row(count++) = Y.row(r);
   }
   if (count == 0 || Y.cols() == 0) return 0;
-  return RankAbove(Eigen::JacobiSVD<Eigen::MatrixXd>(picked.topRows(count)).singularValues(), threshold);
+  return RankAbove(JacobiSvd(picked.topRows(count)).singularValues(), threshold);
 }
 
 }  // namespace
@@ -61,7 +61,7 @@ MovedComponents AnalyzeMovedComponents(const Model& model, const State& s, const
   std::unique_ptr<SparseEndEffectorRanks> sparse;
   if (n <= kDenseMobilityStateSize) {
     Y = DenseMotions(model, s, u, rank_tolerance);
-    const double largest = Y.cols() > 0 ? Eigen::JacobiSVD<Eigen::MatrixXd>(Y).singularValues()[0] : 0.0;
+    const double largest = Y.cols() > 0 ? JacobiSvd(Y).singularValues()[0] : 0.0;
     const double threshold = rank_tolerance * std::max(1.0, largest);
     rank_of = [&Y, threshold](const ComponentSet& rows) { return DenseRank(Y, threshold, rows); };
   } else {

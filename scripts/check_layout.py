@@ -7,7 +7,12 @@
 - every library source file (ccma/, cost_functions/, formats/, problems/,
   analyses/, execution/, viewer/, apps/, python/src/) has at most 500 lines;
 - every function body in them has at most 60 lines;
-- no #include points from a lower layer to a higher one.
+- no #include points from a lower layer to a higher one;
+- Eigen's dense decompositions of dynamic matrices (JacobiSVD, BDCSVD,
+  SelfAdjointEigenSolver, CompleteOrthogonalDecomposition of MatrixXd) are
+  instantiated only in ccma/internal/dense_factorizations.cc: elsewhere the
+  wrappers of dense_factorizations.h (each instantiation costs 9-13 s of
+  compile time per translation unit).
 Functions are found by braces: a `{` at namespace or class level whose text
 since the previous `;`, `{` or `}` has a `)` and is not a namespace, class,
 struct, enum or initialiser. Comments and string literals are blanked first.
@@ -26,6 +31,9 @@ SOURCE_DIRS = ["ccma", "cost_functions", "formats", "collision", "problems", "an
 LAYERS = {"ccma": 0, "cost_functions": 0, "formats": 1, "collision": 1, "problems": 2,
           "analyses": 3, "execution": 4, "viewer": 5, "apps": 6, "python": 6}
 UMBRELLA = "ccma/ccma.h"
+DENSE_FACTORIZATIONS = "ccma/internal/dense_factorizations.cc"
+HEAVY_DECOMPOSITION = re.compile(
+    r"Eigen::(JacobiSVD|BDCSVD|SelfAdjointEigenSolver|CompleteOrthogonalDecomposition)\s*<\s*Eigen::MatrixXd\b")
 
 
 def blank(text):
@@ -88,6 +96,10 @@ def check_text(path, text):
             other = layer_of(m.group(1))
             if other is not None and other > own:
                 breaches.append(f"{path}: includes {m.group(1)} (a higher layer)")
+    if path != DENSE_FACTORIZATIONS:
+        for m in HEAVY_DECOMPOSITION.finditer(blank(text)):
+            line = text.count("\n", 0, m.start()) + 1
+            breaches.append(f"{path}:{line}: Eigen::{m.group(1)}<Eigen::MatrixXd> (use ccma/internal/dense_factorizations.h)")
     return breaches
 
 
@@ -112,6 +124,9 @@ def self_test():
     assert len(check_text("ccma/a.cc", '#include "problems/forward_problem.h"\n')) == 1
     assert not check_text("problems/a.cc", '#include "ccma/model.h"\n')
     assert not check_text("ccma/ccma.h", '#include "analyses/design.h"\n')
+    assert len(check_text("problems/a.cc", "Eigen::JacobiSVD<Eigen::MatrixXd> svd(A);\n")) == 1
+    assert not check_text("problems/a.cc", "JacobiSvd svd(A);  // not Eigen::JacobiSVD<Eigen::MatrixXd>\n")
+    assert not check_text(DENSE_FACTORIZATIONS, "Eigen::BDCSVD<Eigen::MatrixXd> svd;\n")
     print("layout self-test: ok")
     return 0
 

@@ -77,7 +77,7 @@ install() {
 }
 mapfile -t missing < <(missing_of "${PACKAGES[@]}")
 if ((${#missing[@]})); then
-  echo "setup: installing ${#missing[@]} Debian packages (apt-get, about 1-3 minutes): ${missing[*]}"
+  echo "setup: installing ${#missing[@]} Debian packages (apt-get, about 1 minute): ${missing[*]}"
   install apt.log "the build's packages" "${missing[@]}" || exit 1
 fi
 mapfile -t late < <(missing_of "${LATE_PACKAGES[@]}")
@@ -102,11 +102,11 @@ generator=()
 parts=(-DCCMA_BUILD_TESTS=ON -DCCMA_BUILD_BENCHMARKS=ON -DCCMA_BUILD_EXAMPLES=ON -DCCMA_BUILD_PYTHON=ON)
 target_args=()
 what="everything (library, tool, tests, benchmarks, examples, Python module)"
-estimate="about 15 minutes on 2 cores the first time"
+estimate="about 7 minutes on 2 cores after the demo, 11 from nothing"
 if ((tool_only)); then
   target_args=(--target ccma_tool)
   what="the ccma tool"
-  estimate="about 6 minutes on 2 cores the first time"
+  estimate="about 4 minutes on 2 cores the first time"
   if grep -qs '^CCMA_BUILD_TESTS:BOOL=ON' build/CMakeCache.txt; then
     parts=()
   else

@@ -37,7 +37,7 @@
 #include "formats/urdf_reader.h"
 #include "formats/urdf_writer.h"
 #include "problems/forward_problem.h"
-#include "tests/dense_factorizations.h"
+#include "ccma/internal/dense_factorizations.h"
 #include "tests/tool_run.h"
 
 namespace ccma {

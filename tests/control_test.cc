@@ -14,7 +14,7 @@
 #include "problems/control_problem.h"
 #include "problems/internal/end_effector_error.h"
 #include "problems/trajectory.h"
-#include "tests/dense_factorizations.h"
+#include "ccma/internal/dense_factorizations.h"
 
 namespace ccma {
 namespace {

@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "tests/dense_factorizations.h"
+#include "ccma/internal/dense_factorizations.h"
 
 namespace ccma {
 namespace {

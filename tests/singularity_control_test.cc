@@ -16,7 +16,7 @@
 #include "formats/model_loader.h"
 #include "problems/control_problem.h"
 #include "problems/internal/end_effector_error.h"
-#include "tests/dense_factorizations.h"
+#include "ccma/internal/dense_factorizations.h"
 #include "tool_run.h"
 
 namespace ccma {

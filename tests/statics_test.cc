@@ -19,7 +19,7 @@
 #include "bundled_models.h"
 #include "formats/model_loader.h"
 #include "problems/forward_problem.h"
-#include "tests/dense_factorizations.h"
+#include "ccma/internal/dense_factorizations.h"
 #include "tool_run.h"
 
 namespace ccma {

@@ -4,11 +4,11 @@
 #include <cmath>
 
 #include <Eigen/QR>
-#include <Eigen/SVD>
 
 #include "analyses/internal/sparse_rank.h"
 #include "ccma/end_effector.h"
 #include "ccma/internal/constraint_set.h"
+#include "ccma/internal/dense_factorizations.h"
 
 namespace ccma {
 namespace {
@@ -111,7 +111,7 @@ std::vector<FreeMotion> SplitByBody(Eigen::MatrixXd unassigned) {
   std::vector<FreeMotion> motions;
   for (Eigen::Index b = 0; b < unassigned.rows() / kPoseTangentSize && unassigned.cols() > 0; ++b) {
     const Eigen::MatrixXd rows = unassigned.middleRows(kPoseTangentSize * b, kPoseTangentSize);
-    const Eigen::VectorXd sigma = Eigen::JacobiSVD<Eigen::MatrixXd>(rows).singularValues();
+    const Eigen::VectorXd sigma = JacobiSvd(rows).singularValues();
     const int moving = static_cast<int>((sigma.array() > kMovingBodyTolerance).count());
     if (moving == 0) continue;
     const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(rows.transpose());

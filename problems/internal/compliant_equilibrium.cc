@@ -4,8 +4,6 @@
 #include <stdexcept>
 #include <string>
 
-#include <Eigen/SVD>
-
 #include "ccma/internal/joint_spring_directions.h"
 #include "ccma/limits.h"
 
@@ -137,14 +135,12 @@ void CompliantEquilibrium::Factorize() {
     rank = static_cast<int>(cod_.rank());
   }
   // null(A): the columns of A^T's Q beyond its rank.
-  Z = Eigen::MatrixXd::Zero(N, N - rank);
-  Z.bottomRows(N - rank).setIdentity();
-  if (A_.rows() > 0) Z.applyOnTheLeft(cod_.householderQ());
+  Z = A_.rows() > 0 ? cod_.leftNullSpace() : Eigen::MatrixXd::Identity(N, N);
   const Eigen::MatrixXd M = S_ * Z;
   int stretching = 0;
   Eigen::MatrixXd V = Eigen::MatrixXd::Identity(Z.cols(), Z.cols());
   if (M.size() > 0) {
-    Eigen::BDCSVD<Eigen::MatrixXd> svd(M, Eigen::ComputeFullV);
+    const BdcSvd svd(M, Eigen::ComputeFullV);
     const Eigen::VectorXd& sigma = svd.singularValues();
     while (stretching < sigma.size() && sigma[stretching] > kCompliantRankThreshold * sigma[0]) ++stretching;
     V = svd.matrixV();
@@ -163,7 +159,7 @@ void CompliantEquilibrium::Factorize() {
 bool CompliantEquilibrium::Determinate(int rank) const {
   const int m = static_cast<int>(A_.rows());
   if (rank == m) return true;
-  const Eigen::MatrixXd kernel = cod_.colsPermutation() * cod_.matrixZ().transpose().rightCols(m - rank);
+  const Eigen::MatrixXd kernel = cod_.nullSpace();  // m x (m - rank)
   const double scale = std::max(1.0, std::max(A_.cwiseAbs().maxCoeff(), A_u_.size() ? A_u_.cwiseAbs().maxCoeff() : 0.0));
   const double tolerance = 1e-8 * scale;
   if (A_u_.size() > 0 && (A_u_.transpose() * kernel).cwiseAbs().maxCoeff() > tolerance) return false;

@@ -36,9 +36,9 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
-#include <Eigen/QR>
 
 #include "ccma/internal/constraint_set.h"
+#include "ccma/internal/dense_factorizations.h"
 #include "ccma/model.h"
 #include "ccma/state.h"
 
@@ -94,7 +94,7 @@ class CompliantEquilibrium {
   Eigen::VectorXd k_;
   std::vector<CompliantJointRows> joint_rows_;
   std::vector<std::pair<int, int>> groups_;  // the joints' row groups of A ({row, count})
-  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod_;  // of A^T
+  MinimumNormSolver cod_;  // of A^T
   Eigen::MatrixXd Z1_, Z0_;
   Eigen::LDLT<Eigen::MatrixXd> K1_;
   bool determinate_ = true;

@@ -2,19 +2,20 @@
 
 #include <algorithm>
 
-#include <Eigen/SVD>
+#include "ccma/internal/dense_factorizations.h"
+
 
 namespace ccma {
 
 Eigen::VectorXd ConstrainedLmStep(const Eigen::MatrixXd& JtJ, const Eigen::VectorXd& Jtr, double mu,
                                   const LinearConstraints& constraints,
-                                  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>* JtJ_eigen) {
+                                  const SymmetricEigenSolver* JtJ_eigen) {
   // -V (Lambda + mu)^-1 V^T g: least norm in the directions J does not see.
   // Eigenvalues below 1e-12 of the largest are rounding noise of J^T J (its
   // null space: redundant controls), and so is g there: those components are
   // dropped rather than amplified by 1 / mu, so that the step is the
   // least-norm one whichever way J^T J was formed.
-  auto damped_solve = [mu](const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>& eig, const Eigen::VectorXd& g) {
+  auto damped_solve = [mu](const SymmetricEigenSolver& eig, const Eigen::VectorXd& g) {
     const Eigen::VectorXd sigma_sq = eig.eigenvalues().cwiseMax(0.0);
     const double cutoff = 1e-12 * sigma_sq.maxCoeff();
     const Eigen::VectorXd projected = eig.eigenvectors().transpose() * g;
@@ -33,10 +34,10 @@ Eigen::VectorXd ConstrainedLmStep(const Eigen::MatrixXd& JtJ, const Eigen::Vecto
       damped.diagonal().array() += mu;
       return -damped.ldlt().solve(Jtr);
     }
-    return damped_solve(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(JtJ), Jtr);
+    return damped_solve(SymmetricEigenSolver(JtJ), Jtr);
   }
   const int k = static_cast<int>(JtJ.cols());
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(constraints.A, Eigen::ComputeFullV | Eigen::ComputeFullU);
+  const JacobiSvd svd(constraints.A, Eigen::ComputeFullV | Eigen::ComputeFullU);
   const Eigen::VectorXd sigma = svd.singularValues();
   const double cutoff = 1e-10 * std::max(1.0, sigma.size() > 0 ? sigma[0] : 0.0);
   int rank = 0;
@@ -48,7 +49,7 @@ Eigen::VectorXd ConstrainedLmStep(const Eigen::MatrixXd& JtJ, const Eigen::Vecto
   if (N.cols() == 0) return d0;
   // min over z of |J N z + (J d0 + r)|^2 + mu |d0 + N z|^2, least norm in z:
   // (J N)^T (J N) = N^T J^T J N and (J N)^T (J d0 + r) = N^T (J^T J d0 + J^T r).
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(N.transpose() * JtJ * N);
+  const SymmetricEigenSolver eig(N.transpose() * JtJ * N);
   const Eigen::VectorXd g = N.transpose() * (JtJ * d0 + Jtr + mu * d0);
   return d0 + N * damped_solve(eig, g);
 }

@@ -11,8 +11,8 @@
 #define CCMA_PROBLEMS_INTERNAL_CONSTRAINED_LM_STEP_H_
 
 #include <Eigen/Core>
-#include <Eigen/Eigenvalues>
 
+#include "ccma/internal/dense_factorizations.h"
 #include "problems/internal/step_constraint.h"
 
 namespace ccma {
@@ -23,7 +23,7 @@ constexpr int kMaxEigenSolveSize = 64;
 
 Eigen::VectorXd ConstrainedLmStep(const Eigen::MatrixXd& JtJ, const Eigen::VectorXd& Jtr, double mu,
                                   const LinearConstraints& constraints,
-                                  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>* JtJ_eigen = nullptr);
+                                  const SymmetricEigenSolver* JtJ_eigen = nullptr);
 
 }  // namespace ccma
 

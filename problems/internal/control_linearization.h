@@ -8,8 +8,8 @@
 #include <memory>
 
 #include <Eigen/Core>
-#include <Eigen/Eigenvalues>
-#include <Eigen/SVD>
+
+#include "ccma/internal/dense_factorizations.h"
 
 namespace ccma {
 
@@ -25,9 +25,9 @@ struct ControlLinearization {
   Eigen::MatrixXd JtJ;    // (dr/du)^T dr/du (k x k)
   Eigen::VectorXd Jtr;    // (dr/du)^T r (k)
   // Once per linearisation, for every trial (up to kMaxEigenSolveSize controls).
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> JtJ_eigen;
+  SymmetricEigenSolver JtJ_eigen;
   bool has_eigen = false;
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>* eigen() const { return has_eigen ? &JtJ_eigen : nullptr; }
+  const SymmetricEigenSolver* eigen() const { return has_eigen ? &JtJ_eigen : nullptr; }
   double rcond = 0;       // pivot ratio of dG/ds
   bool singular = false;  // dG/ds singular
 };
@@ -36,7 +36,7 @@ struct ControlLinearization {
 // (dX_c/du, m or rad per control unit); 0 for an empty one.
 inline double SmallestSingularValueOf(const Eigen::MatrixXd& J_end_effector) {
   if (J_end_effector.rows() == 0 || J_end_effector.cols() == 0) return 0.0;
-  return Eigen::JacobiSVD<Eigen::MatrixXd>(J_end_effector).singularValues().minCoeff();
+  return JacobiSvd(J_end_effector).singularValues().minCoeff();
 }
 
 }  // namespace ccma

@@ -3,6 +3,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "ccma/internal/dense_factorizations.h"
 #include "ccma/loads.h"
 
 namespace ccma {
@@ -19,7 +20,7 @@ Equilibrium::Equilibrium(const ConstraintSet& set, const State& s, const Eigen::
   cod_.compute(J_s_.transpose());
 }
 
-const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>& Equilibrium::TransposedFactor() const {
+const MinimumNormSolver& Equilibrium::TransposedFactor() const {
   if (cod_t_.rows() != J_s_.rows() || cod_t_.cols() != J_s_.cols()) {
     cod_t_.setThreshold(1e-10);
     cod_t_.compute(J_s_);

@@ -24,9 +24,9 @@
 #define CCMA_PROBLEMS_INTERNAL_EQUILIBRIUM_H_
 
 #include <Eigen/Core>
-#include <Eigen/QR>
 
 #include "ccma/internal/constraint_set.h"
+#include "ccma/internal/dense_factorizations.h"
 #include "ccma/limits.h"
 #include "ccma/model.h"
 #include "ccma/state.h"
@@ -62,11 +62,11 @@ class Equilibrium {
 
  private:
   Eigen::MatrixXd J_s_, J_u_;
-  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod_;   // of J_s^T
-  const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>& TransposedFactor() const;
+  MinimumNormSolver cod_;   // of J_s^T
+  const MinimumNormSolver& TransposedFactor() const;
   // Of J_s, computed on first use (TransposedFactor()) (most callers never need it);
   // so an Equilibrium is one user's workspace, not shared between threads.
-  mutable Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod_t_;
+  mutable MinimumNormSolver cod_t_;
 };
 
 // L (above) at (s, u) on `set`, with Q the loads of `loads_model` at s

@@ -3,8 +3,9 @@
 #include <algorithm>
 #include <random>
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/QR>
+
+#include "ccma/internal/dense_factorizations.h"
 
 namespace ccma {
 
@@ -39,7 +40,7 @@ bool OnlyIdleMotions(const HessianSolver& solver, const SparseColMajor& H_regula
   // Within span(V), the directions H resists less than 10 mu are the
   // unresisted motions; each must leave the end-effector where it is.
   const Eigen::MatrixXd W = V.transpose() * (H_regularized * V);
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(0.5 * (W + W.transpose()));
+  const SymmetricEigenSolver eigen(0.5 * (W + W.transpose()));
   const double scale = std::max(de_ds.norm(), 1e-300);
   for (Eigen::Index i = 0; i < eigen.eigenvalues().size(); ++i) {
     if (eigen.eigenvalues()[i] > 10 * mu) continue;

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "ccma/internal/dense_factorizations.h"
 #include "problems/internal/constrained_lm_step.h"
 #include "ccma/internal/elapsed.h"
 #include "problems/internal/control_workspace.h"
@@ -17,7 +18,7 @@ using Clock = std::chrono::steady_clock;
 // Largest eigenvalue of J^T J: from the eigen-decomposition when there is
 // one, else by power iteration (seeded start, 30 products: a damping scale,
 // a few digits suffice).
-double LargestEigenvalue(const Eigen::MatrixXd& JtJ, const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>* eig) {
+double LargestEigenvalue(const Eigen::MatrixXd& JtJ, const SymmetricEigenSolver* eig) {
   if (JtJ.rows() == 0) return 0.0;
   if (eig != nullptr) return eig->eigenvalues().cwiseMax(0.0).maxCoeff();
   Eigen::VectorXd v = Eigen::VectorXd::Ones(JtJ.rows()) / std::sqrt(double(JtJ.rows()));

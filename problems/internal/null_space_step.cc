@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include <Eigen/Eigenvalues>
 
+#include "ccma/internal/dense_factorizations.h"
 #include "problems/internal/control_workspace.h"
 #include "problems/internal/lm_loop.h"
 #include "problems/internal/secondary_objective.h"
@@ -19,7 +19,7 @@ namespace {
 // an orthonormal basis (k x nullity), empty when there is no redundancy.
 Eigen::MatrixXd TaskNullSpace(const Eigen::MatrixXd& JtJ) {
   const int k = static_cast<int>(JtJ.rows());
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(JtJ);
+  const SymmetricEigenSolver eig(JtJ);
   const Eigen::VectorXd& ev = eig.eigenvalues();  // increasing
   int nullity = 0;
   while (nullity < k && ev[nullity] <= 1e-9 * std::max(ev[k - 1], 1e-300)) ++nullity;

@@ -1,6 +1,6 @@
 #include "problems/internal/singularity.h"
 
-#include <Eigen/SVD>
+#include "ccma/internal/dense_factorizations.h"
 
 namespace ccma {
 
@@ -25,7 +25,7 @@ SmallestSingularValueResult SmallestSingularValueOfdXdu(const ConstraintSet& con
   Eigen::MatrixXd de_ds;
   error.Evaluate(s, target, &e, &de_ds);
   const Eigen::MatrixXd A = de_ds * S;
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  const JacobiSvd svd(A, Eigen::ComputeThinU | Eigen::ComputeThinV);
   const Eigen::VectorXd& values = svd.singularValues();  // decreasing
   const int last = static_cast<int>(values.size()) - 1;
   out.sigma = values[last];

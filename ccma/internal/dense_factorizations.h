@@ -1,16 +1,17 @@
-// Eigen's dense factorizations of dynamic matrices for the tests' own checks,
-// compiled once (the ccma_test_dense library).
+// Eigen's dense factorizations of dynamic matrices, compiled once.
 //
 // Why: instantiating one of Eigen's decompositions for MatrixXd costs 9 to
-// 13 s of compiler time in a file that has little other Eigen code, as a
-// test has (collection_round_trip_test: 50 s with Eigen::BDCSVD, 12 s with
-// these; benchmarks/RESULTS.md, "Build and test times"). These thin classes
-// keep Eigen's names and semantics (the same algorithms, options and
-// results) but are instantiated only in dense_factorizations.cc; their users
-// include <Eigen/Core> alone. (The library uses Eigen's classes directly:
-// in its unity batches they cost little beyond what the batch compiles.)
-#ifndef CCMA_TESTS_DENSE_FACTORIZATIONS_H_
-#define CCMA_TESTS_DENSE_FACTORIZATIONS_H_
+// 13 s of compiler time in every translation unit or unity batch that uses it
+// (JacobiSVD 12.5 s, CompleteOrthogonalDecomposition 11 s,
+// SelfAdjointEigenSolver 9 s at -O3 alone; a test with Eigen::BDCSVD compiles
+// in 50 s, with these in 12 s; benchmarks/RESULTS.md, "Build and test times"). These thin classes keep Eigen's names and semantics (the same
+// algorithms, options and results, bit for bit) but are instantiated only in
+// dense_factorizations.cc; their users include <Eigen/Core> alone.
+//
+// Each object owns its Eigen decomposition (one allocation when made, reused
+// by compute()), so a workspace that keeps one reuses its storage.
+#ifndef CCMA_INTERNAL_DENSE_FACTORIZATIONS_H_
+#define CCMA_INTERNAL_DENSE_FACTORIZATIONS_H_
 
 #include <memory>
 
@@ -101,4 +102,4 @@ class MinimumNormSolver {
 
 }  // namespace ccma
 
-#endif  // CCMA_TESTS_DENSE_FACTORIZATIONS_H_
+#endif  // CCMA_INTERNAL_DENSE_FACTORIZATIONS_H_

@@ -1,4 +1,4 @@
-#include "tests/dense_factorizations.h"
+#include "ccma/internal/dense_factorizations.h"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
