@@ -106,7 +106,7 @@ estimate="about 7 minutes on 2 cores after the demo, 11 from nothing"
 if ((tool_only)); then
   target_args=(--target ccma_tool)
   what="the ccma tool"
-  estimate="about 4 minutes on 2 cores the first time"
+  estimate="about 5 minutes on 2 cores the first time"
   if grep -qs '^CCMA_BUILD_TESTS:BOOL=ON' build/CMakeCache.txt; then
     parts=()
   else
