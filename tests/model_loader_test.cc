@@ -25,6 +25,7 @@
 #include "formats/obstacles_file.h"
 #include "ccma/rotation.h"
 #include "bundled_models.h"
+#include "tests/model_text.h"
 
 namespace ccma {
 namespace {
@@ -66,15 +67,7 @@ std::string Replace(const std::string& text, const std::string& from, const std:
   return out;
 }
 
-// The error message for `text`, or "" when it loads.
-std::string ErrorOf(const std::string& text) {
-  try {
-    LoadModelFromString(text, "bad.yaml");
-  } catch (const ModelError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string ErrorOf(const std::string& text) { return testing::LoadErrorOf(text); }
 
 TEST(ModelLoader, LoadsTheValidModel) {
   std::vector<std::string> warnings;

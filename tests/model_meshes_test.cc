@@ -8,6 +8,7 @@
 #include "ccma/limits.h"
 #include "ccma/rotation.h"
 #include "formats/model_loader.h"
+#include "tests/model_text.h"
 
 namespace ccma {
 namespace {
@@ -41,14 +42,7 @@ std::string With(const std::string& arm, const std::string& base = "") {
   return text;
 }
 
-std::string ErrorOf(const std::string& text) {
-  try {
-    LoadModelFromString(text, "bad.yaml");
-  } catch (const ModelError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string ErrorOf(const std::string& text) { return testing::LoadErrorOf(text); }
 
 const Body& Named(const Model& m, const std::string& name) { return m.bodies[m.FindBody(name)]; }
 

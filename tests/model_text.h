@@ -8,6 +8,8 @@
 
 #include <Eigen/Core>
 
+#include "formats/model_loader.h"
+
 namespace ccma::testing {
 
 // Adds `rpy: [...]` (from rpy_for(body name)) to every flow-style body entry
@@ -27,6 +29,17 @@ inline std::string WithBodyRpy(const std::string& text,
     last = it->position() + it->length();
   }
   return out + text.substr(last);
+}
+
+// The loader's error message for model text `text` (named bad.yaml), or ""
+// when it loads.
+inline std::string LoadErrorOf(const std::string& text) {
+  try {
+    LoadModelFromString(text, "bad.yaml");
+  } catch (const ModelError& e) {
+    return e.what();
+  }
+  return "";
 }
 
 }  // namespace ccma::testing

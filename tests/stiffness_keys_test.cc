@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "formats/model_loader.h"
+#include "tests/model_text.h"
 #include "tool_run.h"
 
 namespace ccma {
@@ -33,14 +34,7 @@ std::string With(const std::string& base, const std::string& motor, const std::s
   return text;
 }
 
-std::string ErrorOf(const std::string& text) {
-  try {
-    LoadModelFromString(text, "bad.yaml");
-  } catch (const ModelError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string ErrorOf(const std::string& text) { return testing::LoadErrorOf(text); }
 
 TEST(StiffnessKeys, LoadIntoTheModel) {
   const Model m = LoadModelFromString(
