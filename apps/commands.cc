@@ -48,13 +48,19 @@ Command CheckCommand() {
 
 Command SimulateCommand() {
   return {"simulate", "forward problem: assemble the mechanism at given controls",
-          "ccma simulate --model=FILE [--controls=u0,u1,...] [--from=RESULT.json]",
+          "ccma simulate --model=FILE [--controls=u0,u1,...] [--from=RESULT.json] [--loaded]\n"
+          "              [--wrench=fx,fy,fz,mx,my,mz]",
           "Forward problem: assembles the mechanism for the controls, walking them from the start in\n"
           "sub-steps (2 cm / 0.02 rad) so that it stays on the assembly branch it starts on. The start is\n"
           "home, or the configuration and controls in a JSON document printed by `ccma simulate` or\n"
           "`ccma control` (--from; then --controls defaults to that document's controls, so the result is\n"
-          "reproduced exactly). Warns on stderr when not assembled, not converged or a branch jump.",
-          {"model", "controls", "from", "obstacles"}, RunSimulate,
+          "reproduced exactly). Warns on stderr when not assembled, not converged or a branch jump.\n"
+          "--loaded (a model with stiffness keys): the mechanism then settles under gravity, the payload and\n"
+          "--wrench with its springs yielding and the controls held: bodies, joints and end_effector are the\n"
+          "loaded configuration (nonlinear, not linearised), deflection {end_effector [m, rad], max_body_m,\n"
+          "held} is its difference from the rigid assembly, and loaded {converged, iterations,\n"
+          "unbalanced_load, yields} says how it was found (warns when it was not).",
+          {"model", "controls", "from", "obstacles", "loaded", "wrench"}, RunSimulate,
           {{"from", "start from the configuration and controls of a JSON document printed by `ccma simulate` or "
                     "`ccma control` instead of home (at most 4 MiB, nested at most 64 levels) [path]"}}};
 }
@@ -65,7 +71,7 @@ Command ControlCommand() {
           "             [--max_step_m=0.01] [--max_step_rad=0.005] [--lambda=0.5]\n"
           "             [--singularity_weight=0] [--singularity_threshold=0.1] [--pivot_weight=0]\n"
           "             [--pivot_threshold=0.001] [--secondary=none|spread|sigma|travel] [--secondary_weight=1]\n"
-          "             [--clearance_m=0.5]",
+          "             [--clearance_m=0.5] [--compensate] [--wrench=fx,fy,fz,mx,my,mz]",
           "Kinematic control: finds controls that put the end-effector at the target, walking there in\n"
           "small end-effector steps from the start controls (home, or --controls). --target takes all six\n"
           "components, or only the model's controlled ones in the order x y z roll pitch yaw. Warns on\n"
@@ -75,8 +81,13 @@ Command ControlCommand() {
           "controlled components) can keep the smallest singular value of dX/du (--singularity_weight)\n"
           "and the pivot ratio of dG/ds (--pivot_weight) away from zero, or keep bases apart / travel\n"
           "little (--secondary), in the null space of the end-effector task: the end-effector error is\n"
-          "unchanged (docs/cli.md).",
-          Concat(Concat({"model", "target", "controls", "obstacles"}, SecondaryFlagNames()), kControlFlags),
+          "unchanged (docs/cli.md). --compensate (a model with stiffness keys): the controls put the\n"
+          "loaded end-effector (ccma simulate --loaded, under gravity, the payload and --wrench) on the target;\n"
+          "end_effector, bodies, joints and error are then the loaded ones, and compensation {converged,\n"
+          "rounds, miss, aim, rigid_end_effector} tells how (the rigid end-effector is off by about the\n"
+          "deflection).",
+          Concat(Concat({"model", "target", "controls", "obstacles", "compensate", "wrench"}, SecondaryFlagNames()),
+                 kControlFlags),
           RunControl};
 }
 
@@ -385,6 +396,21 @@ std::vector<Waypoint> WaypointsFlag(const std::string& command) {
   } catch (const WaypointError& e) {
     throw UsageError("ccma " + command + ": " + e.what());
   }
+}
+
+ExternalWrench WrenchFlag() {
+  ExternalWrench w;
+  if (FLAGS_wrench.empty()) return w;
+  const Eigen::VectorXd v = ParseNumberList(FLAGS_wrench, "wrench");
+  if (v.size() != 6) {
+    throw UsageError("--wrench: 6 numbers fx,fy,fz,mx,my,mz (N, N*m) are needed, got " + std::to_string(v.size()));
+  }
+  for (int i = 0; i < 6; ++i) {
+    if (!(std::abs(v[i]) <= 1e6)) throw UsageError("--wrench: entry " + std::to_string(i) + " must lie in [-1e6, 1e6]");
+  }
+  w.force = v.head<3>();
+  w.moment = v.tail<3>();
+  return w;
 }
 
 Eigen::VectorXd ControlsFlagOrHome(const Model& model) {

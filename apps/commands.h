@@ -82,6 +82,8 @@ Model LoadModelOrThrow(const std::string& path);
 std::vector<Waypoint> WaypointsFlag(const std::string& command);
 // --controls parsed and checked against the model (count, range), or its home controls.
 Eigen::VectorXd ControlsFlagOrHome(const Model& model);
+// --wrench parsed and checked (6 numbers, each in [-1e6, 1e6]), or none.
+ExternalWrench WrenchFlag();
 
 }  // namespace ccma::cli
 

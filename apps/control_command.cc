@@ -15,6 +15,10 @@ DEFINE_string(target, "",
               "end-effector target: x,y,z [m], roll,pitch,yaw [rad]; or only the model's controlled "
               "components, in that order [m, rad]");
 
+DEFINE_bool(compensate, false,
+            "control: choose the controls whose loaded end-effector (a model with stiffness keys, under gravity, "
+            "the payload and --wrench; ccma simulate --loaded) reaches the target (default off) [bool]");
+
 namespace ccma::cli {
 namespace {
 
@@ -74,6 +78,23 @@ nlohmann::json CheckReproducibleFromHome(const Model& model, const ControlProble
           {"idle_bodies", idle}};
 }
 
+// The move to the target: plain, or (--compensate) putting the loaded
+// end-effector there, its rounds in `compensated`.
+ControlResult Move(ControlProblem* control, const PoseTarget& target, CompensatedResult* compensated) {
+  if (!FLAGS_wrench.empty() && !FLAGS_compensate) throw UsageError("--wrench: only with --compensate (the loads it compensates)");
+  if (!FLAGS_compensate) return control->MoveTo(target);
+  try {
+    *compensated = MoveToCompensated(control, target, WrenchFlag());
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("ccma control --compensate: ") + e.what());
+  }
+  ControlResult result = compensated->control;
+  if (!compensated->warning.empty()) {
+    result.warning += std::string(result.warning.empty() ? "" : "; ") + "--compensate: " + compensated->warning;
+  }
+  return result;
+}
+
 }  // namespace
 
 int RunControl(const std::vector<std::string>& args) {
@@ -86,7 +107,8 @@ int RunControl(const std::vector<std::string>& args) {
   const PoseTarget target = TargetFlag(model, control.CurrentPose());
 
   const ForwardResult start_assembly = control.SetControls(start);
-  ControlResult result = control.MoveTo(target);
+  CompensatedResult compensated;
+  ControlResult result = Move(&control, target, &compensated);
   if (!start_assembly.assembled) {
     result.warning = "the starting controls do not assemble (E = " + FormatG(start_assembly.residual_energy) +
                      "); " + result.warning;
@@ -121,8 +143,9 @@ int RunControl(const std::vector<std::string>& args) {
   out["bodies"] = BodiesToJson(model, control.forward().state());
   out["joints"] = JointsToJson(model, control.forward().state());
   out["limits_violated"] = LimitsViolatedToJson(model, control.forward().state());
-  AddClearance(model, control.forward().state(), "control", &out);
+  AddClearance(model, FLAGS_compensate ? compensated.loaded.state : control.forward().state(), "control", &out);
   out["from_home"] = from_home;
+  if (FLAGS_compensate) AddCompensationJson(model, control.forward().end_effector(), compensated, &out);
   if (!result.warning.empty()) {
     out["warning"] = result.warning;
     std::cerr << "ccma control: warning: " << result.warning << "\n";

@@ -219,4 +219,32 @@ void AddComplianceJson(const StaticsReport& report, nlohmann::json* out) {
                               {"compliance", c.most_compliant}};
 }
 
+void AddLoadedJson(const Model& model, const LoadedEquilibrium& loaded, nlohmann::json* out) {
+  (*out)["end_effector"] = ToJson(ComputeEndEffectorPose(model, loaded.state));
+  (*out)["bodies"] = BodiesToJson(model, loaded.state);
+  (*out)["joints"] = JointsToJson(model, loaded.state);
+  (*out)["deflection"] = {{"end_effector", ToJson(Eigen::VectorXd(loaded.deflection))},
+                          {"max_body_m", loaded.max_body_m},
+                          {"held", loaded.held}};
+  (*out)["loaded"] = {{"converged", loaded.converged},
+                      {"iterations", loaded.iterations},
+                      {"load_fraction", loaded.load_fraction},
+                      {"unbalanced_load", loaded.unbalanced},
+                      {"yields", ToJson(loaded.yields)}};
+}
+
+void AddCompensationJson(const Model& model, const EndEffectorPose& rigid, const CompensatedResult& c,
+                         nlohmann::json* out) {
+  AddLoadedJson(model, c.loaded, out);
+  (*out)["converged"] = c.converged;
+  (*out)["error"] = c.miss;
+  (*out)["limits_violated"] = LimitsViolatedToJson(model, c.loaded.state);
+  (*out)["compensation"] = {{"converged", c.converged},
+                            {"rounds", c.rounds},
+                            {"miss", c.miss},
+                            {"aim", {c.aim.position[0], c.aim.position[1], c.aim.position[2], c.aim.rpy[0],
+                                     c.aim.rpy[1], c.aim.rpy[2]}},
+                            {"rigid_end_effector", ToJson(rigid)}};
+}
+
 }  // namespace ccma::cli

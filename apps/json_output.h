@@ -41,6 +41,20 @@ State StateFromJson(const Model& model, const nlohmann::json& document, const st
 // ee_stiffness_note when singular), most_compliant. Nothing otherwise.
 void AddComplianceJson(const StaticsReport& report, nlohmann::json* out);
 
+// The loaded equilibrium of `ccma simulate --loaded` and `ccma control
+// --compensate` (cli.md, "Compliance in ..."): end_effector, bodies and
+// joints of the deflected configuration, deflection {end_effector [m, rad],
+// max_body_m, held} against the rigid assembly, and loaded {converged,
+// iterations, unbalanced_load [N or N*m], yields [per control, m or rad]}.
+void AddLoadedJson(const Model& model, const LoadedEquilibrium& loaded, nlohmann::json* out);
+
+// The keys `ccma control --compensate` adds or replaces: the loaded
+// configuration (AddLoadedJson), converged and error of the loaded
+// end-effector, limits_violated there, and compensation {converged, rounds,
+// miss, aim, rigid_end_effector} (`rigid`: the rigid assembly's end-effector).
+void AddCompensationJson(const Model& model, const EndEffectorPose& rigid, const CompensatedResult& c,
+                         nlohmann::json* out);
+
 // How `ccma plan` stopped and was finished (docs/cli.md): stopped_by,
 // finishing and, only when the finished plan stayed below the margin, shortfall.
 void AddPlanFinishing(const PlanResult& result, nlohmann::json* out);

@@ -10,6 +10,10 @@
 #include "apps/json_output.h"
 #include "ccma/internal/format.h"
 
+DEFINE_bool(loaded, false,
+            "simulate: the nonlinear loaded equilibrium of a compliant model (stiffness keys) under gravity, the "
+            "payload and --wrench, controls held as commanded (default off: the rigid assembly) [bool]");
+
 namespace ccma::cli {
 namespace {
 
@@ -106,6 +110,23 @@ void WarnOnFailure(const ForwardResult& result, const nlohmann::json& limits_vio
   std::cerr << "ccma simulate: warning: " << warning << "\n";
 }
 
+// The loaded equilibrium at the rigid assembly (--loaded).
+LoadedEquilibrium Loaded(const Model& model, const ForwardProblem& forward) {
+  try {
+    return SolveLoadedEquilibrium(model, forward.state(), forward.controls(), WrenchFlag());
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("ccma simulate --loaded: ") + e.what());
+  }
+}
+
+void WarnOnLoaded(const LoadedEquilibrium& loaded, nlohmann::json* out) {
+  if (loaded.converged) return;
+  const std::string warning = "the loaded equilibrium was not found: " + loaded.message;
+  const std::string before = out->contains("warning") ? (*out)["warning"].get<std::string>() + "; " : "";
+  (*out)["warning"] = before + warning;
+  std::cerr << "ccma simulate: warning: " << warning << "\n";
+}
+
 }  // namespace
 
 int RunSimulate(const std::vector<std::string>& args) {
@@ -118,6 +139,7 @@ int RunSimulate(const std::vector<std::string>& args) {
     if (FLAGS_controls.empty()) u = from_controls;
   }
   CheckActuatedLimits(model, u);
+  if (!FLAGS_wrench.empty() && !FLAGS_loaded) throw UsageError("--wrench: only with --loaded (the loads of the loaded equilibrium)");
   const ForwardResult result = forward.Assemble(u);
 
   nlohmann::json out;
@@ -135,10 +157,17 @@ int RunSimulate(const std::vector<std::string>& args) {
   out["end_effector"] = ToJson(forward.end_effector());
   out["bodies"] = BodiesToJson(model, forward.state());
   out["joints"] = JointsToJson(model, forward.state());
-  out["limits_violated"] = LimitsViolatedToJson(model, forward.state());
-  AddClearance(model, forward.state(), "simulate", &out);
+  // --loaded: the deflected configuration replaces the rigid one (no rigid
+  // assembly: nothing to load, said by WarnOnFailure).
+  const bool loaded = FLAGS_loaded && result.assembled;
+  const LoadedEquilibrium equilibrium = loaded ? Loaded(model, forward) : LoadedEquilibrium();
+  if (loaded) AddLoadedJson(model, equilibrium, &out);
+  const State& reported = loaded ? equilibrium.state : forward.state();
+  out["limits_violated"] = LimitsViolatedToJson(model, reported);
+  AddClearance(model, reported, "simulate", &out);
   out["message"] = result.message;
   WarnOnFailure(result, out["limits_violated"], &out);
+  if (loaded) WarnOnLoaded(equilibrium, &out);
   PrintJson(out);
   return 0;
 }

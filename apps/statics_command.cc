@@ -12,10 +12,6 @@
 #include "apps/json_output.h"
 #include "ccma/internal/format.h"
 
-DEFINE_string(wrench, "",
-              "statics: external wrench on the end-effector body, world frame: fx,fy,fz [N] at the end-effector "
-              "point, mx,my,mz [N*m]; each in [-1e6, 1e6] (default none) [list]");
-
 DECLARE_double(mocap_noise_m);    // apps/replay_command.cc (the replay's noise model)
 DECLARE_double(mocap_noise_rad);
 
@@ -40,21 +36,6 @@ nlohmann::json CovarianceJson(const Eigen::Matrix<double, 6, 6>& sigma) {
   nlohmann::json rows = nlohmann::json::array();
   for (int r = 0; r < 6; ++r) rows.push_back({sigma(r, 0), sigma(r, 1), sigma(r, 2), sigma(r, 3), sigma(r, 4), sigma(r, 5)});
   return rows;
-}
-
-ExternalWrench WrenchFlag() {
-  ExternalWrench w;
-  if (FLAGS_wrench.empty()) return w;
-  const Eigen::VectorXd v = ParseNumberList(FLAGS_wrench, "wrench");
-  if (v.size() != 6) {
-    throw UsageError("--wrench: 6 numbers fx,fy,fz,mx,my,mz (N, N*m) are needed, got " + std::to_string(v.size()));
-  }
-  for (int i = 0; i < 6; ++i) {
-    if (!(std::abs(v[i]) <= 1e6)) throw UsageError("--wrench: entry " + std::to_string(i) + " must lie in [-1e6, 1e6]");
-  }
-  w.force = v.head<3>();
-  w.moment = v.tail<3>();
-  return w;
 }
 
 // The warning of a compliant mechanism that does not hold its end-effector.

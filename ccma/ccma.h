@@ -41,6 +41,8 @@
 #include "analyses/design_objective.h"
 #include "analyses/payload.h"
 #include "problems/forward_problem.h"
+#include "problems/compensated_control.h"
+#include "problems/loaded_equilibrium.h"
 #include "problems/path.h"
 #include "problems/plan.h"
 #include "execution/replay.h"

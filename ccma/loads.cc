@@ -1,29 +1,43 @@
 #include "ccma/loads.h"
 
+#include "ccma/rotation.h"
+
 namespace ccma {
 namespace {
 
-// [M; F] of a force F at world point p on body b (moment about its origin).
-void AddForce(const State& s, int body, const Eigen::Vector3d& p, const Eigen::Vector3d& F, Eigen::VectorXd* Q) {
-  Q->segment<3>(kPoseTangentSize * body) += (p - s.p_WB(body)).cross(F);
-  Q->segment<3>(kPoseTangentSize * body + 3) += F;
+// Every point force on a body: fn(body, lever r = p - p_WB [m], F [N]).
+template <typename Fn>
+void ForEachPointForce(const Model& model, const State& s, const ExternalWrench& wrench, const Fn& fn) {
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    const MassProperties& m = model.bodies[static_cast<size_t>(b)].inertia;
+    if (m.mass > 0) fn(b, Eigen::Vector3d(s.R_WB(b) * m.com_B), Eigen::Vector3d(m.mass * model.gravity));
+  }
+  const int ee = model.end_effector.body;
+  const MassProperties& payload = model.end_effector.payload;
+  if (payload.mass > 0) fn(ee, Eigen::Vector3d(s.R_WB(ee) * payload.com_B), Eigen::Vector3d(payload.mass * model.gravity));
+  fn(ee, Eigen::Vector3d(s.R_WB(ee) * model.end_effector.p_B), wrench.force);
 }
 
 }  // namespace
 
 Eigen::VectorXd GeneralizedLoads(const Model& model, const State& s, const ExternalWrench& wrench) {
   Eigen::VectorXd Q = Eigen::VectorXd::Zero(s.tangent_size());
-  for (int b = 0; b < model.num_bodies(); ++b) {
-    const MassProperties& m = model.bodies[static_cast<size_t>(b)].inertia;
-    if (m.mass > 0) AddForce(s, b, s.R_WB(b) * m.com_B + s.p_WB(b), m.mass * model.gravity, &Q);
-  }
-  const int ee = model.end_effector.body;
-  const MassProperties& payload = model.end_effector.payload;
-  if (payload.mass > 0) AddForce(s, ee, s.R_WB(ee) * payload.com_B + s.p_WB(ee), payload.mass * model.gravity, &Q);
-  const Eigen::Vector3d p_WE = s.R_WB(ee) * model.end_effector.p_B + s.p_WB(ee);
-  AddForce(s, ee, p_WE, wrench.force, &Q);
-  Q.segment<3>(kPoseTangentSize * ee) += wrench.moment;
+  ForEachPointForce(model, s, wrench, [&Q](int b, const Eigen::Vector3d& r, const Eigen::Vector3d& F) {
+    Q.segment<3>(kPoseTangentSize * b) += r.cross(F);
+    Q.segment<3>(kPoseTangentSize * b + 3) += F;
+  });
+  Q.segment<3>(kPoseTangentSize * model.end_effector.body) += wrench.moment;
   return Q;
+}
+
+Eigen::MatrixXd GeneralizedLoadsJacobian(const Model& model, const State& s, const ExternalWrench& wrench) {
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(s.tangent_size(), s.tangent_size());
+  ForEachPointForce(model, s, wrench, [&K](int b, const Eigen::Vector3d& r, const Eigen::Vector3d& F) {
+    // d(r x F) = (dphi x r) x F = [F]x [r]x dphi; the force and the world
+    // moment do not change.
+    K.block<3, 3>(kPoseTangentSize * b, kPoseTangentSize * b) += Skew(F) * Skew(r);
+  });
+  return K;
 }
 
 }  // namespace ccma

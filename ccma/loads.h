@@ -24,6 +24,11 @@ struct ExternalWrench {
 // `wrench`.
 Eigen::VectorXd GeneralizedLoads(const Model& model, const State& s, const ExternalWrench& wrench = {});
 
+// dQ/ds (s.tangent_size() squared): how the loads' moments about the body
+// origins turn with the bodies (the forces and the wrench's moment are fixed
+// in the world). Analytic.
+Eigen::MatrixXd GeneralizedLoadsJacobian(const Model& model, const State& s, const ExternalWrench& wrench = {});
+
 }  // namespace ccma
 
 #endif  // CCMA_CCMA_LOADS_H_

@@ -23,31 +23,14 @@
 #include "formats/model_loader.h"
 #include "problems/forward_problem.h"
 #include "problems/internal/compliant_equilibrium.h"
+#include "model_text.h"
 #include "tool_run.h"
 
 namespace ccma {
 namespace {
 
-std::string ReadModel(const std::string& stem) {
-  std::ifstream in(std::string(CCMA_MODELS_DIR) + "/" + stem + ".yaml");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-// `text` with the i-th occurrence of `what` followed by `extra` (i = 0, 1, ...).
-std::string InsertAfterEach(std::string text, const std::string& what, const std::vector<std::string>& extra) {
-  size_t at = 0;
-  for (const std::string& e : extra) {
-    at = text.find(what, at);
-    EXPECT_NE(at, std::string::npos) << what;
-    if (at == std::string::npos) return text;
-    at += what.size();
-    text.insert(at, e);
-    at += e.size();
-  }
-  return text;
-}
+using testing::InsertAfterEach;
+using testing::ReadModel;
 
 // X = [p; rotation vector] differences: dX/du by central differences of
 // forward problems re-solved at u +- h e_i.

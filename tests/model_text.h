@@ -2,9 +2,14 @@
 #ifndef CCMA_TESTS_MODEL_TEXT_H_
 #define CCMA_TESTS_MODEL_TEXT_H_
 
+#include <fstream>
 #include <functional>
 #include <regex>
+#include <sstream>
 #include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
 
 #include <Eigen/Core>
 
@@ -40,6 +45,28 @@ inline std::string LoadErrorOf(const std::string& text) {
     return e.what();
   }
   return "";
+}
+
+// The text of the bundled model models/<stem>.yaml.
+inline std::string ReadModel(const std::string& stem) {
+  std::ifstream in(std::string(CCMA_MODELS_DIR) + "/" + stem + ".yaml");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// `text` with the i-th occurrence of `what` followed by `extra` (i = 0, 1, ...).
+inline std::string InsertAfterEach(std::string text, const std::string& what, const std::vector<std::string>& extra) {
+  size_t at = 0;
+  for (const std::string& e : extra) {
+    at = text.find(what, at);
+    EXPECT_NE(at, std::string::npos) << what;
+    if (at == std::string::npos) return text;
+    at += what.size();
+    text.insert(at, e);
+    at += e.size();
+  }
+  return text;
 }
 
 }  // namespace ccma::testing

@@ -357,4 +357,31 @@ double ConstraintSet::Energy(const State& s, const Eigen::VectorXd& u) const {
   return Energy(s, u, &frames);
 }
 
+void ConstraintSet::AddWeightedHessian(const State& s, const Eigen::VectorXd& u, const Eigen::VectorXd& w,
+                                       Eigen::MatrixXd* H) const {
+  BodyFrames frames;
+  ComputeFrames(s, &frames);
+  const double* params[3] = {nullptr, nullptr, nullptr};
+  const BodyFrame* block_frames[2];
+  Eigen::Matrix<double, 2 * kPoseTangentSize, 2 * kPoseTangentSize> local;
+  for (const ConstraintBlock& block : blocks_) {
+    if (w.segment(block.row, block.rows).isZero(0)) continue;
+    const int poses = block.num_poses;
+    for (int p = 0; p < poses; ++p) params[p] = Pose(s, block.bodies[p]);
+    params[poses] = block.control_size > 0 ? u.data() + block.control_offset : nullptr;
+    BlockFrames(block, frames, block_frames);
+    local.setZero();
+    const int size = kPoseTangentSize * poses;
+    block.framed->AddWeightedHessianInFrames(block_frames, params, w.data() + block.row, local.topLeftCorner(size, size));
+    for (int p = 0; p < poses; ++p) {
+      for (int q = 0; q < poses; ++q) {
+        const int a = block.bodies[p], b = block.bodies[q];
+        if (a == kWorld || b == kWorld) continue;
+        H->block<kPoseTangentSize, kPoseTangentSize>(kPoseTangentSize * a, kPoseTangentSize * b) +=
+            local.block<kPoseTangentSize, kPoseTangentSize>(kPoseTangentSize * p, kPoseTangentSize * q);
+      }
+    }
+  }
+}
+
 }  // namespace ccma

@@ -115,6 +115,11 @@ class ConstraintSet {
   double Energy(const State& s, const Eigen::VectorXd& u, BodyFrames* frames) const;
   double Energy(const State& s, const Eigen::VectorXd& u) const;
 
+  // Adds sum_i w_i Hess_s(C_i) (s.tangent_size() squared, dense) into H, for
+  // row weights w (num_rows(); a multiplier per row): the constraints'
+  // curvature in a Lagrangian's Hessian (problems/loaded_equilibrium.h).
+  void AddWeightedHessian(const State& s, const Eigen::VectorXd& u, const Eigen::VectorXd& w, Eigen::MatrixXd* H) const;
+
   // Where block b's derivatives land in the value arrays of the patterns
   // (indices into valuePtr()), computed once in the constructor. Public only
   // for the accumulation helper in constraint_set.cc.

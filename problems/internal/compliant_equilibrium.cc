@@ -28,26 +28,39 @@ void CountJointRows(const Joint& joint, int* rigid, int* springs) {
   *rigid += t + r - spring;
 }
 
+// The stiffness of compliant control c (N/m or N*m/rad).
+double ControlStiffness(const Model& model, int c) {
+  if (c < kBaseControlSize * model.num_bases()) {
+    return model.mobile_bases[static_cast<size_t>(c / kBaseControlSize)].stiffness.k[c % kBaseControlSize];
+  }
+  for (const Joint& joint : model.joints) {
+    if (joint.actuated && joint.control == c) return joint.stiffness.axis;
+  }
+  return 0;
+}
+
 }  // namespace
+
+std::vector<int> CompliantEquilibrium::CompliantControls(const Model& model) {
+  std::vector<int> out;
+  for (int b = 0; b < model.num_bases(); ++b) {
+    if (!model.mobile_bases[static_cast<size_t>(b)].stiffness.given()) continue;
+    for (int i = 0; i < kBaseControlSize; ++i) out.push_back(kBaseControlSize * b + i);
+  }
+  for (const Joint& joint : model.joints) {
+    if (joint.actuated && joint.stiffness.axis > 0) out.push_back(joint.control);
+  }
+  return out;
+}
 
 CompliantEquilibrium::CompliantEquilibrium(const Model& model, const ConstraintSet& set, const State& s,
                                            const Eigen::VectorXd& u)
     : n_(set.state_size()), delta_of_control_(static_cast<size_t>(model.num_controls()), -1) {
+  compliant_ = CompliantControls(model);
   std::vector<double> control_k;
-  for (int b = 0; b < model.num_bases(); ++b) {
-    const BaseStiffness& st = model.mobile_bases[static_cast<size_t>(b)].stiffness;
-    if (!st.given()) continue;
-    for (int i = 0; i < kBaseControlSize; ++i) {
-      delta_of_control_[static_cast<size_t>(kBaseControlSize * b + i)] = static_cast<int>(compliant_.size());
-      compliant_.push_back(kBaseControlSize * b + i);
-      control_k.push_back(st.k[i]);
-    }
-  }
-  for (const Joint& joint : model.joints) {
-    if (!joint.actuated || !(joint.stiffness.axis > 0)) continue;
-    delta_of_control_[static_cast<size_t>(joint.control)] = static_cast<int>(compliant_.size());
-    compliant_.push_back(joint.control);
-    control_k.push_back(joint.stiffness.axis);
+  for (const int c : compliant_) {
+    delta_of_control_[static_cast<size_t>(c)] = static_cast<int>(control_k.size());
+    control_k.push_back(ControlStiffness(model, c));
   }
   int rows = set.num_rows(), springs = static_cast<int>(compliant_.size());
   for (size_t j = 0, b = 0; j < model.joints.size(); ++j) {
@@ -80,9 +93,11 @@ CompliantEquilibrium::CompliantEquilibrium(const Model& model, const ConstraintS
 void CompliantEquilibrium::AddBlocks(const Model& model, const ConstraintSet& set, const Eigen::MatrixXd& J_s,
                                      const Eigen::MatrixXd& J_u, const State& s) {
   int a_row = 0, s_row = static_cast<int>(compliant_.size());
+  set_rows_.assign(static_cast<size_t>(A_.rows()), -1);
   auto add_block = [&](const ConstraintBlock& block) {
     A_.block(a_row, 0, block.rows, n_) = J_s.middleRows(block.row, block.rows);
     A_u_.middleRows(a_row, block.rows) = J_u.middleRows(block.row, block.rows);
+    for (int r = 0; r < block.rows; ++r) set_rows_[static_cast<size_t>(a_row + r)] = block.row + r;
     for (int c = block.control_offset; c >= 0 && c < block.control_offset + block.control_size; ++c) {
       const int d = delta_of_control_[static_cast<size_t>(c)];
       if (d >= 0) A_.block(a_row, n_ + d, block.rows, 1) = J_u.block(block.row, c, block.rows, 1);
@@ -174,6 +189,21 @@ bool CompliantEquilibrium::Determinate(int rank) const {
 Eigen::VectorXd CompliantEquilibrium::Displacement(const Eigen::VectorXd& f) const {
   if (Z1_.cols() == 0) return Eigen::VectorXd::Zero(size());
   return Z1_ * K1_.solve(Z1_.transpose() * f);
+}
+
+Eigen::VectorXd CompliantEquilibrium::Displacement(const Eigen::VectorXd& f, const Eigen::MatrixXd& extra,
+                                                   bool* newton) const {
+  *newton = false;
+  if (Z1_.cols() == 0) return Eigen::VectorXd::Zero(size());
+  const Eigen::MatrixXd B = S_ * Z1_;
+  // Not symmetric off equilibrium (the loads' moments turn with the
+  // bodies): solved as it is, and taken only where its symmetric part is
+  // positive definite.
+  const Eigen::MatrixXd K = B.transpose() * k_.asDiagonal() * B + Z1_.transpose() * extra * Z1_;
+  const Eigen::LDLT<Eigen::MatrixXd> symmetric(0.5 * (K + K.transpose()));
+  if (symmetric.info() != Eigen::Success || !(symmetric.vectorD().minCoeff() > 0)) return Displacement(f);
+  *newton = true;
+  return Z1_ * MinimumNormSolver(K).solve(Z1_.transpose() * f);
 }
 
 Eigen::VectorXd CompliantEquilibrium::SpringForce(const Eigen::VectorXd& y) const {

@@ -58,6 +58,10 @@ class CompliantEquilibrium {
   // when a dense matrix would exceed kMaxStaticsEntries doubles.
   CompliantEquilibrium(const Model& model, const ConstraintSet& set, const State& s, const Eigen::VectorXd& u);
 
+  // The compliant controls of a model, in the order of delta: every control
+  // of a base with `stiffness`, then every actuated joint whose motor has one.
+  static std::vector<int> CompliantControls(const Model& model);
+
   int state_size() const { return n_; }
   int size() const { return static_cast<int>(A_.cols()); }  // n + compliant controls
   const std::vector<int>& compliant_controls() const { return compliant_; }
@@ -67,8 +71,17 @@ class CompliantEquilibrium {
   const Eigen::VectorXd& k() const { return k_; }
   const std::vector<CompliantJointRows>& joint_rows() const { return joint_rows_; }
 
+  // Per row of A: its row in the constraint set, or -1 (a compliant joint's
+  // rigid spring direction).
+  const std::vector<int>& set_rows() const { return set_rows_; }
+
   // y for the generalized loads f (size()).
   Eigen::VectorXd Displacement(const Eigen::VectorXd& f) const;
+  // The same with `extra` added to H on the motions springs resist (a
+  // Newton step: the geometric stiffness of the preload); when
+  // Z1^T (H + extra) Z1 is not positive definite (the preload softens the
+  // mechanism past its springs), Displacement(f) and *newton = false.
+  Eigen::VectorXd Displacement(const Eigen::VectorXd& f, const Eigen::MatrixXd& extra, bool* newton) const;
   // H y = S^T diag(k) S y.
   Eigen::VectorXd SpringForce(const Eigen::VectorXd& y) const;
   // lambda: A^T lambda = H y - f in least squares, minimum norm.
@@ -93,6 +106,7 @@ class CompliantEquilibrium {
   Eigen::MatrixXd A_, A_u_, S_;
   Eigen::VectorXd k_;
   std::vector<CompliantJointRows> joint_rows_;
+  std::vector<int> set_rows_;
   std::vector<std::pair<int, int>> groups_;  // the joints' row groups of A ({row, count})
   MinimumNormSolver cod_;  // of A^T
   Eigen::MatrixXd Z1_, Z0_;

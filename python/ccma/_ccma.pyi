@@ -406,6 +406,12 @@ class ForwardResult:
     def clearance(self) -> Optional[Record]:
         """Record {min [m], pair, margin [m], below_margin}; None without collision geometry."""
     @property
+    def deflection(self) -> Optional[Record]:
+        """assemble(loaded=True): Record {end_effector [dx, dy, dz [m], rx, ry, rz [rad]], max_body_m [m], held}; None otherwise."""
+    @property
+    def loaded(self) -> Optional[Record]:
+        """assemble(loaded=True): Record {converged, iterations, load_fraction, unbalanced_load [N or N*m], yields [m or rad per control]}; None otherwise."""
+    @property
     def warning(self) -> str:
         """Not assembled, not converged, a branch jump ('' when nothing went wrong)."""
     def to_dict(self) -> dict[str, Any]:
@@ -423,8 +429,13 @@ class ForwardProblem:
         """A problem at the home state and home controls; raises ValueError on invalid options."""
     def solve(self, u: ArrayLike) -> ForwardResult:
         """One warm-started solve at controls u, shape (num_controls,) [m, rad]; ValueError on a wrong size or non-finite entry."""
-    def assemble(self, u: ArrayLike) -> ForwardResult:
-        """Moves the controls to u in sub-steps of at most max_control_step [m, rad], following the branch; reports a branch jump."""
+    def assemble(self, u: ArrayLike, loaded: bool = False, wrench: Optional[ArrayLike] = None) -> ForwardResult:
+        """Moves the controls to u in sub-steps of at most max_control_step [m, rad], following the branch; reports a branch jump.
+
+        loaded=True (`ccma simulate --loaded`, a model with stiffness keys): the result is the nonlinear
+        loaded equilibrium under gravity, the payload and wrench [fx, fy, fz [N], mx, my, mz [N*m]]:
+        state, end_effector, bodies and joints are the loaded ones, with deflection and loaded; the
+        problem itself stays at the rigid assembly. ValueError for a wrench without loaded=True."""
     def reset_to_home(self) -> None:
         """Home state and home controls (no solve)."""
     @property
@@ -709,6 +720,12 @@ class ControlResult:
     def from_home(self) -> Record:
         """Record {reproducible, end_effector_distance_m [m], max_state_difference}: the controls assembled from home give this configuration (checked when first asked for)."""
     @property
+    def compensation(self) -> Optional[Record]:
+        """move_to(compensate=True): Record {converged, rounds, miss [m or rad], aim [x, y, z, roll, pitch, yaw], rigid_end_effector}; None otherwise."""
+    @property
+    def deflection(self) -> Optional[Record]:
+        """move_to(compensate=True): the loaded configuration's deflection, as ForwardResult.deflection; None otherwise."""
+    @property
     def warning(self) -> str:
         """Why the target was not reached, or that the controls assemble elsewhere from home ('' when neither)."""
     def to_dict(self) -> dict[str, Any]:
@@ -729,8 +746,13 @@ class ControlProblem:
         """Assembles the mechanism at u, shape (num_controls,) [m, rad] (following the branch) and starts from there."""
     def step(self, target: ArrayLike) -> ControlStepResult:
         """One solve toward target [x, y, z, roll, pitch, yaw] ([m], [rad]), or only the controlled components, without path splitting (small moves)."""
-    def move_to(self, target: ArrayLike) -> ControlResult:
+    def move_to(self, target: ArrayLike, compensate: bool = False, wrench: Optional[ArrayLike] = None) -> ControlResult:
         """Walks the end-effector to target in steps of max_step_m / max_step_rad.
+
+        compensate=True (`ccma control --compensate`, a model with stiffness keys): the controls put
+        the loaded end-effector (under gravity, the payload and wrench [fx, fy, fz [N], mx, my, mz
+        [N*m]]) on the target; end_effector, error, converged, bodies and joints are then the loaded
+        ones, and compensation and deflection say how.
 
         target: [x, y, z, roll, pitch, yaw] ([m], [rad]), or one value per component of
         model.controlled in that order (as `ccma control --target`, e.g. [x, y, z, yaw] on a 4dof

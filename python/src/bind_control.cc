@@ -18,6 +18,7 @@
 #include "ccma/internal/format.h"
 #include "ccma/model.h"
 #include "formats/waypoints.h"
+#include "problems/compensated_control.h"
 #include "problems/control_problem.h"
 #include "problems/trajectory.h"
 #include "python/src/bindings.h"
@@ -163,8 +164,36 @@ void BindStepResult(py::module_& m) {
       .def_readonly("solve_time_ms", &ControlStepResult::time_ms, "[ms]");
 }
 
+// The configuration a result reports: the loaded one after compensate=True
+// (as `ccma control --compensate`), else where the control left the mechanism.
+const State& Reported(const ControlSolution& r) { return r.compensation ? r.compensation->loaded.state : r.state; }
+
 // The attributes of `ccma control`'s JSON beyond the solve's own numbers
 // (documents.h ControlDocument), computed when asked for.
+// What compensate=True adds: compensation and deflection (None otherwise).
+void BindCompensation(py::class_<ControlSolution>& c) {
+  c.def_property_readonly(
+          "compensation",
+          [](const ControlSolution& r) -> py::object {
+            if (!r.compensation) return py::none();
+            nlohmann::json out;
+            cli::AddCompensationJson(*r.model, r.rigid_end_effector, *r.compensation, &out);
+            return ToView(out["compensation"]);
+          },
+          "move_to(compensate=True): Record {converged, rounds, miss [m or rad], aim [x, y, z, roll, pitch, yaw], "
+          "rigid_end_effector}; None otherwise")
+      .def_property_readonly(
+          "deflection",
+          [](const ControlSolution& r) -> py::object {
+            if (!r.compensation) return py::none();
+            nlohmann::json out;
+            cli::AddLoadedJson(*r.model, r.compensation->loaded, &out);
+            return ToView(out["deflection"]);
+          },
+          "move_to(compensate=True): the loaded configuration's deflection, as ForwardResult.deflection; None "
+          "otherwise");
+}
+
 void BindControlConfiguration(py::class_<ControlSolution>& c) {
   c.def_property_readonly("model", [](const ControlSolution& r) { return r.model->name; }, "the model's name")
       .def_readonly("method", &ControlSolution::method, "'lm' or 'bfgs'")
@@ -183,18 +212,18 @@ void BindControlConfiguration(py::class_<ControlSolution>& c) {
           "bodies",
           [](const ControlSolution& r) {
             std::vector<BodyPose> poses;
-            for (int b = 0; b < r.model->num_bodies(); ++b) poses.push_back(PoseOfBody(*r.model, r.state, b));
+            for (int b = 0; b < r.model->num_bodies(); ++b) poses.push_back(PoseOfBody(*r.model, Reported(r), b));
             return poses;
           },
           "every body's absolute pose at the end (BodyPose: name, position [m], rpy [rad], quaternion)")
       .def_property_readonly(
-          "joints", [](const ControlSolution& r) { return ToView(cli::JointsToJson(*r.model, r.state)); },
+          "joints", [](const ControlSolution& r) { return ToView(cli::JointsToJson(*r.model, Reported(r))); },
           "list of Record {name, type, q [rad or m], actuated, limits?}")
       .def_property_readonly(
-          "limits_violated", [](const ControlSolution& r) { return LimitsViolated(*r.model, r.state); },
+          "limits_violated", [](const ControlSolution& r) { return LimitsViolated(*r.model, Reported(r)); },
           "names of the joints outside their limits")
       .def_property_readonly(
-          "clearance", [](const ControlSolution& r) { return ToView(cli::ClearanceToJson(*r.model, r.state)); },
+          "clearance", [](const ControlSolution& r) { return ToView(cli::ClearanceToJson(*r.model, Reported(r))); },
           "Record {min [m], pair, margin [m], below_margin}; None without collision geometry")
       .def_property_readonly(
           "from_home", [](const ControlSolution& r) { return ToView(FromHome(r)); },
@@ -240,16 +269,35 @@ void BindResults(py::module_& m) {
                " residual_energy=" + FormatG(r.residual_energy) + ">";
       });
   BindControlConfiguration(c);
+  BindCompensation(c);
 }
 
-ControlSolution MoveTo(ControlProblem& p, const Eigen::VectorXd& values) {
+// move_to(target, compensate, wrench): `ccma control [--compensate]`.
+ControlSolution MoveTo(ControlProblem& p, const Eigen::VectorXd& values, bool compensate,
+                       const std::optional<Eigen::VectorXd>& wrench) {
   const UsageGuard guard(p);
   const PoseTarget target = TargetFrom(p, values);
+  if (wrench && !compensate) throw py::value_error("move_to: wrench only with compensate=True (the loads it compensates)");
+  const ExternalWrench w = WrenchFrom(wrench, "move_to");
   ControlSolution s;
-  static_cast<ControlResult&>(s) = p.MoveTo(target);
+  if (compensate) {
+    try {
+      s.compensation = MoveToCompensated(&p, target, w);
+    } catch (const std::invalid_argument& e) {
+      throw py::value_error(std::string("move_to: ") + e.what());
+    }
+    static_cast<ControlResult&>(s) = s.compensation->control;
+    if (!s.compensation->warning.empty()) JoinWarning("--compensate: " + s.compensation->warning, &s.warning);
+    s.converged = s.compensation->converged;
+    s.error = s.compensation->miss;
+  } else {
+    static_cast<ControlResult&>(s) = p.MoveTo(target);
+  }
   s.target = AsVector(target);
   s.controls = p.controls();
-  s.end_effector = p.forward().end_effector();
+  s.rigid_end_effector = p.forward().end_effector();
+  s.end_effector = compensate ? ComputeEndEffectorPose(p.forward().model(), s.compensation->loaded.state)
+                              : s.rigid_end_effector;
   s.model = &p.forward().model();
   s.state = p.forward().state();
   s.method = p.options().method == ControlMethod::kBfgs ? "bfgs" : "lm";
@@ -318,8 +366,13 @@ void BindControlSolves(ProblemClass& c) {
           py::arg("target"), py::call_guard<py::gil_scoped_release>(),
           (std::string("One solve toward the target without path splitting (for small moves). ") + kTargetForms)
               .c_str())
-      .def("move_to", &MoveTo, py::arg("target"), py::call_guard<py::gil_scoped_release>(), py::keep_alive<0, 1>(),
-           (std::string("Walks the end-effector to the target in steps of at most max_step_m and max_step_rad. ") +
+      .def("move_to", &MoveTo, py::arg("target"), py::arg("compensate") = false, py::arg("wrench") = py::none(),
+           py::call_guard<py::gil_scoped_release>(), py::keep_alive<0, 1>(),
+           (std::string("Walks the end-effector to the target in steps of at most max_step_m and max_step_rad. "
+                        "compensate=True (`ccma control --compensate`, a model with stiffness keys): the controls "
+                        "put the loaded end-effector (under gravity, the payload and wrench [fx, fy, fz [N], mx, my, "
+                        "mz [N*m]]) on the target; end_effector, error and converged are then the loaded ones and "
+                        "`compensation` tells how. ") +
             kTargetForms)
                .c_str())
       .def("follow", &Follow, py::arg("waypoints"), py::arg("out") = py::none(),

@@ -7,6 +7,7 @@
 #include "ccma/internal/format.h"
 #include "ccma/joint_coordinates.h"
 #include "problems/forward_problem.h"
+#include "problems/loaded_equilibrium.h"
 #include "python/src/bindings.h"
 #include "python/src/conversions.h"
 #include "python/src/documents.h"
@@ -104,6 +105,26 @@ void BindResultConfiguration(py::class_<ForwardSolution>& c) {
       .def_property_readonly(
           "clearance", [](const ForwardSolution& r) { return ToView(cli::ClearanceToJson(*r.model, r.state)); },
           "Record {min [m], pair, margin [m], below_margin}; None without collision geometry")
+      .def_property_readonly(
+          "deflection",
+          [](const ForwardSolution& r) -> py::object {
+            if (!r.loaded) return py::none();
+            nlohmann::json out;
+            cli::AddLoadedJson(*r.model, *r.loaded, &out);
+            return ToView(out["deflection"]);
+          },
+          "assemble(loaded=True): Record {end_effector [dx, dy, dz [m], rx, ry, rz [rad]], max_body_m [m], held}: "
+          "the loaded configuration against the rigid assembly; None otherwise")
+      .def_property_readonly(
+          "loaded",
+          [](const ForwardSolution& r) -> py::object {
+            if (!r.loaded) return py::none();
+            nlohmann::json out;
+            cli::AddLoadedJson(*r.model, *r.loaded, &out);
+            return ToView(out["loaded"]);
+          },
+          "assemble(loaded=True): Record {converged, iterations, unbalanced_load [N or N*m], yields [m or rad per "
+          "control]}; None otherwise")
       .def_property_readonly("warning", &SimulateWarning,
                              "what went wrong: not assembled, not converged, a branch jump ('' when nothing)")
       .def(
@@ -148,6 +169,23 @@ ForwardSolution Solved(ForwardProblem& p, Solve solve) {
   return MakeForwardSolution(p, r, at_home);
 }
 
+// assemble(u, loaded, wrench): `ccma simulate [--loaded]`.
+ForwardSolution AssembleLoaded(ForwardProblem& p, const Eigen::VectorXd& u, bool loaded,
+                               const std::optional<Eigen::VectorXd>& wrench) {
+  if (wrench && !loaded) throw py::value_error("assemble: wrench only with loaded=True (the loads of the loaded equilibrium)");
+  const ExternalWrench w = WrenchFrom(wrench, "assemble");
+  ForwardSolution s = Solved(p, [&u](ForwardProblem& q) { return q.Assemble(u); });
+  if (!loaded || !s.assembled) return s;
+  try {
+    s.loaded = SolveLoadedEquilibrium(p.model(), p.state(), p.controls(), w);
+  } catch (const std::invalid_argument& e) {
+    throw py::value_error(std::string("assemble: ") + e.what());
+  }
+  s.state = s.loaded->state;
+  s.end_effector = ComputeEndEffectorPose(p.model(), s.state);
+  return s;
+}
+
 using ForwardClass = py::class_<ForwardProblem>;
 
 // solve, assemble and going home.
@@ -162,14 +200,13 @@ void BindForwardSolves(ForwardClass& c) {
           py::arg("u"), py::call_guard<py::gil_scoped_release>(), py::keep_alive<0, 1>(),
           "One warm-started solve at controls u (3 per base: x [m], y [m], theta [rad]; then the "
           "actuated joints [rad or m]). Raises ValueError on a wrong size or a non-finite entry.")
-      .def(
-          "assemble",
-          [](ForwardProblem& p, const Eigen::VectorXd& u) {
-            return Solved(p, [&u](ForwardProblem& q) { return q.Assemble(u); });
-          },
-          py::arg("u"), py::call_guard<py::gil_scoped_release>(), py::keep_alive<0, 1>(),
-          "Moves the controls to u in small sub-steps, following the assembly branch (what "
-          "`ccma simulate` does); reports a branch jump.")
+      .def("assemble", &AssembleLoaded, py::arg("u"), py::arg("loaded") = false, py::arg("wrench") = py::none(),
+           py::call_guard<py::gil_scoped_release>(), py::keep_alive<0, 1>(),
+           "Moves the controls to u in small sub-steps, following the assembly branch (what "
+           "`ccma simulate` does); reports a branch jump. loaded=True (`ccma simulate --loaded`): the result is "
+           "the nonlinear loaded equilibrium of a model with stiffness keys under gravity, the payload and "
+           "wrench [fx, fy, fz [N], mx, my, mz [N*m]] (state, end_effector, bodies, deflection, loaded); the "
+           "problem itself stays at the rigid assembly.")
       .def(
           "reset_to_home",
           [](ForwardProblem& p) {

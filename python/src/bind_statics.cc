@@ -8,6 +8,7 @@
 
 #include "ccma/ccma.h"
 #include "python/src/bindings.h"
+#include "python/src/conversions.h"
 #include "python/src/documents.h"
 #include "python/src/json_to_python.h"
 #include "python/src/usage_guard.h"
@@ -19,14 +20,7 @@ namespace {
 
 // `ccma statics` at the problem's configuration: a ccma.StaticsResult.
 py::object Statics(const ForwardProblem& p, const std::optional<Eigen::VectorXd>& wrench, const BasePoseNoise& noise) {
-  ExternalWrench w;
-  if (wrench) {
-    if (wrench->size() != 6 || !wrench->allFinite() || wrench->cwiseAbs().maxCoeff() > 1e6) {
-      throw py::value_error("statics: wrench must be 6 finite numbers fx,fy,fz [N], mx,my,mz [N*m], each in [-1e6, 1e6]");
-    }
-    w.force = wrench->head<3>();
-    w.moment = wrench->tail<3>();
-  }
+  const ExternalWrench w = WrenchFrom(wrench, "statics");
   nlohmann::json document;
   {
     const UsageGuard guard(p);

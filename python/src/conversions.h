@@ -3,6 +3,7 @@
 #ifndef CCMA_PYTHON_SRC_CONVERSIONS_H_
 #define CCMA_PYTHON_SRC_CONVERSIONS_H_
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,7 @@
 
 #include "ccma/internal/format.h"
 #include "ccma/limits.h"
+#include "ccma/loads.h"
 #include "formats/waypoints.h"
 
 namespace ccma::python {
@@ -31,6 +33,19 @@ Options WithKeywords(const Options& defaults, const pybind11::kwargs& kwargs) {
     pybind11::setattr(self, item.first, item.second);
   }
   return self.cast<Options>();
+}
+
+// A `wrench=` argument [fx, fy, fz [N], mx, my, mz [N*m]] as the CLI's
+// --wrench checks it; none: no wrench. `what` names the call in the message.
+inline ExternalWrench WrenchFrom(const std::optional<Eigen::VectorXd>& wrench, const std::string& what) {
+  ExternalWrench w;
+  if (!wrench) return w;
+  if (wrench->size() != 6 || !wrench->allFinite() || wrench->cwiseAbs().maxCoeff() > 1e6) {
+    throw pybind11::value_error(what + ": wrench must be 6 finite numbers fx,fy,fz [N], mx,my,mz [N*m], each in [-1e6, 1e6]");
+  }
+  w.force = wrench->head<3>();
+  w.moment = wrench->tail<3>();
+  return w;
 }
 
 // Rows [time, x, y, z, roll, pitch, yaw] ([s], [m], [rad]) -> waypoints.

@@ -41,6 +41,7 @@ std::string SimulateWarning(const ForwardSolution& s) {
              std::to_string(s.substeps) + " (" + FormatG(s.branch_jump_size) + " m or rad beyond the prediction)",
          &warning);
   }
+  if (s.loaded && !s.loaded->converged) JoinWarning("the loaded equilibrium was not found: " + s.loaded->message, &warning);
   return warning;
 }
 
@@ -63,6 +64,7 @@ nlohmann::json SimulateDocument(const ForwardSolution& s) {
   out["joints"] = JointsToJson(model, s.state);
   out["limits_violated"] = LimitsViolatedToJson(model, s.state);
   PutClearance(model, s.state, &out);
+  if (s.loaded) cli::AddLoadedJson(model, *s.loaded, &out);
   out["message"] = s.message;
   const std::string warning = SimulateWarning(s);
   if (!warning.empty()) out["warning"] = warning;
@@ -146,7 +148,12 @@ nlohmann::json ControlDocument(const ControlSolution& s) {
   out["bodies"] = BodiesToJson(model, s.state);
   out["joints"] = JointsToJson(model, s.state);
   out["limits_violated"] = LimitsViolatedToJson(model, s.state);
-  PutClearance(model, s.state, &out);
+  if (s.compensation) {
+    cli::AddCompensationJson(model, s.rigid_end_effector, *s.compensation, &out);
+    PutClearance(model, s.compensation->loaded.state, &out);
+  } else {
+    PutClearance(model, s.state, &out);
+  }
   out["from_home"] = FromHome(s);
   const std::string warning = ControlWarning(s);
   if (!warning.empty()) out["warning"] = warning;

@@ -15,8 +15,10 @@
 #include "ccma/end_effector.h"
 #include "ccma/model.h"
 #include "ccma/state.h"
+#include "problems/compensated_control.h"
 #include "problems/control_problem.h"
 #include "problems/forward_problem.h"
+#include "problems/loaded_equilibrium.h"
 
 namespace ccma::python {
 
@@ -30,6 +32,10 @@ struct ForwardSolution : ForwardResult {
   State state;                    // the configuration after the solve
   double assembly_tolerance = 0;  // of the problem's options [m^2]
   std::string start;              // "home" (the solve started at home) or "current"
+  // assemble(u, loaded=True): the loaded equilibrium, whose state and
+  // end-effector are then `state` and `end_effector` (the problem itself
+  // stays at the rigid assembly, to warm-start the next solve).
+  std::optional<LoadedEquilibrium> loaded;
 };
 
 // The solution of `r`, just returned by problem.Solve/Assemble/SetControls;
@@ -52,6 +58,10 @@ struct ControlSolution : ControlResult {
   ControlOptions::Secondary secondary;
   // `ccma control`'s "from_home" check (documents.h FromHome), made when first
   // asked for: an assembly from home, as long as a simulate.
+  // move_to(target, compensate=True): how the loaded end-effector was put on
+  // the target; `state` and `end_effector` are then the loaded ones.
+  std::optional<CompensatedResult> compensation;
+  EndEffectorPose rigid_end_effector;  // with compensation: the rigid assembly's
   mutable std::optional<nlohmann::json> from_home;
   mutable std::string from_home_warning;
 };

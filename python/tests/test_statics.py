@@ -95,3 +95,55 @@ def test_compliant_example_matches_the_command_line():
     r = ccma.statics(ccma.ForwardProblem(ccma.load_model(COMPLIANT)))
     assert r.to_dict()["ee_compliance"] == cli["ee_compliance"]
     assert r.most_compliant.compliance == cli["most_compliant"]["compliance"]
+
+
+def compliant_six_dof():
+    """The bundled 6-DOF CCMA with stiff bases (model text)."""
+    text = (ROOT / "models" / "6dof_asymmetric.yaml").read_text()
+    at = 0
+    for k in ("[2.0e4, 3.0e4, 600]", "[1.0e4, 1.0e4, 400]", "[3.0e4, 2.0e4, 900]"):
+        at = text.index("type: omni,", at) + len("type: omni,")
+        text = text[:at] + f" stiffness: {k}," + text[at:]
+    return text
+
+
+def test_loaded_assembly_matches_simulate_loaded(tmp_path):
+    path = tmp_path / "6dof_compliant.yaml"
+    path.write_text(compliant_six_dof())
+    wrench = [3, -2, -4, 0.2, 0.1, -0.3]
+    cli = run_tool("simulate", f"--model={path}", "--loaded", "--wrench=" + ",".join(map(str, wrench)))
+    problem = ccma.ForwardProblem(ccma.load_model(path))
+    r = problem.assemble(problem.controls, loaded=True, wrench=wrench)
+    assert r.loaded.converged and r.deflection.held
+    assert r.loaded.load_fraction == 1
+    assert np.linalg.norm(r.deflection.end_effector[:3]) > 1e-3
+    d = r.to_dict()
+    for key in ("deflection", "loaded", "end_effector", "bodies", "joints"):
+        assert d[key] == cli[key], key
+    assert list(r.end_effector.position) == cli["end_effector"]["position"]
+    # The problem stays at the rigid assembly: a plain assemble gives it back.
+    rigid = problem.assemble(problem.controls)
+    assert rigid.deflection is None and rigid.loaded is None
+    assert np.linalg.norm(rigid.end_effector.position - r.end_effector.position) > 1e-3
+    with pytest.raises(ValueError):
+        problem.assemble(problem.controls, wrench=wrench)
+
+
+def test_compensated_move_puts_the_loaded_end_effector_on_target(tmp_path):
+    path = tmp_path / "6dof_compliant.yaml"
+    path.write_text(compliant_six_dof())
+    target = [0.03, -0.02, 0.62, 0, 0, 0.05]
+    wrench = [3, -2, -8, 0, 0, 0]
+    cli = run_tool("control", f"--model={path}", "--target=" + ",".join(map(str, target)), "--compensate",
+                   "--wrench=" + ",".join(map(str, wrench)))
+    control = ccma.ControlProblem(ccma.load_model(path))
+    r = control.move_to(target, compensate=True, wrench=wrench)
+    assert r.converged and r.compensation.converged and r.error < 1e-9
+    np.testing.assert_allclose(r.end_effector.position, target[:3], atol=1e-9)
+    rigid = np.array(r.compensation.rigid_end_effector.position)
+    assert np.linalg.norm(rigid - target[:3]) == pytest.approx(np.linalg.norm(r.deflection.end_effector[:3]), rel=0.1)
+    d = r.to_dict()
+    for key in ("compensation", "deflection", "loaded", "end_effector", "controls", "error", "converged"):
+        assert d[key] == cli[key], key
+    plain = ccma.ControlProblem(ccma.load_model(path)).move_to(target)
+    assert plain.compensation is None and plain.deflection is None

@@ -1,0 +1,72 @@
+// The cost of compensating the deflection (docs/statics.md, "Control that
+// compensates"): a control step (the end-effector moved 1 cm and 0.01 rad
+// from home, the mechanism assembled again at home before each) on the
+// generated 6-agent CCMA with compliant bases ([2e4, 2e4, 500]) and
+// revolute rotations (2e3 N*m/rad) carrying a 2 kg payload, plain
+// (ControlProblem::MoveTo) and compensated (MoveToCompensated: rounds of
+// MoveTo and loaded equilibria); and the loaded equilibrium alone. The
+// issue's target: compensated within 2x of plain.
+//   build/benchmarks/compensated_control_benchmark --benchmark_repetitions=5 \
+//       --benchmark_report_aggregates_only=true
+#include <benchmark/benchmark.h>
+
+#include "ccma/ccma.h"
+
+namespace {
+
+using namespace ccma;
+
+Model CompliantSixAgents() {
+  StewartOptions options;
+  options.agents = 6;
+  Model model = LoadModelFromString(GenerateStewartModel(options), "generated.yaml");
+  model.end_effector.payload.mass = 2.0;
+  for (MobileBase& base : model.mobile_bases) base.stiffness.k = Eigen::Vector3d(2e4, 2e4, 500);
+  for (Joint& joint : model.joints) {
+    if (joint.type == JointType::kRevolute) joint.stiffness.rotation = {2e3, 2e3};
+  }
+  return model;
+}
+
+void BM_ControlStep(benchmark::State& state, bool compensate) {
+  const Model model = CompliantSixAgents();
+  ControlProblem control(model);
+  PoseTarget target = control.CurrentPose();
+  target.position += Eigen::Vector3d(0.01, 0, 0);
+  target.rpy += Eigen::Vector3d(0, 0, 0.01);
+  int rounds = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    control.SetControls(model.home_controls());
+    state.ResumeTiming();
+    if (compensate) {
+      const CompensatedResult r = MoveToCompensated(&control, target);
+      if (!r.converged) state.SkipWithError(r.warning.c_str());
+      rounds = r.rounds;
+    } else {
+      const ControlResult r = control.MoveTo(target);
+      if (!r.converged) state.SkipWithError(r.warning.c_str());
+    }
+  }
+  state.counters["rounds"] = rounds;
+}
+
+void BM_LoadedEquilibrium(benchmark::State& state) {
+  const Model model = CompliantSixAgents();
+  ForwardProblem forward(model);
+  if (!forward.Solve(model.home_controls()).assembled) state.SkipWithError("not assembled at home");
+  int iterations = 0;
+  for (auto _ : state) {
+    const LoadedEquilibrium r = SolveLoadedEquilibrium(model, forward.state(), forward.controls());
+    iterations = r.iterations;
+  }
+  state.counters["iterations"] = iterations;
+}
+
+BENCHMARK_CAPTURE(BM_ControlStep, plain, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ControlStep, compensated, true)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_LoadedEquilibrium)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,90 @@
+#include "problems/compensated_control.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/QR>
+
+#include "ccma/internal/format.h"
+
+namespace ccma {
+namespace {
+
+// target - reached on the controlled components [m, rad] (angles wrapped to
+// (-pi, pi]); 0 on the others.
+Eigen::Matrix<double, 6, 1> Miss(const Model& model, const PoseTarget& target, const EndEffectorPose& reached) {
+  Eigen::Matrix<double, 6, 1> miss;
+  miss << target.position - reached.position, target.rpy - reached.rpy;
+  for (int c = 0; c < 6; ++c) {
+    if (c >= 3) miss[c] = std::remainder(miss[c], 2 * M_PI);
+    if (!model.end_effector.controlled[c]) miss[c] = 0;
+  }
+  return miss;
+}
+
+}  // namespace
+
+// The aim's update from the misses: Broyden's method on F(aim) = target -
+// loaded end-effector (6 components, uncontrolled ones 0), starting from
+// the fixed-point iteration (B = -I: aim += miss), so that the rounds
+// converge superlinearly where the deflection changes with the controls.
+class AimUpdate {
+ public:
+  Eigen::Matrix<double, 6, 1> Next(const Eigen::Matrix<double, 6, 1>& miss) {
+    if (have_last_) {
+      const Eigen::Matrix<double, 6, 1> dF = miss - last_miss_;
+      const double ss = last_step_.squaredNorm();
+      if (ss > 0) B_ += (dF - B_ * last_step_) * last_step_.transpose() / ss;
+    }
+    Eigen::Matrix<double, 6, 1> step = -B_.completeOrthogonalDecomposition().solve(miss);
+    if (!step.allFinite()) step = miss;
+    last_miss_ = miss;
+    last_step_ = step;
+    have_last_ = true;
+    return step;
+  }
+
+ private:
+  Eigen::Matrix<double, 6, 6> B_ = -Eigen::Matrix<double, 6, 6>::Identity();  // dF/d(aim)
+  Eigen::Matrix<double, 6, 1> last_miss_, last_step_;
+  bool have_last_ = false;
+};
+
+CompensatedResult MoveToCompensated(ControlProblem* control, const PoseTarget& target, const ExternalWrench& wrench,
+                                    const CompensationOptions& options) {
+  const Model& model = control->forward().model();
+  CompensatedResult out;
+  out.aim = target;
+  double solve_time_ms = 0;
+  AimUpdate update;
+  while (out.rounds < options.max_rounds) {
+    ++out.rounds;
+    out.control = control->MoveTo(out.aim);
+    solve_time_ms += out.control.solve_time_ms;
+    out.loaded = SolveLoadedEquilibrium(model, control->forward().state(), control->controls(), wrench);
+    if (!out.control.converged || !out.loaded.converged) break;
+    const Eigen::Matrix<double, 6, 1> miss = Miss(model, target, ComputeEndEffectorPose(model, out.loaded.state));
+    out.miss = miss.cwiseAbs().maxCoeff();
+    if (out.miss <= options.tolerance) {
+      out.converged = true;
+      break;
+    }
+    const Eigen::Matrix<double, 6, 1> step = update.Next(miss);
+    out.aim.position += step.head<3>();
+    out.aim.rpy += step.tail<3>();
+  }
+  out.control.solve_time_ms = solve_time_ms;
+  if (out.converged) return out;
+  if (!out.control.converged) {
+    out.warning = "round " + std::to_string(out.rounds) + ": the rigid end-effector did not reach the compensated aim" +
+                  (out.control.warning.empty() ? "" : " (" + out.control.warning + ")");
+  } else if (!out.loaded.converged) {
+    out.warning = "the loaded equilibrium was not found: " + out.loaded.message;
+  } else {
+    out.warning = "the loaded end-effector is still " + FormatG(out.miss) + " m or rad from the target after " +
+                  std::to_string(out.rounds) + " rounds";
+  }
+  return out;
+}
+
+}  // namespace ccma

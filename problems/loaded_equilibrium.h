@@ -1,0 +1,75 @@
+// The nonlinear loaded equilibrium of a compliant mechanism (cli.md,
+// `ccma simulate --loaded`): where the mechanism settles under gravity, the
+// payload and an external wrench when its springs (model_format.md,
+// "Compliance") yield, the controls held as commanded.
+//
+// Unknowns: the state s and one yield delta per compliant control (its motor
+// rows hold C(s, u + delta) = 0). The rigid rows hold exactly, as in the
+// linear system (problems/internal/compliant_equilibrium.h); every spring
+// stretches by its deviation e (a control's delta; a joint's
+// ccma/internal/joint_deviation.h) and pulls with k e along its direction.
+// Equilibrium: the loads Q(s) (ccma/loads.h, taken in the deflected
+// configuration) plus the springs' forces -S^T k e do no work along any
+// motion the rigid rows allow.
+//
+// Method: Newton's method from the rigid assembly, each step that of the
+// linear compliant system plus the preload's geometric stiffness (the
+// rigid rows' exact second derivatives weighted by their multipliers, and
+// the loads' moments turning with the bodies), restored onto the rigid rows
+// by minimum-norm corrections; the loads applied in steps (all at once
+// first; a step whose Newton iterations fail is quartered). The loads are
+// re-evaluated in the deflected configuration. Small loads give the linear
+// answer; large ones the exact equilibrium, or, past a limit load where the
+// mechanism gives way, converged = false with the fraction of the loads it
+// held.
+// Units: m, rad, N, N*m.
+#ifndef CCMA_PROBLEMS_LOADED_EQUILIBRIUM_H_
+#define CCMA_PROBLEMS_LOADED_EQUILIBRIUM_H_
+
+#include <string>
+
+#include <Eigen/Core>
+
+#include "ccma/loads.h"
+#include "ccma/model.h"
+#include "ccma/state.h"
+
+namespace ccma {
+
+struct LoadedOptions {
+  int max_iterations = 100;
+  // Converged when the unbalanced force along the allowed motions is below
+  // force_tolerance * (1 + the largest load) [N or N*m].
+  double force_tolerance = 1e-10;
+};
+
+struct LoadedEquilibrium {
+  bool converged = false;
+  // Every motion no spring resists leaves the end-effector in place (else
+  // the loads move it freely and there is no equilibrium).
+  bool held = true;
+  int iterations = 0;
+  double unbalanced = 0;  // the largest unbalanced generalized force left [N or N*m]
+  // The fraction of the loads held in equilibrium (1 when converged; the
+  // reported configuration is that equilibrium's).
+  double load_fraction = 1;
+  State state;            // the deflected configuration
+  // Per control: how far its spring let it yield (0 for a rigid control) [m or rad].
+  Eigen::VectorXd yields;
+  // The end-effector's displacement [m] and rotation vector [rad], world
+  // frame, from the rigid assembly to the loaded one.
+  Eigen::Matrix<double, 6, 1> deflection = Eigen::Matrix<double, 6, 1>::Zero();
+  double max_body_m = 0;  // the largest displacement of a body frame's origin [m]
+  std::string message;    // why it did not converge (empty when it did)
+};
+
+// The loaded equilibrium from the rigid assembly `rigid` at the controls u.
+// A model without stiffness is its rigid assembly (converged, nothing
+// yields). Throws std::invalid_argument when the dense system would exceed
+// kMaxStaticsEntries doubles (ccma/limits.h).
+LoadedEquilibrium SolveLoadedEquilibrium(const Model& model, const State& rigid, const Eigen::VectorXd& u,
+                                         const ExternalWrench& wrench = {}, const LoadedOptions& options = {});
+
+}  // namespace ccma
+
+#endif  // CCMA_PROBLEMS_LOADED_EQUILIBRIUM_H_
