@@ -30,7 +30,8 @@ PACKAGES=(g++ make cmake pkg-config
           libceres-dev libeigen3-dev libgoogle-glog-dev libgflags-dev
           libyaml-cpp-dev nlohmann-json3-dev
           liburdfdom-dev libsdformat-dev  # ccma import: URDF and SDFormat robot files
-          gnuplot-nox)  # gnuplot: plots of `ccma bench --out` and `ccma replay` (optional at run time)
+          gnuplot-nox  # gnuplot: plots of `ccma bench --out` and `ccma replay` (optional at run time)
+          ca-certificates)  # HTTPS: the build fetches three.js and esbuild for the viewer from the npm registry
 # What only running the tests needs: installed in the background while the
 # build runs (the build needs none of them), waited for before setup ends.
 LATE_PACKAGES=()
@@ -40,12 +41,12 @@ if ((!tool_only)); then
              pybind11-dev python3-dev python3-numpy  # the Python module
              python3-matplotlib  # the Python trajectory example's plot (its test expects the plot when present)
              libfcl-dev)  # tests: FCL's distances, the independent check of ccma's clearances
+  # The viewer's browser tests: Node.js and npm (playwright-core from the npm registry).
+  command -v npm > /dev/null || PACKAGES+=(npm)
   LATE_PACKAGES+=(python3-pytest  # the Python tests
                   python3-distributed  # ccma.workspace on a Dask cluster (and its local-cluster test)
                   python3-zarr python3-tqdm)  # sweeps: finished chunks kept for resuming; the progress bar
 fi
-# The viewer's JavaScript is bundled with npm (three.js from the npm registry).
-command -v npm > /dev/null || PACKAGES+=(npm)
 # shellcheck disable=SC2206
 PACKAGES+=(${CCMA_EXTRA_PACKAGES:-})
 # shellcheck disable=SC2206
