@@ -165,8 +165,9 @@ int RunView(const std::vector<std::string>& args) {
     throw UsageError(std::string("ccma view: ") + e.what());
   }
   if (!viewer::HasBundle()) {
-    throw std::runtime_error("ccma view: this ccma was built without the viewer's JavaScript (npm was not "
-                             "found when it was built; install npm and rebuild)");
+    throw std::runtime_error("ccma view: this ccma was built without the viewer's JavaScript (three.js and "
+                             "esbuild could not be fetched from the npm registry when it was configured; "
+                             "configure again with access to the registry and rebuild)");
   }
   viewer::SceneSummary summary;
   std::string scene;

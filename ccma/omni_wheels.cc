@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include <Eigen/QR>
+#include "ccma/internal/dense_factorizations.h"
 
 namespace ccma {
 
@@ -29,9 +29,11 @@ OmniWheelKinematics::OmniWheelKinematics(std::vector<Wheel> wheels) : wheels_(st
     const double scale = 1.0 / (w.radius * std::cos(w.roller));
     inverse_.row(i) << scale * e.x(), scale * e.y(), scale * (e.y() * p.x() - e.x() * p.y());
   }
-  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(inverse_);
-  if (qr.rank() < 3) throw std::invalid_argument("the wheel layout cannot produce every base twist");
-  forward_ = inverse_.completeOrthogonalDecomposition().pseudoInverse();
+  // Eigen's pseudoInverse() is exactly this solve against the identity, and
+  // the decomposition's rank is that of its column-pivoting QR.
+  const MinimumNormSolver cod(inverse_);
+  if (cod.rank() < 3) throw std::invalid_argument("the wheel layout cannot produce every base twist");
+  forward_ = cod.solveMatrix(Eigen::MatrixXd::Identity(n, n));
 }
 
 Eigen::VectorXd OmniWheelKinematics::WheelSpeeds(const Eigen::Vector3d& twist_B) const {

@@ -79,10 +79,9 @@ struct ActuatedPrismaticResidual {
   }
 };
 
-inline ceres::CostFunction* MakeActuatedPrismaticAutoDiff(const Eigen::Vector3d& r_A, const Eigen::Vector3d& r_B,
-                                                          const Eigen::Vector3d& a_A, double q_home = 0.0) {
-  return MakeAutoDiffTwin<ActuatedPrismaticCost>(new ActuatedPrismaticResidual{r_A, r_B, a_A, q_home});
-}
+// Defined in autodiff_twins.cc, the one file that instantiates the twins' Jet code.
+ceres::CostFunction* MakeActuatedPrismaticAutoDiff(const Eigen::Vector3d& r_A, const Eigen::Vector3d& r_B,
+                                                   const Eigen::Vector3d& a_A, double q_home = 0.0);
 
 }  // namespace ccma
 

@@ -85,10 +85,9 @@ struct ActuatedRevoluteResidual {
   }
 };
 
-inline ceres::CostFunction* MakeActuatedRevoluteAutoDiff(const Eigen::Vector3d& e1_A, const Eigen::Vector3d& e2_A,
-                                                         const Eigen::Vector3d& w_B, double q_home = 0.0) {
-  return MakeAutoDiffTwin<ActuatedRevoluteCost>(new ActuatedRevoluteResidual{e1_A, e2_A, w_B, q_home});
-}
+// Defined in autodiff_twins.cc, the one file that instantiates the twins' Jet code.
+ceres::CostFunction* MakeActuatedRevoluteAutoDiff(const Eigen::Vector3d& e1_A, const Eigen::Vector3d& e2_A,
+                                                  const Eigen::Vector3d& w_B, double q_home = 0.0);
 
 }  // namespace ccma
 

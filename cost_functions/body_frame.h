@@ -12,7 +12,6 @@
 
 #include <cstring>
 
-#include <ceres/autodiff_cost_function.h>
 #include <ceres/sized_cost_function.h>
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -217,21 +216,6 @@ class SizedCost : public ceres::SizedCostFunction<Rows, BlockSizes...>, public F
     const BodyFrame* pointers_[2] = {&A_, &B_};
   };
 };
-
-namespace internal {
-template <typename Functor, int Rows, int... BlockSizes>
-ceres::CostFunction* AutoDiffTwinOf(const SizedCost<Rows, BlockSizes...>* /*sizes*/, Functor* functor) {
-  return new ceres::AutoDiffCostFunction<Functor, Rows, BlockSizes...>(functor);
-}
-}  // namespace internal
-
-// The autodiff twin of the analytic cost `Cost`: the templated residual
-// `functor` (owned by the result) with the same sizes, differentiated by Ceres
-// with respect to the ambient parameters (tests and the Jacobian benchmark).
-template <typename Cost, typename Functor>
-ceres::CostFunction* MakeAutoDiffTwin(Functor* functor) {
-  return internal::AutoDiffTwinOf(static_cast<const Cost*>(nullptr), functor);
-}
 
 // Zeroes a Jacobian block if it is requested (blocks are then filled sparsely).
 template <int Rows>

@@ -5,7 +5,6 @@
 #ifndef CCMA_COST_FUNCTIONS_OMNI_BASE_PLANAR_COST_H_
 #define CCMA_COST_FUNCTIONS_OMNI_BASE_PLANAR_COST_H_
 
-#include <ceres/autodiff_cost_function.h>
 #include <ceres/sized_cost_function.h>
 
 #include "cost_functions/body_frame.h"
@@ -51,9 +50,8 @@ struct OmniBasePlanarResidual {
   }
 };
 
-inline ceres::CostFunction* MakeOmniBasePlanarAutoDiff() {
-  return MakeAutoDiffTwin<OmniBasePlanarCost>(new OmniBasePlanarResidual{});
-}
+// Defined in autodiff_twins.cc, the one file that instantiates the twins' Jet code.
+ceres::CostFunction* MakeOmniBasePlanarAutoDiff();
 
 }  // namespace ccma
 

@@ -6,7 +6,6 @@
 #ifndef CCMA_COST_FUNCTIONS_PRISMATIC_JOINT_COST_H_
 #define CCMA_COST_FUNCTIONS_PRISMATIC_JOINT_COST_H_
 
-#include <ceres/autodiff_cost_function.h>
 #include <ceres/sized_cost_function.h>
 
 #include "cost_functions/body_frame.h"
@@ -112,9 +111,8 @@ struct PrismaticJointResidual {
   }
 };
 
-inline ceres::CostFunction* MakePrismaticJointAutoDiff(const Eigen::Vector3d& r_A, const Eigen::Vector3d& r_B, const Eigen::Vector3d& a_A, const Eigen::Vector3d& d1_A, const Eigen::Vector3d& d1_B, const Eigen::Vector3d& d2_A, const Eigen::Vector3d& d2_B) {
-  return MakeAutoDiffTwin<PrismaticJointCost>(new PrismaticJointResidual{r_A, r_B, a_A, d1_A, d1_B, d2_A, d2_B});
-}
+// Defined in autodiff_twins.cc, the one file that instantiates the twins' Jet code.
+ceres::CostFunction* MakePrismaticJointAutoDiff(const Eigen::Vector3d& r_A, const Eigen::Vector3d& r_B, const Eigen::Vector3d& a_A, const Eigen::Vector3d& d1_A, const Eigen::Vector3d& d1_B, const Eigen::Vector3d& d2_A, const Eigen::Vector3d& d2_B);
 
 }  // namespace ccma
 

@@ -5,7 +5,6 @@
 #ifndef CCMA_COST_FUNCTIONS_REVOLUTE_JOINT_COST_H_
 #define CCMA_COST_FUNCTIONS_REVOLUTE_JOINT_COST_H_
 
-#include <ceres/autodiff_cost_function.h>
 #include <ceres/sized_cost_function.h>
 
 #include "cost_functions/body_frame.h"
@@ -56,9 +55,8 @@ struct RevoluteJointResidual {
   }
 };
 
-inline ceres::CostFunction* MakeRevoluteJointAutoDiff(const Eigen::Vector3d& r_A, const Eigen::Vector3d& r_B, const Eigen::Vector3d& a_A, const Eigen::Vector3d& a_B) {
-  return MakeAutoDiffTwin<RevoluteJointCost>(new RevoluteJointResidual{r_A, r_B, a_A, a_B});
-}
+// Defined in autodiff_twins.cc, the one file that instantiates the twins' Jet code.
+ceres::CostFunction* MakeRevoluteJointAutoDiff(const Eigen::Vector3d& r_A, const Eigen::Vector3d& r_B, const Eigen::Vector3d& a_A, const Eigen::Vector3d& a_B);
 
 }  // namespace ccma
 

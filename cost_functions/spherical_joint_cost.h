@@ -5,7 +5,6 @@
 #ifndef CCMA_COST_FUNCTIONS_SPHERICAL_JOINT_COST_H_
 #define CCMA_COST_FUNCTIONS_SPHERICAL_JOINT_COST_H_
 
-#include <ceres/autodiff_cost_function.h>
 #include <ceres/sized_cost_function.h>
 
 #include "cost_functions/body_frame.h"
@@ -52,9 +51,8 @@ struct SphericalJointResidual {
   }
 };
 
-inline ceres::CostFunction* MakeSphericalJointAutoDiff(const Eigen::Vector3d& r_A, const Eigen::Vector3d& r_B) {
-  return MakeAutoDiffTwin<SphericalJointCost>(new SphericalJointResidual{r_A, r_B});
-}
+// Defined in autodiff_twins.cc, the one file that instantiates the twins' Jet code.
+ceres::CostFunction* MakeSphericalJointAutoDiff(const Eigen::Vector3d& r_A, const Eigen::Vector3d& r_B);
 
 }  // namespace ccma
 

@@ -6,7 +6,6 @@
 #ifndef CCMA_COST_FUNCTIONS_UNIVERSAL_JOINT_COST_H_
 #define CCMA_COST_FUNCTIONS_UNIVERSAL_JOINT_COST_H_
 
-#include <ceres/autodiff_cost_function.h>
 #include <ceres/sized_cost_function.h>
 
 #include "cost_functions/body_frame.h"
@@ -71,9 +70,8 @@ struct UniversalJointResidual {
   }
 };
 
-inline ceres::CostFunction* MakeUniversalJointAutoDiff(const Eigen::Vector3d& r_A, const Eigen::Vector3d& r_B, const Eigen::Vector3d& a_A, const Eigen::Vector3d& b_B) {
-  return MakeAutoDiffTwin<UniversalJointCost>(new UniversalJointResidual{r_A, r_B, a_A, b_B});
-}
+// Defined in autodiff_twins.cc, the one file that instantiates the twins' Jet code.
+ceres::CostFunction* MakeUniversalJointAutoDiff(const Eigen::Vector3d& r_A, const Eigen::Vector3d& r_B, const Eigen::Vector3d& a_A, const Eigen::Vector3d& b_B);
 
 }  // namespace ccma
 

@@ -49,7 +49,7 @@ std::string YamlName(const std::string& name) {
   return special ? "'" + name + "'" : name;
 }
 
-std::string BodyName(const Model& model, int body) {
+std::string YamlBodyName(const Model& model, int body) {
   return body == kWorld ? "world" : YamlName(model.bodies[body].name);
 }
 
@@ -100,7 +100,7 @@ void WriteJoint(const Model& model, const Joint& joint, std::ostringstream& out)
   const Body& A = Frame(model, joint.body_a);
   const Body& B = Frame(model, joint.body_b);
   out << "  - name: " << YamlName(joint.name) << "\n    type: " << JointTypeName(joint.type) << "\n    between: ["
-      << BodyName(model, joint.body_a) << ", " << BodyName(model, joint.body_b) << "]\n    point: "
+      << YamlBodyName(model, joint.body_a) << ", " << YamlBodyName(model, joint.body_b) << "]\n    point: "
       << Vec(A.R_WB_home * joint.p_A + A.p_WB_home) << "\n";
   if (joint.has_coordinate()) out << "    axis: " << Vec(A.R_WB_home * joint.a_A) << "\n";
   if (joint.type == JointType::kUniversal) {

@@ -9,10 +9,12 @@
 - every function body in them has at most 60 lines;
 - no #include points from a lower layer to a higher one;
 - Eigen's dense decompositions of dynamic matrices (JacobiSVD, BDCSVD,
-  SelfAdjointEigenSolver, CompleteOrthogonalDecomposition of MatrixXd) are
-  instantiated only in ccma/internal/dense_factorizations.cc: elsewhere the
-  wrappers of dense_factorizations.h (each instantiation costs 9-13 s of
-  compile time per translation unit).
+  SelfAdjointEigenSolver, CompleteOrthogonalDecomposition of MatrixXd, by
+  name or through the methods jacobiSvd(), bdcSvd(),
+  completeOrthogonalDecomposition()) are instantiated only in
+  ccma/internal/dense_factorizations.cc: elsewhere the wrappers of
+  dense_factorizations.h (each instantiation costs 9-13 s of compile time per
+  translation unit).
 Functions are found by braces: a `{` at namespace or class level whose text
 since the previous `;`, `{` or `}` has a `)` and is not a namespace, class,
 struct, enum or initialiser. Comments and string literals are blanked first.
@@ -34,6 +36,9 @@ UMBRELLA = "ccma/ccma.h"
 DENSE_FACTORIZATIONS = "ccma/internal/dense_factorizations.cc"
 HEAVY_DECOMPOSITION = re.compile(
     r"Eigen::(JacobiSVD|BDCSVD|SelfAdjointEigenSolver|CompleteOrthogonalDecomposition)\s*<\s*Eigen::MatrixXd\b")
+# The same through MatrixBase's methods (a fixed-size matrix's decomposition
+# is named with its type instead: Eigen::JacobiSVD<Eigen::Matrix3d>).
+HEAVY_DECOMPOSITION_METHOD = re.compile(r"\.(jacobiSvd|bdcSvd|completeOrthogonalDecomposition)\s*\(")
 
 
 def blank(text):
@@ -100,6 +105,9 @@ def check_text(path, text):
         for m in HEAVY_DECOMPOSITION.finditer(blank(text)):
             line = text.count("\n", 0, m.start()) + 1
             breaches.append(f"{path}:{line}: Eigen::{m.group(1)}<Eigen::MatrixXd> (use ccma/internal/dense_factorizations.h)")
+        for m in HEAVY_DECOMPOSITION_METHOD.finditer(blank(text)):
+            line = text.count("\n", 0, m.start()) + 1
+            breaches.append(f"{path}:{line}: .{m.group(1)}() (use ccma/internal/dense_factorizations.h)")
     return breaches
 
 
@@ -127,6 +135,9 @@ def self_test():
     assert len(check_text("problems/a.cc", "Eigen::JacobiSVD<Eigen::MatrixXd> svd(A);\n")) == 1
     assert not check_text("problems/a.cc", "JacobiSvd svd(A);  // not Eigen::JacobiSVD<Eigen::MatrixXd>\n")
     assert not check_text(DENSE_FACTORIZATIONS, "Eigen::BDCSVD<Eigen::MatrixXd> svd;\n")
+    assert len(check_text("ccma/a.cc", "P = A.completeOrthogonalDecomposition().pseudoInverse();\n")) == 1
+    assert len(check_text("ccma/a.cc", "s = A.jacobiSvd().singularValues();\n")) == 1
+    assert not check_text("ccma/a.cc", "MinimumNormSolver cod(A);  // not A.completeOrthogonalDecomposition()\n")
     print("layout self-test: ok")
     return 0
 

@@ -5,7 +5,8 @@
 # Chromium by the browser test, which also checks
 # each page (no console error, no request, the mechanism drawn) before saving
 # docs/images/view_<name>.png; and the workspace slice map of docs/workspace.md (gnuplot).
-# Needs a build (scripts/setup.sh), chromium and gnuplot.
+# Needs the full build of scripts/setup.sh (not --tool: the browser tests' Node.js and
+# playwright-core in viewer/js/node_modules/), chromium and gnuplot.
 #   scripts/screenshots.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."

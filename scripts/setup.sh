@@ -30,22 +30,25 @@ PACKAGES=(g++ make cmake pkg-config
           libceres-dev libeigen3-dev libgoogle-glog-dev libgflags-dev
           libyaml-cpp-dev nlohmann-json3-dev
           liburdfdom-dev libsdformat-dev  # ccma import: URDF and SDFormat robot files
-          gnuplot-nox)  # gnuplot: plots of `ccma bench --out` and `ccma replay` (optional at run time)
-# What only running the tests needs: installed in the background while the
-# build runs (the build needs none of them), waited for before setup ends.
-LATE_PACKAGES=()
+          ca-certificates)  # HTTPS: the build fetches three.js and esbuild for the viewer from the npm registry
+# What only running the tool or the tests needs: installed in the background
+# while the build runs (the build needs none of them), waited for before
+# setup ends. gnuplot draws the plots of `ccma bench --out` and `ccma replay`
+# (optional at run time).
+LATE_PACKAGES=(gnuplot-nox)
 # What the tests, benchmarks, examples and the Python module add.
 if ((!tool_only)); then
   PACKAGES+=(libgtest-dev libbenchmark-dev
              pybind11-dev python3-dev python3-numpy  # the Python module
              python3-matplotlib  # the Python trajectory example's plot (its test expects the plot when present)
-             libfcl-dev)  # tests: FCL's distances, the independent check of ccma's clearances
+             libfcl-dev  # tests: FCL's distances, the independent check of ccma's clearances
+             gnuplot-nox)  # before the configure: the C++ trajectory example's test expects its plot when gnuplot is found
+  # The viewer's browser tests: Node.js and npm (playwright-core from the npm registry).
+  command -v npm > /dev/null || PACKAGES+=(npm)
   LATE_PACKAGES+=(python3-pytest  # the Python tests
                   python3-distributed  # ccma.workspace on a Dask cluster (and its local-cluster test)
                   python3-zarr python3-tqdm)  # sweeps: finished chunks kept for resuming; the progress bar
 fi
-# The viewer's JavaScript is bundled with npm (three.js from the npm registry).
-command -v npm > /dev/null || PACKAGES+=(npm)
 # shellcheck disable=SC2206
 PACKAGES+=(${CCMA_EXTRA_PACKAGES:-})
 # shellcheck disable=SC2206
@@ -84,7 +87,7 @@ mapfile -t late < <(missing_of "${LATE_PACKAGES[@]}")
 late_pid=""
 if ((${#late[@]})); then
   ((apt_updated)) || $SUDO apt-get update -qq
-  echo "setup: installing ${#late[@]} packages the tests need while the build runs (apt-late.log): ${late[*]}"
+  echo "setup: installing ${#late[@]} run-time packages while the build runs (apt-late.log): ${late[*]}"
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${late[@]}" \
     > apt-late.log 2>&1 &
   late_pid=$!
@@ -151,11 +154,11 @@ fi
 echo "setup: built $what in $((SECONDS - start)) s (build/apps/ccma; log in build.log)"
 if [ -n "$late_pid" ]; then
   while kill -0 "$late_pid" 2> /dev/null; do
-    echo "setup: waiting for the tests' packages ($(grep -c '^Setting up' apt-late.log || true) set up; apt-late.log)"
+    echo "setup: waiting for the run-time packages ($(grep -c '^Setting up' apt-late.log || true) set up; apt-late.log)"
     sleep 10
   done
   wait "$late_pid" || { tail -30 apt-late.log; exit 1; }
-  echo "setup: installed the tests' packages"
+  echo "setup: installed the run-time packages"
 fi
 
 # `import ccma` without PYTHONPATH, on request only: a ccma-build.pth file in

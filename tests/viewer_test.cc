@@ -290,7 +290,7 @@ TEST(Scene, FramesPastTheTotalWorkBoundAreNotAttempted) {
 }
 
 TEST(Html, PageIsSelfContained) {
-  ASSERT_TRUE(HasBundle()) << "built without the viewer's JavaScript (npm missing at build time)";
+  ASSERT_TRUE(HasBundle()) << "built without the viewer's JavaScript (see the CMake configure output)";
   const std::string html = ViewerHtml("{\"format\":\"ccma-scene-1\"}", "m<x>");
   EXPECT_EQ(html.rfind("<!DOCTYPE html>", 0), 0u);
   EXPECT_NE(html.find("default-src 'none'"), std::string::npos);

@@ -1,6 +1,6 @@
 // The viewer's JavaScript (viewer/js/, three.js included), embedded in the
-// library at build time by cmake/embed_text.cmake; empty when npm was not
-// available to build it.
+// library at build time by cmake/embed_text.cmake; empty when three.js and
+// esbuild could not be fetched when the build was configured.
 #ifndef CCMA_VIEWER_BUNDLE_H_
 #define CCMA_VIEWER_BUNDLE_H_
 

@@ -27,8 +27,9 @@ bool HasBundle() { return internal::kBundleSize > 0; }
 
 std::string ViewerHtml(const std::string& scene_json, const std::string& model_name) {
   if (!HasBundle()) {
-    throw std::logic_error("this ccma was built without the viewer's JavaScript (npm was not found when it "
-                           "was built; install npm and rebuild)");
+    throw std::logic_error("this ccma was built without the viewer's JavaScript (three.js and esbuild could "
+                           "not be fetched from the npm registry when it was configured; configure again with "
+                           "access to the registry and rebuild)");
   }
   std::string html;
   html.reserve(internal::kBundleSize + scene_json.size() + 1024);

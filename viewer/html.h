@@ -9,7 +9,7 @@
 
 namespace ccma::viewer {
 
-// Whether this build carries the JavaScript bundle (CMake found npm).
+// Whether this build carries the JavaScript bundle (CMake fetched three.js and esbuild).
 bool HasBundle();
 
 // The page for a scene (BuildScene). The title is "ccma view: <model_name>"

@@ -1,9 +1,8 @@
 // ConstraintSet::MakeAutoDiffTwins: every constraint block's cost as
 // ceres::AutoDiffCostFunction over its templated residual (`ccma bench`
 // compares them with the analytic costs; the derivative tests check one
-// against the other). A file of its own: the twins' Jet instantiations are
-// a third of the constraint set's compile time, and here they compile in
-// parallel with the rest of the library.
+// against the other). The twins themselves are compiled in
+// cost_functions/autodiff_twins.cc.
 #include <memory>
 #include <vector>
 
