@@ -17,7 +17,7 @@ DEFINE_string(target, "",
 
 DEFINE_bool(compensate, false,
             "control: choose the controls whose loaded end-effector (a model with stiffness keys, under gravity, "
-            "the payload and --wrench; ccma simulate --loaded) reaches the target (default off) [bool]");
+            "the payload and --wrench) reaches the target (default off) [bool]");
 
 namespace ccma::cli {
 namespace {

@@ -11,7 +11,7 @@ DEFINE_string(waypoints, "", "waypoint CSV: time,x,y,z,roll,pitch,yaw (docs/wayp
 DEFINE_string(out, "", "output file or folder (see the command) [path]");
 DEFINE_string(from, "", "input file (see the command) [path]");
 DEFINE_string(wrench, "",
-              "statics, simulate --loaded, control --compensate: external wrench on the end-effector body, world frame: fx,fy,fz [N] at the end-effector "
+              "the loads' external wrench on the end-effector body, world frame: fx,fy,fz [N] at the end-effector "
               "point, mx,my,mz [N*m]; each in [-1e6, 1e6] (default none) [list]");
 DEFINE_int32(seed, 1, "seed of every random draw [integer >= 0]");
 DEFINE_string(method, "lm", "control outer loop: lm (Levenberg-Marquardt) or bfgs (the paper's) [lm|bfgs]");

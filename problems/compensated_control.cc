@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include <Eigen/QR>
+#include "ccma/internal/dense_factorizations.h"
 
 #include "ccma/internal/format.h"
 
@@ -36,7 +36,7 @@ class AimUpdate {
       const double ss = last_step_.squaredNorm();
       if (ss > 0) B_ += (dF - B_ * last_step_) * last_step_.transpose() / ss;
     }
-    Eigen::Matrix<double, 6, 1> step = -B_.completeOrthogonalDecomposition().solve(miss);
+    Eigen::Matrix<double, 6, 1> step = -MinimumNormSolver(Eigen::MatrixXd(B_)).solve(Eigen::VectorXd(miss));
     if (!step.allFinite()) step = miss;
     last_miss_ = miss;
     last_step_ = step;

@@ -369,8 +369,8 @@ TEST(Cli, HelpGoesToStdout) {
 TEST(Cli, EachCommandHasItsOwnHelpWithUnits) {
   const std::map<std::string, std::vector<std::string>> flags = {
       {"check", {"model", "obstacles"}},
-      {"simulate", {"model", "controls", "from", "obstacles"}},
-      {"control", {"model", "target", "controls", "obstacles", "singularity_weight", "singularity_threshold", "pivot_weight",
+      {"simulate", {"model", "controls", "from", "obstacles", "loaded", "wrench"}},
+      {"control", {"model", "target", "controls", "obstacles", "compensate", "wrench", "singularity_weight", "singularity_threshold", "pivot_weight",
                    "pivot_threshold", "secondary", "secondary_weight", "clearance_m", "method", "max_step_m",
                    "max_step_rad", "lambda"}},
       {"statics", {"model", "controls", "wrench", "mocap_noise_m", "mocap_noise_rad", "obstacles"}},

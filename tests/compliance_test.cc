@@ -104,21 +104,7 @@ TEST(Compliance, PlanarThreeRprIsGosselinsMappingAndRigidOutOfPlane) {
   EXPECT_NEAR(r.compliance.most_compliant_direction.z(), 0.0, 1e-9);  // the softest push is in the plane
 }
 
-// A motor (revolute about y at the origin, k1) turns a hub; a beam is welded
-// to it at x = a (rotation k2, optionally translation kt); a tip force F
-// down at x = L. Beam theory of rigid links on rotational springs:
-//   tip deflection = F (L^2 / k1 + (L - a)^2 / k2 + 1 / kt).
-std::string Cantilever(double k1, double a, const std::string& weld, double L) {
-  std::ostringstream m;
-  m.precision(17);
-  m << "name: cantilever\ngravity: [0, 0, 0]\nbodies:\n  - {name: hub, position: [" << a / 2 << ", 0, 0]}\n"
-    << "  - {name: beam, position: [" << (a + L) / 2 << ", 0, 0]}\njoints:\n"
-    << "  - {name: motor, type: revolute, actuated: true, stiffness: " << k1
-    << ", between: [world, hub], point: [0, 0, 0], axis: [0, 1, 0]}\n"
-    << "  - {name: weld, type: fixed, between: [hub, beam], point: [" << a << ", 0, 0], stiffness: " << weld << "}\n"
-    << "end_effector: {body: beam, point: [" << L << ", 0, 0], controlled: [x, z, pitch]}\n";
-  return m.str();
-}
+using testing::Cantilever;
 
 TEST(Compliance, SpringsInSeriesOnACantileverAddTheirCompliances) {
   const double k1 = 2e3, k2 = 5e3, kt = 4e5, a = 0.3, L = 1.2, F = 7.0;

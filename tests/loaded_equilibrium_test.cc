@@ -135,18 +135,13 @@ TEST(JointDeviation, ABendByThetaIsTheta) {
   EXPECT_NEAR(e[3], 0.4, 1e-14);
 }
 
-// A motor (revolute about y at the origin, k1) turns a hub; a beam is welded
-// to it at x = a with rotation stiffness k2; a force F down at the tip x = L.
+// The cantilever of tests/model_text.h: a motor (k1) at the origin, a weld
+// with rotation stiffness k2 at x = a, the tip at x = L.
 std::string Cantilever(double k1, double k2, double a, double L) {
-  std::ostringstream m;
-  m.precision(17);
-  m << "name: cantilever\ngravity: [0, 0, 0]\nbodies:\n  - {name: hub, position: [" << a / 2 << ", 0, 0]}\n"
-    << "  - {name: beam, position: [" << (a + L) / 2 << ", 0, 0]}\njoints:\n"
-    << "  - {name: motor, type: revolute, actuated: true, stiffness: " << k1
-    << ", between: [world, hub], point: [0, 0, 0], axis: [0, 1, 0]}\n"
-    << "  - {name: weld, type: fixed, between: [hub, beam], point: [" << a << ", 0, 0], stiffness: {rotation: " << k2
-    << "}}\nend_effector: {body: beam, point: [" << L << ", 0, 0], controlled: [x, z, pitch]}\n";
-  return m.str();
+  std::ostringstream weld;
+  weld.precision(17);
+  weld << "{rotation: " << k2 << "}";
+  return testing::Cantilever(k1, a, weld.str(), L);
 }
 
 LoadedEquilibrium LoadedAtHome(const Model& model, const ExternalWrench& w) {

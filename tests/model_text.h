@@ -69,6 +69,22 @@ inline std::string InsertAfterEach(std::string text, const std::string& what, co
   return text;
 }
 
+// A motor (revolute about y at the origin, k1) turns a hub; a beam is welded
+// to it at x = a (rotation k2, optionally translation kt); a tip force F
+// down at x = L. Beam theory of rigid links on rotational springs:
+//   tip deflection = F (L^2 / k1 + (L - a)^2 / k2 + 1 / kt).
+inline std::string Cantilever(double k1, double a, const std::string& weld, double L) {
+  std::ostringstream m;
+  m.precision(17);
+  m << "name: cantilever\ngravity: [0, 0, 0]\nbodies:\n  - {name: hub, position: [" << a / 2 << ", 0, 0]}\n"
+    << "  - {name: beam, position: [" << (a + L) / 2 << ", 0, 0]}\njoints:\n"
+    << "  - {name: motor, type: revolute, actuated: true, stiffness: " << k1
+    << ", between: [world, hub], point: [0, 0, 0], axis: [0, 1, 0]}\n"
+    << "  - {name: weld, type: fixed, between: [hub, beam], point: [" << a << ", 0, 0], stiffness: " << weld << "}\n"
+    << "end_effector: {body: beam, point: [" << L << ", 0, 0], controlled: [x, z, pitch]}\n";
+  return m.str();
+}
+
 }  // namespace ccma::testing
 
 #endif  // CCMA_TESTS_MODEL_TEXT_H_

@@ -11,20 +11,6 @@
 namespace ccma {
 namespace {
 
-struct JointEnd {
-  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-  Eigen::Vector3d p = Eigen::Vector3d::Zero();
-};
-
-JointEnd EndOf(const State& s, int body) {
-  JointEnd f;
-  if (body != kWorld) {
-    f.R = s.R_WB(body);
-    f.p = s.p_WB(body);
-  }
-  return f;
-}
-
 // The translation directions in A (3 x count), as JointSpringDirections.
 Eigen::Matrix3Xd TranslationAxes(const Joint& joint) {
   if (joint.type != JointType::kPrismatic) return Eigen::Matrix3d::Identity();
@@ -43,7 +29,7 @@ Eigen::Vector3d Turning(const Eigen::Vector3d& a, const Eigen::Vector3d& v) {
 }
 
 // The rotation deviation [rad], R_AB = R_A^T R_B.
-Eigen::VectorXd RotationDeviation(const Joint& joint, const JointEnd& A, const JointEnd& B) {
+Eigen::VectorXd RotationDeviation(const Joint& joint, const JointEndFrame& A, const JointEndFrame& B) {
   const Eigen::Matrix3d R_AB = A.R.transpose() * B.R;
   switch (joint.type) {
     case JointType::kRevolute: {
@@ -72,7 +58,7 @@ Eigen::VectorXd RotationDeviation(const Joint& joint, const JointEnd& A, const J
 }  // namespace
 
 Eigen::VectorXd JointDeviation(const Joint& joint, const State& s) {
-  const JointEnd A = EndOf(s, joint.body_a), B = EndOf(s, joint.body_b);
+  const JointEndFrame A = JointEndFrameOf(s, joint.body_a), B = JointEndFrameOf(s, joint.body_b);
   const Eigen::Vector3d P = B.R * joint.p_B + B.p;
   const Eigen::Vector3d offset_A = A.R.transpose() * (P - A.p) - joint.p_A;
   const Eigen::VectorXd translation = TranslationAxes(joint).transpose() * offset_A;

@@ -7,20 +7,6 @@
 namespace ccma {
 namespace {
 
-struct EndFrame {
-  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-  Eigen::Vector3d p = Eigen::Vector3d::Zero();
-};
-
-EndFrame FrameOf(const State& s, int body) {
-  EndFrame f;
-  if (body != kWorld) {
-    f.R = s.R_WB(body);
-    f.p = s.p_WB(body);
-  }
-  return f;
-}
-
 // The world directions of A's constrained translations and rotations (3 x k).
 Eigen::Matrix3Xd TranslationDirections(const Joint& joint, const Eigen::Matrix3d& R_A) {
   if (joint.type != JointType::kPrismatic) return R_A;
@@ -59,13 +45,22 @@ Eigen::Matrix3Xd RotationDirections(const Joint& joint, const Eigen::Matrix3d& R
 
 }  // namespace
 
+JointEndFrame JointEndFrameOf(const State& s, int body) {
+  JointEndFrame f;
+  if (body != kWorld) {
+    f.R = s.R_WB(body);
+    f.p = s.p_WB(body);
+  }
+  return f;
+}
+
 Eigen::Vector3d FirstNormal(const Eigen::Vector3d& a) {
   const Eigen::Vector3d x = std::abs(a.x()) > 0.9 ? Eigen::Vector3d::UnitY() : Eigen::Vector3d::UnitX();
   return (x - x.dot(a) * a).normalized();
 }
 
 SpringDirections JointSpringDirections(const Joint& joint, const State& s) {
-  const EndFrame A = FrameOf(s, joint.body_a), B = FrameOf(s, joint.body_b);
+  const JointEndFrame A = JointEndFrameOf(s, joint.body_a), B = JointEndFrameOf(s, joint.body_b);
   const Eigen::Vector3d P = B.R * joint.p_B + B.p;  // the joint's point on B
   const Eigen::Matrix3Xd t = TranslationDirections(joint, A.R);
   const Eigen::Matrix3Xd c = RotationDirections(joint, A.R, B.R);

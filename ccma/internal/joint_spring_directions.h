@@ -33,6 +33,14 @@ struct SpringDirections {
   int rows() const { return translations + rotations; }
 };
 
+// The world pose of a joint's end: body b's frame, or the identity for the
+// ground (kWorld).
+struct JointEndFrame {
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+};
+JointEndFrame JointEndFrameOf(const State& s, int body);
+
 // n1 = x - (x.a)a normalised, x = (1, 0, 0) (or (0, 1, 0) where |x.a| > 0.9),
 // for a unit axis a: the first direction normal to a, in a's frame.
 Eigen::Vector3d FirstNormal(const Eigen::Vector3d& a);
