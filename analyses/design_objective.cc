@@ -35,13 +35,13 @@ PushPeak PeakPush(const Model& model, const State& s, const Eigen::VectorXd& u) 
   const Eigen::VectorXd e = eq.Efforts(eq.Multipliers(GeneralizedLoads(model, s)));
   int worst = 0;
   for (int k = 1; k < model.num_bases(); ++k) {
-    if (e.segment<2>(3 * k).norm() > e.segment<2>(3 * worst).norm()) worst = k;
+    if (e.segment<2>(model.base_control(k)).norm() > e.segment<2>(model.base_control(worst)).norm()) worst = k;
   }
-  const Eigen::Vector2d v = e.segment<2>(3 * worst);
+  const Eigen::Vector2d v = e.segment<2>(model.base_control(worst));
   out.at.value = v.norm();
   out.at.limiting = model.mobile_bases[static_cast<size_t>(worst)].name;
   out.w = Eigen::VectorXd::Zero(e.size());
-  if (v.norm() > 0) out.w.segment<2>(3 * worst) = v / v.norm();
+  if (v.norm() > 0) out.w.segment<2>(model.base_control(worst)) = v / v.norm();
   out.at.defined = true;
   return out;
 }

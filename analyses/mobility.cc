@@ -70,12 +70,12 @@ Eigen::MatrixXd LateralRows(const Model& model, const State& s, const Eigen::Vec
   const int held_rank = RankAbove(JacobiSvd(held.leftCols(n)).singularValues(), threshold);
   for (int b = 0; b < model.num_bases(); ++b) {
     if (model.mobile_bases[b].type != BaseType::kDifferential) continue;
-    held.col(n).head(J_s.rows()) = J_u.col(kBaseControlSize * b + 2);
+    held.col(n).head(J_s.rows()) = J_u.col(model.base_control(b) + 2);
     if (RankAbove(JacobiSvd(held).singularValues(), threshold) == held_rank) continue;
-    const double theta = u[kBaseControlSize * b + 2];
+    const double theta = u[model.base_control(b) + 2];
     for (int c = 0; c < k; ++c) {
-      if (effective[c] == kBaseControlSize * b) L(rows, n + c) = -std::sin(theta);
-      if (effective[c] == kBaseControlSize * b + 1) L(rows, n + c) = std::cos(theta);
+      if (effective[c] == model.base_control(b)) L(rows, n + c) = -std::sin(theta);
+      if (effective[c] == model.base_control(b) + 1) L(rows, n + c) = std::cos(theta);
     }
     ++rows;
   }

@@ -59,7 +59,7 @@ Bound PushBound(double limit, int c, const Eigen::VectorXd& e0, const Eigen::Vec
 std::string BrokenUnloaded(const Model& model, const Eigen::VectorXd& e0, std::string* name) {
   for (int k = 0; k < model.num_bases(); ++k) {
     const MobileBase& base = model.mobile_bases[static_cast<size_t>(k)];
-    const double push = e0.segment<2>(3 * k).norm();
+    const double push = e0.segment<2>(model.base_control(k)).norm();
     if (base.push_limit > 0 && push > base.push_limit * (1 + 1e-9)) {
       *name = base.name;
       return "the mechanism breaks the push limit of " + Quote(base.name) + " with no payload (" + FormatG(push) +
@@ -116,7 +116,7 @@ PayloadCapacity ComputePayloadCapacity(const Model& model, const State& s, const
   std::vector<std::pair<std::string, Bound>> bounds;
   for (int k = 0; k < model.num_bases(); ++k) {
     const MobileBase& base = model.mobile_bases[static_cast<size_t>(k)];
-    if (base.push_limit > 0) bounds.emplace_back(base.name, PushBound(base.push_limit, 3 * k, e0, e1));
+    if (base.push_limit > 0) bounds.emplace_back(base.name, PushBound(base.push_limit, model.base_control(k), e0, e1));
   }
   for (const Joint& joint : model.joints) {
     if (joint.actuated && joint.effort.given) bounds.emplace_back(joint.name, JointBound(joint.effort, joint.control, e0, e1));

@@ -47,7 +47,7 @@ Eigen::Matrix<double, 6, 6> EndEffectorCovariance(const Model& model, const Stat
   if (J.size() == 0) return Eigen::Matrix<double, 6, 6>::Constant(std::numeric_limits<double>::quiet_NaN());
   Eigen::VectorXd variance = Eigen::VectorXd::Zero(model.num_controls());
   for (int k = 0; k < model.num_bases(); ++k) {
-    variance.segment<3>(3 * k) << noise.position_sigma * noise.position_sigma,
+    variance.segment<3>(model.base_control(k)) << noise.position_sigma * noise.position_sigma,
         noise.position_sigma * noise.position_sigma, noise.heading_sigma * noise.heading_sigma;
   }
   return J * variance.asDiagonal() * J.transpose();

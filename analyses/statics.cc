@@ -7,6 +7,7 @@
 #include <Eigen/LU>
 #include <Eigen/QR>
 
+#include "ccma/bases/base_kinds.h"
 #include "ccma/end_effector.h"
 #include "ccma/internal/constraint_set.h"
 #include "problems/internal/compliant_equilibrium.h"
@@ -80,6 +81,12 @@ const char* ActuatorKindName(ActuatorKind kind) {
     case ActuatorKind::kBaseX: return "base_x";
     case ActuatorKind::kBaseY: return "base_y";
     case ActuatorKind::kBaseTheta: return "base_theta";
+    case ActuatorKind::kBaseForceX: return "base_force_x";
+    case ActuatorKind::kBaseForceY: return "base_force_y";
+    case ActuatorKind::kBaseForceZ: return "base_force_z";
+    case ActuatorKind::kBaseMomentX: return "base_moment_x";
+    case ActuatorKind::kBaseMomentY: return "base_moment_y";
+    case ActuatorKind::kBaseMomentZ: return "base_moment_z";
     case ActuatorKind::kJoint: return "joint";
   }
   return "joint";
@@ -161,10 +168,20 @@ StaticsReport ComputeStatics(const Model& model, const State& s, const Eigen::Ve
   StaticsReport out;
   const Eigen::VectorXd effort = model.compliant() ? CompliantStatics(model, s, u, Q, &out) : RigidStatics(model, s, u, Q, &out);
   for (int k = 0; k < model.num_bases(); ++k) {
-    const std::string& name = model.mobile_bases[static_cast<size_t>(k)].name;
-    out.actuators.push_back({name, ActuatorKind::kBaseX, effort[3 * k]});
-    out.actuators.push_back({name, ActuatorKind::kBaseY, effort[3 * k + 1]});
-    out.actuators.push_back({name, ActuatorKind::kBaseTheta, effort[3 * k + 2]});
+    const MobileBase& base = model.mobile_bases[static_cast<size_t>(k)];
+    const int first = model.base_control(k);
+    if (base.type == BaseType::kLegged) {
+      // Force first, then moment: wrench is [moment; force].
+      const Eigen::Matrix<double, 6, 1> w = LeggedBodyWrench(u.data() + first, effort.data() + first);
+      for (int i = 0; i < 6; ++i) {
+        out.actuators.push_back({base.name, static_cast<ActuatorKind>(static_cast<int>(ActuatorKind::kBaseForceX) + i),
+                                 w[(i + 3) % 6]});
+      }
+      continue;
+    }
+    out.actuators.push_back({base.name, ActuatorKind::kBaseX, effort[first]});
+    out.actuators.push_back({base.name, ActuatorKind::kBaseY, effort[first + 1]});
+    out.actuators.push_back({base.name, ActuatorKind::kBaseTheta, effort[first + 2]});
   }
   for (const Joint& joint : model.joints) {
     if (joint.actuated) out.actuators.push_back({joint.name, ActuatorKind::kJoint, effort[joint.control]});
@@ -173,7 +190,8 @@ StaticsReport ComputeStatics(const Model& model, const State& s, const Eigen::Ve
     const MobileBase& base = model.mobile_bases[static_cast<size_t>(k)];
     if (base.push_limit <= 0) continue;
     out.limits_given = true;
-    if (std::hypot(effort[3 * k], effort[3 * k + 1]) > base.push_limit * (1 + 1e-12)) out.limiting.push_back(base.name);
+    const int first = model.base_control(k);
+    if (std::hypot(effort[first], effort[first + 1]) > base.push_limit * (1 + 1e-12)) out.limiting.push_back(base.name);
   }
   for (const Joint& joint : model.joints) {
     if (!joint.actuated || !joint.effort.given) continue;

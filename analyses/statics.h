@@ -46,11 +46,19 @@ struct JointReaction {
   Eigen::Vector3d moment = Eigen::Vector3d::Zero();  // N*m
 };
 
-enum class ActuatorKind { kBaseX, kBaseY, kBaseTheta, kJoint };
+// A wheeled base's three controls; a legged base's wrench on the chain
+// (force and moment components in world axes, the moment about its body
+// frame's origin); an actuated joint.
+enum class ActuatorKind {
+  kBaseX, kBaseY, kBaseTheta,
+  kBaseForceX, kBaseForceY, kBaseForceZ, kBaseMomentX, kBaseMomentY, kBaseMomentZ,
+  kJoint
+};
 const char* ActuatorKindName(ActuatorKind kind);  // "base_x", ...
 
 // The generalized force a control must supply: N along a base's x or y,
-// N*m about its heading, N*m or N at an actuated joint.
+// N*m about its heading; a legged base's wrench on the chain (N, N*m); N*m
+// or N at an actuated joint.
 struct ActuatorEffort {
   std::string name;  // the base's or the joint's
   ActuatorKind kind = ActuatorKind::kJoint;

@@ -200,9 +200,12 @@ Command ReplayCommand() {
           "each base tracks it with a PI controller from simulated motion capture, and the chain follows\n"
           "by forward simulation. Writes CSVs, an RMSE table and plots into DIR (SIMULATION, not hardware;\n"
           "moved into DIR at the end: a link planted at one of their names is replaced, never followed).\n"
-          "Warns on stderr when the plan did not converge or the chain was torn.",
+          "Warns on stderr when the plan did not converge or the chain was torn. Legged bases walk with a\n"
+          "trotting gait (--gait_hz, --gait_bob_m, --gait_sway_rad): their bodies bob and sway while they\n"
+          "move, and the JSON's \"gait\" separates the end-effector error due to the gait from tracking.",
           Concat({"model", "waypoints", "out", "noise", "seed", "mocap_noise_m", "mocap_noise_rad", "latency_s",
-                  "slip", "kp", "ki", "controller_hz", "max_wheel_speed", "obstacles"},
+                  "slip", "kp", "ki", "controller_hz", "max_wheel_speed", "gait_hz", "gait_bob_m", "gait_sway_rad",
+                  "obstacles"},
                  kControlFlags),
           RunReplay, {{"out", "folder for the CSVs, the RMSE table and the plots, created if missing [path]"}}};
 }

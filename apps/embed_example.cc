@@ -19,7 +19,7 @@ int main(int argc, char** argv) {
     Eigen::VectorXd u = model.home_controls();  // [x0, y0, theta0, x1, ...]
     bool assembled = true;
     for (int step = 1; step <= 5; ++step) {
-      for (int k = 0; k < model.num_bases(); ++k) u[ccma::kBaseControlSize * k] += 0.002;
+      for (int k = 0; k < model.num_bases(); ++k) u[model.base_control(k)] += 0.002;
       const ccma::ForwardResult r = forward.Solve(u);
       const Eigen::Vector3d p_WE = forward.end_effector().position;
       std::cout << "step " << step << ": assembled=" << r.assembled << " E=" << r.residual_energy

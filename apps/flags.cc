@@ -5,7 +5,7 @@ DEFINE_string(obstacles, "",
               "obstacles file, added to the model's: a YAML mapping with the one key obstacles: "
               "(docs/model_format.md, Collision geometry and obstacles) [path]");
 DEFINE_string(controls, "",
-              "comma-separated controls, 3 per mobile base in file order: x [m], y [m], theta [rad] "
+              "comma-separated controls, per mobile base in file order: x [m], y [m], theta [rad] (a legged base also height [m], roll, pitch [rad]), then one per actuated joint "
               "(default: the model's home controls)");
 DEFINE_string(waypoints, "", "waypoint CSV: time,x,y,z,roll,pitch,yaw (docs/waypoints.md) [path]");
 DEFINE_string(out, "", "output file or folder (see the command) [path]");

@@ -13,7 +13,8 @@
 DEFINE_int32(agents, 0, "number of mobile bases (or legs with --kind=stewart_gough), 3..1000 [agents]");
 DEFINE_string(kind, "ccma",
               "ccma: mobile bases with R-R-S legs (family of 6dof_six_agents); stewart_gough: a UPS "
-              "platform on the ground with actuated legs, no base (>= 6 legs) [ccma|stewart_gough]");
+              "platform on the ground with actuated legs, no base (>= 6 legs); legged: quadrupeds, each "
+              "carrying an arm that holds the platform (family of 6dof_three_legged) [ccma|stewart_gough|legged]");
 
 namespace ccma::cli {
 
@@ -24,14 +25,17 @@ int RunGenerate(const std::vector<std::string>& args) {
   const std::string out_path = RequireFlag(FLAGS_out, "out", "generate");
   StewartOptions options;
   options.agents = FLAGS_agents;
-  if (FLAGS_kind != "ccma" && FLAGS_kind != "stewart_gough") {
-    throw UsageError("ccma generate: --kind must be ccma or stewart_gough");
+  if (FLAGS_kind != "ccma" && FLAGS_kind != "stewart_gough" && FLAGS_kind != "legged") {
+    throw UsageError("ccma generate: --kind must be ccma, stewart_gough or legged");
   }
   if (FLAGS_kind == "stewart_gough" && FLAGS_agents < 6) {
     throw UsageError("ccma generate: --kind=stewart_gough needs --agents >= 6");
   }
-  const std::string text =
-      FLAGS_kind == "ccma" ? GenerateStewartModel(options) : GenerateStewartGoughModel(options);
+  LeggedOptions legged;
+  legged.agents = FLAGS_agents;
+  const std::string text = FLAGS_kind == "ccma"            ? GenerateStewartModel(options)
+                           : FLAGS_kind == "legged"        ? GenerateLeggedModel(legged)
+                                                           : GenerateStewartGoughModel(options);
   const Model model = LoadModelFromString(text, out_path);  // validate before writing
   OutputFile out(out_path, "out");
   out.stream() << text;

@@ -36,6 +36,9 @@ DEFINE_double(kp, 4.0, "PI proportional gain, position and heading [1/s]");
 DEFINE_double(ki, 4.0, "PI integral gain, position and heading [1/s^2]");
 DEFINE_double(controller_hz, 100.0, "PI controller rate, 1..10000 [Hz]");
 DEFINE_double(max_wheel_speed, 30.0, "wheel-speed saturation [rad/s]");
+DEFINE_double(gait_hz, 2.0, "legged bases: trotting gait frequency, (0, 100] [Hz]");
+DEFINE_double(gait_bob_m, 0.01, "legged bases: amplitude of the body's bob while walking, [0, 1] [m]");
+DEFINE_double(gait_sway_rad, 0.02, "legged bases: amplitude of the body's sway (roll) while walking, [0, 0.5] [rad]");
 
 namespace ccma::cli {
 namespace {
@@ -64,6 +67,9 @@ ReplayOptions ReplayOptionsFromFlags() {
   g.ki_position = g.ki_heading = FLAGS_ki;
   g.rate_hz = FLAGS_controller_hz;
   g.max_wheel_speed = FLAGS_max_wheel_speed;
+  options.gait.hz = FLAGS_gait_hz;
+  options.gait.bob_m = FLAGS_gait_bob_m;
+  options.gait.sway_rad = FLAGS_gait_sway_rad;
   std::string why;
   if (!options.IsValid(&why)) throw UsageError("ccma replay: invalid options: " + why);
   return options;
@@ -92,12 +98,21 @@ nlohmann::json OptionsJson(const ReplayOptions& options) {
 }
 
 // RMSE of the reported components, with the existing keys (x_mm ... yaw_rad).
-nlohmann::json RmseJson(const Model& model, const ReplayResult& r) {
+nlohmann::json RmseJson(const Model& model, const std::array<double, 6>& rmse_m_rad) {
   nlohmann::json rmse = nlohmann::json::object();
   for (const int c : ReportedComponents(model)) {
-    rmse[ComponentName(c) + (IsAngle(c) ? "_rad" : "_mm")] = IsAngle(c) ? r.rmse[c] : 1000 * r.rmse[c];
+    rmse[ComponentName(c) + (IsAngle(c) ? "_rad" : "_mm")] = IsAngle(c) ? rmse_m_rad[c] : 1000 * rmse_m_rad[c];
   }
   return rmse;
+}
+
+// Models with legged bases: the gait and the two shares of the error.
+nlohmann::json GaitJson(const Model& model, const ReplayOptions& options, const ReplayResult& r) {
+  return {{"hz", options.gait.hz},
+          {"bob_m", options.gait.bob_m},
+          {"sway_rad", options.gait.sway_rad},
+          {"rmse_from_gait", RmseJson(model, r.gait_rmse)},
+          {"rmse_from_tracking", RmseJson(model, r.tracking_rmse)}};
 }
 
 // A time that exists only when something happened: the key is left out
@@ -122,7 +137,8 @@ nlohmann::json ReplayJson(const Model& model, const ReplayOptions& options, cons
   out["duration_s"] = r.duration_s;
   out["samples"] = r.samples.size();
   out.update(OptionsJson(options));
-  out["rmse"] = RmseJson(model, r);
+  out["rmse"] = RmseJson(model, r.rmse);
+  if (r.gait) out["gait"] = GaitJson(model, options, r);
   if (IsPaperModel(model)) {
     nlohmann::json paper = nlohmann::json::array();
     for (const PaperRow& row : PaperHardwareRmse()) {

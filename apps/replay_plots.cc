@@ -189,12 +189,14 @@ double NiceLength(double length) {
 }
 
 // Each base's extent over the samples: its set and true x, y.
-std::vector<Extent> BaseExtents(int n, const ReplayResult& r) {
+std::vector<Extent> BaseExtents(const Model& model, const ReplayResult& r) {
+  const int n = model.num_bases();
   std::vector<Extent> extents(static_cast<size_t>(n));
   for (const ReplaySample& sample : r.samples) {
     for (int k = 0; k < n; ++k) {
-      extents[k].Add(sample.set_controls[3 * k], sample.set_controls[3 * k + 1]);
-      extents[k].Add(sample.true_controls[3 * k], sample.true_controls[3 * k + 1]);
+      const int i = model.base_control(k);
+      extents[k].Add(sample.set_controls[i], sample.set_controls[i + 1]);
+      extents[k].Add(sample.true_controls[i], sample.true_controls[i + 1]);
     }
   }
   return extents;
@@ -225,11 +227,12 @@ std::string WindowRanges(const Extent& e, double side) {
 }
 
 // $starts: each base's true x, y at the first sample, one line per base.
-std::string StartsBlock(int n, const ReplayResult& r) {
+std::string StartsBlock(const Model& model, const ReplayResult& r) {
   std::ostringstream s;
   s << "$starts << EOD\n" << std::setprecision(12);
-  for (int k = 0; k < n && !r.samples.empty(); ++k) {
-    s << r.samples.front().true_controls[3 * k] << "," << r.samples.front().true_controls[3 * k + 1] << "\n";
+  for (int k = 0; k < model.num_bases() && !r.samples.empty(); ++k) {
+    const int i = model.base_control(k);
+    s << r.samples.front().true_controls[i] << "," << r.samples.front().true_controls[i + 1] << "\n";
   }
   s << "EOD\n";
   return s.str();
@@ -296,7 +299,7 @@ std::string SingleBasesFigure(const std::string& format, const Model& model, con
     << HeadingLabels("SIMULATION (ccma replay): " + model.name + ", " + std::to_string(n) +
                          " mobile bases in the ground plane" + (named ? "" : " (one colour per base)"),
                      r, height, "red dots")
-    << StartsBlock(n, r) << AllBasesPlot(model, r, named, false) << UnsetHeadingLabels(r)
+    << StartsBlock(model, r) << AllBasesPlot(model, r, named, false) << UnsetHeadingLabels(r)
     << "set size noratio\nset tmargin\nset bmargin\nset autoscale\nset key default\nset output\n";
   return s.str();
 }
@@ -317,7 +320,7 @@ std::string ZoomedBasesFigure(const std::string& format, const Model& model, con
     << HeadingLabels("SIMULATION (ccma replay): " + model.name + ", " + std::to_string(n) +
                          " mobile bases in the ground plane",
                      r, height, "red dots")
-    << StartsBlock(n, r) << "$windows << EOD\n" << std::setprecision(12);
+    << StartsBlock(model, r) << "$windows << EOD\n" << std::setprecision(12);
   for (const Extent& e : extents) s << 0.5 * (e.x0 + e.x1) << "," << 0.5 * (e.y0 + e.y1) << "," << side / 2 << "\n";
   s << "EOD\nset key at screen 0.5, screen " << FormatG((key_height - 10.0) / height) << " center top\n"
     << "set multiplot layout " << rows << "," << columns << " margins 0.08,0.97," << FormatG((key_height + 20.0) / height)
@@ -347,7 +350,7 @@ std::string ZoomedBasesFigure(const std::string& format, const Model& model, con
 // against their paths (more than 3 windows), each also gets its own panel.
 std::string BasesFigure(const std::string& format, const Model& model, const ReplayResult& r) {
   const int n = model.num_bases();
-  const std::vector<Extent> extents = BaseExtents(n, r);
+  const std::vector<Extent> extents = BaseExtents(model, r);
   Extent all;
   double largest = 0;  // the largest side of one base's path [m]
   for (const Extent& e : extents) {

@@ -122,8 +122,8 @@ void WriteReplayCsv(const std::string& dir, const Model& model, const ReplayResu
     ee << "," << s.residual_energy << "," << (s.torn ? 1 : 0) << "\n";
     bases << s.time;
     for (int k = 0; k < model.num_bases(); ++k) {
-      for (int c = 0; c < 3; ++c) bases << "," << s.set_controls[3 * k + c];
-      for (int c = 0; c < 3; ++c) bases << "," << s.true_controls[3 * k + c];
+      for (int c = 0; c < 3; ++c) bases << "," << s.set_controls[model.base_control(k) + c];
+      for (int c = 0; c < 3; ++c) bases << "," << s.true_controls[model.base_control(k) + c];
     }
     for (const Joint& joint : model.joints) {
       if (joint.actuated) bases << "," << s.true_controls[joint.control];

@@ -77,8 +77,27 @@ Eigen::VectorXd StartFrom(const Model& model, const std::string& path, ForwardPr
   return u;
 }
 
+// A base control outside its type's limits (a legged base's body_limits) is
+// bad input (exit 2).
+void CheckBaseControlLimits(const Model& model, const Eigen::VectorXd& u) {
+  for (int k = 0; k < model.num_bases(); ++k) {
+    const MobileBase& base = model.mobile_bases[static_cast<size_t>(k)];
+    const BaseKind& kind = KindOf(base);
+    const std::vector<ControlRange> limits = kind.Limits(base);
+    for (int i = 0; i < kind.num_controls(); ++i) {
+      const ControlRange& range = limits[static_cast<size_t>(i)];
+      const int c = model.base_control(k) + i;
+      if (!range.limited || (u[c] >= range.lower - 1e-9 && u[c] <= range.upper + 1e-9)) continue;
+      throw UsageError("--controls: entry " + std::to_string(c) + " (" + FormatG(u[c], 17) + ") puts base '" +
+                       base.name + "' " + kind.controls()[static_cast<size_t>(i)].name + " outside its limits [" +
+                       FormatG(range.lower) + ", " + FormatG(range.upper) + "] (body_limits)");
+    }
+  }
+}
+
 // An actuated joint's control outside its limits is bad input (exit 2).
 void CheckActuatedLimits(const Model& model, const Eigen::VectorXd& u) {
+  CheckBaseControlLimits(model, u);
   for (const Joint& joint : model.joints) {
     if (!joint.actuated || !joint.limited) continue;
     const double q = u[joint.control];

@@ -14,7 +14,9 @@ void WriteHeader(const Model& model, std::ostream& csv) {
   csv << "time_s,target_x_m,target_y_m,target_z_m,target_roll_rad,target_pitch_rad,target_yaw_rad,"
          "x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad";
   for (int k = 0; k < model.num_bases(); ++k) {
-    csv << ",u" << k << "_x_m,u" << k << "_y_m,u" << k << "_theta_rad";
+    for (const BaseControl& c : KindOf(model.mobile_bases[static_cast<size_t>(k)]).controls()) {
+      csv << ",u" << k << "_" << c.name << "_" << c.unit;
+    }
   }
   auto unit = [](const Joint& j) { return j.type == JointType::kRevolute ? "_rad" : "_m"; };
   for (const Joint& joint : model.joints) {
@@ -30,7 +32,10 @@ void WriteHeader(const Model& model, std::ostream& csv) {
 // one per control, then whether every effort is within its limits.
 void WriteEffortHeader(const Model& model, std::ostream& csv) {
   for (int k = 0; k < model.num_bases(); ++k) {
-    csv << ",effort_u" << k << "_x_N,effort_u" << k << "_y_N,effort_u" << k << "_theta_Nm";
+    // A control in m takes a force [N], one in rad a moment [N*m].
+    for (const BaseControl& c : KindOf(model.mobile_bases[static_cast<size_t>(k)]).controls()) {
+      csv << ",effort_u" << k << "_" << c.name << (std::string(c.unit) == "m" ? "_N" : "_Nm");
+    }
   }
   for (const Joint& joint : model.joints) {
     if (joint.actuated) csv << ",effort_" << joint.name << (joint.type == JointType::kRevolute ? "_Nm" : "_N");

@@ -3,8 +3,6 @@
 #include "cost_functions/actuated_prismatic_cost.h"
 #include "cost_functions/actuated_revolute_cost.h"
 #include "cost_functions/fixed_joint_cost.h"
-#include "cost_functions/omni_base_motor_cost.h"
-#include "cost_functions/omni_base_planar_cost.h"
 #include "cost_functions/prismatic_joint_cost.h"
 #include "cost_functions/revolute_joint_cost.h"
 #include "cost_functions/spherical_joint_cost.h"
@@ -58,10 +56,6 @@ int RotationSpringCount(JointType type) {
   return 0;
 }
 
-int BaseResidualCount() {
-  return OmniBasePlanarCost::kNumResiduals + OmniBaseMotorCost::kNumResiduals;
-}
-
 int Model::num_actuated_joints() const {
   int count = 0;
   for (const Joint& joint : joints) count += joint.actuated;
@@ -77,12 +71,13 @@ int Model::FindJoint(const std::string& joint_name) const {
 
 std::vector<int> Model::effective_control_indices() const {
   std::vector<int> indices;
-  for (int k = 0; k < num_bases(); ++k) {
-    indices.push_back(kBaseControlSize * k);
-    indices.push_back(kBaseControlSize * k + 1);
-    if (mobile_bases[k].actuation == Actuation::kComplete) {
-      indices.push_back(kBaseControlSize * k + 2);
+  int offset = 0;
+  for (const MobileBase& base : mobile_bases) {
+    const BaseKind& kind = KindOf(base);
+    for (int i = 0; i < kind.num_controls(); ++i) {
+      if (kind.IsEffective(base, i)) indices.push_back(offset + i);
     }
+    offset += kind.num_controls();
   }
   for (const Joint& joint : joints) {
     if (joint.actuated) indices.push_back(joint.control);
@@ -91,20 +86,36 @@ std::vector<int> Model::effective_control_indices() const {
 }
 
 int Model::num_constraints() const {
-  int rows = num_bases() * BaseResidualCount();
+  int rows = 0;
+  for (const MobileBase& base : mobile_bases) rows += KindOf(base).num_residuals();
   for (const Joint& joint : joints) rows += JointResidualCount(joint.type) + ActuatorResidualCount(joint);
   return rows;
 }
 
 Eigen::VectorXd Model::home_controls() const {
   Eigen::VectorXd u = Eigen::VectorXd::Zero(num_controls());
-  for (int k = 0; k < num_bases(); ++k) {
-    u.segment<kBaseControlSize>(kBaseControlSize * k) = mobile_bases[k].home_pose;
+  int offset = 0;
+  for (const MobileBase& base : mobile_bases) {
+    const BaseKind& kind = KindOf(base);
+    u.segment(offset, kind.num_controls()) = kind.HomeControls(base);
+    offset += kind.num_controls();
   }
   for (const Joint& joint : joints) {
     if (joint.actuated) u[joint.control] = joint.q_home;
   }
   return u;
+}
+
+int Model::num_base_controls() const {
+  int count = 0;
+  for (const MobileBase& base : mobile_bases) count += KindOf(base).num_controls();
+  return count;
+}
+
+int Model::base_control(int k) const {
+  int offset = 0;
+  for (int i = 0; i < k; ++i) offset += KindOf(mobile_bases[static_cast<size_t>(i)]).num_controls();
+  return offset;
 }
 
 bool Model::compliant() const {

@@ -15,15 +15,13 @@
 
 #include <Eigen/Core>
 
+#include "ccma/base_kind.h"
 #include "ccma/collision_geometry.h"
 #include "ccma/mass_properties.h"
 #include "ccma/omni_wheels.h"
 #include "ccma/stiffness.h"
 
 namespace ccma {
-
-// Controls per mobile base: x [m], y [m], theta [rad].
-constexpr int kBaseControlSize = 3;
 
 // The ground as a joint end (`world` in model files): identity pose, never
 // moves, not part of the state.
@@ -32,8 +30,10 @@ constexpr int kWorld = -1;
 enum class JointType { kRevolute, kSpherical, kUniversal, kPrismatic, kFixed };
 enum class Actuation { kComplete, kReduced };
 // omni: holonomic (moves in any direction); differential: two driven wheels
-// on one axle, moves along its heading and turns (docs/model_format.md).
-enum class BaseType { kOmni, kDifferential };
+// on one axle, moves along its heading and turns; legged: a quadruped that
+// also raises, lowers and tilts its body (docs/model_format.md). Each type's
+// controls and constraints: ccma/base_kind.h, ccma/bases/.
+enum class BaseType { kOmni, kDifferential, kLegged };
 
 // "revolute", "spherical", ... (the model-file spelling).
 const char* JointTypeName(JointType type);
@@ -41,8 +41,6 @@ const char* JointTypeName(JointType type);
 // Number of constraint rows a joint contributes (read from its cost
 // function, cost_functions/*_cost.h, where each size is stated once).
 int JointResidualCount(JointType type);
-// Constraint rows of one mobile base (planar and motor).
-int BaseResidualCount();
 struct Joint;
 // Constraint rows of a joint's motor (0 unless actuated).
 int ActuatorResidualCount(const Joint& joint);
@@ -78,8 +76,18 @@ struct DifferentialWheels {
   double radius = 0.05;  // m
 };
 
-// A mobile base: an actuator. Its controls are u[3k..3k+2] = (x [m], y [m],
-// theta [rad]) of its body frame on the ground.
+// A legged base's body (`body_height`, `body_limits`, `footprint`).
+struct LeggedBody {
+  double height = 0;  // m, home height of the body frame above the floor
+  // Limits of the height [m], roll and pitch [rad] controls (`body_limits`).
+  ControlRange height_limits, roll_limits, pitch_limits;
+  // Collision box: length along the heading, width [m]; 0 when not given.
+  Eigen::Vector2d footprint = Eigen::Vector2d::Zero();
+};
+
+// A mobile base: an actuator. Its controls are the block of u from
+// Model::base_control(k) on: x [m], y [m], heading [rad] of its body frame on
+// the floor, then its type's further controls (ccma/base_kind.h).
 struct MobileBase {
   std::string name;
   int body = -1;  // index into Model::bodies
@@ -90,6 +98,7 @@ struct MobileBase {
   // Only the base-driving layer (base_tracking.h) uses them.
   std::vector<Wheel> wheels = DefaultWheels();
   DifferentialWheels differential;  // type kDifferential only
+  LeggedBody legged;                 // type kLegged only
   // The largest horizontal force the base can exert [N] (`push_limit`);
   // 0: not given.
   double push_limit = 0;
@@ -171,14 +180,19 @@ struct Model {
   int state_size() const { return 6 * num_bodies(); }
   // Actuated joints (one control each), in file order.
   int num_actuated_joints() const;
-  // 3 per mobile base (x, y, theta), then one per actuated joint (q).
-  int num_controls() const { return kBaseControlSize * num_bases() + num_actuated_joints(); }
+  // Each base's controls (3, or 6 for a legged base), then one per actuated
+  // joint (q).
+  int num_controls() const { return num_base_controls() + num_actuated_joints(); }
+  // The bases' controls together; the actuated joints' follow them in u.
+  int num_base_controls() const;
+  // Index into u of base k's first control (its x).
+  int base_control(int k) const;
   // Indices into u of the controls the control solver may change
   // (x, y of every base; theta of complete ones; every actuated joint).
   std::vector<int> effective_control_indices() const;
   // The index of the joint with this name, or -1.
   int FindJoint(const std::string& name) const;
-  // Total number of constraint rows (joints + 9 per base).
+  // Total number of constraint rows (joints and bases).
   int num_constraints() const;
   // The controls at home: the bases' poses in file order, then q_home per
   // actuated joint.

@@ -45,6 +45,16 @@ CollisionModel::CollisionModel(const Model& model) {
     PlacedShape s;
     s.radius = g.base_radii.empty() ? g.base_radius : g.base_radii[static_cast<size_t>(k)];
     s.z_max = g.base_height;
+    const LeggedBody& legged = model.mobile_bases[static_cast<size_t>(k)].legged;
+    if (model.mobile_bases[static_cast<size_t>(k)].type == BaseType::kLegged && legged.footprint.x() > 0) {
+      // A legged base with a footprint: a box along its heading from the
+      // floor to its body (PlaceShapes follows the body's height and heading).
+      s.footprint = Footprint::kRectangle;
+      s.half_size = 0.5 * legged.footprint;
+      s.radius = 0.5 * legged.footprint.norm();
+      s.z_max = legged.height;
+      legged_.insert(static_cast<int>(local_.size()));
+    }
     local_.push_back(s);
     bodies_.push_back(model.mobile_bases[k].body);
     owners_.push_back(model.mobile_bases[k].body);
@@ -86,6 +96,13 @@ void CollisionModel::PlaceShapes(const State& s, std::vector<PlacedShape>* shape
     if (body == kWorld) continue;  // obstacles: placed once, box included
     if (IsBase(static_cast<int>(i))) {
       out.center = s.p_WB(body).head<2>();
+      if (legged_.count(static_cast<int>(i)) != 0) {
+        const Eigen::Vector3d heading_W = s.R_WB(body).col(0);
+        const double norm = heading_W.head<2>().norm();
+        out.cos_yaw = norm > 0 ? heading_W.x() / norm : 1.0;
+        out.sin_yaw = norm > 0 ? heading_W.y() / norm : 0.0;
+        out.z_max = s.p_WB(body).z();
+      }
     } else {
       const Eigen::Matrix3d R_WB = s.R_WB(body);
       const Eigen::Vector3d p_WB = s.p_WB(body);

@@ -3,7 +3,8 @@
 // Model and then constant, like the Model itself; PlaceShapes() puts them at
 // a state into a caller's vector (no allocation once it has the size).
 //
-// Shapes, in this order: one vertical cylinder per mobile base, the link
+// Shapes, in this order: one vertical cylinder per mobile base (a legged
+// base with a `footprint`: a box from the floor to its body), the link
 // capsules, the obstacles. A pair is checked unless both are obstacles, both
 // belong to one body, their bodies share a joint, or `collision.ignore`
 // names them.
@@ -58,6 +59,7 @@ class CollisionModel {
   std::vector<int> owners_;         // per shape: body index, or num_bodies + obstacle index
   std::vector<std::string> names_;  // per owner
   std::unordered_set<std::uint64_t> skipped_;  // owner pairs never checked
+  std::unordered_set<int> legged_;  // shapes that are a legged base's footprint box
 };
 
 }  // namespace ccma

@@ -11,6 +11,7 @@
 #include "cost_functions/actuated_prismatic_cost.h"
 #include "cost_functions/actuated_revolute_cost.h"
 #include "cost_functions/fixed_joint_cost.h"
+#include "cost_functions/legged_base_motor_cost.h"
 #include "cost_functions/omni_base_motor_cost.h"
 #include "cost_functions/omni_base_planar_cost.h"
 #include "cost_functions/prismatic_joint_cost.h"
@@ -48,6 +49,10 @@ ceres::CostFunction* MakeActuatedRevoluteAutoDiff(const Eigen::Vector3d& e1_A, c
 
 ceres::CostFunction* MakeFixedJointAutoDiff(const Eigen::Vector3d& r_A, const Eigen::Vector3d& r_B, const Eigen::Vector3d& d1_A, const Eigen::Vector3d& d1_B, const Eigen::Vector3d& d2_A, const Eigen::Vector3d& d2_B) {
   return MakeAutoDiffTwin<FixedJointCost>(new FixedJointResidual{r_A, r_B, d1_A, d1_B, d2_A, d2_B});
+}
+
+ceres::CostFunction* MakeLeggedBaseMotorAutoDiff() {
+  return MakeAutoDiffTwin<LeggedBaseMotorCost>(new LeggedBaseMotorResidual{});
 }
 
 ceres::CostFunction* MakeOmniBaseMotorAutoDiff() {

@@ -18,7 +18,10 @@
 
 namespace ccma {
 
-class OmniBaseMotorCost final : public SizedCost<5, kPoseAmbientSize, kBaseControlSize> {
+// Controls of a wheeled (omni or differential) base: x, y, theta.
+constexpr int kWheeledControlSize = 3;
+
+class OmniBaseMotorCost final : public SizedCost<5, kPoseAmbientSize, kWheeledControlSize> {
  public:
 
   void EvaluateInFrames(const BodyFrame* const* frames, double const* const* parameters, double* residuals,

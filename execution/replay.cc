@@ -38,6 +38,7 @@ struct Plan {
   std::vector<Eigen::VectorXd> controls;
   std::vector<Eigen::Matrix<double, 6, 1>> end_effector;
   std::vector<bool> differential;  // per base: moves along arcs between steps
+  std::vector<Eigen::Index> first;  // per base: the index into u of its x
 
   // Index i of the segment [times[i-1], times[i]] holding t (times.size() > 1).
   size_t Segment(double t) const {
@@ -63,7 +64,7 @@ struct Plan {
     const double a = (t - times[i - 1]) / (times[i] - times[i - 1]);
     for (size_t k = 0; k < differential.size(); ++k) {
       if (!differential[k]) continue;
-      const Eigen::Index c = static_cast<Eigen::Index>(kBaseControlSize * k);
+      const Eigen::Index c = first[k];
       u.segment<3>(c) = InterpolateArc(controls[i - 1].segment<3>(c), controls[i].segment<3>(c), a);
     }
     return u;
@@ -84,7 +85,7 @@ struct Plan {
     progress.assign(differential.size(), {});
     for (size_t k = 0; k < differential.size(); ++k) {
       if (!differential[k]) continue;
-      const Eigen::Index c = static_cast<Eigen::Index>(kBaseControlSize * k);
+      const Eigen::Index c = first[k];
       arcs[k].resize(times.size());
       progress[k].assign(times.size(), Eigen::Vector2d::Zero());
       for (size_t i = 1; i < times.size(); ++i) {
@@ -145,7 +146,10 @@ Plan MakePlan(const Model& model, const std::vector<Waypoint>& waypoints, const 
   plan.times = {waypoints.front().time};
   plan.controls = {control.controls()};
   plan.end_effector = {Pose6(control.forward().end_effector())};
-  for (const MobileBase& base : model.mobile_bases) plan.differential.push_back(base.type == BaseType::kDifferential);
+  for (int k = 0; k < model.num_bases(); ++k) {
+    plan.differential.push_back(model.mobile_bases[static_cast<size_t>(k)].type == BaseType::kDifferential);
+    plan.first.push_back(model.base_control(k));
+  }
   const TrajectoryResult trajectory = FollowWaypoints(control, waypoints, [&](const TrajectoryStep& s) {
     if (!s.result.reached && std::isnan(result->failed_step_time)) result->failed_step_time = s.time;
     if (s.time <= plan.times.back()) return;  // the zero-length first leg
@@ -168,10 +172,14 @@ void Simulate(const Model& model, const Plan& plan, const ReplayOptions& options
   for (int k = 0; k < model.num_bases(); ++k) {
     drives.push_back(MakeBaseDrive(model.mobile_bases[k]));
     controllers.emplace_back(drives.back(), options.gains);
-    start.push_back(plan.controls.front().segment<3>(3 * k));
+    start.push_back(plan.controls.front().segment<3>(plan.first[k]));
   }
   SimulatedBases bases(drives, start, options.noise);
   ForwardProblem chain(model, options.control.forward);
+  // With legged bases, a second chain at the same controls without the gait.
+  const bool gait = HasLeggedBases(model);
+  ForwardProblem chain_without_gait(model, options.control.forward);
+  result->gait = gait;
   result->torn_residual_energy = options.torn_residual_energy;
 
   const double t0 = plan.times.front();
@@ -189,7 +197,12 @@ void Simulate(const Model& model, const Plan& plan, const ReplayOptions& options
       sample.set_controls = plan.SetControls(t);
       // Actuated joints' motors (after the bases' controls) hold their set-points.
       sample.true_controls = sample.set_controls;
-      for (int k = 0; k < model.num_bases(); ++k) sample.true_controls.segment<3>(3 * k) = bases.TruePose(k);
+      for (int k = 0; k < model.num_bases(); ++k) sample.true_controls.segment<3>(plan.first[k]) = bases.TruePose(k);
+      if (gait) {
+        chain_without_gait.Solve(sample.true_controls);
+        sample.tracked_without_gait = Pose6(chain_without_gait.end_effector());
+        ApplyGait(model, options.gait, t, plan.Velocity(t), &sample.true_controls);
+      }
       sample.residual_energy = chain.Solve(sample.true_controls).residual_energy;
       sample.assembled = sample.residual_energy <= options.control.forward.assembly_tolerance;
       sample.torn = !(sample.residual_energy <= options.torn_residual_energy);
@@ -201,7 +214,7 @@ void Simulate(const Model& model, const Plan& plan, const ReplayOptions& options
     const Eigen::VectorXd set_velocity = plan.Velocity(t);
     for (int k = 0; k < model.num_bases(); ++k) {
       const Eigen::Vector2d twist = controllers[k].differential() ? plan.Twist(k, t, dt) : Eigen::Vector2d::Zero();
-      const Eigen::VectorXd wheels = controllers[k].Update(set.segment<3>(3 * k), set_velocity.segment<3>(3 * k),
+      const Eigen::VectorXd wheels = controllers[k].Update(set.segment<3>(plan.first[k]), set_velocity.segment<3>(plan.first[k]),
                                                            twist, bases.MeasuredPose(k));
       bases.CommandWheels(k, wheels);
     }
@@ -219,20 +232,32 @@ void Summarize(ReplayResult* result) {
     if (result->torn_samples++ == 0) result->first_torn_time = s.time;
     result->torn = true;
   }
-  for (int c = 0; c < 6; ++c) {
+  using Pose = Eigen::Matrix<double, 6, 1>;
+  const auto rms = [&](int c, const auto& a, const auto& b) {
     double sum = 0;
     for (const ReplaySample& s : result->samples) {
-      const double d = c < 3 ? s.tracked[c] - s.commanded[c] : WrapAngle(s.tracked[c] - s.commanded[c]);
+      const Pose& x = a(s);
+      const Pose& y = b(s);
+      const double d = c < 3 ? x[c] - y[c] : WrapAngle(x[c] - y[c]);
       sum += d * d;
     }
-    result->rmse[c] = result->samples.empty() ? 0 : std::sqrt(sum / static_cast<double>(result->samples.size()));
+    return result->samples.empty() ? 0 : std::sqrt(sum / static_cast<double>(result->samples.size()));
+  };
+  const auto tracked = [](const ReplaySample& s) -> const Pose& { return s.tracked; };
+  const auto commanded = [](const ReplaySample& s) -> const Pose& { return s.commanded; };
+  const auto without_gait = [](const ReplaySample& s) -> const Pose& { return s.tracked_without_gait; };
+  for (int c = 0; c < 6; ++c) {
+    result->rmse[c] = rms(c, tracked, commanded);
+    if (!result->gait) continue;
+    result->gait_rmse[c] = rms(c, tracked, without_gait);
+    result->tracking_rmse[c] = rms(c, without_gait, commanded);
   }
 }
 
 }  // namespace
 
 bool ReplayOptions::IsValid(std::string* why) const {
-  if (!gains.IsValid(why) || !noise.IsValid(why)) return false;
+  if (!gains.IsValid(why) || !noise.IsValid(why) || !gait.IsValid(why)) return false;
   if (!(output_hz >= kMinOutputHz && output_hz <= kMaxOutputHz)) {
     return Fail(Format("ReplayOptions::output_hz (output sample rate) must lie in [%g, %g] Hz; got %g", kMinOutputHz,
                        kMaxOutputHz, output_hz),

@@ -29,6 +29,7 @@
 #include <Eigen/Core>
 
 #include "execution/base_tracking.h"
+#include "execution/gait.h"
 #include "formats/waypoints.h"
 #include "problems/control_problem.h"
 
@@ -49,8 +50,11 @@ struct ReplayOptions {
   // agents), while a chain that cannot follow ends with E ~ 1e-2 or more
   // (0.2 s latency on 4dof_reduced). In (0, 1] m^2.
   double torn_residual_energy = 1e-5;
+  // A legged base's body bobs and sways while it walks (execution/gait.h);
+  // no effect on a model without legged bases.
+  Gait gait;
 
-  // gains.IsValid, noise.IsValid, and output_hz, settle_s and
+  // gains.IsValid, noise.IsValid, gait.IsValid, and output_hz, settle_s and
   // torn_residual_energy in range.
   // Otherwise false, with `why` (if not null) naming the field and its unit.
   bool IsValid(std::string* why) const;
@@ -62,7 +66,7 @@ struct ReplaySample {
   double time = 0;                     // s
   Eigen::Matrix<double, 6, 1> commanded;  // x y z [m], roll pitch yaw [rad]
   Eigen::Matrix<double, 6, 1> tracked;
-  Eigen::VectorXd set_controls;        // the bases' set poses (3 per base)
+  Eigen::VectorXd set_controls;        // the bases' set poses (their controls, then the joints')
   Eigen::VectorXd true_controls;       // where the bases really are
   double residual_energy = 0;          // of the chain at the true base poses [m^2]
   // residual_energy at most the forward problem's assembly tolerance: the
@@ -72,6 +76,9 @@ struct ReplaySample {
   // residual_energy above ReplayOptions::torn_residual_energy (or not a
   // number): the chain could not follow the bases, `tracked` is no pose of it.
   bool torn = false;
+  // Models with legged bases: the chain's end-effector at the same true
+  // controls without the gait (the error due to tracking alone).
+  Eigen::Matrix<double, 6, 1> tracked_without_gait = Eigen::Matrix<double, 6, 1>::Zero();
 };
 
 struct ReplayResult {
@@ -86,6 +93,11 @@ struct ReplayResult {
   double torn_residual_energy = 0; // the E above which a sample is torn [m^2]
   std::vector<ReplaySample> samples;
   std::array<double, 6> rmse{};  // tracked vs commanded, per component (m, rad)
+  // Models with legged bases (`gait` true): the RMSE of tracked against
+  // tracked_without_gait (the gait's share) and of tracked_without_gait
+  // against commanded (tracking's share), per component (m, rad).
+  bool gait = false;
+  std::array<double, 6> gait_rmse{}, tracking_rmse{};
   double duration_s = 0;
 
   // Converged, never torn, with samples: only then does the RMSE measure tracking.

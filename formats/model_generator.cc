@@ -97,4 +97,40 @@ std::string GenerateStewartGoughModel(const StewartOptions& o) {
   return model.str();
 }
 
+// The family of models/6dof_three_legged.yaml with any number of quadrupeds.
+std::string GenerateLeggedModel(const LeggedOptions& o) {
+  if (o.agents < 3) throw std::invalid_argument("a platform on legged agents needs at least 3 of them");
+  std::ostringstream bodies, bases, joints;
+  const double hinge_z = o.body_height + o.post_height;
+  for (int k = 0; k < o.agents; ++k) {
+    // The first quadruped on +y, the others evenly round, each facing the centre.
+    const double angle = M_PI / 2 + 2.0 * M_PI * k / o.agents;
+    const Eigen::Vector3d radial(std::cos(angle), std::sin(angle), 0.0);
+    const Eigen::Vector3d hinge = o.base_radius * radial + Eigen::Vector3d(0, 0, hinge_z);
+    const Eigen::Vector3d ball = o.platform_radius * radial + Eigen::Vector3d(0, 0, o.platform_height);
+    const Eigen::Vector3d tangent(-radial.y(), radial.x(), 0.0);
+    const std::string n = std::to_string(k);
+    bodies << "  - {name: arm" << n << ", position: " << Vec12((hinge + ball) / 2) << "}\n";
+    bases << "  - name: dog" << n << "\n    type: legged\n    pose: [" << std::setprecision(12)
+          << o.base_radius * radial.x() << ", " << o.base_radius * radial.y() << ", "
+          << std::atan2(-radial.y(), -radial.x()) << "]\n    body_height: " << o.body_height
+          << "\n    body_limits: {height: [" << o.body_height - 0.15 << ", " << o.body_height + 0.1
+          << "], roll: [-0.25, 0.25], pitch: [-0.25, 0.25]}\n    footprint: [0.7, 0.3]\n";
+    joints << "  - {name: hinge" << n << ", type: revolute, between: [dog" << n << ", arm" << n
+           << "], point: " << Vec12(hinge) << ", axis: " << Vec12(tangent) << "}\n"
+           << "  - {name: ball" << n << ", type: spherical, between: [arm" << n << ", ee], point: "
+           << Vec12(ball) << "}\n";
+  }
+  const Eigen::Vector3d ee(0, 0, o.platform_height);
+  std::ostringstream model;
+  model << "name: legged_" << o.agents << "_agents\n"
+        << "description: \"Generated: a 6-DOF platform on " << o.agents
+        << " legged agents, each body carrying an arm on a hinge that holds the platform in a ball joint "
+           "(the family of 6dof_three_legged).\"\n"
+        << "bodies:\n  - {name: ee, position: " << Vec12(ee) << "}\n"
+        << bodies.str() << "mobile_bases:\n" << bases.str() << "joints:\n" << joints.str()
+        << "end_effector:\n  body: ee\n  point: " << Vec12(ee) << "\n  controlled: [x, y, z, roll, pitch, yaw]\n";
+  return model.str();
+}
+
 }  // namespace ccma

@@ -1,5 +1,6 @@
-// Generated model files: the Stewart-like family of 6dof_six_agents with any
-// number of agents, for scaling studies and tests.
+// Generated model files: the Stewart-like family of 6dof_six_agents and the
+// legged family of 6dof_three_legged with any number of agents, for scaling
+// studies and tests.
 #ifndef CCMA_MODEL_GENERATOR_H_
 #define CCMA_MODEL_GENERATOR_H_
 
@@ -32,6 +33,22 @@ std::string GenerateStewartModel(const StewartOptions& options);
 // (UPS); ground and platform points as in GenerateStewartModel. Throws
 // std::invalid_argument for fewer than 6 legs.
 std::string GenerateStewartGoughModel(const StewartOptions& options);
+
+struct LeggedOptions {
+  int agents = 3;                 // >= 3 quadrupeds
+  double base_radius = 0.9;       // m, quadrupeds on a circle around the origin, facing it
+  double body_height = 0.45;      // m, home height of each body
+  double post_height = 0.1;       // m, the hinge above the body frame
+  double platform_radius = 0.3;   // m, ball joints on the end-effector
+  double platform_height = 0.95;  // m, end-effector point
+};
+
+// A 6-DOF platform on `agents` legged bases:
+// each body carries an arm on a horizontal hinge (tangent to the circle),
+// the arm holds the platform in a ball joint; rigid with the controls fixed.
+// With 3 agents, the geometry of models/6dof_three_legged.yaml. Throws
+// std::invalid_argument for agents < 3.
+std::string GenerateLeggedModel(const LeggedOptions& options);
 
 }  // namespace ccma
 

@@ -172,7 +172,7 @@ double ForwardProblem::Energy() const { return workspace_->constraints.Energy(st
 void ForwardProblem::CheckControls(const Eigen::VectorXd& u) const {
   if (u.size() != workspace_->constraints.num_controls()) {  // cached: Model counts its joints
     throw std::invalid_argument("controls: expected " + std::to_string(model_.num_controls()) +
-                                " values (3 per mobile base, then 1 per actuated joint), got " +
+                                " values (3 per mobile base, 6 per legged base, then 1 per actuated joint), got " +
                                 std::to_string(u.size()));
   }
   for (int i = 0; i < u.size(); ++i) {
@@ -332,7 +332,7 @@ ForwardResult ForwardProblem::Assemble(const Eigen::VectorXd& u) {
   // Headings matter modulo 2 pi (motor rows use cos, sin): walk the short way.
   Eigen::VectorXd change = u - from;
   for (int k = 0; k < model_.num_bases(); ++k) {
-    change[kBaseControlSize * k + 2] = WrapAngle(change[kBaseControlSize * k + 2]);
+    change[model_.base_control(k) + kBaseHeading] = WrapAngle(change[model_.base_control(k) + kBaseHeading]);
   }
   const int substeps = SubstepCount(change);
   std::vector<int> all_controls(static_cast<size_t>(model_.num_controls()));
@@ -347,7 +347,7 @@ ForwardResult ForwardProblem::Assemble(const Eigen::VectorXd& u) {
                                   &workspace_->hessian_solver, &workspace_->derivatives[0]);
     Eigen::VectorXd du = u_i - controls_;
     for (int k = 0; k < model_.num_bases(); ++k) {
-      du[kBaseControlSize * k + 2] = WrapAngle(du[kBaseControlSize * k + 2]);
+      du[model_.base_control(k) + kBaseHeading] = WrapAngle(du[model_.base_control(k) + kBaseHeading]);
     }
     const Eigen::VectorXd ds_predicted = sensitivity.StateChange(du);
     const State before = state_;

@@ -13,6 +13,7 @@
 #include "cost_functions/actuated_prismatic_cost.h"
 #include "cost_functions/actuated_revolute_cost.h"
 #include "cost_functions/fixed_joint_cost.h"
+#include "cost_functions/legged_base_motor_cost.h"
 #include "cost_functions/omni_base_motor_cost.h"
 #include "cost_functions/omni_base_planar_cost.h"
 #include "cost_functions/prismatic_joint_cost.h"
@@ -57,7 +58,7 @@ using CostPair = std::pair<std::unique_ptr<ceres::CostFunction>, std::unique_ptr
 struct CostCase {
   std::string name;
   int pose_blocks;   // 1 or 2 (then an optional control block)
-  int control_size;  // 0 (none), 1 (an actuated joint) or 3 (a base)
+  int control_size;  // 0 (none), 1 (an actuated joint), 3 (a wheeled base) or 6 (a legged base)
   std::function<CostPair(std::mt19937&, bool degenerate)> make_pair;
   std::unique_ptr<ceres::CostFunction> make(std::mt19937& rng, bool degenerate) const {
     return make_pair(rng, degenerate).first;
@@ -116,6 +117,10 @@ std::vector<CostCase> AllCostCases() {
        [](std::mt19937&, bool) {
          return CostPair(Own(new OmniBaseMotorCost()), Own(MakeOmniBaseMotorAutoDiff()));
        }},
+      {"legged_base_motor", 1, 6,
+       [](std::mt19937&, bool) {
+         return CostPair(Own(new LeggedBaseMotorCost()), Own(MakeLeggedBaseMotorAutoDiff()));
+       }},
       {"actuated_revolute", 2, 1,
        [](std::mt19937& rng, bool degenerate) {
          const Eigen::Vector3d a = RandomUnit(rng);
@@ -157,6 +162,12 @@ std::vector<ParameterBlock> Blocks(const CostCase& c, const ParameterBlock& A,
   std::vector<ParameterBlock> blocks = {A};
   if (c.pose_blocks == 2) blocks.push_back(B);
   if (c.control_size == 3) blocks.push_back({{u.x(), u.y(), u.z()}, false});
+  // A legged base: x, y, heading from u; height, roll and pitch derived from
+  // it (roll and pitch up to 1.5 rad, near the z-y-x angles' singularity).
+  if (c.control_size == 6) {
+    blocks.push_back({{u.x(), u.y(), 3 * u.z(), 0.4 + 0.1 * u.x(), 1.5 * std::sin(3 * u.y()), 1.5 * std::cos(5 * u.z())},
+                      false});
+  }
   if (c.control_size == 1) blocks.push_back({{u.z()}, false});
   return blocks;
 }
@@ -247,20 +258,21 @@ TEST_P(CostFunctionDerivatives, SecondOrderTermsMatchNumericHessian) {
   }
 }
 
-TEST(SecondOrder, NoConstraintCouplesStateAndControlsAtSecondOrder) {
-  // d^2 (w . C) / ds du = 0 for the motor constraints, so dG/du = J_s^T J_u.
-  std::mt19937 rng(77);
-  const OmniBaseMotorCost motor;
+// d^2 (w . C) / ds du at seeded states and weights, by central differences.
+void ExpectNoStateControlCoupling(const ceres::CostFunction& motor, const std::vector<double>& u0, int seed) {
+  std::mt19937 rng(seed);
+  const int rows = motor.num_residuals(), n = static_cast<int>(u0.size());
   for (int trial = 0; trial < 20; ++trial) {
-    const std::vector<ParameterBlock> blocks = {
-        Pose(RandomRotation(rng), RandomVector(rng)), {{0.3, -0.2, 2.0 * trial / 20 * M_PI}, false}};
-    Eigen::VectorXd w(5);
-    for (int i = 0; i < 5; ++i) w[i] = std::uniform_real_distribution<double>(-1, 1)(rng);
+    std::vector<double> u = u0;
+    u[2] = 2.0 * trial / 20 * M_PI;
+    const std::vector<ParameterBlock> blocks = {Pose(RandomRotation(rng), RandomVector(rng)), {u, false}};
+    Eigen::VectorXd w(rows);
+    for (int i = 0; i < rows; ++i) w[i] = std::uniform_real_distribution<double>(-1, 1)(rng);
     const double h = 1e-4;
     for (int i = 0; i < 6; ++i) {
-      for (int k = 0; k < 3; ++k) {
+      for (int k = 0; k < n; ++k) {
         auto f = [&](double si, double sk) {
-          Eigen::VectorXd d = Eigen::VectorXd::Zero(6), du = Eigen::VectorXd::Zero(3);
+          Eigen::VectorXd d = Eigen::VectorXd::Zero(6), du = Eigen::VectorXd::Zero(n);
           d[i] = si * h;
           du[k] = sk * h;
           return testing::WeightedResidual(motor, blocks, w, d, du);
@@ -270,6 +282,12 @@ TEST(SecondOrder, NoConstraintCouplesStateAndControlsAtSecondOrder) {
       }
     }
   }
+}
+
+TEST(SecondOrder, NoConstraintCouplesStateAndControlsAtSecondOrder) {
+  // d^2 (w . C) / ds du = 0 for the motor constraints, so dG/du = J_s^T J_u.
+  ExpectNoStateControlCoupling(OmniBaseMotorCost(), {0.3, -0.2, 0.0}, 77);
+  ExpectNoStateControlCoupling(LeggedBaseMotorCost(), {0.3, -0.2, 0.0, 0.45, 0.2, -0.3}, 78);
 }
 
 TEST(DerivativeChecker, RejectsAWrongHessian) {

@@ -47,7 +47,7 @@ Model DifferentialModel() {
 }
 
 double Lateral(const Eigen::VectorXd& u0, const Eigen::VectorXd& u1, int base) {
-  const int i = kBaseControlSize * base;
+  const int i = 3 * base;  // wheeled bases only: x, y, theta each
   const double mid = u0[i + 2] + 0.5 * WrapAngle(u1[i + 2] - u0[i + 2]);
   return -std::sin(mid) * (u1[i] - u0[i]) + std::cos(mid) * (u1[i + 1] - u0[i + 1]);
 }

@@ -95,6 +95,7 @@ double Scale(const Model& model, const WorkspaceCloud* workspace) {
 
 double BaseRadius(const MobileBase& base, double scale) {
   if (base.type == BaseType::kDifferential) return 0.6 * base.differential.track;
+  if (base.type == BaseType::kLegged) return base.legged.footprint.x() > 0 ? 0.5 * base.legged.footprint.norm() : 0.3;
   double r = 0;
   for (const Wheel& w : base.wheels) r = std::max(r, w.distance + w.radius);
   return std::clamp(r > 0 ? r : 0.13, 0.02, std::max(0.05, 0.3 * scale));
@@ -134,8 +135,14 @@ json Bodies(const Model& model, double scale, const MeshFiles* meshes) {
     json j = {{"name", body.name}, {"kind", "body"}};
     if (body.is_mobile_base()) {
       const MobileBase& base = model.mobile_bases[body.base_index];
-      j["kind"] = base.type == BaseType::kOmni ? "omni" : "differential";
+      j["kind"] = KindOf(base).name();
       j["radius"] = Round(BaseRadius(base, scale));
+      if (base.type == BaseType::kLegged) {
+        // Without a footprint, a body box of a typical quadruped's proportions.
+        const Eigen::Vector2d box = base.legged.footprint.x() > 0 ? base.legged.footprint : Eigen::Vector2d(0.6, 0.3);
+        j["footprint"] = {Round(box.x()), Round(box.y())};
+        j["body_height"] = Round(base.legged.height);
+      }
     }
     j["points"] = json::array();
     for (const Eigen::Vector3d& p : points) j["points"].push_back(Vec(p));
@@ -289,7 +296,8 @@ class FrameAssembler {
   double SubstepsTo(const Eigen::VectorXd& u) const {
     Eigen::VectorXd change = u - forward_.controls();
     for (int k = 0; k < forward_.model().num_bases(); ++k) {
-      change[kBaseControlSize * k + 2] = WrapAngle(change[kBaseControlSize * k + 2]);
+      const int heading = forward_.model().base_control(k) + kBaseHeading;
+      change[heading] = WrapAngle(change[heading]);
     }
     return std::max(1.0, std::ceil(change.lpNorm<Eigen::Infinity>() / forward_.options().max_control_step));
   }
@@ -331,7 +339,8 @@ void AddFrames(const Model& model, const std::vector<ViewFrame>& frames, FrameAs
     c->commanded.push_back(Vec(f.commanded.value_or(reached)));
     c->tracked.push_back(Vec(f.tracked.value_or(reached)));
     for (int k = 0; k < model.num_bases(); ++k) {
-      c->bases[k].push_back({Round(f.controls[3 * k]), Round(f.controls[3 * k + 1])});
+      const int first = model.base_control(k);
+      c->bases[k].push_back({Round(f.controls[first]), Round(f.controls[first + 1])});
     }
   }
 }

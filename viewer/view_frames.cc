@@ -36,12 +36,15 @@ std::optional<Eigen::Vector3d> Point(const Table& t, size_t row, const std::arra
 
 std::string JointUnit(const Joint& j) { return j.type == JointType::kRevolute ? "_rad" : "_m"; }
 
-// Columns of the controls: 3 per base (`prefix`k_x_m ...), then actuated joints.
+// Columns of the controls: each base's (`prefix`k_x_m ...: its type's
+// controls and units), then actuated joints.
 std::vector<int> ControlColumns(const Model& model, const Table& t, const std::string& prefix, bool joints_required) {
   std::vector<int> cols;
   for (int k = 0; k < model.num_bases(); ++k) {
     const std::string p = prefix + std::to_string(k);
-    for (const char* c : {"_x_m", "_y_m", "_theta_rad"}) cols.push_back(t.Find(p + c, true));
+    for (const BaseControl& c : KindOf(model.mobile_bases[static_cast<size_t>(k)]).controls()) {
+      cols.push_back(t.Find(p + "_" + c.name + "_" + c.unit, true));
+    }
   }
   for (const Joint& j : model.joints) {
     if (j.actuated) cols.push_back(t.Find("u_" + j.name + JointUnit(j), joints_required));

@@ -260,7 +260,7 @@ void AddJoints(const RobotDescription& robot, const std::vector<int>& motors, co
     const auto motor = std::find(motors.begin(), motors.end(), j);
     if (motor != motors.end()) {
       joint.actuated = true;
-      joint.control = kBaseControlSize * model.num_bases() + static_cast<int>(motor - motors.begin());
+      joint.control = model.num_base_controls() + static_cast<int>(motor - motors.begin());
     }
     add(joint, false);
   }

@@ -83,7 +83,7 @@ SparseMatrixCol LateralRows(const Model& model, const Eigen::VectorXd& u, const 
   }
   Eigen::MatrixXd headings = Eigen::MatrixXd::Zero(m + X.rows(), static_cast<Eigen::Index>(differential.size()));
   for (size_t i = 0; i < differential.size(); ++i) {
-    headings.col(static_cast<Eigen::Index>(i)).head(m) = J_u.col(kBaseControlSize * differential[i] + 2);
+    headings.col(static_cast<Eigen::Index>(i)).head(m) = J_u.col(model.base_control(differential[i]) + 2);
   }
   const std::vector<bool> outside = OutsideRange(Stack(J_s, X.leftCols(n)), headings, threshold);
   Triplets t;
@@ -91,10 +91,10 @@ SparseMatrixCol LateralRows(const Model& model, const Eigen::VectorXd& u, const 
   for (size_t i = 0; i < differential.size(); ++i) {
     if (!outside[i]) continue;
     const int b = differential[i];
-    const double theta = u[kBaseControlSize * b + 2];
+    const double theta = u[model.base_control(b) + 2];
     for (size_t c = 0; c < effective.size(); ++c) {
-      if (effective[c] == kBaseControlSize * b) t.emplace_back(rows, n + static_cast<int>(c), -std::sin(theta));
-      if (effective[c] == kBaseControlSize * b + 1) t.emplace_back(rows, n + static_cast<int>(c), std::cos(theta));
+      if (effective[c] == model.base_control(b)) t.emplace_back(rows, n + static_cast<int>(c), -std::sin(theta));
+      if (effective[c] == model.base_control(b) + 1) t.emplace_back(rows, n + static_cast<int>(c), std::cos(theta));
     }
     ++rows;
   }

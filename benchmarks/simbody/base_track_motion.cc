@@ -20,7 +20,7 @@ void BaseTrackMotion::Segment(double t, Eigen::Vector3d* q0, Eigen::Vector3d* dq
   const double clamped = std::clamp(t, 0.0, static_cast<double>(last));
   const int k = static_cast<int>(std::floor(clamped));  // k == last at the track's end
   auto planar_q = [&](int i) {
-    const Eigen::Vector3d u = (*controls_)[i].segment<3>(kBaseControlSize * base_);
+    const Eigen::Vector3d u = (*controls_)[i].segment<3>(3 * base_);
     return Eigen::Vector3d(u.z(), u.x(), u.y());  // Planar's order: theta, x, y
   };
   *q0 = planar_q(k);

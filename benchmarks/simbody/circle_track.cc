@@ -23,7 +23,7 @@ CircleTrack MakeCircleTrack(const Model& model, CirclePlane plane, int steps, do
     const Eigen::Vector3d p_WE = model.end_effector.p_W_home + radius_m * offset;
     Eigen::VectorXd u = model.home_controls();
     for (const testing::Leg& leg : legs) {
-      u.segment<3>(kBaseControlSize * leg.base) =
+      u.segment<3>(3 * leg.base) =
           testing::BasePoseForLeg(model, leg, p_WE, Eigen::Matrix3d::Identity(), 0.0);
     }
     track.controls.push_back(u);

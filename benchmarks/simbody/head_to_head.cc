@@ -100,7 +100,7 @@ HeadToHeadResult RunHeadToHead(const Model& model, const HeadToHeadOptions& opti
   }
   // Mobilities (u), not q: a Ball keeps 4 q slots even in the Assembler's
   // Euler-angle mode. The bases' 3 each are prescribed.
-  result.simbody_free_mobilities = projected.getNU() - kBaseControlSize * model.num_bases();
+  result.simbody_free_mobilities = projected.getNU() - model.num_base_controls();
 
   ForwardProblem forward(model);
   ForwardOptions no_predictor_options;

@@ -7,8 +7,6 @@
 #include "cost_functions/actuated_revolute_cost.h"
 #include "cost_functions/body_frame.h"
 #include "cost_functions/fixed_joint_cost.h"
-#include "cost_functions/omni_base_motor_cost.h"
-#include "cost_functions/omni_base_planar_cost.h"
 #include "cost_functions/prismatic_joint_cost.h"
 #include "cost_functions/revolute_joint_cost.h"
 #include "cost_functions/spherical_joint_cost.h"
@@ -70,17 +68,20 @@ ConstraintSet::ConstraintSet(const Model& model)
     add(MakeJointCost(joint), {joint.body_a, joint.body_b}, -1, 0, label);
     if (joint.actuated) add(MakeActuatorCost(joint), {joint.body_a, joint.body_b}, joint.control, 1, label + " motor");
   }
-  for (int k = 0; k < model.num_bases(); ++k) {
-    const MobileBase& base = model.mobile_bases[k];
-    add(std::make_unique<OmniBasePlanarCost>(), {base.body}, -1, 0, base.name + " (planar)");
-    add(std::make_unique<OmniBaseMotorCost>(), {base.body}, kBaseControlSize * k, kBaseControlSize,
-        base.name + " (motor)");
+  int control = 0;
+  for (const MobileBase& base : model.mobile_bases) {
+    const BaseKind& kind = KindOf(base);
+    for (BaseConstraint& c : kind.Constraints(base, /*autodiff=*/false)) {
+      add(std::move(c.cost), {base.body}, c.reads_controls ? control : -1, c.reads_controls ? kind.num_controls() : 0,
+          base.name + " (" + c.part + ")");
+    }
+    control += kind.num_controls();
   }
   for (const ConstraintBlock& block : blocks_) {
     // The fixed-size scratch of EvaluateDerivatives and Energy relies on these bounds.
-    if (block.rows > 9 || block.bodies.size() > 2 || block.control_size > kBaseControlSize) {
+    if (block.rows > 9 || block.bodies.size() > 2 || block.control_size > kMaxBaseControls) {
       throw std::logic_error("ConstraintSet: block " + block.label + " exceeds 9 rows, 2 bodies or " +
-                             std::to_string(kBaseControlSize) + " controls");
+                             std::to_string(kMaxBaseControls) + " controls");
     }
   }
   BuildPatterns();
@@ -241,7 +242,7 @@ void AccumulateBlock(const ConstraintBlock& block, const ConstraintSet::BlockOff
     }
     out.G->segment<kT>(kT * block.bodies[p]).noalias() += J_body[p].transpose() * C_block;
   }
-  using ControlJacobian = Eigen::Matrix<double, Rows, Eigen::Dynamic, Eigen::RowMajor, Rows, kBaseControlSize>;
+  using ControlJacobian = Eigen::Matrix<double, Rows, Eigen::Dynamic, Eigen::RowMajor, Rows, kMaxBaseControls>;
   ControlJacobian J_control;
   if (block.control_size > 0) {
     J_control = Eigen::Map<const ControlJacobian>(jacobians[poses], Rows, block.control_size);

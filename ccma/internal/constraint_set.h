@@ -1,10 +1,11 @@
 // All constraints C(s, u) of a model: one analytic cost function per joint
-// (and its motor if actuated) and two per mobile base (planar, motor), built
-// once from the Model.
+// (and its motor if actuated) and the blocks of each mobile base's type
+// (ccma/base_kind.h: planar and motor for a wheeled base, one motor block for
+// a legged base), built once from the Model.
 //
 // Row layout of C: the blocks in `blocks()` order (joints in file order, each
-// followed by its motor when actuated, then per base its planar and motor
-// rows); block b starts at blocks()[b].row.
+// followed by its motor when actuated, then per base its type's blocks);
+// block b starts at blocks()[b].row.
 // The cost functions are owned here and shared with Ceres problems.
 #ifndef CCMA_INTERNAL_CONSTRAINT_SET_H_
 #define CCMA_INTERNAL_CONSTRAINT_SET_H_
@@ -30,7 +31,7 @@ struct ConstraintBlock {
   int num_poses = 0;        // bodies.size(), for the hot loops
   int frames[2] = {0, 0};   // their entries in BodyFrames (the ground's last); unused: 0
   // The control block it reads, if any: u[control_offset .. + control_size)
-  // (a mobile base's motor rows read its kBaseControlSize controls).
+  // (a mobile base's motor rows read its type's control block, at most kMaxBaseControls).
   int control_offset = -1;
   int control_size = 0;
   int row = 0;              // first row in C

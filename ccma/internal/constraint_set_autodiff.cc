@@ -10,8 +10,6 @@
 #include "cost_functions/actuated_prismatic_cost.h"
 #include "cost_functions/actuated_revolute_cost.h"
 #include "cost_functions/fixed_joint_cost.h"
-#include "cost_functions/omni_base_motor_cost.h"
-#include "cost_functions/omni_base_planar_cost.h"
 #include "cost_functions/prismatic_joint_cost.h"
 #include "cost_functions/revolute_joint_cost.h"
 #include "cost_functions/spherical_joint_cost.h"
@@ -54,9 +52,8 @@ std::vector<std::unique_ptr<ceres::CostFunction>> ConstraintSet::MakeAutoDiffTwi
     twins.push_back(MakeJointTwin(joint));
     if (joint.actuated) twins.push_back(MakeActuatorTwin(joint));
   }
-  for (int k = 0; k < model.num_bases(); ++k) {
-    twins.emplace_back(MakeOmniBasePlanarAutoDiff());
-    twins.emplace_back(MakeOmniBaseMotorAutoDiff());
+  for (const MobileBase& base : model.mobile_bases) {
+    for (BaseConstraint& c : KindOf(base).Constraints(base, /*autodiff=*/true)) twins.push_back(std::move(c.cost));
   }
   return twins;
 }

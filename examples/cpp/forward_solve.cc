@@ -28,18 +28,18 @@ int main(int argc, char** argv) {
     const ccma::Model model = ccma::LoadModel(path);  // throws ccma::ModelError("file:line: key: ...")
     ccma::ForwardProblem forward(model);               // keeps a reference: `model` must outlive it
 
-    // The controls u: 3 per mobile base, in file order: x [m], y [m], theta [rad];
+    // The controls u: per mobile base, in file order: x [m], y [m], theta [rad] (a legged base six);
     // then one per actuated joint (its coordinate q, rad or m). Home = the file's poses.
     Eigen::VectorXd u = model.home_controls();
 
     // Move the bases a little: each one 1 cm towards the bases' centre. The
     // formation shrinks, so the legs fold and the end-effector rises.
     Eigen::Vector2d centre = Eigen::Vector2d::Zero();
-    for (int k = 0; k < model.num_bases(); ++k) centre += u.segment<2>(ccma::kBaseControlSize * k);
+    for (int k = 0; k < model.num_bases(); ++k) centre += u.segment<2>(model.base_control(k));
     if (model.num_bases() > 0) centre /= model.num_bases();
     for (int k = 0; k < model.num_bases(); ++k) {
-      const Eigen::Vector2d to_centre = centre - u.segment<2>(ccma::kBaseControlSize * k);
-      if (to_centre.norm() > 0) u.segment<2>(ccma::kBaseControlSize * k) += 0.01 * to_centre.normalized();
+      const Eigen::Vector2d to_centre = centre - u.segment<2>(model.base_control(k));
+      if (to_centre.norm() > 0) u.segment<2>(model.base_control(k)) += 0.01 * to_centre.normalized();
     }
     // Motors (models such as stewart_gough_6ups have no bases): +0.01 rad or m each.
     for (const ccma::Joint& j : model.joints) {

@@ -134,9 +134,9 @@ int main(int argc, char** argv) {
       csv << "," << s.target.rpy.z();
       for (int i = 0; i < 3; ++i) csv << "," << s.reached.position[i];
       csv << "," << s.reached.rpy.z();
-      // The bases' x and y are their controls 3k and 3k+1.
+      // Each base's x and y are its first two controls.
       for (int k = 0; k < model.num_bases(); ++k) {
-        csv << "," << s.controls[ccma::kBaseControlSize * k] << "," << s.controls[ccma::kBaseControlSize * k + 1];
+        csv << "," << s.controls[model.base_control(k)] << "," << s.controls[model.base_control(k) + 1];
       }
       csv << "\n";
       ++rows;

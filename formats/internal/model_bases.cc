@@ -23,8 +23,7 @@ void ModelParser::ParseBases(const YAML::Node& bases_node, std::size_t num_bodie
     Body body;
     body.name = base.name;
     body.base_index = model_.num_bases();
-    body.p_WB_home = Eigen::Vector3d(base.home_pose.x(), base.home_pose.y(), 0.0);
-    body.R_WB_home = RotationZ(base.home_pose.z());
+    KindOf(base).HomeFrame(base, &body.R_WB_home, &body.p_WB_home);
     if (YamlReader::Has(bases[k], "meshes")) {
       body.meshes = ParseMeshes(bases[k]["meshes"], Indexed("mobile_bases", k) + ".meshes", body);
     }
@@ -37,23 +36,27 @@ void ModelParser::ParseBases(const YAML::Node& bases_node, std::size_t num_bodie
 
 MobileBase ModelParser::ParseBase(const YAML::Node& at, const std::string& path) {
   const YAML::Node node = r_.Map(at, path);
-  r_.CheckKeys(node, {"name", "type", "actuation", "pose", "wheels", "meshes", "radius", "mass", "com", "push_limit", "stiffness"}, path);
+  r_.CheckKeys(node, {"name", "type", "actuation", "pose", "wheels", "meshes", "radius", "mass", "com", "push_limit",
+                      "stiffness", "body_height", "body_limits", "footprint"},
+               path);
   MobileBase base;
   base.name = AddBodyName(r_.Require(node, "name", path), path + ".name");
   base.body = model_.num_bodies();
   if (YamlReader::Has(node, "type")) {
     const std::string type = r_.String(node["type"], path + ".type");
-    if (type == "differential") {
-      base.type = BaseType::kDifferential;
-    } else if (type != "omni") {
-      r_.Fail(node["type"], path + ".type",
-              "unknown base type " + Quote(type) + " (known: omni, differential)");
+    if (FindBaseKind(type, &base.type) == nullptr) {
+      r_.Fail(node["type"], path + ".type", "unknown base type " + Quote(type) + " (known: " + KnownBaseKinds() + ")");
     }
   }
-  ParseActuation(node, path, &base);
-  base.push_limit = ParsePushLimit(node, path);
-  base.stiffness = ParseBaseStiffness(node, path);
+  CheckTypeKeys(node, path, base.type);
   base.home_pose = r_.Vector3(r_.Require(node, "pose", path), path + ".pose", {"m", "m", "rad"});
+  if (base.type == BaseType::kLegged) {
+    base.legged = ParseLeggedBody(node, path);
+  } else {
+    ParseActuation(node, path, &base);
+    base.stiffness = ParseBaseStiffness(node, path);
+  }
+  base.push_limit = ParsePushLimit(node, path);
   if (YamlReader::Has(node, "wheels")) {
     if (base.type == BaseType::kDifferential) {
       base.differential = ParseDifferentialWheels(node["wheels"], path + ".wheels");
@@ -62,6 +65,22 @@ MobileBase ModelParser::ParseBase(const YAML::Node& at, const std::string& path)
     }
   }
   return base;
+}
+
+// The keys only one base type reads: given on another type, they are a
+// mistake (a legged base's `actuation`, an omni base's `body_height`).
+void ModelParser::CheckTypeKeys(const YAML::Node& node, const std::string& path, BaseType type) const {
+  const bool legged = type == BaseType::kLegged;
+  for (const char* key : {"body_height", "body_limits", "footprint"}) {
+    if (!legged && YamlReader::Has(node, key)) {
+      r_.Fail(node[key], path + "." + key, std::string("only legged bases have ") + key);
+    }
+  }
+  for (const char* key : {"actuation", "wheels", "stiffness"}) {
+    if (legged && YamlReader::Has(node, key)) {
+      r_.Fail(node[key], path + "." + key, std::string("is not a key of a legged base (all six controls are effective)"));
+    }
+  }
 }
 
 // A differential base's x, y and theta are all controls: complete, and

@@ -33,8 +33,9 @@ void ModelParser::ParseJoints(const YAML::Node& joints) {
     model_.joints.push_back(ParseJoint(node, path));
     model_.joints.back().name = named[j] ? node["name"].Scalar() : "joint" + std::to_string(j);
   }
-  // Controls: three per base, then one per actuated joint in file order.
-  int control = kBaseControlSize * model_.num_bases();
+  // Controls: each base's (three, six for a legged base), then one per
+  // actuated joint in file order.
+  int control = model_.num_base_controls();
   for (Joint& joint : model_.joints) {
     if (joint.actuated) joint.control = control++;
   }

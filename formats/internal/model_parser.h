@@ -92,6 +92,12 @@ class ModelParser {
   void ParseBases(const YAML::Node& bases_node, std::size_t num_bodies);
   MobileBase ParseBase(const YAML::Node& at, const std::string& path);
   void ParseActuation(const YAML::Node& node, const std::string& path, MobileBase* base) const;
+  void CheckTypeKeys(const YAML::Node& node, const std::string& path, BaseType type) const;
+
+  // model_legged.cc
+  LeggedBody ParseLeggedBody(const YAML::Node& node, const std::string& path) const;
+  ControlRange ParseBodyLimit(const YAML::Node& limits, const std::string& path, const char* key, double home,
+                              const char* unit) const;
 
   // model_wheels.cc
   DifferentialWheels ParseDifferentialWheels(const YAML::Node& node, const std::string& path) const;

@@ -30,8 +30,11 @@ void CountJointRows(const Joint& joint, int* rigid, int* springs) {
 
 // The stiffness of compliant control c (N/m or N*m/rad).
 double ControlStiffness(const Model& model, int c) {
-  if (c < kBaseControlSize * model.num_bases()) {
-    return model.mobile_bases[static_cast<size_t>(c / kBaseControlSize)].stiffness.k[c % kBaseControlSize];
+  int first = 0;
+  for (const MobileBase& base : model.mobile_bases) {
+    const int n = KindOf(base).num_controls();
+    if (c < first + n) return c - first < 3 ? base.stiffness.k[c - first] : 0.0;
+    first += n;
   }
   for (const Joint& joint : model.joints) {
     if (joint.actuated && joint.control == c) return joint.stiffness.axis;
@@ -44,8 +47,9 @@ double ControlStiffness(const Model& model, int c) {
 std::vector<int> CompliantEquilibrium::CompliantControls(const Model& model) {
   std::vector<int> out;
   for (int b = 0; b < model.num_bases(); ++b) {
+    // (Only wheeled bases have `stiffness`: x, y, theta.)
     if (!model.mobile_bases[static_cast<size_t>(b)].stiffness.given()) continue;
-    for (int i = 0; i < kBaseControlSize; ++i) out.push_back(kBaseControlSize * b + i);
+    for (int i = 0; i < 3; ++i) out.push_back(model.base_control(b) + i);
   }
   for (const Joint& joint : model.joints) {
     if (joint.actuated && joint.stiffness.axis > 0) out.push_back(joint.control);

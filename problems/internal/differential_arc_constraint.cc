@@ -7,13 +7,21 @@
 #include "ccma/rotation.h"
 
 namespace ccma {
+namespace {
+
+std::vector<int> FirstControlsOf(const Model& model, std::vector<int> bases) {
+  for (int& k : bases) k = model.base_control(k);
+  return bases;
+}
+
+}  // namespace
 
 DifferentialArcConstraint::DifferentialArcConstraint(const Model& model, std::vector<int> bases,
                                                      std::vector<int> column_of)
-    : bases_(std::move(bases)), column_of_(std::move(column_of)), u0_(model.home_controls()) {}
+    : bases_(FirstControlsOf(model, std::move(bases))), column_of_(std::move(column_of)), u0_(model.home_controls()) {}
 
-double DifferentialArcConstraint::Lateral(const Eigen::VectorXd& u, int base, Eigen::Vector3d* gradient) const {
-  const int i = kBaseControlSize * base;
+double DifferentialArcConstraint::Lateral(const Eigen::VectorXd& u, int first, Eigen::Vector3d* gradient) const {
+  const int i = first;
   const double dx = u[i] - u0_[i], dy = u[i + 1] - u0_[i + 1];
   const double mid = u0_[i + 2] + 0.5 * WrapAngle(u[i + 2] - u0_[i + 2]);
   const double s = std::sin(mid), c = std::cos(mid);
@@ -35,7 +43,7 @@ void DifferentialArcConstraint::AppendRows(const Eigen::VectorXd& u, const State
     Eigen::Vector3d gradient;
     rows->b[row] = -Lateral(u, base, &gradient);
     for (int c = 0; c < 3; ++c) {
-      const int column = column_of_[static_cast<size_t>(kBaseControlSize * base + c)];
+      const int column = column_of_[static_cast<size_t>(base + c)];
       if (column >= 0) rows->A(row, column) = gradient[c];
     }
     ++row;

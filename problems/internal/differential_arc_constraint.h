@@ -34,9 +34,10 @@ class DifferentialArcConstraint final : public StepConstraint {
 
  private:
   // l(u) of one base [m] and, if asked, dl/d(x, y, theta).
-  double Lateral(const Eigen::VectorXd& u, int base, Eigen::Vector3d* gradient) const;
+  // first: the index into u of the base's x.
+  double Lateral(const Eigen::VectorXd& u, int first, Eigen::Vector3d* gradient) const;
 
-  const std::vector<int> bases_;
+  const std::vector<int> bases_;  // the index into u of each base's x
   const std::vector<int> column_of_;
   Eigen::VectorXd u0_;
 };

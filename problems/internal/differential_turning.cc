@@ -28,7 +28,7 @@ bool DifferentialTurning::FaceTheMotion(const PoseTarget& target, Eigen::VectorX
   const std::vector<int>& column = p_.workspace_->effective_column;
   bool turned = false;
   for (int k : differential) {
-    const int i = kBaseControlSize * k;
+    const int i = model.base_control(k);
     if (column[i] < 0 || column[i + 1] < 0) continue;
     const double dx = d[column[i]], dy = d[column[i + 1]];
     if (std::hypot(dx, dy) < 1e-9) continue;

@@ -26,9 +26,10 @@ double Wrapped(double d) { return std::abs(d) <= M_PI ? d : std::remainder(d, 2 
 bool PlanarRigidMotionBetween(const Model& model, const Eigen::VectorXd& u_old, const Eigen::VectorXd& u_new,
                               PlanarRigidMotion* motion) {
   const int num_bases = model.num_bases();
+  const int base_controls = model.num_base_controls();
   // (Sizes against the bases only: Model::num_controls() counts the joints,
   // and the caller has checked u against the model.)
-  if (num_bases == 0 || u_old.size() < kBaseControlSize * num_bases || u_new.size() != u_old.size()) return false;
+  if (num_bases == 0 || u_old.size() < base_controls || u_new.size() != u_old.size()) return false;
   // One pass (this runs before every formation step): the largest change
   // of a control [m or rad], headings the short way round; the largest
   // magnitude; and a probe that is 0 when every control is finite, NaN if not.
@@ -36,8 +37,10 @@ bool PlanarRigidMotionBetween(const Model& model, const Eigen::VectorXd& u_old, 
   const double* a = u_old.data();
   const double* b = u_new.data();
   double change = 0, scale = 0, probe = 0;
+  int base = 0, first = 0;  // the base whose heading comes next, and its first control
   for (int i = 0; i < n; ++i) {
-    const bool heading = i < kBaseControlSize * num_bases && i % kBaseControlSize == 2;
+    const bool heading = base < num_bases && i == first + kBaseHeading;
+    if (heading) first += KindOf(model.mobile_bases[static_cast<size_t>(base++)]).num_controls();
     const double d = b[i] - a[i];
     change = std::max(change, std::abs(heading ? Wrapped(d) : d));
     scale = std::max(scale, std::max(std::abs(a[i]), std::abs(b[i])));
@@ -52,15 +55,20 @@ bool PlanarRigidMotionBetween(const Model& model, const Eigen::VectorXd& u_old, 
   Eigen::Matrix2d R = Eigen::Matrix2d::Identity();
   if (dtheta != 0) R = Eigen::Rotation2Dd(dtheta).toRotationMatrix();
   const Eigen::Vector2d t = u_new.head<2>() - R * u_old.head<2>();
-  for (int k = 0; k < num_bases; ++k) {
-    const int i = kBaseControlSize * k;
+  int i = 0;
+  for (const MobileBase& b : model.mobile_bases) {
     const Eigen::Vector2d moved = R * u_old.segment<2>(i) + t;
     if (std::abs(moved.x() - u_new[i]) > tolerance || std::abs(moved.y() - u_new[i + 1]) > tolerance ||
         std::abs(Wrapped(u_new[i + 2] - u_old[i + 2] - dtheta)) > tolerance) {
       return false;
     }
+    // A legged base's height, roll and pitch turn with the body: they must stay.
+    const int next = i + KindOf(b).num_controls();
+    for (i += 3; i < next; ++i) {
+      if (std::abs(u_new[i] - u_old[i]) > tolerance) return false;
+    }
   }
-  for (int i = kBaseControlSize * num_bases; i < u_old.size(); ++i) {
+  for (; i < u_old.size(); ++i) {
     if (std::abs(u_new[i] - u_old[i]) > tolerance) return false;  // an actuated joint moved: not rigid
   }
   motion->dtheta = dtheta;

@@ -66,7 +66,7 @@ void SecondaryObjectiveTerms::AddSpread(bool with_gradient) {
   const double root = std::sqrt(sec.spread_weight);
   for (int i = 0; i < model.num_bases(); ++i) {
     for (int j = i + 1; j < model.num_bases(); ++j) {
-      const int a = kBaseControlSize * i, b = kBaseControlSize * j;
+      const int a = model.base_control(i), b = model.base_control(j);
       const Eigen::Vector2d d_ij(u[a] - u[b], u[a + 1] - u[b + 1]);
       const double distance = d_ij.norm();
       if (distance >= sec.clearance_m) continue;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "problems/internal/base_control_limit_constraint.h"
 #include "problems/internal/clearance_constraint.h"
 #include "problems/internal/differential_arc_constraint.h"
 #include "problems/internal/effort_limit_constraint.h"
@@ -20,11 +21,15 @@ StepConstraints::StepConstraints(const Model& model, const std::vector<int>& eff
   for (int j = 0; j < static_cast<int>(model.joints.size()); ++j) {
     if (model.joints[j].limited) limited.push_back(j);
   }
+  std::vector<LimitedBaseControl> limited_controls = LimitedBaseControls(model, column_of);
   // The order of the rows: arcs, limits, clearance, efforts. A new kind: one line here.
   if (!differential.empty()) {
     constraints_.push_back(std::make_unique<DifferentialArcConstraint>(model, differential, column_of));
   }
   if (!limited.empty()) constraints_.push_back(std::make_unique<JointLimitConstraint>(model, limited));
+  if (!limited_controls.empty()) {
+    constraints_.push_back(std::make_unique<BaseControlLimitConstraint>(std::move(limited_controls)));
+  }
   if (model.collision.enabled) constraints_.push_back(std::make_unique<ClearanceConstraint>(model));
   if (HasEffortLimits(model)) constraints_.push_back(std::make_unique<EffortLimitConstraint>(model, effective));
   for (const auto& c : constraints_) num_items_ += c->num_items();

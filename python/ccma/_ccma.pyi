@@ -59,7 +59,8 @@ class Body:
         """<ccma.Body 'name'>."""
 
 class MobileBase:
-    """A mobile base: 3 controls x [m], y [m], theta [rad]. Read-only; not constructible from Python."""
+    """A mobile base: controls x [m], y [m], theta [rad]; a legged base also height [m], roll, pitch [rad].
+    Read-only; not constructible from Python."""
 
     @property
     def name(self) -> str:
@@ -68,8 +69,15 @@ class MobileBase:
     def body(self) -> int:
         """Index into Model.bodies."""
     @property
-    def type(self) -> Literal["omni", "differential"]:
-        """'omni' or 'differential'."""
+    def type(self) -> Literal["omni", "differential", "legged"]:
+        """'omni', 'differential' or 'legged'."""
+    @property
+    def control_names(self) -> list[str]:
+        """Its controls in the order of u, with units ('x_m', 'y_m', 'theta_rad'; a legged base also
+        'height_m', 'roll_rad', 'pitch_rad')."""
+    @property
+    def body_height(self) -> float:
+        """A legged base's home body height [m] (0 for wheeled bases)."""
     @property
     def actuation(self) -> Literal["complete", "reduced"]:
         """'complete' or 'reduced' (reduced: its heading is no control)."""
@@ -187,7 +195,9 @@ class Model:
         """Number of mobile bases."""
     @property
     def num_controls(self) -> int:
-        """3 per mobile base plus one per actuated joint."""
+        """3 per mobile base (6 per legged base) plus one per actuated joint."""
+    def base_control(self, k: int) -> int:
+        """Index into the controls of base k's x (its block: len(mobile_bases[k].control_names) values)."""
     @property
     def num_constraints(self) -> int:
         """Rows of C (joints + 9 per base)."""

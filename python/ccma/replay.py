@@ -38,10 +38,11 @@ def _bases_table(model, a):
     """bases.csv of `ccma replay`: set and true pose of every base, the actuated joints."""
     columns = {"time_s": a["time"]}
     for k in range(model.num_bases):
+        first = model.base_control(k)
         for c, name in enumerate(("x_m", "y_m", "theta_rad")):
-            columns["set%d_%s" % (k, name)] = a["set_controls"][:, 3 * k + c]
+            columns["set%d_%s" % (k, name)] = a["set_controls"][:, first + c]
         for c, name in enumerate(("x_m", "y_m", "theta_rad")):
-            columns["base%d_%s" % (k, name)] = a["true_controls"][:, 3 * k + c]
+            columns["base%d_%s" % (k, name)] = a["true_controls"][:, first + c]
     for joint in model.joints:
         if joint.actuated:
             unit = "rad" if joint.type == "revolute" else "m"

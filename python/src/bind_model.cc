@@ -16,7 +16,6 @@ namespace py = pybind11;
 namespace ccma::python {
 namespace {
 
-const char* BaseTypeName(BaseType type) { return type == BaseType::kOmni ? "omni" : "differential"; }
 const char* ActuationName(Actuation a) { return a == Actuation::kComplete ? "complete" : "reduced"; }
 
 // The controlled components' names ("x", "y", "z", "roll", "pitch", "yaw").
@@ -45,16 +44,28 @@ void BindParts(py::module_& m) {
       .def_readonly("base_index", &Body::base_index, "index into Model.mobile_bases, or -1")
       .def_property_readonly("is_mobile_base", &Body::is_mobile_base)
       .def("__repr__", [](const Body& b) { return "<ccma.Body '" + b.name + "'>"; });
-  py::class_<MobileBase>(m, "MobileBase", "A mobile base: 3 controls x [m], y [m], theta [rad].")
+  py::class_<MobileBase>(m, "MobileBase",
+                         "A mobile base: controls x [m], y [m], theta [rad]; a legged base also height [m], "
+                         "roll [rad], pitch [rad].")
       .def_readonly("name", &MobileBase::name)
       .def_readonly("body", &MobileBase::body, "index into Model.bodies")
-      .def_property_readonly("type", [](const MobileBase& b) { return BaseTypeName(b.type); },
-                             "'omni' or 'differential'")
+      .def_property_readonly("type", [](const MobileBase& b) { return KindOf(b).name(); },
+                             "'omni', 'differential' or 'legged'")
+      .def_property_readonly(
+          "control_names",
+          [](const MobileBase& b) {
+            std::vector<std::string> names;
+            for (const BaseControl& c : KindOf(b).controls()) names.push_back(std::string(c.name) + "_" + c.unit);
+            return names;
+          },
+          "its controls in the order of u, with units ('x_m', 'y_m', 'theta_rad', ...)")
+      .def_property_readonly("body_height", [](const MobileBase& b) { return b.legged.height; },
+                             "a legged base's home body height [m] (0 for wheeled bases)")
       .def_property_readonly("actuation", [](const MobileBase& b) { return ActuationName(b.actuation); },
                              "'complete' or 'reduced' (reduced: its heading is no control)")
       .def_readonly("home_pose", &MobileBase::home_pose, "x [m], y [m], theta [rad] at home")
       .def("__repr__", [](const MobileBase& b) {
-        return "<ccma.MobileBase '" + b.name + "' " + BaseTypeName(b.type) + ">";
+        return "<ccma.MobileBase '" + b.name + "' " + KindOf(b).name() + ">";
       });
   py::class_<Joint>(m, "Joint", "A joint of the passive chain between bodies A and B (-1 = world).")
       .def_readonly("name", &Joint::name)
@@ -88,7 +99,7 @@ void BindParts(py::module_& m) {
 void BindModelClass(py::module_& m) {
   py::class_<Model>(m, "Model",
                     "A loaded mechanism: constant, shared by every problem built on it "
-                    "(ccma.load_model). Controls: 3 per mobile base (x [m], y [m], theta [rad]), "
+                    "(ccma.load_model). Controls: 3 per mobile base (x [m], y [m], theta [rad]; 6 per legged base: also height [m], roll, pitch [rad]), "
                     "then one per actuated joint [rad or m].")
       .def_readonly("name", &Model::name)
       .def_readonly("description", &Model::description)
@@ -100,6 +111,7 @@ void BindModelClass(py::module_& m) {
       .def_property_readonly("num_bodies", &Model::num_bodies)
       .def_property_readonly("num_bases", &Model::num_bases)
       .def_property_readonly("num_controls", &Model::num_controls)
+      .def("base_control", &Model::base_control, py::arg("k"), "index into the controls of base k's x")
       .def_property_readonly("num_constraints", &Model::num_constraints, "rows of C")
       .def_property_readonly("state_size", &Model::state_size, "6 per body (tangent size)")
       .def_property_readonly("home_controls", &Model::home_controls, "controls at home (NumPy vector)")

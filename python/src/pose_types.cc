@@ -71,7 +71,7 @@ State StateFromArray(const Model& model, const Eigen::Ref<const StateArray>& a) 
 void CheckControls(const Model& model, const Eigen::VectorXd& u) {
   if (u.size() != model.num_controls()) {
     throw std::invalid_argument("controls: expected " + std::to_string(model.num_controls()) +
-                                " values (3 per mobile base, then 1 per actuated joint), got " +
+                                " values (3 per mobile base, 6 per legged base, then 1 per actuated joint), got " +
                                 std::to_string(u.size()));
   }
   for (Eigen::Index i = 0; i < u.size(); ++i) {

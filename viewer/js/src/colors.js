@@ -1,6 +1,6 @@
 // One palette for the 3D scene and its legend. Each thing a researcher must
 // tell apart gets its own hue: links grey, joints dark slate, actuated joints
-// amber, omni bases blue, differential bases teal; the paths green (commanded),
+// amber, omni bases blue, differential bases teal, legged bases brown; the paths green (commanded),
 // violet (tracked) and dark blue (bases); flagged frames red; the end-effector
 // frame the usual x red, y green, z blue; a workspace map's unreachable
 // points grey (its reachable ones take the sigma_min ramp of workspace.js);
@@ -16,6 +16,7 @@ export const COLORS = {
   actuated: 0xf0a202,
   omni: 0x4a90d9,
   differential: 0x16a394,
+  legged: 0xb45309,
   wheel: 0x2b2f36,
   heading: 0x1e293b,
   commanded: 0x16a34a,

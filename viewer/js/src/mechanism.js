@@ -17,6 +17,31 @@ const SIZE = {
   frame: 0.2,        // end-effector arrows' length
 };
 
+// A legged base: a body box of its footprint at the body frame (tilting with
+// it), four legs from the box's corners down the body's -z by the home body
+// height (they reach the floor at home), an arrow along the heading.
+function leggedShape(body, u) {
+  const group = new Group();
+  const [length, width] = body.footprint || [0.6, 0.3];
+  const thickness = 0.25 * width;
+  const mat = material(COLORS.legged, { roughness: 0.7 });
+  const box = new Mesh(new BoxGeometry(length, width, thickness), mat);
+  group.add(box);
+  const legMat = material(COLORS.wheel, { roughness: 0.9 });
+  const legLength = body.body_height > 0 ? body.body_height : 0.4;
+  const r = Math.max(0.08 * width, 0.004 * u);
+  for (const sx of [-1, 1]) {
+    for (const sy of [-1, 1]) {
+      const leg = new Mesh(new CylinderGeometry(r, 0.7 * r, legLength, 12), legMat);
+      leg.rotation.x = Math.PI / 2;  // cylinder axis (y) -> body z
+      leg.position.set(0.4 * sx * length, 0.4 * sy * width, -legLength / 2);
+      group.add(leg);
+    }
+  }
+  group.add(arrow([0, 0, thickness / 2], [1, 0, 0], 0.75 * length, Math.max(0.03 * width, 0.004 * u), COLORS.heading));
+  return group;
+}
+
 // A mobile base: a flat disc on the ground (its axis the body's z, its bottom
 // at the body origin), an arrow along the heading (body +x) and, for a
 // differential drive, its two wheels on the body y axis.
@@ -48,9 +73,10 @@ function baseShape(body, u) {
 function bodyGroup(body, u, geometries, meshes) {
   const group = new Group();
   group.name = body.name;
-  const isBase = body.kind === 'omni' || body.kind === 'differential';
-  if (isBase) group.add(baseShape(body, u));
-  const color = !isBase ? COLORS.link : body.kind === 'differential' ? COLORS.differential : COLORS.omni;
+  const isBase = body.kind === 'omni' || body.kind === 'differential' || body.kind === 'legged';
+  if (body.kind === 'legged') group.add(leggedShape(body, u));
+  else if (isBase) group.add(baseShape(body, u));
+  const color = !isBase ? COLORS.link : COLORS[body.kind];
   const mat = material(color);
   const own = addBodyMeshes(group, body, geometries);
   meshes.push(...own);

@@ -95,6 +95,7 @@ function legend(scene, gridStep, cloud) {
   const joints = scene.joints || [];
   if (kinds.has('omni')) item('block', [COLORS.omni], 'omni base (arrow: heading)');
   if (kinds.has('differential')) item('block', [COLORS.differential], 'differential base (arrow: heading)');
+  if (kinds.has('legged')) item('block', [COLORS.legged], 'legged base: body box on four legs (arrow: heading)');
   const withMeshes = scene.bodies.filter((b) => (b.meshes || []).length > 0).length;
   if (withMeshes < scene.bodies.length && !scene.loads) item('block', [COLORS.link], 'link');
   if (withMeshes > 0 && !scene.loads) item('block', [COLORS.mesh], 'body mesh (STL)');

@@ -1,0 +1,270 @@
+// Legged bases (docs/model_format.md, "Legged agents"): closed forms of a
+// body pose driven by six controls, the loader's messages, body limits held
+// by simulate and control, and the tool's columns.
+#include <cmath>
+#include <fstream>
+#include <random>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <Eigen/Geometry>
+#include <nlohmann/json.hpp>
+
+#include "analyses/statics.h"
+#include "ccma/rotation.h"
+#include "cost_functions/legged_base_motor_cost.h"
+#include "formats/model_loader.h"
+#include "problems/control_problem.h"
+#include "problems/forward_problem.h"
+#include "model_text.h"
+#include "tool_run.h"
+
+namespace ccma {
+namespace {
+
+// One quadruped at (0.2, -0.1) heading 0.3, body 0.45 m high, carrying a
+// mast welded to its body; the end-effector at the mast's tip.
+const char* kMastModel = R"(name: mast_on_a_dog
+bodies:
+  - {name: mast, position: [0.25, -0.05, 0.8]}
+mobile_bases:
+  - {name: dog, type: legged, pose: [0.2, -0.1, 0.3], body_height: 0.45}
+joints:
+  - {type: fixed, between: [dog, mast], point: [0.2, -0.1, 0.55]}
+end_effector: {body: mast, point: [0.4, 0.05, 1.1], controlled: [x, y, z, roll, pitch, yaw]}
+)";
+
+Eigen::Matrix3d BodyRotation(const Eigen::VectorXd& u) {
+  return RotationZ(u[2]) * Eigen::AngleAxisd(u[5], Eigen::Vector3d::UnitY()).toRotationMatrix() *
+         Eigen::AngleAxisd(u[4], Eigen::Vector3d::UnitX()).toRotationMatrix();
+}
+
+TEST(LeggedBase, AMastTipIsWhereTheBodyPoseSays) {
+  const Model model = LoadModelFromString(kMastModel, "mast.yaml");
+  ASSERT_EQ(model.num_controls(), 6);
+  EXPECT_EQ(model.effective_control_indices().size(), 6u);
+  const Eigen::Vector3d p_home(0.2, -0.1, 0.45), tip_home(0.4, 0.05, 1.1);
+  const Eigen::Matrix3d R_home = RotationZ(0.3);
+  const Eigen::Vector3d tip_B = R_home.transpose() * (tip_home - p_home);
+  ForwardProblem forward(model);
+  std::mt19937 rng(2026);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  for (int trial = 0; trial < 20; ++trial) {
+    Eigen::VectorXd u(6);
+    u << 0.2 + 0.3 * unit(rng), -0.1 + 0.3 * unit(rng), 0.3 + 2.0 * unit(rng), 0.45 + 0.1 * unit(rng),
+        0.4 * unit(rng), 0.4 * unit(rng);
+    ASSERT_TRUE(forward.Assemble(u).converged) << trial;
+    const Eigen::Matrix3d R = BodyRotation(u);
+    const Eigen::Vector3d expected = Eigen::Vector3d(u[0], u[1], u[3]) + R * tip_B;
+    EXPECT_LT((forward.end_effector().position - expected).norm(), 1e-12) << trial;
+    // R_EE = R_body(now) R_body(home)^T (the end-effector body is welded).
+    EXPECT_LT((forward.end_effector().rotation - R * R_home.transpose()).norm(), 1e-12) << trial;
+  }
+}
+
+TEST(LeggedBase, StaticsReportsTheWrenchTheBodyExertsOnTheChain) {
+  // A 2 kg mast: the body holds its weight, force (0, 0, m g), with the
+  // moment (c - p_body) x (0, 0, m g) about the body origin, tilted or not.
+  std::string text = kMastModel;
+  const std::string mast = "position: [0.25, -0.05, 0.8]}";
+  text.replace(text.find(mast), mast.size(), "position: [0.25, -0.05, 0.8], mass: 2.0, com: [0.4, 0.05, 1.0]}");
+  const Model model = LoadModelFromString(text, "mast.yaml");
+  ForwardProblem forward(model);
+  Eigen::VectorXd u(6);
+  u << 0.3, 0.1, -0.7, 0.5, 0.2, -0.15;
+  ASSERT_TRUE(forward.Assemble(u).converged);
+  const StaticsReport report = ComputeStatics(model, forward.state(), u, ExternalWrench{});
+  const Eigen::Vector3d p_home(0.2, -0.1, 0.45), c_home(0.4, 0.05, 1.0);
+  const Eigen::Vector3d c_W = Eigen::Vector3d(u[0], u[1], u[3]) + BodyRotation(u) * RotationZ(0.3).transpose() * (c_home - p_home);
+  const Eigen::Vector3d force(0, 0, 2.0 * 9.81);
+  const Eigen::Vector3d moment = (c_W - Eigen::Vector3d(u[0], u[1], u[3])).cross(force);
+  ASSERT_EQ(report.actuators.size(), 6u);
+  const char* kinds[6] = {"base_force_x", "base_force_y", "base_force_z", "base_moment_x", "base_moment_y", "base_moment_z"};
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_STREQ(ActuatorKindName(report.actuators[static_cast<size_t>(i)].kind), kinds[i]);
+    const double expected = i < 3 ? force[i] : moment[i - 3];
+    EXPECT_NEAR(report.actuators[static_cast<size_t>(i)].effort, expected, 1e-10) << kinds[i];
+  }
+}
+
+// Controls of 6dof_three_legged with every body raised by dh.
+Eigen::VectorXd Raised(const Model& model, double dh) {
+  Eigen::VectorXd u = model.home_controls();
+  for (int k = 0; k < model.num_bases(); ++k) u[model.base_control(k) + 3] += dh;
+  return u;
+}
+
+TEST(LeggedBase, APlatformOnThreeRisesExactlyByTheirCommonHeightChange) {
+  const Model model = LoadModel(testing::ModelPath("6dof_three_legged"));
+  ASSERT_EQ(model.num_controls(), 18);
+  ForwardProblem forward(model);
+  const Eigen::Vector3d home = forward.end_effector().position;
+  for (const double dh : {-0.12, -0.05, 0.03, 0.1}) {
+    ASSERT_TRUE(forward.Assemble(Raised(model, dh)).converged) << dh;
+    EXPECT_LT((forward.end_effector().position - home - Eigen::Vector3d(0, 0, dh)).norm(), 1e-12) << dh;
+    EXPECT_LT((forward.end_effector().rotation - Eigen::Matrix3d::Identity()).norm(), 1e-12) << dh;
+  }
+}
+
+// Three quadrupeds, each holding a ball on a post 0.1 m above its body; the
+// balls sit in sleeves that slide along radial rails of a platform. Every
+// ball lies on its rail, in the platform's plane: the platform tilts to the
+// plane through the three balls, whatever the heights.
+std::string RailsModel() {
+  std::string bodies = "bodies:\n  - {name: plate, position: [0, 0, 0.55]}\n";
+  std::string bases = "mobile_bases:\n", joints = "joints:\n";
+  for (int i = 0; i < 3; ++i) {
+    const double a = 2 * M_PI * i / 3 + M_PI / 2, c = 0.6 * std::cos(a), s = 0.6 * std::sin(a);
+    const std::string n = std::to_string(i), p = "[" + std::to_string(c) + ", " + std::to_string(s) + ", 0.55]";
+    bodies += "  - {name: sleeve" + n + ", position: " + p + "}\n";
+    bases += "  - {name: dog" + n + ", type: legged, pose: [" + std::to_string(c) + ", " + std::to_string(s) +
+             ", 0], body_height: 0.45}\n";
+    joints += "  - {type: prismatic, between: [plate, sleeve" + n + "], point: " + p + ", axis: [" +
+              std::to_string(c) + ", " + std::to_string(s) + ", 0]}\n";
+    joints += "  - {type: spherical, between: [sleeve" + n + ", dog" + n + "], point: " + p + "}\n";
+  }
+  return "name: rails\n" + bodies + bases + joints +
+         "end_effector: {body: plate, point: [0, 0, 0.55], controlled: [x, y, z, roll, pitch, yaw]}\n";
+}
+
+TEST(LeggedBase, APlatformTiltsToThePlaneThroughItsCarriersBalls) {
+  const Model model = LoadModelFromString(RailsModel(), "rails.yaml");
+  ForwardProblem forward(model);
+  Eigen::VectorXd u = model.home_controls();
+  const double heights[3] = {0.40, 0.47, 0.52};
+  Eigen::Vector3d ball[3];
+  for (int k = 0; k < 3; ++k) {
+    const int i = model.base_control(k);
+    u[i + 3] = heights[k];
+    ball[k] = Eigen::Vector3d(u[i], u[i + 1], heights[k] + 0.1);
+  }
+  ASSERT_TRUE(forward.Assemble(u).converged);
+  const Eigen::Vector3d normal = (ball[1] - ball[0]).cross(ball[2] - ball[0]).normalized();
+  const Eigen::Vector3d z_plate = forward.end_effector().rotation.col(2);
+  EXPECT_LT((z_plate - normal).norm(), 1e-12) << z_plate.transpose() << " vs " << normal.transpose();
+  EXPECT_GT(std::acos(normal.z()), 0.05);  // a real tilt, not the home plane
+}
+
+TEST(LeggedBase, ControlHoldsTheBodyLimitsAndNamesThem) {
+  const Model model = LoadModel(testing::ModelPath("6dof_three_legged"));
+  ControlProblem control(model);
+  PoseTarget target;
+  target.position = Eigen::Vector3d(0, 0, 1.6);  // beyond every body's reach
+  const ControlResult r = control.MoveTo(target);
+  EXPECT_FALSE(r.converged);
+  EXPECT_NE(r.warning.find("base 'dog0' height at its upper limit 0.55 m"), std::string::npos) << r.warning;
+  for (int k = 0; k < model.num_bases(); ++k) {
+    EXPECT_LE(control.controls()[model.base_control(k) + 3], 0.55 + 1e-9);
+  }
+}
+
+TEST(LeggedBase, ControlReachesTargetsOfAllSixComponents) {
+  const Model model = LoadModel(testing::ModelPath("6dof_three_legged"));
+  ControlProblem control(model);
+  PoseTarget target;
+  target.position = Eigen::Vector3d(0.05, 0.03, 1.0);
+  target.rpy = Eigen::Vector3d(0.05, -0.04, 0.1);
+  const ControlResult r = control.MoveTo(target);
+  EXPECT_TRUE(r.converged) << r.warning;
+  EXPECT_LT((control.forward().end_effector().position - target.position).norm(), 1e-9);
+  EXPECT_LT((control.forward().end_effector().rpy - target.rpy).norm(), 1e-9);
+}
+
+TEST(LeggedBase, MalformedKeysAreRejectedWithTheirPath) {
+  const std::string base = "{name: dog, type: legged, pose: [0.2, -0.1, 0.3], body_height: 0.45}";
+  auto with = [&](const std::string& replacement) {
+    std::string text = kMastModel;
+    text.replace(text.find(base), base.size(), replacement);
+    return testing::LoadErrorOf(text);
+  };
+  EXPECT_NE(with("{name: dog, type: legged, pose: [0.2, -0.1, 0.3]}").find("body_height"), std::string::npos);
+  EXPECT_NE(with("{name: dog, type: legged, pose: [0.2, -0.1, 0.3], body_height: -0.1}").find("must be > 0"),
+            std::string::npos);
+  EXPECT_NE(with("{name: dog, type: legged, pose: [0.2, -0.1, 0.3], body_height: 0.45, body_limits: {height: "
+                 "[0.5, 0.6]}}")
+                .find("mobile_bases[0].body_limits.height: must contain the home value 0.45"),
+            std::string::npos);
+  EXPECT_NE(with("{name: dog, type: legged, pose: [0.2, -0.1, 0.3], body_height: 0.45, body_limits: {roll: [0.1, "
+                 "0.2]}}")
+                .find("body_limits.roll"),
+            std::string::npos);
+  EXPECT_NE(with("{name: dog, type: legged, pose: [0.2, -0.1, 0.3], body_height: 0.45, actuation: reduced}")
+                .find("mobile_bases[0].actuation: is not a key of a legged base"),
+            std::string::npos);
+  EXPECT_NE(with("{name: dog, type: legged, pose: [0.2, -0.1, 0.3], body_height: 0.45, footprint: [0.7]}")
+                .find("footprint"),
+            std::string::npos);
+  EXPECT_NE(with("{name: dog, type: omni, actuation: complete, pose: [0.2, -0.1, 0.3], body_height: 0.45}")
+                .find("only legged bases have body_height"),
+            std::string::npos);
+  EXPECT_NE(with("{name: dog, type: walking, pose: [0.2, -0.1, 0.3]}").find("known: omni, differential, legged"),
+            std::string::npos);
+}
+
+TEST(LeggedBase, SimulateRefusesControlsOutsideTheBodyLimits) {
+  const std::string model = testing::ModelPath("6dof_three_legged");
+  const testing::ToolRun run = testing::RunTool(
+      {"simulate", "--model=" + model,
+       "--controls=0,0.9,-1.5707963,0.6,0,0,-0.779422863,-0.45,0.523598776,0.45,0,0,0.779422863,-0.45,2.617993878,0.45,0,0"});
+  EXPECT_EQ(run.status, 2);
+  EXPECT_TRUE(run.out.empty());
+  EXPECT_NE(run.err.find("base 'dog0' height outside its limits [0.3, 0.55]"), std::string::npos) << run.err;
+}
+
+TEST(LeggedBase, TrajectoryColumnsCarrySixControlsPerLeggedBase) {
+  const std::string path = testing::ScratchPath("legged", "up.csv");
+  std::ofstream(path) << "time,x,y,z,roll,pitch,yaw\n0,0,0,0.95,0,0,0\n1,0,0,0.98,0,0,0.05\n";
+  const std::string out = testing::ScratchPath("legged", "out.csv");
+  const testing::ToolRun run =
+      testing::RunTool({"trajectory", "--model=" + testing::ModelPath("6dof_three_legged"), "--waypoints=" + path, "--out=" + out});
+  ASSERT_EQ(run.status, 0) << run.err;
+  const std::string csv = testing::Slurp(out);
+  EXPECT_NE(csv.find("u0_x_m,u0_y_m,u0_theta_rad,u0_height_m,u0_roll_rad,u0_pitch_rad,u1_x_m"), std::string::npos)
+      << csv.substr(0, 400);
+}
+
+// Replay of a short walk: the gait's share of the error is reported, and it
+// vanishes with the gait's amplitudes.
+nlohmann::json ReplayWalk(const std::vector<std::string>& extra) {
+  const std::string path = testing::ScratchPath("legged", "walk.csv");
+  std::ofstream(path) << "time,x,y,z,roll,pitch,yaw\n0,0,0,0.95,0,0,0\n2,0.1,0,0.95,0,0,0\n";
+  std::vector<std::string> args = {"replay", "--model=" + testing::ModelPath("6dof_three_legged"),
+                                   "--waypoints=" + path, "--out=" + testing::ScratchPath("legged", "replay"),
+                                   "--noise=none"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  const testing::ToolRun run = testing::RunTool(args, 300);
+  EXPECT_EQ(run.status, 0) << run.err;
+  return nlohmann::json::parse(run.out);
+}
+
+TEST(LeggedBase, ReplaySeparatesTheGaitsErrorFromTracking) {
+  const nlohmann::json walk = ReplayWalk({"--gait_bob_m=0.02"});
+  ASSERT_TRUE(walk.contains("gait")) << walk.dump();
+  EXPECT_EQ(walk["gait"]["bob_m"], 0.02);
+  // Bobbing 20 mm moves the platform up and down by about as much (RMS of a
+  // sine: 0.02 / sqrt 2 = 14 mm, while walking).
+  const double z_gait = walk["gait"]["rmse_from_gait"]["z_mm"];
+  EXPECT_GT(z_gait, 3.0);
+  EXPECT_LT(z_gait, 20.0);
+  const nlohmann::json still = ReplayWalk({"--gait_bob_m=0", "--gait_sway_rad=0"});
+  EXPECT_LT(double(still["gait"]["rmse_from_gait"]["z_mm"]), 1e-9);
+  EXPECT_NEAR(double(still["rmse"]["z_mm"]), double(still["gait"]["rmse_from_tracking"]["z_mm"]), 1e-9);
+}
+
+TEST(LeggedBase, TheGeneratorMakesRigidPlatformsOnAnyNumberOfQuadrupeds) {
+  for (const int agents : {3, 5}) {
+    const std::string out = testing::ScratchPath("legged", "gen" + std::to_string(agents) + ".yaml");
+    testing::ToolRun run =
+        testing::RunTool({"generate", "--kind=legged", "--agents=" + std::to_string(agents), "--out=" + out});
+    ASSERT_EQ(run.status, 0) << run.err;
+    run = testing::RunTool({"check", "--model=" + out});
+    ASSERT_EQ(run.status, 0) << run.err;
+    const nlohmann::json check = nlohmann::json::parse(run.out);
+    EXPECT_EQ(check["controls"], 6 * agents);
+    EXPECT_EQ(check["dof_with_controls_fixed"], 0);
+    EXPECT_EQ(check["end_effector_dof"], 6);
+  }
+}
+
+}  // namespace
+}  // namespace ccma
