@@ -7,7 +7,6 @@
 #include <Eigen/LU>
 #include <Eigen/QR>
 
-#include "ccma/bases/base_kinds.h"
 #include "ccma/end_effector.h"
 #include "ccma/internal/constraint_set.h"
 #include "problems/internal/compliant_equilibrium.h"
@@ -75,22 +74,6 @@ bool ReactionsDetermined(const ConstraintSet& set, const Eigen::MatrixXd& J_s, c
 }
 
 }  // namespace
-
-const char* ActuatorKindName(ActuatorKind kind) {
-  switch (kind) {
-    case ActuatorKind::kBaseX: return "base_x";
-    case ActuatorKind::kBaseY: return "base_y";
-    case ActuatorKind::kBaseTheta: return "base_theta";
-    case ActuatorKind::kBaseForceX: return "base_force_x";
-    case ActuatorKind::kBaseForceY: return "base_force_y";
-    case ActuatorKind::kBaseForceZ: return "base_force_z";
-    case ActuatorKind::kBaseMomentX: return "base_moment_x";
-    case ActuatorKind::kBaseMomentY: return "base_moment_y";
-    case ActuatorKind::kBaseMomentZ: return "base_moment_z";
-    case ActuatorKind::kJoint: return "joint";
-  }
-  return "joint";
-}
 
 bool HasLoads(const Model& model) {
   if (model.end_effector.payload.mass > 0) return true;
@@ -170,21 +153,12 @@ StaticsReport ComputeStatics(const Model& model, const State& s, const Eigen::Ve
   for (int k = 0; k < model.num_bases(); ++k) {
     const MobileBase& base = model.mobile_bases[static_cast<size_t>(k)];
     const int first = model.base_control(k);
-    if (base.type == BaseType::kLegged) {
-      // Force first, then moment: wrench is [moment; force].
-      const Eigen::Matrix<double, 6, 1> w = LeggedBodyWrench(u.data() + first, effort.data() + first);
-      for (int i = 0; i < 6; ++i) {
-        out.actuators.push_back({base.name, static_cast<ActuatorKind>(static_cast<int>(ActuatorKind::kBaseForceX) + i),
-                                 w[(i + 3) % 6]});
-      }
-      continue;
+    for (const BaseEffort& e : KindOf(base).Efforts(u.data() + first, effort.data() + first)) {
+      out.actuators.push_back({base.name, e.kind, e.value});
     }
-    out.actuators.push_back({base.name, ActuatorKind::kBaseX, effort[first]});
-    out.actuators.push_back({base.name, ActuatorKind::kBaseY, effort[first + 1]});
-    out.actuators.push_back({base.name, ActuatorKind::kBaseTheta, effort[first + 2]});
   }
   for (const Joint& joint : model.joints) {
-    if (joint.actuated) out.actuators.push_back({joint.name, ActuatorKind::kJoint, effort[joint.control]});
+    if (joint.actuated) out.actuators.push_back({joint.name, "joint", effort[joint.control]});
   }
   for (int k = 0; k < model.num_bases(); ++k) {
     const MobileBase& base = model.mobile_bases[static_cast<size_t>(k)];

@@ -46,22 +46,15 @@ struct JointReaction {
   Eigen::Vector3d moment = Eigen::Vector3d::Zero();  // N*m
 };
 
-// A wheeled base's three controls; a legged base's wrench on the chain
-// (force and moment components in world axes, the moment about its body
-// frame's origin); an actuated joint.
-enum class ActuatorKind {
-  kBaseX, kBaseY, kBaseTheta,
-  kBaseForceX, kBaseForceY, kBaseForceZ, kBaseMomentX, kBaseMomentY, kBaseMomentZ,
-  kJoint
-};
-const char* ActuatorKindName(ActuatorKind kind);  // "base_x", ...
 
 // The generalized force a control must supply: N along a base's x or y,
 // N*m about its heading; a legged base's wrench on the chain (N, N*m); N*m
 // or N at an actuated joint.
 struct ActuatorEffort {
   std::string name;  // the base's or the joint's
-  ActuatorKind kind = ActuatorKind::kJoint;
+  // "base_x", "base_y", "base_theta" (wheeled bases), "base_force_x" ...
+  // "base_moment_z" (legged bases: BaseKind::Efforts), or "joint".
+  std::string kind = "joint";
   double effort = 0;
 };
 

@@ -149,11 +149,12 @@ Command StaticsCommand() {
 }
 
 Command GenerateCommand() {
-  return {"generate", "write a generated model (N-base CCMA or Stewart-Gough platform)",
-          "ccma generate --agents=N [--kind=ccma|stewart_gough] --out=FILE.yaml",
+  return {"generate", "write a generated model (N-base CCMA, Stewart-Gough platform or N quadrupeds)",
+          "ccma generate --agents=N [--kind=ccma|stewart_gough|legged] --out=FILE.yaml",
           "Writes a generated model, validated before it is written: a Stewart-like CCMA with N mobile\n"
           "bases (the family of 6dof_six_agents), or with --kind=stewart_gough an N-leg UPS platform on\n"
-          "the ground with actuated prismatic legs and no mobile base.",
+          "the ground with actuated prismatic legs and no mobile base, or with --kind=legged a 6-DOF\n"
+          "platform on N quadrupeds (legged bases; the family of 6dof_three_legged).",
           {"agents", "kind", "out"}, RunGenerate, {{"out", "the model file to write (YAML) [path]"}}};
 }
 

@@ -51,7 +51,7 @@ nlohmann::json ReportJson(const StaticsReport& r) {
     joints.push_back({{"name", j.name}, {"point", Vec(j.point)}, {"force", Vec(j.force)}, {"moment", Vec(j.moment)}});
   }
   for (const ActuatorEffort& a : r.actuators) {
-    actuators.push_back({{"name", a.name}, {"kind", ActuatorKindName(a.kind)}, {"effort", a.effort}});
+    actuators.push_back({{"name", a.name}, {"kind", a.kind}, {"effort", a.effort}});
   }
   out["joints"] = joints;
   out["actuators"] = actuators;

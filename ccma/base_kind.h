@@ -46,6 +46,13 @@ struct ControlRange {
   double lower = 0, upper = 0;
 };
 
+// One component of what a base exerts on the chain, as statics reports it:
+// its kind ("base_x", "base_force_z", ...) and value (N or N*m).
+struct BaseEffort {
+  std::string kind;
+  double value = 0;
+};
+
 // One block of constraint rows a base contributes: a cost function of the
 // base body's pose and, when `reads_controls`, of its control block.
 struct BaseConstraint {
@@ -76,6 +83,11 @@ class BaseKind {
   virtual std::vector<BaseConstraint> Constraints(const MobileBase& base, bool autodiff) const = 0;
   // Rows of Constraints() together.
   virtual int num_residuals() const = 0;
+  // What the base exerts on the chain, from the generalized efforts of its
+  // controls (`effort`, one per control: N for a control in m, N*m for one in
+  // rad) at its control block u. By default each control's own effort, kind
+  // "base_<control name>".
+  virtual std::vector<BaseEffort> Efforts(const double* u, const double* effort) const;
 };
 
 // The kind of a base type (ccma/bases/base_kinds.cc).

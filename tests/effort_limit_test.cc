@@ -30,8 +30,8 @@ double Value(const StaticsReport& report, const std::string& name, bool push) {
   for (const ActuatorEffort& a : report.actuators) {
     if (a.name != name) continue;
     if (!push) return a.effort;
-    if (a.kind == ActuatorKind::kBaseX) x = a.effort;
-    if (a.kind == ActuatorKind::kBaseY) y = a.effort;
+    if (a.kind == "base_x") x = a.effort;
+    if (a.kind == "base_y") y = a.effort;
   }
   return std::hypot(x, y);
 }
@@ -116,7 +116,7 @@ TEST_P(EffortLinearisation, MatchesReSolvedCentralDifferences) {
     const ActuatorEffort& a = here.actuators[k];
     if (a.name != GetParam().item) continue;
     if (!GetParam().push) w[static_cast<Eigen::Index>(k)] = 1;
-    if (GetParam().push && a.kind != ActuatorKind::kBaseTheta) w[static_cast<Eigen::Index>(k)] = a.effort / Value(here, a.name, true);
+    if (GetParam().push && a.kind != "base_theta") w[static_cast<Eigen::Index>(k)] = a.effort / Value(here, a.name, true);
   }
   const Equilibrium::Adjoint adjoint = eq.AdjointOf(w, GeneralizedLoads(model, s));
   Eigen::RowVectorXd held(analytic.size());

@@ -81,7 +81,7 @@ TEST(LeggedBase, StaticsReportsTheWrenchTheBodyExertsOnTheChain) {
   ASSERT_EQ(report.actuators.size(), 6u);
   const char* kinds[6] = {"base_force_x", "base_force_y", "base_force_z", "base_moment_x", "base_moment_y", "base_moment_z"};
   for (int i = 0; i < 6; ++i) {
-    EXPECT_STREQ(ActuatorKindName(report.actuators[static_cast<size_t>(i)].kind), kinds[i]);
+    EXPECT_EQ(report.actuators[static_cast<size_t>(i)].kind, kinds[i]);
     const double expected = i < 3 ? force[i] : moment[i - 3];
     EXPECT_NEAR(report.actuators[static_cast<size_t>(i)].effort, expected, 1e-10) << kinds[i];
   }
@@ -209,6 +209,19 @@ TEST(LeggedBase, SimulateRefusesControlsOutsideTheBodyLimits) {
   EXPECT_EQ(run.status, 2);
   EXPECT_TRUE(run.out.empty());
   EXPECT_NE(run.err.find("base 'dog0' height outside its limits [0.3, 0.55]"), std::string::npos) << run.err;
+}
+
+TEST(LeggedBase, AFootprintIsABoxAlongTheHeading) {
+  // dog0 stands at (0, 0.9) facing -y: its 0.7 x 0.3 m box spans x in
+  // [-0.15, 0.15]; a pillar of radius 0.1 at (0.5, 0.9) is 0.25 m away.
+  const std::string obstacles = testing::ScratchPath("legged", "pillar.yaml");
+  std::ofstream(obstacles) << "obstacles:\n  - {name: pillar, cylinder: {center: [0.5, 0.9], radius: 0.1, height: 2.0}}\n";
+  const testing::ToolRun run =
+      testing::RunTool({"simulate", "--model=" + testing::ModelPath("6dof_three_legged"), "--obstacles=" + obstacles});
+  ASSERT_EQ(run.status, 0) << run.err;
+  const nlohmann::json out = nlohmann::json::parse(run.out);
+  EXPECT_NEAR(double(out["clearance"]["min"]), 0.25, 1e-12);
+  EXPECT_EQ(out["clearance"]["pair"], nlohmann::json({"dog0", "pillar"}));
 }
 
 TEST(LeggedBase, TrajectoryColumnsCarrySixControlsPerLeggedBase) {

@@ -34,6 +34,12 @@ std::vector<ControlRange> BaseKind::Limits(const MobileBase& /*base*/) const {
   return std::vector<ControlRange>(static_cast<size_t>(num_controls()));
 }
 
+std::vector<BaseEffort> BaseKind::Efforts(const double* /*u*/, const double* effort) const {
+  std::vector<BaseEffort> out;
+  for (int i = 0; i < num_controls(); ++i) out.push_back({std::string("base_") + controls()[static_cast<size_t>(i)].name, effort[i]});
+  return out;
+}
+
 const BaseKind& KindOf(const MobileBase& base) {
   for (const Entry& entry : Registered()) {
     if (entry.first == base.type) return *entry.second;

@@ -9,14 +9,9 @@
 namespace ccma {
 namespace {
 
-class DifferentialBaseKind final : public BaseKind {
+class DifferentialBaseKind final : public internal::WheeledBaseKind {
  public:
   const char* name() const override { return "differential"; }
-  const std::vector<BaseControl>& controls() const override { return internal::WheeledBaseControls(); }
-  std::vector<BaseConstraint> Constraints(const MobileBase& /*base*/, bool autodiff) const override {
-    return internal::WheeledBaseConstraints(autodiff);
-  }
-  int num_residuals() const override { return internal::WheeledBaseResidualCount(); }
 };
 
 }  // namespace

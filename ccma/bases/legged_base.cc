@@ -47,6 +47,13 @@ class LeggedBaseKind final : public BaseKind {
     return out;
   }
   int num_residuals() const override { return LeggedBaseMotorCost::kNumResiduals; }
+  // The wrench the body exerts on the chain: force, then moment about the
+  // body frame's origin, world axes.
+  std::vector<BaseEffort> Efforts(const double* u, const double* effort) const override {
+    const Eigen::Matrix<double, 6, 1> w = LeggedBodyWrench(u, effort);
+    return {{"base_force_x", w[3]},  {"base_force_y", w[4]},  {"base_force_z", w[5]},
+            {"base_moment_x", w[0]}, {"base_moment_y", w[1]}, {"base_moment_z", w[2]}};
+  }
 };
 
 }  // namespace

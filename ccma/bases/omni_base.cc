@@ -8,17 +8,12 @@
 namespace ccma {
 namespace {
 
-class OmniBaseKind final : public BaseKind {
+class OmniBaseKind final : public internal::WheeledBaseKind {
  public:
   const char* name() const override { return "omni"; }
-  const std::vector<BaseControl>& controls() const override { return internal::WheeledBaseControls(); }
   bool IsEffective(const MobileBase& base, int i) const override {
     return i != kBaseHeading || base.actuation == Actuation::kComplete;
   }
-  std::vector<BaseConstraint> Constraints(const MobileBase& /*base*/, bool autodiff) const override {
-    return internal::WheeledBaseConstraints(autodiff);
-  }
-  int num_residuals() const override { return internal::WheeledBaseResidualCount(); }
 };
 
 }  // namespace

@@ -6,12 +6,12 @@
 namespace ccma {
 namespace internal {
 
-const std::vector<BaseControl>& WheeledBaseControls() {
+const std::vector<BaseControl>& WheeledBaseKind::controls() const {
   static const std::vector<BaseControl> controls = {{"x", "m"}, {"y", "m"}, {"theta", "rad"}};
   return controls;
 }
 
-std::vector<BaseConstraint> WheeledBaseConstraints(bool autodiff) {
+std::vector<BaseConstraint> WheeledBaseKind::Constraints(const MobileBase& /*base*/, bool autodiff) const {
   std::vector<BaseConstraint> out(2);
   out[0].cost.reset(autodiff ? MakeOmniBasePlanarAutoDiff() : new OmniBasePlanarCost());
   out[0].part = "planar";
@@ -21,7 +21,9 @@ std::vector<BaseConstraint> WheeledBaseConstraints(bool autodiff) {
   return out;
 }
 
-int WheeledBaseResidualCount() { return OmniBasePlanarCost::kNumResiduals + OmniBaseMotorCost::kNumResiduals; }
+int WheeledBaseKind::num_residuals() const {
+  return OmniBasePlanarCost::kNumResiduals + OmniBaseMotorCost::kNumResiduals;
+}
 
 }  // namespace internal
 }  // namespace ccma

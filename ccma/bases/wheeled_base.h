@@ -1,6 +1,6 @@
-// The constraint rows and controls shared by the wheeled base types (omni and
-// differential): the body stays on the floor, upright (OmniBasePlanarCost),
-// and its motors drive x, y and heading (OmniBaseMotorCost).
+// What the wheeled base types (omni and differential) share: the body stays
+// on the floor, upright (OmniBasePlanarCost), and its motors drive x, y and
+// heading (OmniBaseMotorCost); controls x [m], y [m], theta [rad].
 #ifndef CCMA_BASES_WHEELED_BASE_H_
 #define CCMA_BASES_WHEELED_BASE_H_
 
@@ -11,11 +11,13 @@
 namespace ccma {
 namespace internal {
 
-// x [m], y [m], theta [rad].
-const std::vector<BaseControl>& WheeledBaseControls();
-// The planar (4 rows) and motor (5 rows) constraints of a wheeled base.
-std::vector<BaseConstraint> WheeledBaseConstraints(bool autodiff);
-int WheeledBaseResidualCount();
+class WheeledBaseKind : public BaseKind {
+ public:
+  const std::vector<BaseControl>& controls() const override;
+  // The planar (4 rows) and motor (5 rows) constraints.
+  std::vector<BaseConstraint> Constraints(const MobileBase& base, bool autodiff) const override;
+  int num_residuals() const override;
+};
 
 }  // namespace internal
 }  // namespace ccma
