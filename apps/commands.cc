@@ -209,8 +209,9 @@ Command ReplayCommand() {
 
 Command ViewCommand() {
   return {"view", "write a self-contained 3D HTML view (animated for a trajectory or replay)",
-          "ccma view --model=FILE [--trajectory=FILE.csv | --replay=DIR | --workspace=MAP.csv]\n"
-          "          [--meshes [--mesh_root=DIR,...]] [--obstacles=FILE.yaml] [--color_by=body|load] --out=FILE.html",
+          "ccma view --model=FILE [--trajectory=FILE.csv | --replay=DIR | --workspace=MAP.csv | --controls=...]\n"
+          "          [--meshes [--mesh_root=DIR,...]] [--obstacles=FILE.yaml] [--color_by=body|load]\n"
+          "          [--deflection=SCALE [--wrench=fx,fy,fz,mx,my,mz]] --out=FILE.html",
           "Writes one self-contained HTML page (three.js inlined; it fetches nothing) that shows the\n"
           "mechanism in 3D: links as capsules between joint points, bases as discs with a heading arrow,\n"
           "joint markers by type, the end-effector's frame, the ground grid, orbit controls. With a\n"
@@ -236,8 +237,17 @@ Command ViewCommand() {
           "clearance_below_margin_frames). With --color_by=load each frame's statics is solved (gravity on\n"
           "the masses and payload, no wrench) and each link is coloured by its load, the largest reaction\n"
           "force of the joints that touch it [N], on a scale from 0 to the page's largest (JSON max_load,\n"
-          "unbalanced_frames, indeterminate_frames); statics beyond its bounds: exit 2.",
-          {"model", "trajectory", "replay", "workspace", "meshes", "mesh_root", "color_by", "out", "obstacles"},
+          "unbalanced_frames, indeterminate_frames); statics beyond its bounds: exit 2.\n"
+          "With --controls (alone, no trajectory, replay or map) the model is shown assembled at those controls.\n"
+          "With --deflection=SCALE (a compliant model: stiffness keys; a static view, at home or --controls)\n"
+          "the loaded shape, the loaded equilibrium of `ccma simulate --loaded` under gravity, the payload and\n"
+          "--wrench, is drawn over the rigid one with every body's displacement multiplied by SCALE (in\n"
+          "(0, 1e6]), each body coloured by its deflection (the largest displacement of its joint points) from\n"
+          "0 to the largest, with the scale and the largest deflection in the page (JSON deflection_scale,\n"
+          "max_deflection_m, deflection_converged, load_fraction). A rigid model, a bad SCALE or controls that\n"
+          "do not assemble: exit 2.",
+          {"model", "trajectory", "replay", "workspace", "controls", "meshes", "mesh_root", "color_by", "deflection",
+           "wrench", "out", "obstacles"},
           RunView, {{"out", "the HTML page to write [path]"}}};
 }
 
