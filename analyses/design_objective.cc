@@ -5,9 +5,11 @@
 #include <vector>
 
 
+#include "analyses/compliance.h"
 #include "analyses/payload.h"
 #include "ccma/internal/dense_factorizations.h"
 #include "ccma/loads.h"
+#include "problems/internal/compliant_equilibrium.h"
 #include "problems/internal/end_effector_error.h"
 #include "problems/internal/equilibrium.h"
 
@@ -120,11 +122,38 @@ double EndEffectorStd(const Model& model, const State& s, const Eigen::VectorXd&
   return std::sqrt(EndEffectorCovariance(model, s, u, noise).topLeftCorner<3, 3>().trace());
 }
 
+// stiffness (most_compliant [m/N]) or deflection (|deflection[0:3]| [m]) at
+// (s, u): the linear compliance of `ccma statics` under gravity on the
+// masses and payload. Not defined for a rigid model, or one whose loaded
+// end-effector is not held by its springs.
+ObjectiveAtTarget ComplianceObjective(DesignObjective objective, const Model& model, const State& s,
+                                      const Eigen::VectorXd& u) {
+  ObjectiveAtTarget out;
+  if (!model.compliant()) {
+    out.why = "the model has no stiffness keys (model_format.md, \"Compliance\")";
+    return out;
+  }
+  const ConstraintSet set(model);
+  const CompliantEquilibrium system(model, set, s, u);
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(system.size());
+  f.head(s.tangent_size()) = GeneralizedLoads(model, s);
+  const ComplianceReport report = ComputeCompliance(model, s, system, f);
+  if (!report.held) {
+    out.why = "the end-effector is not held: some motion no spring resists moves it";
+    return out;
+  }
+  out.value = objective == DesignObjective::kStiffness ? report.most_compliant : report.deflection.head<3>().norm();
+  out.defined = std::isfinite(out.value);
+  if (!out.defined) out.why = "the compliance is not finite at the target";
+  return out;
+}
+
 }  // namespace
 
 bool ParseDesignObjective(const std::string& name, DesignObjective* out) {
   for (DesignObjective o : {DesignObjective::kReach, DesignObjective::kPayload, DesignObjective::kPeakPush,
-                            DesignObjective::kEndEffectorStd}) {
+                            DesignObjective::kEndEffectorStd, DesignObjective::kStiffness,
+                            DesignObjective::kDeflection}) {
     if (name == DesignObjectiveName(o)) {
       *out = o;
       return true;
@@ -138,6 +167,8 @@ const char* DesignObjectiveName(DesignObjective objective) {
     case DesignObjective::kPayload: return "payload";
     case DesignObjective::kPeakPush: return "peak_push";
     case DesignObjective::kEndEffectorStd: return "ee_std";
+    case DesignObjective::kStiffness: return "stiffness";
+    case DesignObjective::kDeflection: return "deflection";
     default: return "reach";
   }
 }
@@ -147,6 +178,8 @@ const char* DesignObjectiveUnit(DesignObjective objective) {
     case DesignObjective::kPayload: return "kg";
     case DesignObjective::kPeakPush: return "N";
     case DesignObjective::kEndEffectorStd: return "m";
+    case DesignObjective::kStiffness: return "m/N";
+    case DesignObjective::kDeflection: return "m";
     default: return "";
   }
 }
@@ -166,6 +199,8 @@ ObjectiveAtTarget EvaluateObjective(DesignObjective objective, const Model& mode
     out.value = EndEffectorStd(model, s, u, noise);
     out.defined = std::isfinite(out.value);
     if (!out.defined) out.why = "dG/ds is singular at the target";
+  } else if (objective == DesignObjective::kStiffness || objective == DesignObjective::kDeflection) {
+    out = ComplianceObjective(objective, model, s, u);
   } else {
     out.why = "reach has no value to improve";
   }
@@ -185,6 +220,15 @@ bool ObjectiveGradient(DesignObjective objective, const Model& model, const Desi
   std::vector<EffortTerm> terms;
   if (objective == DesignObjective::kEndEffectorStd) {
     f = [&noise](const Model& m, const State& st, const Eigen::VectorXd& ut) { return EndEffectorStd(m, st, ut, noise); };
+  } else if (objective == DesignObjective::kStiffness || objective == DesignObjective::kDeflection) {
+    const ObjectiveAtTarget here = ComplianceObjective(objective, at_p, s, u);
+    if (!here.defined) {
+      *why = here.why;
+      return false;
+    }
+    f = [objective](const Model& m, const State& st, const Eigen::VectorXd& ut) {
+      return ComplianceObjective(objective, m, st, ut).value;
+    };
   } else {
     if (!EffortTerms(objective, at_p, s, u, &terms, why)) return false;
     f = [&terms](const Model& m, const State& st, const Eigen::VectorXd& ut) {

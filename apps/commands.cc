@@ -282,7 +282,8 @@ Command DesignCommand() {
           "ccma design --model=FILE --targets=FILE.csv --out=NEW.yaml [--vary=JOINT.x|.y|.z|.point,...]\n"
           "            [--vary_length=ANCHOR:JOINT,...] [--max_change=0.5] [--min_length=0.02]\n"
           "            [--min_singular_value=0.02] [--target_tolerance=1e-6] [--design_iterations=30]\n"
-          "            [--objective=reach|payload|peak_push|ee_std] [--mocap_noise_m=0.001] [--mocap_noise_rad=0.003]\n"
+          "            [--objective=reach|payload|peak_push|ee_std|stiffness|deflection] [--mocap_noise_m=0.001]\n"
+          "            [--mocap_noise_rad=0.003]\n"
           "            [--method=lm|bfgs] [--max_step_m=0.01] [--max_step_rad=0.005] [--lambda=0.5]",
           "Adjusts the named geometry (joint points in world home coordinates [m], link lengths [m]) so that\n"
           "every target pose of the waypoint CSV (docs/waypoints.md; times ignored) is reachable with margin:\n"
@@ -292,9 +293,11 @@ Command DesignCommand() {
           "boolean per target, in the written model), reached_before, changed (parameter, old, new [m]),\n"
           "changed_points, targets, iterations}; a warning on stderr when not converged. With --objective,\n"
           "once every target is reached with margin the design keeps moving to raise the payload the model\n"
-          "can hold within its effort_limits and push_limit, or to lower the largest base push or the\n"
-          "end-effector's standard deviation, at the worst target; JSON objective {name, unit, before,\n"
-          "after, iterations, stopped} (docs/statics.md).",
+          "can hold within its effort_limits and push_limit, or to lower the largest base push, the\n"
+          "end-effector's standard deviation, or (a compliant model: stiffness keys) the largest eigenvalue\n"
+          "of the translational block of ee_compliance [m/N] (stiffness) or the end-effector's deflection\n"
+          "under gravity and the payload [m] (deflection), at the worst target; JSON objective {name, unit,\n"
+          "before, after, iterations, stopped} (docs/statics.md).",
           Concat({"model", "targets", "out", "vary", "vary_length", "max_change", "min_length", "min_singular_value",
                   "target_tolerance", "design_iterations", "objective", "mocap_noise_m", "mocap_noise_rad"},
                  kControlFlags),
