@@ -128,10 +128,23 @@ TEST(ViewDeflection, ArmOnAMotorSpringAgainstItsClosedForm) {
 
 TEST(ViewDeflection, NoTraceWithoutTheFlag) {
   const std::string dir = ccma::testing::ScratchPath("viewer_deflection", "");
-  const ToolRun r = RunTool({"view", "--model=" + StewartPath(), "--out=" + dir + "plain.html"});
+  ToolRun r = RunTool({"view", "--model=" + StewartPath(), "--out=" + dir + "plain.html"});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_FALSE(json::parse(r.out).contains("deflection_scale"));
   EXPECT_FALSE(DeflectionSceneOf(dir + "plain.html").contains("deflection"));
+  // --controls alone: the rigid model assembled there, as simulate puts it.
+  const std::string controls = "--controls=0,0.02,-0.01,0.03,0,0.01";
+  r = RunTool({"view", "--model=" + StewartPath(), controls, "--out=" + dir + "controls.html"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(json::parse(r.out)["source"], "controls");
+  const json scene = DeflectionSceneOf(dir + "controls.html");
+  EXPECT_FALSE(scene.contains("deflection"));
+  r = RunTool({"simulate", "--model=" + StewartPath(), controls});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json rigid = json::parse(r.out);
+  for (std::size_t b = 0; b < rigid["bodies"].size(); ++b) {
+    EXPECT_LT((Vec3(scene["frames"]["poses"][0][b]) - Vec3(rigid["bodies"][b]["position"])).norm(), 1e-7) << b;
+  }
 }
 
 TEST(ViewDeflection, BadValuesAndFlagsExitTwo) {
