@@ -188,8 +188,8 @@ int RunDesign(const std::vector<std::string>& args) {
   const bool needs_springs =
       options.objective == DesignObjective::kStiffness || options.objective == DesignObjective::kDeflection;
   if (needs_springs && !model.compliant()) {
-    throw UsageError("ccma design: --objective=" + FLAGS_objective + ": model '" + model.name +
-                     "' has no stiffness keys: a rigid mechanism has no compliance to lower (model_format.md, "
+    throw UsageError("ccma design: --objective=" + FLAGS_objective + ": model " + Quote(model.name) +
+                     " has no stiffness keys: a rigid mechanism has no compliance to lower (model_format.md, "
                      "\"Compliance\")");
   }
   OutputFile file(out_path, "out");  // checked before the long run

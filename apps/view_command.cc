@@ -163,8 +163,8 @@ std::optional<viewer::DeflectionRequest> StaticViewFlags(const Model& model) {
   viewer::DeflectionRequest request;
   request.scale = DeflectionScaleFlag();
   if (!model.compliant()) {
-    throw UsageError("ccma view: --deflection: model '" + model.name +
-                     "' has no stiffness keys: it is rigid and nothing deflects (model_format.md, \"Compliance\")");
+    throw UsageError("ccma view: --deflection: model " + Quote(model.name) +
+                     " has no stiffness keys: it is rigid and nothing deflects (model_format.md, \"Compliance\")");
   }
   request.wrench = WrenchFlag();
   return request;

@@ -137,8 +137,8 @@ py::tuple RunDesign(const Model& model, const std::optional<std::string>& text, 
   const bool needs_springs =
       options.objective == DesignObjective::kStiffness || options.objective == DesignObjective::kDeflection;
   if (needs_springs && !model.compliant()) {
-    throw py::value_error("design: objective '" + objective + "': model '" + model.name +
-                          "' has no stiffness keys: a rigid mechanism has no compliance to lower");
+    throw py::value_error("design: objective '" + objective + "': model " + Quote(model.name) +
+                          " has no stiffness keys: a rigid mechanism has no compliance to lower");
   }
   options.noise = {mocap_noise_m, mocap_noise_rad};
   options.max_change = max_change;

@@ -49,7 +49,7 @@ std::optional<viewer::DeflectionRequest> StaticViewArguments(const Model& model,
                                                              bool animated, const std::string& color_by) {
   if (controls && animated) throw py::value_error("controls is for a static view, without trajectory, replay or workspace");
   if (controls && controls->size() != model.num_controls()) {
-    throw py::value_error("controls: model '" + model.name + "' has " + std::to_string(model.num_controls()) +
+    throw py::value_error("controls: model " + Quote(model.name) + " has " + std::to_string(model.num_controls()) +
                           " controls; got " + std::to_string(controls->size()));
   }
   if (controls && !(controls->array().abs() <= kMaxMagnitude).all()) {
@@ -63,7 +63,7 @@ std::optional<viewer::DeflectionRequest> StaticViewArguments(const Model& model,
     throw py::value_error("deflection: the scale must be a number in (0, 1e6], not " + FormatG(*deflection));
   }
   if (!model.compliant()) {
-    throw py::value_error("deflection: model '" + model.name + "' has no stiffness keys: it is rigid and nothing deflects");
+    throw py::value_error("deflection: model " + Quote(model.name) + " has no stiffness keys: it is rigid and nothing deflects");
   }
   return viewer::DeflectionRequest{*deflection, WrenchFrom(wrench, "view")};
 }
