@@ -5,11 +5,10 @@
 #include <vector>
 
 
-#include "analyses/compliance.h"
+#include "analyses/internal/compliance_objective.h"
 #include "analyses/payload.h"
 #include "ccma/internal/dense_factorizations.h"
 #include "ccma/loads.h"
-#include "problems/internal/compliant_equilibrium.h"
 #include "problems/internal/end_effector_error.h"
 #include "problems/internal/equilibrium.h"
 
@@ -122,29 +121,14 @@ double EndEffectorStd(const Model& model, const State& s, const Eigen::VectorXd&
   return std::sqrt(EndEffectorCovariance(model, s, u, noise).topLeftCorner<3, 3>().trace());
 }
 
-// stiffness (most_compliant [m/N]) or deflection (|deflection[0:3]| [m]) at
-// (s, u): the linear compliance of `ccma statics` under gravity on the
-// masses and payload. Not defined for a rigid model, or one whose loaded
-// end-effector is not held by its springs.
+// stiffness or deflection at (s, u) (analyses/internal/compliance_objective.h).
 ObjectiveAtTarget ComplianceObjective(DesignObjective objective, const Model& model, const State& s,
-                                      const Eigen::VectorXd& u) {
+                                      const Eigen::VectorXd& u, ComplianceAdjoint* adjoint = nullptr) {
+  const ComplianceValue v = ComplianceObjectiveAt(objective == DesignObjective::kStiffness, model, s, u, adjoint);
   ObjectiveAtTarget out;
-  if (!model.compliant()) {
-    out.why = "the model has no stiffness keys (model_format.md, \"Compliance\")";
-    return out;
-  }
-  const ConstraintSet set(model);
-  const CompliantEquilibrium system(model, set, s, u);
-  Eigen::VectorXd f = Eigen::VectorXd::Zero(system.size());
-  f.head(s.tangent_size()) = GeneralizedLoads(model, s);
-  const ComplianceReport report = ComputeCompliance(model, s, system, f);
-  if (!report.held) {
-    out.why = "the end-effector is not held: some motion no spring resists moves it";
-    return out;
-  }
-  out.value = objective == DesignObjective::kStiffness ? report.most_compliant : report.deflection.head<3>().norm();
-  out.defined = std::isfinite(out.value);
-  if (!out.defined) out.why = "the compliance is not finite at the target";
+  out.defined = v.defined;
+  out.value = v.value;
+  out.why = v.why;
   return out;
 }
 
@@ -218,16 +202,17 @@ bool ObjectiveGradient(DesignObjective objective, const Model& model, const Desi
   }
   std::function<double(const Model&, const State&, const Eigen::VectorXd&)> f;
   std::vector<EffortTerm> terms;
+  ComplianceAdjoint adjoint;  // stiffness, deflection
   if (objective == DesignObjective::kEndEffectorStd) {
     f = [&noise](const Model& m, const State& st, const Eigen::VectorXd& ut) { return EndEffectorStd(m, st, ut, noise); };
   } else if (objective == DesignObjective::kStiffness || objective == DesignObjective::kDeflection) {
-    const ObjectiveAtTarget here = ComplianceObjective(objective, at_p, s, u);
+    const ObjectiveAtTarget here = ComplianceObjective(objective, at_p, s, u, &adjoint);
     if (!here.defined) {
       *why = here.why;
       return false;
     }
-    f = [objective](const Model& m, const State& st, const Eigen::VectorXd& ut) {
-      return ComplianceObjective(objective, m, st, ut).value;
+    f = [&adjoint](const Model& m, const State& st, const Eigen::VectorXd& ut) {
+      return ComplianceLagrangian(adjoint, m, st, ut);
     };
   } else {
     if (!EffortTerms(objective, at_p, s, u, &terms, why)) return false;

@@ -28,9 +28,11 @@
 //    mechanism is statically indeterminate, when the minimum-norm efforts
 //    statics reports are the ones used), no derivative of the least-squares
 //    solve;
-//  * ee_std, stiffness, deflection: the value itself, a function of
-//    (s, u, p) (the compliance from one factorisation of the compliant
-//    system at (s, u) on the design p, no re-solved equilibrium).
+//  * stiffness, deflection: the adjoint Lagrangian of the compliant
+//    system at fixed primal and adjoint vectors
+//    (analyses/internal/compliance_objective.h): no factorisation along the
+//    tangent;
+//  * ee_std: sqrt(trace Sigma_p) itself, a function of (s, u, p).
 // The remaining derivative, of the analytic Jacobians along the tangent
 // (second-order terms), is a central difference along it (step 1e-5
 // relative), error O(1e-10). tests/design_objective_test.cc checks the
