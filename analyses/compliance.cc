@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
 #include "ccma/end_effector.h"
+#include "ccma/internal/constraint_set.h"
 #include "problems/internal/compliant_equilibrium.h"
 
 namespace ccma {
@@ -94,6 +96,15 @@ ComplianceReport ComputeCompliance(const Model& model, const State& s, const Com
   MostCompliant(out.ee_compliance, &out);
   StiffnessFromCompliance(out.ee_compliance, &out);
   return out;
+}
+
+double SmallestTranslationalStiffness(const Model& model, const State& s, const Eigen::VectorXd& u) {
+  const ConstraintSet set(model);
+  const CompliantEquilibrium system(model, set, s, u);
+  const ComplianceReport report = ComputeCompliance(model, s, system, Eigen::VectorXd::Zero(system.size()));
+  if (!report.held) return 0;
+  if (!(report.most_compliant > 0)) return std::numeric_limits<double>::infinity();
+  return 1 / report.most_compliant;
 }
 
 }  // namespace ccma

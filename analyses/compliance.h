@@ -57,6 +57,14 @@ Eigen::MatrixXd EndEffectorMotion(const Model& model, const State& s, int system
 ComplianceReport ComputeCompliance(const Model& model, const State& s, const CompliantEquilibrium& system,
                                    const Eigen::VectorXd& f);
 
+// The smallest translational stiffness of the end-effector at (s, u) [N/m]:
+// 1 / the largest eigenvalue of C's translational 3 x 3 block (the
+// reciprocal of ComplianceReport::most_compliant; `ccma workspace`'s
+// stiffness_min_N_per_m). 0 when the end-effector is not held (some motion
+// no spring resists moves it); +infinity when every translation is rigid
+// (C's block 0). Throws std::invalid_argument like CompliantEquilibrium.
+double SmallestTranslationalStiffness(const Model& model, const State& s, const Eigen::VectorXd& u);
+
 }  // namespace ccma
 
 #endif  // CCMA_ANALYSES_COMPLIANCE_H_

@@ -111,12 +111,12 @@ std::string PatchModelText(const std::string& text, const Model& original, const
 
 // ---- The design loop ----------------------------------------------------
 // What is improved after reach and margin (design_objective.h).
-enum class DesignObjective { kReach, kPayload, kPeakPush, kEndEffectorStd };
+enum class DesignObjective { kReach, kPayload, kPeakPush, kEndEffectorStd, kStiffness, kDeflection };
 
 // An objective at one assembled target configuration.
 struct ObjectiveAtTarget {
   bool defined = false;
-  double value = 0;      // kg, N or m
+  double value = 0;      // kg, N, m or m/N (DesignObjectiveUnit)
   std::string limiting;  // the actuator or base that sets it ("" for ee_std)
   std::string why;       // when !defined
 };

@@ -5,6 +5,7 @@
 #include <vector>
 
 
+#include "analyses/internal/compliance_objective.h"
 #include "analyses/payload.h"
 #include "ccma/internal/dense_factorizations.h"
 #include "ccma/loads.h"
@@ -120,11 +121,23 @@ double EndEffectorStd(const Model& model, const State& s, const Eigen::VectorXd&
   return std::sqrt(EndEffectorCovariance(model, s, u, noise).topLeftCorner<3, 3>().trace());
 }
 
+// stiffness or deflection at (s, u) (analyses/internal/compliance_objective.h).
+ObjectiveAtTarget ComplianceObjective(DesignObjective objective, const Model& model, const State& s,
+                                      const Eigen::VectorXd& u, ComplianceAdjoint* adjoint = nullptr) {
+  const ComplianceValue v = ComplianceObjectiveAt(objective == DesignObjective::kStiffness, model, s, u, adjoint);
+  ObjectiveAtTarget out;
+  out.defined = v.defined;
+  out.value = v.value;
+  out.why = v.why;
+  return out;
+}
+
 }  // namespace
 
 bool ParseDesignObjective(const std::string& name, DesignObjective* out) {
   for (DesignObjective o : {DesignObjective::kReach, DesignObjective::kPayload, DesignObjective::kPeakPush,
-                            DesignObjective::kEndEffectorStd}) {
+                            DesignObjective::kEndEffectorStd, DesignObjective::kStiffness,
+                            DesignObjective::kDeflection}) {
     if (name == DesignObjectiveName(o)) {
       *out = o;
       return true;
@@ -138,6 +151,8 @@ const char* DesignObjectiveName(DesignObjective objective) {
     case DesignObjective::kPayload: return "payload";
     case DesignObjective::kPeakPush: return "peak_push";
     case DesignObjective::kEndEffectorStd: return "ee_std";
+    case DesignObjective::kStiffness: return "stiffness";
+    case DesignObjective::kDeflection: return "deflection";
     default: return "reach";
   }
 }
@@ -147,6 +162,8 @@ const char* DesignObjectiveUnit(DesignObjective objective) {
     case DesignObjective::kPayload: return "kg";
     case DesignObjective::kPeakPush: return "N";
     case DesignObjective::kEndEffectorStd: return "m";
+    case DesignObjective::kStiffness: return "m/N";
+    case DesignObjective::kDeflection: return "m";
     default: return "";
   }
 }
@@ -166,6 +183,8 @@ ObjectiveAtTarget EvaluateObjective(DesignObjective objective, const Model& mode
     out.value = EndEffectorStd(model, s, u, noise);
     out.defined = std::isfinite(out.value);
     if (!out.defined) out.why = "dG/ds is singular at the target";
+  } else if (objective == DesignObjective::kStiffness || objective == DesignObjective::kDeflection) {
+    out = ComplianceObjective(objective, model, s, u);
   } else {
     out.why = "reach has no value to improve";
   }
@@ -183,8 +202,18 @@ bool ObjectiveGradient(DesignObjective objective, const Model& model, const Desi
   }
   std::function<double(const Model&, const State&, const Eigen::VectorXd&)> f;
   std::vector<EffortTerm> terms;
+  ComplianceAdjoint adjoint;  // stiffness, deflection
   if (objective == DesignObjective::kEndEffectorStd) {
     f = [&noise](const Model& m, const State& st, const Eigen::VectorXd& ut) { return EndEffectorStd(m, st, ut, noise); };
+  } else if (objective == DesignObjective::kStiffness || objective == DesignObjective::kDeflection) {
+    const ObjectiveAtTarget here = ComplianceObjective(objective, at_p, s, u, &adjoint);
+    if (!here.defined) {
+      *why = here.why;
+      return false;
+    }
+    f = [&adjoint](const Model& m, const State& st, const Eigen::VectorXd& ut) {
+      return ComplianceLagrangian(adjoint, m, st, ut);
+    };
   } else {
     if (!EffortTerms(objective, at_p, s, u, &terms, why)) return false;
     f = [&terms](const Model& m, const State& st, const Eigen::VectorXd& ut) {

@@ -6,7 +6,15 @@
 //             (a path's waypoints) [N], lowered;
 //   ee_std    the largest end-effector position standard deviation
 //             sqrt(trace Sigma_p) from the bases' pose noise (precision.h)
-//             at any target [m], lowered.
+//             at any target [m], lowered;
+//   stiffness the largest eigenvalue of the translational 3 x 3 block of
+//             the end-effector's compliance (analyses/compliance.h,
+//             `ccma statics`' most_compliant) at any target [m/N], lowered:
+//             the softest direction made stiffer (a compliant model only);
+//   deflection the largest end-effector displacement |deflection[0:3]|
+//             under gravity on the masses and payload, controls held (the
+//             linear deflection of `ccma statics`) at any target [m],
+//             lowered (a compliant model only).
 //
 // Gradient in the design p at one target. The target's controls follow the
 // design so that its controlled end-effector components stay put:
@@ -20,6 +28,10 @@
 //    mechanism is statically indeterminate, when the minimum-norm efforts
 //    statics reports are the ones used), no derivative of the least-squares
 //    solve;
+//  * stiffness, deflection: the adjoint Lagrangian of the compliant
+//    system at fixed primal and adjoint vectors
+//    (analyses/internal/compliance_objective.h): no factorisation along the
+//    tangent;
 //  * ee_std: sqrt(trace Sigma_p) itself, a function of (s, u, p).
 // The remaining derivative, of the analytic Jacobians along the tangent
 // (second-order terms), is a central difference along it (step 1e-5
@@ -39,10 +51,11 @@
 
 namespace ccma {
 
-// "reach", "payload", "peak_push", "ee_std"; false for anything else.
+// "reach", "payload", "peak_push", "ee_std", "stiffness", "deflection";
+// false for anything else.
 bool ParseDesignObjective(const std::string& name, DesignObjective* out);
 const char* DesignObjectiveName(DesignObjective objective);
-const char* DesignObjectiveUnit(DesignObjective objective);  // "", "kg", "N", "m"
+const char* DesignObjectiveUnit(DesignObjective objective);  // "", "kg", "N", "m", "m/N"
 inline bool IsMaximised(DesignObjective objective) { return objective == DesignObjective::kPayload; }
 
 ObjectiveAtTarget EvaluateObjective(DesignObjective objective, const Model& model, const State& s,

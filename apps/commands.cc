@@ -213,8 +213,9 @@ Command ReplayCommand() {
 
 Command ViewCommand() {
   return {"view", "write a self-contained 3D HTML view (animated for a trajectory or replay)",
-          "ccma view --model=FILE [--trajectory=FILE.csv | --replay=DIR | --workspace=MAP.csv]\n"
-          "          [--meshes [--mesh_root=DIR,...]] [--obstacles=FILE.yaml] [--color_by=body|load] --out=FILE.html",
+          "ccma view --model=FILE [--trajectory=FILE.csv | --replay=DIR | --workspace=MAP.csv | --controls=...]\n"
+          "          [--meshes [--mesh_root=DIR,...]] [--obstacles=FILE.yaml] [--color_by=body|load]\n"
+          "          [--deflection=SCALE [--wrench=fx,fy,fz,mx,my,mz]] --out=FILE.html",
           "Writes one self-contained HTML page (three.js inlined; it fetches nothing) that shows the\n"
           "mechanism in 3D: links as capsules between joint points, bases as discs with a heading arrow,\n"
           "joint markers by type, the end-effector's frame, the ground grid, orbit controls. With a\n"
@@ -240,8 +241,17 @@ Command ViewCommand() {
           "clearance_below_margin_frames). With --color_by=load each frame's statics is solved (gravity on\n"
           "the masses and payload, no wrench) and each link is coloured by its load, the largest reaction\n"
           "force of the joints that touch it [N], on a scale from 0 to the page's largest (JSON max_load,\n"
-          "unbalanced_frames, indeterminate_frames); statics beyond its bounds: exit 2.",
-          {"model", "trajectory", "replay", "workspace", "meshes", "mesh_root", "color_by", "out", "obstacles"},
+          "unbalanced_frames, indeterminate_frames); statics beyond its bounds: exit 2.\n"
+          "With --controls (alone, no trajectory, replay or map) the model is shown assembled at those controls.\n"
+          "With --deflection=SCALE (a compliant model: stiffness keys; a static view, at home or --controls)\n"
+          "the loaded shape, the loaded equilibrium of `ccma simulate --loaded` under gravity, the payload and\n"
+          "--wrench, is drawn over the rigid one with every body's displacement multiplied by SCALE (in\n"
+          "(0, 1e6]), each body coloured by its deflection (the largest displacement of its joint points) from\n"
+          "0 to the largest, with the scale and the largest deflection in the page (JSON deflection_scale,\n"
+          "max_deflection_m, deflection_converged, load_fraction). A rigid model, a bad SCALE or controls that\n"
+          "do not assemble: exit 2.",
+          {"model", "trajectory", "replay", "workspace", "controls", "meshes", "mesh_root", "color_by", "deflection",
+           "wrench", "out", "obstacles"},
           RunView, {{"out", "the HTML page to write [path]"}}};
 }
 
@@ -276,7 +286,8 @@ Command DesignCommand() {
           "ccma design --model=FILE --targets=FILE.csv --out=NEW.yaml [--vary=JOINT.x|.y|.z|.point,...]\n"
           "            [--vary_length=ANCHOR:JOINT,...] [--max_change=0.5] [--min_length=0.02]\n"
           "            [--min_singular_value=0.02] [--target_tolerance=1e-6] [--design_iterations=30]\n"
-          "            [--objective=reach|payload|peak_push|ee_std] [--mocap_noise_m=0.001] [--mocap_noise_rad=0.003]\n"
+          "            [--objective=reach|payload|peak_push|ee_std|stiffness|deflection] [--mocap_noise_m=0.001]\n"
+          "            [--mocap_noise_rad=0.003]\n"
           "            [--method=lm|bfgs] [--max_step_m=0.01] [--max_step_rad=0.005] [--lambda=0.5]",
           "Adjusts the named geometry (joint points in world home coordinates [m], link lengths [m]) so that\n"
           "every target pose of the waypoint CSV (docs/waypoints.md; times ignored) is reachable with margin:\n"
@@ -286,9 +297,11 @@ Command DesignCommand() {
           "boolean per target, in the written model), reached_before, changed (parameter, old, new [m]),\n"
           "changed_points, targets, iterations}; a warning on stderr when not converged. With --objective,\n"
           "once every target is reached with margin the design keeps moving to raise the payload the model\n"
-          "can hold within its effort_limits and push_limit, or to lower the largest base push or the\n"
-          "end-effector's standard deviation, at the worst target; JSON objective {name, unit, before,\n"
-          "after, iterations, stopped} (docs/statics.md).",
+          "can hold within its effort_limits and push_limit, or to lower the largest base push, the\n"
+          "end-effector's standard deviation, or (a compliant model: stiffness keys) the largest eigenvalue\n"
+          "of the translational block of ee_compliance [m/N] (stiffness) or the end-effector's deflection\n"
+          "under gravity and the payload [m] (deflection), at the worst target; JSON objective {name, unit,\n"
+          "before, after, iterations, stopped} (docs/statics.md).",
           Concat({"model", "targets", "out", "vary", "vary_length", "max_change", "min_length", "min_singular_value",
                   "target_tolerance", "design_iterations", "objective", "mocap_noise_m", "mocap_noise_rad"},
                  kControlFlags),

@@ -34,7 +34,9 @@ DEFINE_int32(design_iterations, 30, "design: outer iterations per phase, [1, 100
 DEFINE_string(objective, "reach",
               "design: what to improve once every target is reached with margin: reach (nothing more), payload "
               "(largest payload within the effort and push limits), peak_push (smallest largest base push), ee_std "
-              "(smallest end-effector position standard deviation from --mocap_noise_m/_rad) [name]");
+              "(smallest end-effector position standard deviation from --mocap_noise_m/_rad), stiffness (smallest largest "
+              "translational compliance of a compliant model, m/N), deflection (smallest end-effector deflection "
+              "under gravity and the payload, m) [name]");
 
 namespace ccma::cli {
 namespace {
@@ -118,7 +120,7 @@ DesignOptions DesignOptionsFromFlags() {
   options.target_tolerance = FLAGS_target_tolerance;
   options.max_iterations = FLAGS_design_iterations;
   if (!ParseDesignObjective(FLAGS_objective, &options.objective)) {
-    throw UsageError("ccma design: --objective must be reach, payload, peak_push or ee_std, got '" + FLAGS_objective +
+    throw UsageError("ccma design: --objective must be reach, payload, peak_push, ee_std, stiffness or deflection, got '" + FLAGS_objective +
                      "'");
   }
   options.noise = PoseNoiseFromFlags();
@@ -183,6 +185,13 @@ int RunDesign(const std::vector<std::string>& args) {
   const std::string out_path = RequireFlag(FLAGS_out, "out", "design");
   const DesignParameters params = ParametersFromFlags(model);
   const DesignOptions options = DesignOptionsFromFlags();
+  const bool needs_springs =
+      options.objective == DesignObjective::kStiffness || options.objective == DesignObjective::kDeflection;
+  if (needs_springs && !model.compliant()) {
+    throw UsageError("ccma design: --objective=" + FLAGS_objective + ": model " + Quote(model.name) +
+                     " has no stiffness keys: a rigid mechanism has no compliance to lower (model_format.md, "
+                     "\"Compliance\")");
+  }
   OutputFile file(out_path, "out");  // checked before the long run
 
   const DesignResult result = Design(model, params, targets, options);

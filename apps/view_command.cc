@@ -6,7 +6,10 @@
 // --mesh_root folders); with collision geometry or --obstacles, the
 // shapes drawn and frames closer than the margin marked; with
 // --color_by=load, the links coloured by their joints' largest reaction force
-// in each frame's statics. Prints {"out", "bytes", "frames", ...} on stdout.
+// in each frame's statics; with --controls, the model assembled at those
+// controls; with --deflection=SCALE (a compliant model, a static view), its
+// loaded shape exaggerated SCALE times over the rigid one, coloured by each
+// body's deflection. Prints {"out", "bytes", "frames", ...} on stdout.
 #include <iostream>
 #include <optional>
 #include <stdexcept>
@@ -39,6 +42,12 @@ DEFINE_string(mesh_root, "",
 DEFINE_string(color_by, "body",
               "what the links are coloured by: body (their kind) or load (the largest reaction force of the joints "
               "that touch each link in every frame's statics, gravity on the masses and payload) [body|load]");
+
+DEFINE_string(deflection, "",
+              "draw the loaded shape of a compliant model (stiffness keys; the loaded equilibrium of `ccma simulate "
+              "--loaded` under gravity, the payload and --wrench) over the rigid one, its displacement multiplied "
+              "by SCALE, each body coloured by its deflection; a static view only (at home or --controls) "
+              "[SCALE in (0, 1e6]]");
 
 namespace ccma::cli {
 
@@ -98,6 +107,13 @@ nlohmann::json Result(const std::string& out_path, std::size_t bytes, const view
     result["unbalanced_frames"] = summary.unbalanced_frames;
     result["indeterminate_frames"] = summary.indeterminate_frames;
   }
+  if (summary.deflected) {
+    const LoadedEquilibrium& e = summary.deflected->equilibrium;
+    result["deflection_scale"] = summary.deflected->scale;
+    result["max_deflection_m"] = summary.deflected->max_deflection_m;
+    result["deflection_converged"] = e.converged;
+    result["load_fraction"] = e.load_fraction;
+  }
   if (workspace) {
     result["workspace_points"] = summary.workspace_points;
     result["workspace_reachable"] = summary.workspace_reachable;
@@ -120,11 +136,68 @@ std::vector<std::string> MeshRoots() {
   return roots;
 }
 
+// --deflection=SCALE: one finite number in (0, kMaxDeflectionScale].
+double DeflectionScaleFlag() {
+  const Eigen::VectorXd v = ParseNumberList(FLAGS_deflection, "deflection");
+  if (v.size() != 1 || !(v[0] > 0 && v[0] <= viewer::kMaxDeflectionScale)) {
+    throw UsageError("ccma view: --deflection: SCALE must be one number in (0, 1e6], not '" + FLAGS_deflection +
+                     "'");
+  }
+  return v[0];
+}
+
+// The flags of a static view (--controls, --deflection, --wrench): which
+// others they go with, and the deflection request (empty without
+// --deflection). A model without stiffness has nothing to deflect.
+std::optional<viewer::DeflectionRequest> StaticViewFlags(const Model& model) {
+  const bool animated = !FLAGS_trajectory.empty() || !FLAGS_replay.empty() || !FLAGS_workspace.empty();
+  if (!FLAGS_controls.empty() && animated) {
+    throw UsageError("ccma view: --controls is for a static view, without --trajectory, --replay or --workspace");
+  }
+  if (!FLAGS_wrench.empty() && FLAGS_deflection.empty()) {
+    throw UsageError("ccma view: --wrench goes with --deflection (the loads of the loaded shape)");
+  }
+  if (FLAGS_deflection.empty()) return std::nullopt;
+  if (animated) throw UsageError("ccma view: --deflection is for a static view, without --trajectory, --replay or --workspace");
+  if (FLAGS_color_by != "body") throw UsageError("ccma view: --deflection colours the bodies itself: not with --color_by=load");
+  viewer::DeflectionRequest request;
+  request.scale = DeflectionScaleFlag();
+  if (!model.compliant()) {
+    throw UsageError("ccma view: --deflection: model " + Quote(model.name) +
+                     " has no stiffness keys: it is rigid and nothing deflects (model_format.md, \"Compliance\")");
+  }
+  request.wrench = WrenchFlag();
+  return request;
+}
+
+// The stderr warning about a loaded shape that is not an equilibrium.
+void WarnAboutDeflection(const viewer::SceneSummary& summary) {
+  if (!summary.deflected || summary.deflected->equilibrium.converged) return;
+  std::cerr << "ccma view: warning: the loaded equilibrium was not found (" << summary.deflected->equilibrium.message
+            << "); the shape drawn holds " << summary.deflected->equilibrium.load_fraction << " of the loads\n";
+}
+
 // --color_by: body (the default) or load.
 viewer::ColorBy ColorByFlag() {
   if (FLAGS_color_by == "body") return viewer::ColorBy::kBody;
   if (FLAGS_color_by == "load") return viewer::ColorBy::kLoad;
   throw UsageError("ccma view: --color_by must be body or load, not '" + FLAGS_color_by + "'");
+}
+
+// The frames to draw: a trajectory's, a replay's, or the one at --controls
+// (none: the model at home); *source names them when there are any.
+std::vector<viewer::ViewFrame> ViewFramesFromFlags(const Model& model, std::string* source) {
+  if (!FLAGS_trajectory.empty()) {
+    *source = "trajectory";
+    return viewer::FramesFromTrajectory(model, FLAGS_trajectory);
+  }
+  if (!FLAGS_replay.empty()) {
+    *source = "replay";
+    return viewer::FramesFromReplay(model, FLAGS_replay);
+  }
+  if (FLAGS_controls.empty()) return {};
+  *source = "controls";
+  return {{0.0, ControlsFlagOrHome(model), std::nullopt, std::nullopt, false}};
 }
 
 }  // namespace
@@ -144,6 +217,7 @@ int RunView(const std::vector<std::string>& args) {
   const std::vector<std::string> mesh_roots = MeshRoots();
   if (!mesh_roots.empty() && !FLAGS_meshes) throw UsageError("ccma view: --mesh_root goes with --meshes");
   const Model model = LoadModelOrThrow(model_path);
+  const std::optional<viewer::DeflectionRequest> deflection = StaticViewFlags(model);
   std::vector<viewer::ViewFrame> frames;
   std::optional<viewer::WorkspaceCloud> workspace;
   std::optional<viewer::MeshFiles> meshes;
@@ -154,13 +228,7 @@ int RunView(const std::vector<std::string>& args) {
       workspace = viewer::CloudFromWorkspaceCsv(model, FLAGS_workspace);
       source = "workspace";
     }
-    if (!FLAGS_trajectory.empty()) {
-      frames = viewer::FramesFromTrajectory(model, FLAGS_trajectory);
-      source = "trajectory";
-    } else if (!FLAGS_replay.empty()) {
-      frames = viewer::FramesFromReplay(model, FLAGS_replay);
-      source = "replay";
-    }
+    frames = ViewFramesFromFlags(model, &source);
   } catch (const viewer::ViewInputError& e) {
     throw UsageError(std::string("ccma view: ") + e.what());
   }
@@ -173,9 +241,11 @@ int RunView(const std::vector<std::string>& args) {
   std::string scene;
   try {
     scene = viewer::BuildScene(model, frames, source, &summary, workspace ? &*workspace : nullptr,
-                               meshes ? &*meshes : nullptr, color_by);
+                               meshes ? &*meshes : nullptr, color_by, deflection ? &*deflection : nullptr);
   } catch (const std::invalid_argument& e) {  // the statics of --color_by=load beyond their bounds
     throw UsageError(std::string("ccma view: --color_by=load: ") + e.what());
+  } catch (const viewer::DeflectionError& e) {
+    throw UsageError(std::string("ccma view: --deflection: ") + e.what());
   }
   const std::string html = viewer::ViewerHtml(scene, model.name);
   OutputFile out(out_path, "out");
@@ -183,6 +253,7 @@ int RunView(const std::vector<std::string>& args) {
   out.Commit();
   WarnAboutFrames(summary, source, model.collision.margin);
   WarnAboutLoads(summary, color_by);
+  WarnAboutDeflection(summary);
   PrintJson(Result(out_path, html.size(), summary, source, meshes ? &*meshes : nullptr, workspace.has_value(),
                    model.collision.enabled, color_by == viewer::ColorBy::kLoad));
   return 0;

@@ -14,6 +14,7 @@
 
 #include <gflags/gflags.h>
 
+#include "analyses/compliance.h"
 #include "apps/cli.h"
 #include "apps/commands.h"
 #include "apps/flags.h"
@@ -87,11 +88,31 @@ double PositionStd(const Model& model, const WorkspaceSample& s) {
   return sigma.allFinite() ? std::sqrt(std::max(0.0, sigma.topLeftCorner<3, 3>().trace())) : 0.0;
 }
 
+// The stiffness_min_N_per_m cell of a compliant model's sample: the
+// end-effector's smallest translational stiffness [N/m] where reached, 0
+// where not (or not held), empty where every translation is rigid.
+std::string StiffnessCell(const Model& model, const WorkspaceSample& s) {
+  return Cell(s.reachable ? SmallestTranslationalStiffness(model, s.state, s.controls) : 0.0);
+}
+
+// A compliant model's stiffness column is within the statics' bound
+// (kMaxStaticsEntries): checked once at home, before the long run.
+void CheckStiffnessColumn(const Model& model) {
+  if (!model.compliant()) return;
+  try {
+    SmallestTranslationalStiffness(model, State::Home(model), model.home_controls());
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("ccma workspace: stiffness_min_N_per_m: ") + e.what());
+  }
+}
+
 void WriteCsv(const Model& model, const WorkspaceResult& result, std::ostream& csv) {
   for (int c = 0; c < 6; ++c) {
     if (model.end_effector.controlled[static_cast<size_t>(c)]) csv << kEndEffectorComponentNames[static_cast<size_t>(c)] << ",";
   }
   csv << "reachable,residual_energy,sigma_min,error,rcond,max_limit_violation,limited_by,wave,start,ee_std_m";
+  const bool compliant = model.compliant();  // a rigid model's map has no stiffness column
+  if (compliant) csv << ",stiffness_min_N_per_m";
   for (int k = 0; k < model.num_controls(); ++k) csv << ",u" << k;
   csv << "\n";
   for (const WorkspaceSample& s : result.samples) {
@@ -106,6 +127,7 @@ void WriteCsv(const Model& model, const WorkspaceResult& result, std::ostream& c
     csv << (s.reachable ? 1 : 0) << "," << Cell(s.residual_energy) << "," << Cell(s.reachable ? s.sigma_min : 0.0)
         << "," << Cell(s.error) << "," << Cell(s.rcond) << "," << Cell(s.max_limit_violation) << "," << limited << ","
         << s.wave << "," << s.start << "," << Cell(s.reachable ? PositionStd(model, s) : 0.0);
+    if (compliant) csv << "," << StiffnessCell(model, s);
     for (int k = 0; k < model.num_controls(); ++k) {
       csv << ",";
       if (s.reachable) csv << Cell(s.controls[k]);
@@ -229,6 +251,7 @@ int RunWorkspace(const std::vector<std::string>& args) {
   const std::string out_path = RequireFlag(FLAGS_out, "out", "workspace");
   const Model model = LoadModelOrThrow(model_path);
   const WorkspaceOptions options = OptionsFromFlags(model);
+  CheckStiffnessColumn(model);
   if (!FLAGS_plot.empty()) {
     std::error_code ec;
     std::filesystem::create_directories(FLAGS_plot, ec);

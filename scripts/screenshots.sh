@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The viewer's screenshots in docs/viewer.md: `ccma view` of every bundled model, of a
-# replay, of a workspace map (a few seconds of `ccma workspace`), of a model with meshes and of
-# one coloured by load, opened in headless
+# replay, of a workspace map (a few seconds of `ccma workspace`), of a model with meshes, of
+# one coloured by load and of a loaded shape, opened in headless
 # Chromium by the browser test, which also checks
 # each page (no console error, no request, the mechanism drawn) before saving
 # docs/images/view_<name>.png; and the workspace slice map of docs/workspace.md (gnuplot).
@@ -41,6 +41,12 @@ echo "screenshots: docs/images/viewer_meshes.png"
   --out="$out/loads.html" > /dev/null
 node viewer/js/test/browser_test.mjs --html "$out/loads.html" --screenshot docs/images/view_loads_stewart_gough.png > /dev/null
 echo "screenshots: docs/images/view_loads_stewart_gough.png"
+# A loaded shape (docs/statics.md and docs/viewer.md, "Deflection"): the compliant Stewart platform, 100 times.
+"$build"/apps/ccma view --model=examples/statics/stewart_gough_compliant.yaml --deflection=100 \
+  --out="$out/deflection.html" > /dev/null
+node viewer/js/test/browser_test.mjs --html "$out/deflection.html" \
+  --screenshot docs/images/view_deflection_stewart_gough.png > /dev/null
+echo "screenshots: docs/images/view_deflection_stewart_gough.png"
 # An imported robot (docs/import.md): the five-bar of example-parallel-robots.
 robots=models/robots/example-parallel-robots
 "$build"/apps/ccma import --from=$robots/5bar_linkage/robot.urdf --closures=$robots/5bar_linkage/robot.yaml \

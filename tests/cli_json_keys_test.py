@@ -198,6 +198,8 @@ def runs(tmp, f):
         ("view", [model("4dof_reduced"), f"--replay={tmp}/replay", o("replay.html")]),
         ("view", [f"--model={ROOT}/tests/meshes/four_bar_meshes.yaml", "--meshes", o("meshes.html")]),
         ("view", [model("4dof_reduced"), f"--workspace={tmp}/ws.csv", o("ws.html")]),
+        ("view", ["--model=" + example("statics/stewart_gough_compliant.yaml"), "--deflection=100",
+                  "--controls=0.01,0,0,0,0,0", "--wrench=0,0,-50,0,0,0", o("sag.html")]),
         ("design", [model("4dof_reduced"), f"--targets={ROOT}/models/targets/4dof_high_z.csv", o("high.yaml"),
                     "--vary_length=joint0:joint1,joint3:joint4,joint6:joint7"]),
         ("design", ["--model=" + example("statics/4dof_payload.yaml"),

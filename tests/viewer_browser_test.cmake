@@ -3,9 +3,9 @@
 # with KIND=workspace, under the cloud of a small `ccma workspace` map over
 # x, y, z, reachable and unreachable points both; with KIND=meshes, with
 # `--meshes`; with KIND=collision, MODEL given capsules and obstacles; with
-# KIND=load, `--color_by=load`) and opens it with
+# KIND=load, `--color_by=load`; with KIND=deflection, `--deflection=100`) and opens it with
 # viewer/js/test/browser_test.mjs in headless Chromium.
-#   cmake -DTOOL=.. -DNODE=.. -DTEST_JS=.. -DMODEL=.. -DWORK=.. -DKIND=model|trajectory|replay|workspace|meshes|collision|load
+#   cmake -DTOOL=.. -DNODE=.. -DTEST_JS=.. -DMODEL=.. -DWORK=.. -DKIND=model|trajectory|replay|workspace|meshes|collision|load|deflection
 #         [-DWAYPOINTS=..] -P viewer_browser_test.cmake
 # Skipped (CTest's SKIP_REGULAR_EXPRESSION on "SKIPPED: chromium", with the
 # reason printed) only when Chromium is missing; never a silent pass.
@@ -69,6 +69,10 @@ elseif(KIND STREQUAL "load")
     list(APPEND source "--trajectory=${WORK}/path.csv")
     set(animation --expect-animation)
   endif()
+elseif(KIND STREQUAL "deflection")
+  # --deflection (browser_test.mjs checks the legend, the colours and the
+  # loaded copy's poses): MODEL is compliant, seen at home, exaggerated 100 times.
+  set(source --deflection=100)
 elseif(KIND STREQUAL "workspace")
   run("${TOOL}" workspace "--model=${MODEL}" --x=-0.4:0.4 --y=-0.4:0.4 --z=0.45:1.0 --resolution=7 --threads=2
       "--out=${WORK}/map.csv")

@@ -363,6 +363,37 @@ json Loads(const FrameLoads& loads, SceneSummary* s) {
           {"determinate", determinate}};
 }
 
+// Deflections are micrometres: their numbers keep 1e-12 (m or rad).
+double SceneRoundFine(double v) { return std::round(v * 1e12) / 1e12; }
+
+json ScenePoseRow(const Eigen::Vector3d& p, const Eigen::Quaterniond& q, double (*round)(double)) {
+  return {round(p.x()), round(p.y()), round(p.z()), round(q.x()), round(q.y()), round(q.z()), round(q.w())};
+}
+
+// The "deflection" object (scene_format.md) of the loaded shape at the
+// state drawn (the scene's only frame).
+json SceneDeflection(const Model& model, const DeflectedShape& shape) {
+  const State& loaded = shape.equilibrium.state;
+  json drawn = json::array(), loaded_poses = json::array(), body = json::array(), ee = json::array();
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    drawn.push_back(ScenePoseRow(shape.p_WB_drawn[b], shape.q_WB_drawn[b], Round));
+    loaded_poses.push_back(ScenePoseRow(loaded.p_WB(b), loaded.q_WB(b), SceneRoundFine));
+    body.push_back(SceneRoundFine(shape.body_deflection_m[b]));
+  }
+  for (int i = 0; i < 6; ++i) ee.push_back(SceneRoundFine(shape.equilibrium.deflection[i]));
+  return {{"scale", shape.scale},
+          {"unit", "m"},
+          {"poses", std::move(drawn)},
+          {"loaded_poses", std::move(loaded_poses)},
+          {"body_deflection", std::move(body)},
+          {"max", SceneRoundFine(shape.max_deflection_m)},
+          {"max_body", shape.max_body},
+          {"end_effector", std::move(ee)},
+          {"converged", shape.equilibrium.converged},
+          {"held", shape.equilibrium.held},
+          {"load_fraction", SceneRoundFine(shape.equilibrium.load_fraction)}};
+}
+
 }  // namespace
 
 double FlagEnergyFor(const std::string& source) {
@@ -371,7 +402,7 @@ double FlagEnergyFor(const std::string& source) {
 
 std::string BuildScene(const Model& model, const std::vector<ViewFrame>& frames, const std::string& source,
                        SceneSummary* summary, const WorkspaceCloud* workspace, const MeshFiles* meshes,
-                       ColorBy color_by) {
+                       ColorBy color_by, const DeflectionRequest* deflection) {
   const double scale = Scale(model, workspace);
   json scene = {{"format", "ccma-scene-1"}, {"model", model.name},    {"description", model.description},
                 {"scale", Round(scale)},     {"bodies", Bodies(model, scale, meshes)}, {"joints", Joints(model)},
@@ -404,6 +435,12 @@ std::string BuildScene(const Model& model, const std::vector<ViewFrame>& frames,
   // No key without collision geometry: the scene of any other model is as it was.
   if (model.collision.enabled) scene["collision"] = Collision(model);
   if (loads) scene["loads"] = Loads(*loads, &s);  // no key unless colouring by load
+  if (deflection != nullptr) {  // a static view: the state drawn is its only frame's
+    if (s.not_assembled > 0) throw DeflectionError("the mechanism is not assembled at these controls");
+    const ForwardProblem& forward = assembler.forward();
+    s.deflected = ComputeDeflectedShape(model, forward.state(), forward.controls(), *deflection);
+    scene["deflection"] = SceneDeflection(model, *s.deflected);
+  }
   if (workspace != nullptr) {
     scene["workspace"] = Workspace(*workspace);
     s.workspace_points = static_cast<long>(workspace->points.size());

@@ -3,10 +3,12 @@
 #ifndef CCMA_VIEWER_SCENE_H_
 #define CCMA_VIEWER_SCENE_H_
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "ccma/model.h"
+#include "viewer/deflection_shape.h"
 #include "viewer/frame_loads.h"
 #include "viewer/mesh_files.h"
 #include "viewer/view_frames.h"
@@ -37,6 +39,8 @@ struct SceneSummary {
   double max_load = 0;
   int unbalanced_frames = 0;
   int indeterminate_frames = 0;
+  // With a DeflectionRequest: the loaded shape drawn (else empty).
+  std::optional<DeflectedShape> deflected;
 };
 
 // The residual energy E [m^2] above which a re-assembled frame counts as
@@ -61,12 +65,18 @@ double FlagEnergyFor(const std::string& source);
 // scene's "loads" object holds every frame's body loads (FrameLoads, at the
 // state drawn and its controls) and their maximum; throws
 // std::invalid_argument, before any frame is assembled, when the statics
-// are beyond FrameLoads's bounds. Returns the JSON text
+// are beyond FrameLoads's bounds. With `deflection` (a static view: at most
+// one frame), the scene's "deflection" object holds the loaded shape at the
+// state drawn (ComputeDeflectedShape; summary->deflected); throws
+// DeflectionError when that frame is not assembled or the loaded
+// equilibrium is beyond its bounds. Without, no deflection key appears.
+// Returns the JSON text
 // (numbers rounded to 1e-7: display precision, a tenth of a micrometre;
 // never NaN).
 std::string BuildScene(const Model& model, const std::vector<ViewFrame>& frames, const std::string& source,
                        SceneSummary* summary, const WorkspaceCloud* workspace = nullptr,
-                       const MeshFiles* meshes = nullptr, ColorBy color_by = ColorBy::kBody);
+                       const MeshFiles* meshes = nullptr, ColorBy color_by = ColorBy::kBody,
+                       const DeflectionRequest* deflection = nullptr);
 
 }  // namespace ccma::viewer
 

@@ -58,7 +58,7 @@ std::vector<int> CompliantEquilibrium::CompliantControls(const Model& model) {
 }
 
 CompliantEquilibrium::CompliantEquilibrium(const Model& model, const ConstraintSet& set, const State& s,
-                                           const Eigen::VectorXd& u)
+                                           const Eigen::VectorXd& u, bool factorize)
     : n_(set.state_size()), delta_of_control_(static_cast<size_t>(model.num_controls()), -1) {
   compliant_ = CompliantControls(model);
   std::vector<double> control_k;
@@ -91,7 +91,7 @@ CompliantEquilibrium::CompliantEquilibrium(const Model& model, const ConstraintS
   Eigen::MatrixXd J_s, J_u;
   set.Evaluate(s, u, &C, &J_s, &J_u);
   AddBlocks(model, set, J_s, J_u, s);
-  Factorize();
+  if (factorize) Factorize();
 }
 
 void CompliantEquilibrium::AddBlocks(const Model& model, const ConstraintSet& set, const Eigen::MatrixXd& J_s,

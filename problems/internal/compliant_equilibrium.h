@@ -55,8 +55,13 @@ struct CompliantJointRows {
 class CompliantEquilibrium {
  public:
   // Builds A, S, k at (s, u) and factorises. Throws std::invalid_argument
-  // when a dense matrix would exceed kMaxStaticsEntries doubles.
-  CompliantEquilibrium(const Model& model, const ConstraintSet& set, const State& s, const Eigen::VectorXd& u);
+  // when a dense matrix would exceed kMaxStaticsEntries doubles. With
+  // factorize = false, A, A_u, S and k only (a design adjoint's Lagrangian
+  // at nearby states, analyses/design_objective.cc): nothing that solves
+  // (Displacement, Multipliers, Compliance, UnheldMotion, determinate) may
+  // be called then.
+  CompliantEquilibrium(const Model& model, const ConstraintSet& set, const State& s, const Eigen::VectorXd& u,
+                       bool factorize = true);
 
   // The compliant controls of a model, in the order of delta: every control
   // of a base with `stiffness`, then every actuated joint whose motor has one.

@@ -27,7 +27,7 @@ def design(model, targets, vary=(), vary_length=(), max_change=0.5, min_length=0
     'JOINT.x|y|z|point' items, vary_length: 'ANCHOR:JOINT' items. Keywords as the flags:
     max_change [m], min_length [m], min_singular_value [m or rad per control unit],
     target_tolerance [m or rad], design_iterations, objective ('reach', 'payload', 'peak_push',
-    'ee_std'), mocap_noise_m [m], mocap_noise_rad [rad]. out: write the designed model file there.
+    'ee_std', 'stiffness', 'deflection'), mocap_noise_m [m], mocap_noise_rad [rad]. out: write the designed model file there.
 
     Returns a ccma.DesignResult: the command's JSON as attributes (to_dict()): converged,
     reached, reached_before, targets, iterations, changed, changed_points, objective, warning;

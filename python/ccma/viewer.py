@@ -69,7 +69,7 @@ def _write_replacing(path, data):
 
 
 def view(model, trajectory=None, replay=None, out=None, height=600, workspace=None, meshes=False,
-         color_by="body", mesh_root=None):
+         color_by="body", mesh_root=None, controls=None, deflection=None, wrench=None):
     """Shows `model` (a ccma.Model or a model file path) in 3D.
 
     trajectory: a CSV written by `ccma trajectory` (or ControlProblem.follow
@@ -85,6 +85,15 @@ def view(model, trajectory=None, replay=None, out=None, height=600, workspace=No
     the model's folder, or by its file name, never by an absolute path.
     color_by: "load" colours the links by their largest joint reaction force
     under the model's masses and payload, as `ccma view --color_by=load`.
+    controls: the model assembled at these controls (a static view, source
+    'controls'), as `ccma view --controls`. deflection: SCALE in (0, 1e6], a
+    compliant model's loaded shape (the loaded equilibrium of
+    ForwardProblem.assemble(u, loaded=True)) drawn over the rigid one with its
+    displacements multiplied by SCALE, each body coloured by its deflection,
+    under gravity, the payload and wrench (fx, fy, fz [N], mx, my, mz [N*m],
+    world frame), as `ccma view --deflection=SCALE --wrench=...`; at home or
+    at `controls`. ValueError for a rigid model, a bad scale, or with a
+    trajectory, replay, workspace or color_by="load".
     out: write the self-contained HTML page there and return a ccma.ViewResult,
     the JSON `ccma view` prints as attributes (out, bytes, frames, source,
     flagged_frames, ...; to_dict() is that JSON). Without `out`, inside Jupyter
@@ -99,7 +108,10 @@ def view(model, trajectory=None, replay=None, out=None, height=600, workspace=No
                                   None if trajectory is None else _os.fspath(trajectory),
                                   None if replay is None else _os.fspath(replay),
                                   None if workspace is None else _os.fspath(workspace),
-                                  bool(meshes), str(color_by), mesh_root)
+                                  bool(meshes), str(color_by), mesh_root,
+                                  None if controls is None else [float(v) for v in controls],
+                                  None if deflection is None else float(deflection),
+                                  None if wrench is None else [float(v) for v in wrench])
     if out is not None:
         out = _os.fspath(out)
         _write_replacing(out, page.encode("utf-8"))

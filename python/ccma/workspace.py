@@ -270,6 +270,9 @@ def _by_tiles(runner, model, text, args, control, chunk, window, store, progress
         if write and kept is not None:
             kept.write(t, _flatten(part))
         part["ee_std_m"] = _ccma._workspace_ee_std(model, part["states"], part["controls"], part["reachable"])
+        stiffness = _ccma._workspace_stiffness_min(model, part["states"], part["controls"], part["reachable"])
+        if stiffness is not None:  # a compliant model only
+            part["stiffness_min_N_per_m"] = stiffness
         _place(out, tiles[t]["rows"], part, n)
         counts["done"] += len(tiles[t]["rows"])
         counts["stored"] += 0 if write else 1
@@ -313,6 +316,8 @@ def _map_table(model, m):
     columns["wave"] = m["wave"]
     columns["start"] = m["start"]
     columns["ee_std_m"] = _finite(_np.where(reachable, m["ee_std_m"], 0.0))
+    if "stiffness_min_N_per_m" in m:  # a compliant model only, as the CSV
+        columns["stiffness_min_N_per_m"] = _finite(_np.where(reachable, m["stiffness_min_N_per_m"], 0.0))
     controls = _finite(m["controls"])
     controls[~reachable] = _np.nan  # the CSV leaves them empty
     for k in range(model.num_controls):
@@ -353,7 +358,8 @@ def workspace(model, ranges, resolution=11, samples=0, seed=1, threads=1, wave_s
     (to_columns(), to_records(), to_dataframe()): the controlled components by name,
     reachable (bool), residual_energy [m^2], sigma_min (0 when unreachable), error [m or rad],
     rcond, max_limit_violation, limited_by, wave, start, ee_std_m [m] (0 when unreachable),
-    u0, u1, ... (NaN when unreachable: the CSV leaves them empty). `details` holds, per
+    stiffness_min_N_per_m [N/m] (a compliant model only: 1 / statics' most_compliant; 0 when
+    unreachable or not held, NaN when every translation is rigid), u0, u1, ... (NaN when unreachable: the CSV leaves them empty). `details` holds, per
     sample, converged, assembled, steps, tile and warning. out=PATH writes the CSV there.
 
     `model`: a path (str or os.PathLike) or a ccma.Model; with a Dask `client`

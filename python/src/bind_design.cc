@@ -131,7 +131,14 @@ py::tuple RunDesign(const Model& model, const std::optional<std::string>& text, 
   const DesignParameters params = ParametersFrom(model, vary, vary_length);
   DesignOptions options;
   if (!ParseDesignObjective(objective, &options.objective)) {
-    throw py::value_error("design: objective must be reach, payload, peak_push or ee_std, got '" + objective + "'");
+    throw py::value_error("design: objective must be reach, payload, peak_push, ee_std, stiffness or deflection, got '" +
+                          objective + "'");
+  }
+  const bool needs_springs =
+      options.objective == DesignObjective::kStiffness || options.objective == DesignObjective::kDeflection;
+  if (needs_springs && !model.compliant()) {
+    throw py::value_error("design: objective '" + objective + "': model " + Quote(model.name) +
+                          " has no stiffness keys: a rigid mechanism has no compliance to lower");
   }
   options.noise = {mocap_noise_m, mocap_noise_rad};
   options.max_change = max_change;

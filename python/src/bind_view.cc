@@ -1,12 +1,18 @@
 // The 3D viewer's page from Python: ccma.view_html(model, trajectory=..., replay=..., workspace=..., meshes=...)
 // (ccma.view in python/ccma/viewer.py writes it or shows it in Jupyter).
+#include <cmath>
 #include <optional>
+#include <string>
 
+#include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
 #include <nlohmann/json.hpp>
 
+#include "ccma/internal/format.h"
+#include "ccma/limits.h"
 #include "python/src/bindings.h"
+#include "python/src/conversions.h"
 #include "python/src/json_to_python.h"
 #include "viewer/html.h"
 #include "viewer/mesh_files.h"
@@ -33,11 +39,91 @@ std::vector<std::string> MeshRoots(const py::object& mesh_root) {
   return roots;
 }
 
+// controls= (a static view at those controls) and deflection= / wrench= (the
+// loaded shape, `ccma view --controls --deflection --wrench`): checked as
+// the command checks its flags. Returns the deflection request, if any.
+std::optional<viewer::DeflectionRequest> StaticViewArguments(const Model& model,
+                                                             const std::optional<Eigen::VectorXd>& controls,
+                                                             const std::optional<double>& deflection,
+                                                             const std::optional<Eigen::VectorXd>& wrench,
+                                                             bool animated, const std::string& color_by) {
+  if (controls && animated) throw py::value_error("controls is for a static view, without trajectory, replay or workspace");
+  if (controls && controls->size() != model.num_controls()) {
+    throw py::value_error("controls: model " + Quote(model.name) + " has " + std::to_string(model.num_controls()) +
+                          " controls; got " + std::to_string(controls->size()));
+  }
+  if (controls && !(controls->array().abs() <= kMaxMagnitude).all()) {
+    throw py::value_error("controls: every entry must be a finite number in [-1e4, 1e4] (m or rad)");
+  }
+  if (wrench && !deflection) throw py::value_error("wrench goes with deflection (the loads of the loaded shape)");
+  if (!deflection) return std::nullopt;
+  if (animated) throw py::value_error("deflection is for a static view, without trajectory, replay or workspace");
+  if (color_by != "body") throw py::value_error("deflection colours the bodies itself: not with color_by='load'");
+  if (!(*deflection > 0 && *deflection <= viewer::kMaxDeflectionScale)) {
+    throw py::value_error("deflection: the scale must be a number in (0, 1e6], not " + FormatG(*deflection));
+  }
+  if (!model.compliant()) {
+    throw py::value_error("deflection: model " + Quote(model.name) + " has no stiffness keys: it is rigid and nothing deflects");
+  }
+  return viewer::DeflectionRequest{*deflection, WrenchFrom(wrench, "view")};
+}
+
+// apps/view_command.cc: Result, without "out".
+nlohmann::json ViewInfo(const Model& model, const viewer::SceneSummary& summary, std::size_t bytes,
+                        const std::string& source, const viewer::MeshFiles* mesh_files, bool loads, bool workspace) {
+  nlohmann::json info = {{"bytes", bytes},
+                         {"frames", summary.frames},
+                         {"source", source},
+                         {"flagged_frames", summary.flagged_frames},
+                         {"not_assembled_frames", summary.not_assembled},
+                         {"branch_jumps", summary.branch_jumps}};
+  if (summary.beyond_work_bound > 0) info["beyond_work_bound_frames"] = summary.beyond_work_bound;
+  if (model.collision.enabled) info["clearance_below_margin_frames"] = summary.clearance_below_margin;
+  if (mesh_files != nullptr) {
+    info["mesh_files"] = mesh_files->files.size();
+    info["mesh_bytes"] = mesh_files->bytes_read;
+  }
+  if (loads) {
+    info["max_load"] = summary.max_load;
+    info["unbalanced_frames"] = summary.unbalanced_frames;
+    info["indeterminate_frames"] = summary.indeterminate_frames;
+  }
+  if (summary.deflected) {
+    info["deflection_scale"] = summary.deflected->scale;
+    info["max_deflection_m"] = summary.deflected->max_deflection_m;
+    info["deflection_converged"] = summary.deflected->equilibrium.converged;
+    info["load_fraction"] = summary.deflected->equilibrium.load_fraction;
+  }
+  if (workspace) {
+    info["workspace_points"] = summary.workspace_points;
+    info["workspace_reachable"] = summary.workspace_reachable;
+  }
+  return info;
+}
+
+// The frames to draw (none: the model at home) and their source.
+std::vector<viewer::ViewFrame> ViewFramesFrom(const Model& model, const std::optional<std::string>& trajectory,
+                                              const std::optional<std::string>& replay,
+                                              const std::optional<Eigen::VectorXd>& controls, std::string* source) {
+  if (trajectory) {
+    *source = "trajectory";
+    return viewer::FramesFromTrajectory(model, *trajectory);
+  }
+  if (replay) {
+    *source = "replay";
+    return viewer::FramesFromReplay(model, *replay);
+  }
+  if (!controls) return {};
+  *source = "controls";
+  return {{0.0, *controls, std::nullopt, std::nullopt, false}};
+}
+
 // view_html: the page and the summary `ccma view` prints (see BindView), as a
 // ccma.ViewResult without "out" (ccma.view adds it when it writes the page).
 py::tuple ViewHtml(const Model& model, std::optional<std::string> trajectory, std::optional<std::string> replay,
                    std::optional<std::string> workspace, bool meshes, const std::string& color_by,
-                   const py::object& mesh_root) {
+                   const py::object& mesh_root, const std::optional<Eigen::VectorXd>& controls,
+                   const std::optional<double>& deflection, const std::optional<Eigen::VectorXd>& wrench) {
   const std::vector<std::string> roots = MeshRoots(mesh_root);
   if (!roots.empty() && !meshes) throw py::value_error("mesh_root goes with meshes=True");
   if (int(bool(trajectory)) + int(bool(replay)) + int(bool(workspace)) > 1) {
@@ -46,54 +132,32 @@ py::tuple ViewHtml(const Model& model, std::optional<std::string> trajectory, st
   if (color_by != "body" && color_by != "load") {
     throw py::value_error("color_by must be 'body' or 'load', not '" + color_by + "'");
   }
+  const std::optional<viewer::DeflectionRequest> loaded =
+      StaticViewArguments(model, controls, deflection, wrench, trajectory || replay || workspace, color_by);
   const viewer::ColorBy colors = color_by == "load" ? viewer::ColorBy::kLoad : viewer::ColorBy::kBody;
   std::string html;
   viewer::SceneSummary summary;
   std::string source = "model";
   std::optional<viewer::MeshFiles> mesh_files;
-  {
+  try {
     py::gil_scoped_release release;
-    std::vector<viewer::ViewFrame> frames;
     std::optional<viewer::WorkspaceCloud> cloud;
     if (meshes) mesh_files = viewer::ReadMeshFiles(model, roots);  // confined to model.source's folder and roots
     if (workspace) {
       // Drawn over the model at home, as `ccma view --workspace` does.
       cloud = viewer::CloudFromWorkspaceCsv(model, *workspace);
       source = "workspace";
-    } else if (trajectory) {
-      frames = viewer::FramesFromTrajectory(model, *trajectory);
-      source = "trajectory";
-    } else if (replay) {
-      frames = viewer::FramesFromReplay(model, *replay);
-      source = "replay";
     }
-    html = viewer::ViewerHtml(
-        viewer::BuildScene(model, frames, source, &summary, cloud ? &*cloud : nullptr,
-                           mesh_files ? &*mesh_files : nullptr, colors),
-        model.name);
+    const std::vector<viewer::ViewFrame> frames = ViewFramesFrom(model, trajectory, replay, controls, &source);
+    html = viewer::ViewerHtml(viewer::BuildScene(model, frames, source, &summary, cloud ? &*cloud : nullptr,
+                                                 mesh_files ? &*mesh_files : nullptr, colors,
+                                                 loaded ? &*loaded : nullptr),
+                              model.name);
+  } catch (const viewer::DeflectionError& e) {
+    throw py::value_error(std::string("deflection: ") + e.what());
   }
-  // apps/view_command.cc: Result, without "out".
-  nlohmann::json info = {{"bytes", html.size()},
-                         {"frames", summary.frames},
-                         {"source", source},
-                         {"flagged_frames", summary.flagged_frames},
-                         {"not_assembled_frames", summary.not_assembled},
-                         {"branch_jumps", summary.branch_jumps}};
-  if (summary.beyond_work_bound > 0) info["beyond_work_bound_frames"] = summary.beyond_work_bound;
-  if (model.collision.enabled) info["clearance_below_margin_frames"] = summary.clearance_below_margin;
-  if (mesh_files) {
-    info["mesh_files"] = mesh_files->files.size();
-    info["mesh_bytes"] = mesh_files->bytes_read;
-  }
-  if (colors == viewer::ColorBy::kLoad) {
-    info["max_load"] = summary.max_load;
-    info["unbalanced_frames"] = summary.unbalanced_frames;
-    info["indeterminate_frames"] = summary.indeterminate_frames;
-  }
-  if (workspace) {
-    info["workspace_points"] = summary.workspace_points;
-    info["workspace_reachable"] = summary.workspace_reachable;
-  }
+  const nlohmann::json info = ViewInfo(model, summary, html.size(), source, mesh_files ? &*mesh_files : nullptr,
+                                       colors == viewer::ColorBy::kLoad, workspace.has_value());
   return py::make_tuple(html, MakeResult("ViewResult", info));
 }
 
@@ -111,7 +175,8 @@ void BindView(py::module_& m) {
   m.def(
       "view_html", &ViewHtml, py::arg("model"), py::arg("trajectory") = py::none(), py::arg("replay") = py::none(),
       py::arg("workspace") = py::none(), py::arg("meshes") = false, py::arg("color_by") = "body",
-      py::arg("mesh_root") = py::none(),
+      py::arg("mesh_root") = py::none(), py::arg("controls") = py::none(), py::arg("deflection") = py::none(),
+      py::arg("wrench") = py::none(),
       "(html, info): the self-contained page of `ccma view` and its summary, a ccma.ViewResult (the command's "
       "JSON without out: bytes, frames, source, flagged_frames, ...), for the model, animated along a "
       "trajectory CSV or a replay directory, or with a `ccma workspace` CSV as a point cloud; "
@@ -119,8 +184,11 @@ void BindView(py::module_& m) {
       "model file's folder (symlinks resolved) and the folders of mesh_root (a folder or a list: "
       "`--mesh_root`); color_by='load' colours "
       "the links by joint load (`ccma view --color_by=load`; info gains max_load [N], "
-      "unbalanced_frames, indeterminate_frames); "
-      "raises ccma.ViewInputError on a bad file.");
+      "unbalanced_frames, indeterminate_frames); controls: a static view at those controls (source "
+      "'controls'); deflection=SCALE: the loaded shape of a compliant model exaggerated SCALE times over the "
+      "rigid one, under gravity, the payload and wrench (fx, fy, fz, mx, my, mz; `ccma view --deflection`; "
+      "info gains deflection_scale, max_deflection_m [m], deflection_converged, load_fraction); "
+      "raises ccma.ViewInputError on a bad file, ValueError on bad arguments.");
 }
 
 }  // namespace ccma::python

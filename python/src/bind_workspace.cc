@@ -19,6 +19,7 @@
 #include <pybind11/stl.h>
 
 #include "ccma/model.h"
+#include "analyses/compliance.h"
 #include "analyses/precision.h"
 #include "analyses/workspace.h"
 #include "python/src/bindings.h"
@@ -215,19 +216,39 @@ double PositionStd(const Model& model, const State& state, const Eigen::VectorXd
   return sigma.allFinite() ? std::sqrt(std::max(0.0, sigma.topLeftCorner<3, 3>().trace())) : 0.0;
 }
 
-// ee_std_m of a tile's samples (SamplesDict with states).
-Eigen::VectorXd TileEeStd(const Model& model, const StateArray& states, const RowMatrix& controls,
-                          const Eigen::Matrix<bool, Eigen::Dynamic, 1>& reachable) {
+// The smallest translational stiffness [N/m] of a reached sample of a
+// compliant model: the `stiffness_min_N_per_m` column of `ccma workspace`
+// (apps/workspace_command.cc StiffnessCell; +inf where every translation is
+// rigid, which the table writes as NaN like the CSV's empty cell).
+double WorkspaceStiffnessMin(const Model& model, const State& state, const Eigen::VectorXd& controls) {
+  return SmallestTranslationalStiffness(model, state, controls);
+}
+
+// A per-sample column of a tile's samples (SamplesDict with states): f at
+// each reached sample, 0 at the others.
+Eigen::VectorXd TileColumn(const Model& model, const StateArray& states, const RowMatrix& controls,
+                           const Eigen::Matrix<bool, Eigen::Dynamic, 1>& reachable,
+                           double (*f)(const Model&, const State&, const Eigen::VectorXd&)) {
   const Eigen::Index n = reachable.size();
   if (controls.rows() != n || controls.cols() != model.num_controls() || states.rows() != n * model.num_bodies()) {
     throw std::invalid_argument("workspace: a tile's arrays have the wrong shape");
   }
   Eigen::VectorXd out(n);
   for (Eigen::Index i = 0; i < n; ++i) {
-    out[i] = reachable[i] ? PositionStd(model, FromArray(model, states.middleRows(i * model.num_bodies(),
-                                                                                  model.num_bodies())),
-                                        controls.row(i).transpose())
+    out[i] = reachable[i] ? f(model, FromArray(model, states.middleRows(i * model.num_bodies(), model.num_bodies())),
+                              controls.row(i).transpose())
                           : 0.0;
+  }
+  return out;
+}
+
+// The same column over a computed map's samples.
+Eigen::VectorXd SamplesColumn(const Model& model, const std::vector<WorkspaceSample>& samples,
+                              double (*f)(const Model&, const State&, const Eigen::VectorXd&)) {
+  Eigen::VectorXd out(static_cast<Eigen::Index>(samples.size()));
+  for (size_t i = 0; i < samples.size(); ++i) {
+    const WorkspaceSample& s = samples[i];
+    out[static_cast<Eigen::Index>(i)] = s.reachable ? f(model, s.state, s.controls) : 0.0;
   }
   return out;
 }
@@ -256,12 +277,8 @@ py::dict WorkspaceCompute(const Model& model, const RangeList& ranges, int resol
     r = ComputeWorkspace(model, o, report);
   }
   py::dict d = SamplesDict(model, r.samples, false);
-  Eigen::VectorXd ee_std(static_cast<Eigen::Index>(r.samples.size()));
-  for (size_t i = 0; i < r.samples.size(); ++i) {
-    const WorkspaceSample& s = r.samples[i];
-    ee_std[static_cast<Eigen::Index>(i)] = s.reachable ? PositionStd(model, s.state, s.controls) : 0.0;
-  }
-  d["ee_std_m"] = ee_std;
+  d["ee_std_m"] = SamplesColumn(model, r.samples, PositionStd);
+  if (model.compliant()) d["stiffness_min_N_per_m"] = SamplesColumn(model, r.samples, WorkspaceStiffnessMin);
   d["tile_size"] = o.TileSide();
   std::vector<std::string> components;
   for (int c : r.components) components.emplace_back(kEndEffectorComponentNames[static_cast<size_t>(c)]);
@@ -326,8 +343,23 @@ void BindWorkspace(py::module_& m) {
         py::arg("samples"), py::arg("seed"), py::arg("threads"), py::arg("wave_size"), py::arg("control"),
         py::arg("tile_size") = 0, py::arg("progress") = py::none(),
         "Internal: ccma.workspace's map on local threads (analyses/workspace.h ComputeWorkspace).");
-  m.def("_workspace_ee_std", &TileEeStd, py::arg("model"), py::arg("states"), py::arg("controls"),
-        py::arg("reachable"), "Internal: the ee_std_m column [m] of a tile's samples.");
+  m.def(
+      "_workspace_ee_std",
+      [](const Model& model, const StateArray& states, const RowMatrix& controls,
+         const Eigen::Matrix<bool, Eigen::Dynamic, 1>& reachable) {
+        return TileColumn(model, states, controls, reachable, PositionStd);
+      },
+      py::arg("model"), py::arg("states"), py::arg("controls"), py::arg("reachable"),
+      "Internal: the ee_std_m column [m] of a tile's samples.");
+  m.def(
+      "_workspace_stiffness_min",
+      [](const Model& model, const StateArray& states, const RowMatrix& controls,
+         const Eigen::Matrix<bool, Eigen::Dynamic, 1>& reachable) -> py::object {
+        if (!model.compliant()) return py::none();
+        return py::cast(TileColumn(model, states, controls, reachable, WorkspaceStiffnessMin));
+      },
+      py::arg("model"), py::arg("states"), py::arg("controls"), py::arg("reachable"),
+      "Internal: the stiffness_min_N_per_m column [N/m] of a compliant model's tile (None for a rigid model).");
   m.def(
       "_workspace_tile_side",
       [](const Model& model, const RangeList& ranges, int resolution, int samples, std::uint64_t seed, int wave_size,

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 import ccma
-from conftest import ROOT, plant_pickled_array
+from conftest import ROOT, plant_pickled_array, run_tool
 
 MODEL_PATH = ROOT / "models" / "4dof_reduced.yaml"
 POST_TOP = "point: [0, 0.583012702, 0.35]"  # joint1, the top of post0
@@ -222,3 +222,17 @@ def test_design_sweep_reads_its_model_through_the_bounded_reader(tmp_path):
             ccma.design_sweep(str(fifo), {"joint1.z": [0.35]}, high_targets()[:1])
     finally:
         writer.join()
+
+
+def test_stiffness_objective_matches_the_tool(tmp_path):
+    model = str(ROOT / "examples" / "statics" / "stewart_gough_compliant.yaml")
+    targets = str(ROOT / "examples" / "statics" / "stewart_gough_compliant_targets.csv")
+    vary = ["joint%d.point" % j for j in (0, 3, 6, 9, 12, 15)]
+    r = ccma.design(model, targets, vary=vary, max_change=0.1, objective="stiffness", out=tmp_path / "py.yaml")
+    cli = run_tool("design", "--model=" + model, "--targets=" + targets, "--vary=" + ",".join(vary),
+                   "--max_change=0.1", "--objective=stiffness", "--out=" + str(tmp_path / "cli.yaml"))
+    assert r.objective["unit"] == "m/N" and r.objective["after"]["value"] == cli["objective"]["after"]["value"]
+    assert r.objective["after"]["value"] < 0.5 * r.objective["before"]["value"]
+    assert (tmp_path / "py.yaml").read_bytes() == (tmp_path / "cli.yaml").read_bytes()
+    with pytest.raises(ValueError, match="no stiffness keys"):
+        ccma.design(str(ROOT / "models" / "4dof_reduced.yaml"), targets, vary=["joint0.x"], objective="deflection")

@@ -192,3 +192,23 @@ def test_view_colours_by_load_like_the_cli(tmp_path):
     assert info.max_load == pytest.approx(cli["max_load"], rel=1e-12)
     with pytest.raises(ValueError, match="color_by"):
         ccma.view_html(ccma.load_model(str(model)), color_by="stress")
+
+
+def test_view_draws_the_loaded_shape_like_the_cli(tmp_path):
+    compliant = ROOT / "examples" / "statics" / "stewart_gough_compliant.yaml"
+    args = dict(controls=[0.01, 0, 0, 0, 0, 0], deflection=50, wrench=[0, 0, -80, 0, 0, 0])
+    cli = run_tool("view", "--model=%s" % compliant, "--controls=0.01,0,0,0,0,0", "--deflection=50",
+                   "--wrench=0,0,-80,0,0,0", "--out=%s" % (tmp_path / "cli.html"))
+    out = ccma.view(compliant, out=tmp_path / "py.html", **args)
+    assert (tmp_path / "py.html").read_bytes() == (tmp_path / "cli.html").read_bytes()
+    assert out.source == cli["source"] == "controls"
+    assert out.deflection_scale == 50 and out.deflection_converged and out.load_fraction == 1
+    assert out.max_deflection_m == cli["max_deflection_m"] > 1e-4
+    # Without deflection= no such key; a rigid model, a bad scale or an animation refused.
+    assert ccma.view_html(ccma.load_model(compliant))[1].deflection_scale is None
+    for bad, kw in ((MODEL, dict(deflection=10)), (compliant, dict(deflection=0)),
+                    (compliant, dict(deflection=float("nan"))), (compliant, dict(deflection=2e6)),
+                    (compliant, dict(wrench=[0, 0, -1, 0, 0, 0])), (compliant, dict(deflection=5, color_by="load")),
+                    (compliant, dict(controls=[0, 0]))):
+        with pytest.raises(ValueError):
+            ccma.view(bad, **kw)

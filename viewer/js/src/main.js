@@ -6,6 +6,7 @@ import { Color, Object3D, Scene, Vector3, WebGLRenderer } from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { buildCollision, clearanceAt } from './collision.js';
 import { COLORS, css } from './colors.js';
+import { deflectionColors, fadeRigid, showDeflected } from './deflection.js';
 import { loadColors } from './loads.js';
 import { buildMechanism, sceneSize } from './mechanism.js';
 import { buildOverlay, showError } from './overlay.js';
@@ -67,7 +68,14 @@ function start() {
   const collision = buildCollision(scene, world);
   mechanism.pose(frames, 0);
   if (collision) collision.pose(0);
+  // The loaded shape (`--deflection`): a second copy over the faded rigid one.
+  const deflected = scene.deflection ? buildMechanism(scene, world, size) : null;
+  if (deflected) {
+    showDeflected(scene, deflected);
+    fadeRigid(mechanism);
+  }
   const box = sceneBox(scene, mechanism, collision);
+  if (deflected) box.union(sceneBox(scene, deflected));
   const radius = box.getSize(new Vector3()).length() / 2;
   const step = gridStep(radius);
   addGround(world, box, step);
@@ -168,7 +176,7 @@ function start() {
     projectToScreen: toScreen,
     bodyPointsScreen: () => mechanism.bodyPointsWorld().map((p) => toScreen(p.toArray())),
     background: [16, 8, 0].map((shift) => (COLORS.background >> shift) & 255),  // sRGB, as on screen
-    showMechanism: (visible) => { mechanism.setVisible(visible); render(); },
+    showMechanism: (visible) => { mechanism.setVisible(visible); if (deflected) deflected.setVisible(visible); render(); },
     // The bodies' meshes (`ccma view --meshes`): how many, shown or hidden,
     // their vertex centroids in the world.
     meshes: mechanism.meshCount,
@@ -187,6 +195,13 @@ function start() {
     // loads at frame f give it (sRGB 0..255).
     loads: scene.loads ? { max: scene.loads.max, masses: scene.loads.masses } : null,
     bodyColors: () => mechanism.bodyColors(),
+    // The loaded shape (`--deflection`): its bodies' points on screen and
+    // colours as drawn, and the colours the scene's deflections give them (sRGB 0..255).
+    deflection: scene.deflection ? { scale: scene.deflection.scale, max: scene.deflection.max } : null,
+    deflectedPointsScreen: () => (deflected ? deflected.bodyPointsWorld().map((p) => toScreen(p.toArray())) : []),
+    deflectedColors: () => (deflected ? deflected.bodyColors() : null),
+    deflectionColors: () => (scene.deflection ? deflectionColors(scene).map((c) => c.map((x) => Math.round(255 * x))) : null),
+    showRigid: (visible) => { mechanism.setVisible(visible); render(); },
     loadColorsAt: (f) => (scene.loads ? loadColors(scene, f).map((c) => c.map((x) => Math.round(255 * x))) : null),
   };
 }

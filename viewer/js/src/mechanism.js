@@ -184,6 +184,14 @@ export function buildMechanism(scene, root, u) {
     paint(colors) {
       bodies.forEach((g, b) => g.userData.materials.forEach((m) => m.color.setRGB(...colors[b], SRGBColorSpace)));
     },
+    // The links and balls see-through (the rigid shape under a loaded one, deflection.js).
+    fade(opacity) {
+      bodies.forEach((g) => g.userData.materials.forEach((m) => {
+        m.transparent = true;
+        m.opacity = opacity;
+        m.depthWrite = false;
+      }));
+    },
     bodyColors() {
       return bodies.map((g) => {
         const c = g.userData.materials[0].color.clone().convertLinearToSRGB();

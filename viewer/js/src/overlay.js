@@ -5,6 +5,7 @@
 // "unreachable" switch, the load scale and the frame's loads (colouring by
 // load, loads.js); and the error panel.
 import { COLORS, css } from './colors.js';
+import { deflectionLegend } from './deflection.js';
 import { loadLabel, loadLegend } from './loads.js';
 import { rampGradient } from './workspace.js';
 
@@ -86,6 +87,7 @@ function legend(scene, gridStep, cloud) {
   const panel = el('div', { ...PANEL, top: '10px', right: '10px' });
   const toggle = cloud ? workspaceLegend(panel, scene, cloud) : null;
   if (scene.loads) loadLegend(panel, scene);
+  if (scene.deflection) deflectionLegend(panel, scene);
   const item = (kind, colors, label) => {
     const row = el('div', { display: 'flex', alignItems: 'center', gap: '8px', margin: '3px 0' });
     row.append(swatch(kind, colors), el('span', {}, label));
@@ -97,7 +99,7 @@ function legend(scene, gridStep, cloud) {
   if (kinds.has('differential')) item('block', [COLORS.differential], 'differential base (arrow: heading)');
   if (kinds.has('legged')) item('block', [COLORS.legged], 'legged base: body box on four legs (arrow: heading)');
   const withMeshes = scene.bodies.filter((b) => (b.meshes || []).length > 0).length;
-  if (withMeshes < scene.bodies.length && !scene.loads) item('block', [COLORS.link], 'link');
+  if (withMeshes < scene.bodies.length && !scene.loads) item('block', [COLORS.link], scene.deflection ? 'link (rigid shape, faded)' : 'link');
   if (withMeshes > 0 && !scene.loads) item('block', [COLORS.mesh], 'body mesh (STL)');
   if (joints.some((j) => !j.actuated)) item('block', [COLORS.joint], 'joint (passive)');
   if (joints.some((j) => j.actuated)) item('block', [COLORS.actuated], 'actuated joint');

@@ -26,6 +26,9 @@
 //   m, n, o. (pages coloured by load, `ccma view --color_by=load`) the load
 //      legend, each body in its load's colour, the bar's load line:
 //      test/load_checks.mjs;
+//   p, q, r. (pages with a loaded shape, `ccma view --deflection`) the
+//      legend's scale, each loaded body in its deflection's colour, the
+//      loaded copy at the scene's poses: test/deflection_checks.mjs;
 //   f. (--screenshot OUT.png) saves the 1200x800 picture at frame 0 (or at
 //      --screenshot-frame N), also of a failed page.
 // Prints one JSON line; exit 0 when every check passes, 1 otherwise, 77 when
@@ -37,6 +40,7 @@ import { resolve } from 'node:path';
 import { pathToFileURL } from 'node:url';
 import { chromium } from 'playwright-core';
 import { checkCollision } from './collision_checks.mjs';
+import { checkDeflection } from './deflection_checks.mjs';
 import { checkLoads } from './load_checks.mjs';
 import { checkMeshes } from './mesh_checks.mjs';
 import { decodePng } from './png.mjs';
@@ -197,6 +201,9 @@ try {
     // (Asked of the scene, not of the page: a page that ignores the loads fails.)
     const hasLoads = await page.evaluate(() => Boolean(JSON.parse(document.getElementById('ccma-scene').textContent).loads));
     if (hasLoads) failures.push(...await checkLoads(page, shot, result));
+    // p, q, r. The loaded shape: its legend, colours and poses.
+    const hasDeflection = await page.evaluate(() => Boolean(JSON.parse(document.getElementById('ccma-scene').textContent).deflection));
+    if (hasDeflection) failures.push(...await checkDeflection(page, result));
 
     // e. The slider (through the UI) and play move the end-effector.
     if (args.includes('--expect-animation') && view.frames < 2) {
