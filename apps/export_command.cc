@@ -23,14 +23,6 @@ int RunExport(const std::vector<std::string>& args) {
   if (format != "urdf" && format != "sdf") throw UsageError("ccma export: --format must be urdf or sdf");
   const std::string out_path = RequireFlag(FLAGS_out, "out", "export");
   const Model model = LoadModelOrThrow(model_path);
-  for (const MobileBase& base : model.mobile_bases) {
-    // URDF and SDFormat have no joint that means "a body on legs": written as
-    // a planar joint it would lose the body's height and tilt.
-    if (base.type == BaseType::kLegged) {
-      throw UsageError("ccma export: base '" + base.name +
-                       "' is legged; URDF and SDFormat export writes wheeled bases only (planar joints)");
-    }
-  }
   nlohmann::json summary = {{"out", out_path}, {"format", format}, {"closures", nullptr}};
   if (format == "urdf") {
     const UrdfExport urdf = WriteUrdf(model);

@@ -3,7 +3,9 @@
 #include <cstdio>
 #include <sstream>
 #include <string>
+#include <utility>
 
+#include "ccma/base_kind.h"
 #include "ccma/rotation.h"
 
 namespace ccma {
@@ -75,6 +77,22 @@ void WriteBodies(const Model& model, std::ostringstream& out) {
   }
 }
 
+// A legged base's body_height, body_limits (those given) and footprint.
+void WriteLeggedBody(const LeggedBody& body, std::ostringstream& out) {
+  out << "    body_height: " << Num(body.height) << "\n";
+  std::string limits;
+  const std::pair<const char*, const ControlRange*> ranges[] = {
+      {"height", &body.height_limits}, {"roll", &body.roll_limits}, {"pitch", &body.pitch_limits}};
+  for (const auto& [name, range] : ranges) {
+    if (!range->limited) continue;
+    limits += std::string(limits.empty() ? "" : ", ") + name + ": [" + Num(range->lower) + ", " + Num(range->upper) + "]";
+  }
+  if (!limits.empty()) out << "    body_limits: {" << limits << "}\n";
+  if (body.footprint.minCoeff() > 0) {
+    out << "    footprint: [" << Num(body.footprint.x()) << ", " << Num(body.footprint.y()) << "]\n";
+  }
+}
+
 void WriteBases(const Model& model, std::ostringstream& out) {
   if (model.mobile_bases.empty()) return;
   out << "mobile_bases:\n";
@@ -82,9 +100,12 @@ void WriteBases(const Model& model, std::ostringstream& out) {
   for (std::size_t k = 0; k < model.mobile_bases.size(); ++k) {
     const MobileBase& base = model.mobile_bases[k];
     const bool differential = base.type == BaseType::kDifferential;
-    out << "  - name: " << YamlName(base.name) << "\n    type: " << (differential ? "differential" : "omni")
-        << "\n    actuation: " << (base.actuation == Actuation::kReduced ? "reduced" : "complete")
-        << "\n    pose: " << Vec(base.home_pose) << "\n";
+    const bool legged = base.type == BaseType::kLegged;
+    out << "  - name: " << YamlName(base.name) << "\n    type: " << KindOf(base).name() << "\n";
+    // A legged base has no `actuation` (all six controls are effective).
+    if (!legged) out << "    actuation: " << (base.actuation == Actuation::kReduced ? "reduced" : "complete") << "\n";
+    out << "    pose: " << Vec(base.home_pose) << "\n";
+    if (legged) WriteLeggedBody(base.legged, out);
     if (differential) {
       out << "    wheels: {track: " << Num(base.differential.track) << ", radius: " << Num(base.differential.radius)
           << "}\n";

@@ -17,6 +17,8 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "ccma/model.h"
+
 namespace ccma {
 
 // The name the source uses for the ground (a URDF root link called `world`,
@@ -45,7 +47,9 @@ struct RobotLink {
   int line = 0;  // source line of the link element (0: unknown)
 };
 
-enum class RobotJointType { kRevolute, kPrismatic, kFixed, kSpherical, kUniversal, kPlanar };
+// kPlanar and kFloating join the ground to a mobile base: a wheeled one, and
+// a legged one (a floating joint with ccma's extension, formats/internal/legged_extension.h).
+enum class RobotJointType { kRevolute, kPrismatic, kFixed, kSpherical, kUniversal, kPlanar, kFloating };
 
 struct RobotJoint {
   std::string name;
@@ -64,6 +68,8 @@ struct RobotJoint {
   // The joint coordinate in the configuration the link poses describe
   // (URDF: 0; SDFormat: <initial_position> where given), rad or m.
   double position = 0;
+  // kFloating: the legged base's body its extension element describes.
+  LeggedBody legged;
   int line = 0;
 };
 

@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <tinyxml.h>
@@ -27,6 +28,7 @@
 
 #include "ccma/internal/format.h"
 #include "ccma/limits.h"
+#include "formats/internal/legged_extension.h"
 #include "formats/internal/mesh_paths.h"
 #include "formats/internal/robot_xml.h"
 #include "formats/internal/sdformat_cost.h"
@@ -146,14 +148,16 @@ void CheckXml(const std::string& text, const std::string& source) {
   }
 }
 
-// libsdformat's errors, less the one it reports for each `planar` joint
-// (SDFormat has no such type; the reader accepts it from `world`).
+// libsdformat's errors, less the one it reports for each `planar` and
+// `floating` joint (SDFormat has no such types; the reader accepts them
+// from `world`).
 sdf::Errors Unforgiven(const sdf::Errors& errors) {
   sdf::Errors kept;
   for (const sdf::Error& e : errors) {
-    const bool planar = e.Code() == sdf::ErrorCode::ATTRIBUTE_INVALID &&
-                        e.Message().rfind("Joint type of planar is invalid", 0) == 0;
-    if (!planar) kept.push_back(e);
+    const bool base = e.Code() == sdf::ErrorCode::ATTRIBUTE_INVALID &&
+                      (e.Message().rfind("Joint type of planar is invalid", 0) == 0 ||
+                       e.Message().rfind("Joint type of floating is invalid", 0) == 0);
+    if (!base) kept.push_back(e);
   }
   return kept;
 }
@@ -216,9 +220,36 @@ RobotJointType JointTypeOf(const sdf::Joint& joint, const std::string& where) {
   }
   const std::string type = joint.Element() ? joint.Element()->Get<std::string>("type") : "";
   if (type == "planar") return RobotJointType::kPlanar;
+  if (type == "floating") return RobotJointType::kFloating;
   throw ModelError(where + ": type " + Quote(type) +
                    " is not supported (revolute, continuous, prismatic, fixed, ball, universal, "
-                   "or planar from world)");
+                   "or planar or floating from world)");
+}
+
+// A floating joint from world is a legged base when it holds ccma's
+// <ccma:legged .../> (formats/internal/legged_extension.h); no other joint
+// may hold one.
+void ReadSdfLegged(const sdf::Joint& joint, const Context& context, const std::string& where, RobotJoint* out) {
+  const sdf::ElementPtr element = joint.Element();
+  const std::string name = std::string("<") + internal::kSdfLeggedElement + ">";
+  const bool floating = out->type == RobotJointType::kFloating;
+  if (!element || !element->HasElement(internal::kSdfLeggedElement)) {
+    if (!floating) return;
+    throw ModelError(where + ": a floating joint from world is a legged base and needs ccma's " + name +
+                     " element (body_height=\"m\", docs/import.md); ccma has no free-flying body");
+  }
+  const sdf::ElementPtr legged = element->GetElement(internal::kSdfLeggedElement);
+  // libsdformat keeps no line for elements of other namespaces: the joint's then.
+  const std::string at = Where(context, legged->LineNumber() ? legged : element) + ": joint " + Quote(joint.Name()) +
+                         ": " + name;
+  if (legged->GetNextElement(internal::kSdfLeggedElement)) throw ModelError(at + ": more than one");
+  if (!floating) throw ModelError(at + " belongs in a floating joint from world");
+  std::vector<std::pair<std::string, std::string>> attributes;
+  for (std::size_t i = 0; i < legged->GetAttributeCount(); ++i) {
+    const sdf::ParamPtr attribute = legged->GetAttribute(static_cast<unsigned>(i));
+    attributes.emplace_back(attribute->GetKey(), attribute->GetAsString());
+  }
+  out->legged = internal::ParseLeggedAttributes(attributes, at);
 }
 
 // The unit axis `index` of a joint, in W.
@@ -302,15 +333,17 @@ RobotJoint ReadJoint(const sdf::Joint& joint, const Context& context) {
       out.axis2_W = AxisInWorld(joint, 1, context, where);
       break;
     case RobotJointType::kPlanar:
+    case RobotJointType::kFloating:
       if (out.parent != kRobotWorld) {
-        throw ModelError(where +
-                         ": a planar joint must connect the ground ('world') to a mobile base");
+        throw ModelError(where + ": a " + (out.type == RobotJointType::kPlanar ? "planar" : "floating") +
+                         " joint must connect the ground ('world') to a mobile base");
       }
       out.axis_W = out.X_WJ.linear().col(2);
       break;
     default:
       break;
   }
+  ReadSdfLegged(joint, context, where, &out);
   return out;
 }
 

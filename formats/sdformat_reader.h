@@ -12,10 +12,12 @@
 //    below; the mesh frame and <scale>);
 //  - every <joint>, in file order: revolute and continuous -> kRevolute,
 //    prismatic, fixed, ball -> kSpherical, universal -> kUniversal (axis fixed
-//    in the parent, axis2 fixed in the child), and `planar` from `world` ->
-//    kPlanar (normal: the joint frame's z). SDFormat has no planar type:
-//    libsdformat reports "Joint type of planar is invalid" and loads the rest;
-//    only that report is forgiven. Other types (screw, gearbox, revolute2) are
+//    in the parent, axis2 fixed in the child), `planar` from `world` ->
+//    kPlanar (normal: the joint frame's z) and `floating` from `world` with
+//    ccma's <ccma:legged .../> (formats/internal/legged_extension.h) ->
+//    kFloating, a legged base. SDFormat has neither type: libsdformat reports
+//    "Joint type of planar is invalid" (or floating) and loads the rest;
+//    only those reports are forgiven. Other types (screw, gearbox, revolute2) are
 //    rejected naming the joint. A parent or child that is a <frame> stands for
 //    the link it is attached to; `world` is kRobotWorld.
 //    The joint frame (X_WJ) is the joint's pose; the axis is <xyz> resolved

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "formats/internal/export_geometry.h"
+#include "formats/internal/legged_extension.h"
 
 namespace ccma {
 namespace {
@@ -22,6 +23,7 @@ struct SdfJoint {
   bool limited = false;
   double lower = 0, upper = 0;
   double initial_position = 0;
+  std::string legged;  // a legged base's floating joint: the attributes of its <ccma:legged>, else ""
 };
 
 std::string SdfType(const Joint& joint) {
@@ -74,17 +76,19 @@ class SdfBuilder {
     return body_names_.count(name) > 0 ? names_.Claim(name + "_joint") : name;
   }
 
-  // SDFormat has no planar joint type; ccma (and its reader) use `planar`
-  // from world anyway (header).
+  // SDFormat has neither a planar nor a floating joint type; ccma (and its
+  // reader) use `planar` and `floating` from world anyway (header).
   void AddBase(const MobileBase& base) {
     const Body& body = model_.bodies[base.body];
+    const bool legged = base.type == BaseType::kLegged;
     SdfJoint s;
-    s.name = names_.Claim(body.name + "_planar");
-    s.type = "planar";
+    s.name = names_.Claim(body.name + (legged ? "_floating" : "_planar"));
+    s.type = legged ? "floating" : "planar";
     s.parent = "world";
     s.child = body.name;
     s.point = body.p_WB_home;
-    s.has_axis = true;  // the plane's normal
+    s.has_axis = !legged;  // the plane's normal
+    if (legged) s.legged = internal::LeggedAttributes(base.legged);
     joints_.push_back(s);
   }
 
@@ -148,6 +152,7 @@ void SdfBuilder::WriteJoint(std::ostream& os, const SdfJoint& s) const {
     os << "      </axis>\n";
   }
   if (s.has_axis2) os << "      <axis2>\n        <xyz>" << Triple(s.axis2.normalized()) << "</xyz>\n      </axis2>\n";
+  if (!s.legged.empty()) os << "      <" << internal::kSdfLeggedElement << s.legged << "/>\n";
   os << "    </joint>\n";
 }
 

@@ -14,14 +14,16 @@
 //    so axes read the same in the joint frame and in the world;
 //  * a joint with q_home != 0 has <initial_position> q_home: the links are
 //    posed at home, where every joint reads q_home;
-//  * a mobile base B hangs from world by a joint `B_planar` of type `planar`
-//    (normal z, frame at the base frame's origin), as in URDF. SDFormat has
-//    no such type: libsdformat reports "Joint type of planar is invalid" for
-//    each of them and loads the rest; ccma's SDFormat reader accepts it from
-//    world;
+//  * a wheeled mobile base B hangs from world by a joint `B_planar` of type
+//    `planar` (normal z, frame at the base frame's origin), as in URDF; a
+//    legged one by a joint `B_floating` of type `floating` holding ccma's
+//    <ccma:legged .../> (formats/internal/legged_extension.h). SDFormat has
+//    neither type: libsdformat reports "Joint type of planar is invalid" (or
+//    floating) for each of them and loads the rest; ccma's SDFormat reader
+//    accepts both from world;
 //  * ccma's extension elements in <model> (namespace https://ccma.dev/sdf):
 //    <ccma:actuated joints="..."/> (when there are any) names the actuated joints in file order
-//    (the controls after the bases', whose planar joints come first in the
+//    (the controls after the bases', whose joints come first in the
 //    file, in base order), and <ccma:end_effector link=".." point="x y z"
 //    controlled=".."/> the end-effector (point in the link frame, m).
 // Numbers have 17 significant digits, so they read back to the same doubles.

@@ -5,6 +5,7 @@
 #include <memory>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <console_bridge/console.h>
@@ -14,6 +15,7 @@
 #include "ccma/internal/format.h"
 #include "ccma/limits.h"
 #include "formats/closure_file.h"
+#include "formats/internal/legged_extension.h"
 #include "formats/internal/library_message.h"
 #include "formats/internal/mesh_paths.h"
 #include "formats/internal/robot_xml.h"
@@ -22,12 +24,36 @@
 namespace ccma {
 namespace {
 
+// A joint's <ccma_legged> (formats/internal/legged_extension.h): its
+// attributes in file order and its line.
+struct UrdfLeggedElement {
+  std::vector<std::pair<std::string, std::string>> attributes;
+  int line = 0;
+};
+
+// The <ccma_legged> of a joint element, if any (at most one).
+void IndexUrdfLegged(const TiXmlElement& joint, const std::string& name, const std::string& source,
+                 std::map<std::string, UrdfLeggedElement>* legged) {
+  const TiXmlElement* e = joint.FirstChildElement(internal::kUrdfLeggedElement);
+  if (e == nullptr) return;
+  if (e->NextSiblingElement(internal::kUrdfLeggedElement) != nullptr) {
+    throw ModelError(source + ":" + std::to_string(e->Row()) + ": joint " + Quote(name) + ": more than one <" +
+                     internal::kUrdfLeggedElement + ">");
+  }
+  UrdfLeggedElement& out = (*legged)[name];
+  out.line = e->Row();
+  for (const TiXmlAttribute* a = e->FirstAttribute(); a != nullptr; a = a->Next()) {
+    out.attributes.emplace_back(a->Name(), a->Value());
+  }
+}
+
 // What urdfdom does not keep: source lines, element order, and whether a
 // <limit> names its range.
 struct XmlIndex {
   std::vector<std::string> links, joints;  // source order
   std::map<std::string, int> line;         // "link NAME" / "joint NAME" -> line
   std::set<std::string> ranged;            // joints whose <limit> has lower or upper
+  std::map<std::string, UrdfLeggedElement> legged;  // joint -> its <ccma_legged>
 };
 
 XmlIndex IndexXml(const std::string& text, const std::string& source) {
@@ -49,6 +75,7 @@ XmlIndex IndexXml(const std::string& text, const std::string& source) {
     if (!link && limit != nullptr && (limit->Attribute("lower") != nullptr || limit->Attribute("upper") != nullptr)) {
       index.ranged.insert(name);
     }
+    if (!link) IndexUrdfLegged(*e, name, source, &index.legged);
   }
   if (index.links.size() > static_cast<std::size_t>(kMaxRobotLinks) ||
       index.joints.size() > static_cast<std::size_t>(kMaxRobotJoints)) {
@@ -111,10 +138,30 @@ RobotJointType JointType(const urdf::Joint& joint, const std::string& where) {
     case urdf::Joint::PRISMATIC: return RobotJointType::kPrismatic;
     case urdf::Joint::FIXED: return RobotJointType::kFixed;
     case urdf::Joint::PLANAR: return RobotJointType::kPlanar;
+    case urdf::Joint::FLOATING:
+      if (joint.parent_link_name == kRobotWorld) return RobotJointType::kFloating;
+      break;
     default: break;
   }
-  throw ModelError(where + ": joint type not supported (revolute, continuous, prismatic, fixed, planar from "
-                           "the ground; a closure file's joint_type may replace it)");
+  throw ModelError(where + ": joint type not supported (revolute, continuous, prismatic, fixed, planar or "
+                           "floating from the ground; a closure file's joint_type may replace it)");
+}
+
+// A floating joint from the ground is a legged base when it holds ccma's
+// <ccma_legged> (ccma has no free-flying body); no other joint may hold one.
+void ReadUrdfLegged(const XmlIndex& index, const std::string& source, const std::string& where, RobotJoint* joint) {
+  const auto it = index.legged.find(joint->name);
+  const bool floating = joint->type == RobotJointType::kFloating;
+  const std::string element = std::string("<") + internal::kUrdfLeggedElement + ">";
+  if (it == index.legged.end()) {
+    if (!floating) return;
+    throw ModelError(where + ": a floating joint from the ground is a legged base and needs ccma's " + element +
+                     " element (body_height=\"m\", docs/import.md); ccma has no free-flying body");
+  }
+  const std::string at = source + ":" + std::to_string(it->second.line) + ": joint " + Quote(joint->name) + ": " +
+                         element;
+  if (!floating) throw ModelError(at + " belongs in a floating joint from the ground ('world')");
+  joint->legged = internal::ParseLeggedAttributes(it->second.attributes, at);
 }
 
 RobotJoint ReadJoint(const urdf::Joint& j, const Eigen::Isometry3d& X_WP, const XmlIndex& index,
@@ -128,10 +175,12 @@ RobotJoint ReadJoint(const urdf::Joint& j, const Eigen::Isometry3d& X_WP, const 
   joint.line = index.line.count("joint " + j.name) ? index.line.at("joint " + j.name) : 0;
   joint.X_WJ = X_WP * Isometry(j.parent_to_joint_origin_transform, where);
   const Eigen::Vector3d axis(j.axis.x, j.axis.y, j.axis.z);
-  if (joint.type != RobotJointType::kFixed && (!axis.allFinite() || axis.norm() < 1e-9 || axis.norm() > 1e9)) {
+  const bool has_axis = joint.type != RobotJointType::kFixed && joint.type != RobotJointType::kFloating;
+  if (has_axis && (!axis.allFinite() || axis.norm() < 1e-9 || axis.norm() > 1e9)) {
     throw ModelError(where + ": axis must be a finite, non-zero vector");
   }
-  if (joint.type != RobotJointType::kFixed) joint.axis_W = joint.X_WJ.linear() * axis.normalized();
+  if (has_axis) joint.axis_W = joint.X_WJ.linear() * axis.normalized();
+  ReadUrdfLegged(index, source, where, &joint);
   const bool ranged = index.ranged.count(j.name) > 0 && j.limits && j.type != urdf::Joint::CONTINUOUS;
   if (ranged && (joint.type == RobotJointType::kRevolute || joint.type == RobotJointType::kPrismatic)) {
     joint.limited = true;

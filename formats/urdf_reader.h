@@ -25,7 +25,10 @@ constexpr std::size_t kMaxRobotFileBytes = std::size_t{16} << 20;
 // welded to the ground by a fixed joint `world__ROOT`. Mesh references are
 // resolved against the URDF's folder. Throws ModelError naming the file,
 // the line and the element on a malformed file, an unsupported joint type
-// (floating, or planar other than from the ground) or an unknown name.
+// (planar or floating other than from the ground) or an unknown name. A
+// floating joint from the ground is a legged base: it must hold ccma's
+// <ccma_legged .../> (formats/internal/legged_extension.h), read into
+// RobotJoint::legged.
 RobotDescription ReadUrdf(const std::string& urdf_path, const std::string& closures_path);
 
 // The URDF part of ReadUrdf for text in memory; `urdf_path` names it in

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "formats/internal/export_geometry.h"
+#include "formats/internal/legged_extension.h"
 
 namespace ccma {
 namespace {
@@ -27,6 +28,7 @@ struct UrdfJoint {
   Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();  // child frame in parent frame, q = 0
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();           // in the child frame
   std::string limit;  // the <limit> element, or ""
+  std::string legged;  // a legged base's floating joint: the attributes of its <ccma_legged>, else ""
 };
 
 struct UrdfClosure {
@@ -175,9 +177,14 @@ class UrdfBuilder {
         weld_after_.clear();
         continue;
       }
-      UrdfJoint u;  // a mobile base's planar joint from world
-      u.name = names_.Claim(model_.bodies[body].name + "_planar");
-      u.type = "planar";
+      // A mobile base hangs from world: a wheeled base by a planar joint, a
+      // legged one (which also rises and tilts) by a floating joint.
+      const MobileBase& base = model_.mobile_bases[model_.bodies[body].base_index];
+      const bool legged = base.type == BaseType::kLegged;
+      UrdfJoint u;
+      u.name = names_.Claim(model_.bodies[body].name + (legged ? "_floating" : "_planar"));
+      u.type = legged ? "floating" : "planar";
+      if (legged) u.legged = internal::LeggedAttributes(base.legged);
       u.parent = 0;
       u.child = Link(body);
       u.origin = links_[u.child].X_W;
@@ -222,7 +229,7 @@ class UrdfBuilder {
   std::vector<UrdfClosure> closures_;
   std::vector<std::pair<std::string, std::string>> overrides_;  // joint_name, joint_type
   std::vector<std::pair<std::string, double>> positions_;       // joint, q_home (rad or m), when not 0
-  std::vector<std::string> planar_joints_;                      // base order
+  std::vector<std::string> planar_joints_;                      // the bases' joints, base order
   std::vector<std::pair<int, int>> weld_after_;                  // (joint frame link, body link) to weld
 };
 
@@ -239,8 +246,9 @@ std::string UrdfBuilder::UrdfText() const {
        << "    <child link=\"" << links_[u.child].name << "\"/>\n"
        << "    <origin xyz=\"" << Triple(u.origin.translation()) << "\" rpy=\"" << internal::RpyText(u.origin.linear())
        << "\"/>\n";
-    if (u.type != "fixed") os << "    <axis xyz=\"" << Triple(u.axis) << "\"/>\n";
+    if (u.type != "fixed" && u.type != "floating") os << "    <axis xyz=\"" << Triple(u.axis) << "\"/>\n";
     if (!u.limit.empty()) os << "    " << u.limit << "\n";
+    if (!u.legged.empty()) os << "    <" << internal::kUrdfLeggedElement << u.legged << "/>\n";
     os << "  </joint>\n";
   }
   os << "</robot>\n";

@@ -3,11 +3,14 @@
 // convention of docs/model_format.md, "Robots described elsewhere").
 //
 // URDF holds a tree, rooted at a link `world`: the writer keeps a spanning
-// tree of the joint graph (bases' planar joints, then revolute, prismatic and
+// tree of the joint graph (bases' joints from world, then revolute, prismatic and
 // universal joints, then fixed, then spherical ones) and writes every other
 // joint as a loop closure:
-//  * every body is a link of the same name, with the body's frame. A mobile
-//    base hangs from world by a `planar` joint (normal z). The joint that
+//  * every body is a link of the same name, with the body's frame. A wheeled
+//    mobile base hangs from world by a `planar` joint (normal z), a legged
+//    one by a `floating` joint holding ccma's <ccma_legged> extension
+//    (formats/internal/legged_extension.h: its body height, limits and
+//    footprint), its origin the body frame at home. The joint that
 //    joins any other body to its parent moves a frame at the joint point,
 //    with the body's home orientation (universal joints: x = the parent's
 //    axis, y = the child's axis): the body's own link when that is its body
@@ -28,7 +31,7 @@
 //    by a '6d' or '3d' closure; a cut revolute, prismatic or universal joint
 //    becomes a link J_A hanging from the first body through J itself, closed
 //    '6d' to a frame link J_B of the second body;
-//  * name_mot: the bases' planar joints in base order, then the actuated
+//  * name_mot: the bases' planar and floating joints in base order, then the actuated
 //    joints in file order (the model's control order). The end-effector goes
 //    to ccma's `end_effector` extension (link, point in the link frame).
 // Added names get a suffix "_2", ... when the model already uses them.

@@ -255,12 +255,20 @@ void ExpectOverridesAndMotors(const ParsedUrdf& p, const Model& model) {
   }
   std::vector<std::string> motors;
   for (const MobileBase& base : model.mobile_bases) {
-    const urdf::JointConstSharedPtr planar = p.urdf->getLink(model.bodies[base.body].name)->parent_joint;
-    ASSERT_TRUE(planar);
-    EXPECT_EQ(planar->type, urdf::Joint::PLANAR);
-    EXPECT_EQ(planar->parent_link_name, "world");
-    EXPECT_LT((ToVector(planar->axis) - Eigen::Vector3d::UnitZ()).norm(), kTolerance);
-    motors.push_back(planar->name);
+    // A wheeled base hangs from world by a planar joint, a legged one by a
+    // floating joint; either way its link is at its body frame at home.
+    const Body& body = model.bodies[base.body];
+    const urdf::JointConstSharedPtr from_world = p.urdf->getLink(body.name)->parent_joint;
+    ASSERT_TRUE(from_world);
+    EXPECT_EQ(from_world->parent_link_name, "world");
+    EXPECT_LT((p.home.at(body.name).translation() - body.p_WB_home).norm(), kTolerance) << body.name;
+    if (base.type == BaseType::kLegged) {
+      EXPECT_EQ(from_world->type, urdf::Joint::FLOATING);
+    } else {
+      EXPECT_EQ(from_world->type, urdf::Joint::PLANAR);
+      EXPECT_LT((ToVector(from_world->axis) - Eigen::Vector3d::UnitZ()).norm(), kTolerance);
+    }
+    motors.push_back(from_world->name);
   }
   for (const Joint& joint : model.joints) {
     if (joint.actuated) motors.push_back(joint.name);
@@ -416,15 +424,16 @@ void CheckSdf(const Model& model, const std::string& what) {
   SCOPED_TRACE(what);
   const SdformatExport e = WriteSdformat(model);
   sdf::Root root;
-  // SDFormat has no planar joint type: libsdformat flags each base's joint
-  // (and nothing else); ccma's reader accepts planar joints from world.
-  int planar_errors = 0;
+  // SDFormat has no planar or floating joint type: libsdformat flags each
+  // base's joint (and nothing else); ccma's reader accepts both from world.
+  int base_errors = 0;
   for (const sdf::Error& error : root.LoadSdfString(e.sdf)) {
-    const bool planar = error.Message().rfind("Joint type of planar is invalid", 0) == 0;
-    planar_errors += planar ? 1 : 0;
-    EXPECT_TRUE(planar) << "libsdformat: " << error.Message() << "\n" << e.sdf;
+    const bool base = error.Message().rfind("Joint type of planar is invalid", 0) == 0 ||
+                      error.Message().rfind("Joint type of floating is invalid", 0) == 0;
+    base_errors += base ? 1 : 0;
+    EXPECT_TRUE(base) << "libsdformat: " << error.Message() << "\n" << e.sdf;
   }
-  EXPECT_EQ(planar_errors, model.num_bases());
+  EXPECT_EQ(base_errors, model.num_bases());
   const sdf::Model* sdf_model = root.Model();
   ASSERT_NE(sdf_model, nullptr);
   EXPECT_EQ(static_cast<int>(sdf_model->LinkCount()), e.links);
@@ -441,14 +450,16 @@ void CheckSdf(const Model& model, const std::string& what) {
   for (const Joint& joint : model.joints) ExpectSdfJoint(*sdf_model, model, joint);
   std::string actuated;
   for (const MobileBase& base : model.mobile_bases) {
-    const std::string name = model.bodies[base.body].name + "_planar";
+    const bool legged = base.type == BaseType::kLegged;
+    const std::string name = model.bodies[base.body].name + (legged ? "_floating" : "_planar");
     const sdf::Joint* s = sdf_model->JointByName(name);
     ASSERT_NE(s, nullptr) << name;
     EXPECT_EQ(s->ParentLinkName(), "world");
     EXPECT_EQ(s->ChildLinkName(), model.bodies[base.body].name);
+    EXPECT_EQ(s->Element()->Get<std::string>("type"), legged ? "floating" : "planar");
     const Eigen::Isometry3d X_WJ = InModel(s->SemanticPose());
-    EXPECT_LT((X_WJ.translation() - Eigen::Vector3d(base.home_pose.x(), base.home_pose.y(), 0)).norm(), kTolerance);
-    EXPECT_LT((X_WJ.linear().col(2) - Eigen::Vector3d::UnitZ()).norm(), kTolerance);  // the plane's normal
+    EXPECT_LT((X_WJ.translation() - model.bodies[base.body].p_WB_home).norm(), kTolerance);
+    if (!legged) EXPECT_LT((X_WJ.linear().col(2) - Eigen::Vector3d::UnitZ()).norm(), kTolerance);  // the normal
   }
   for (const Joint& joint : model.joints) {
     if (joint.actuated) actuated += (actuated.empty() ? "" : " ") + SdfJointName(model, joint);
@@ -609,6 +620,19 @@ void ExpectSameMechanism(const Model& original, const Model& imported, const std
   }
 }
 
+// The same home controls: a base's heading is read back from its link's
+// rotation, in (-pi, pi], so headings compare modulo 2 pi.
+void ExpectSameHomeControls(const Model& original, const Model& imported, const std::string& what) {
+  const Eigen::VectorXd a = original.home_controls(), b = imported.home_controls();
+  ASSERT_EQ(a.size(), b.size()) << what;
+  Eigen::VectorXd difference = a - b;
+  for (int k = 0; k < original.num_bases(); ++k) {
+    const int heading = original.base_control(k) + kBaseHeading;
+    difference[heading] = std::remainder(difference[heading], 2 * M_PI);
+  }
+  EXPECT_LT(difference.norm(), 1e-12) << what;
+}
+
 Model ImportUrdfExport(const Model& model) {
   const UrdfExport e = WriteUrdf(model);
   const std::string urdf_path = testing::ScratchPath("export_round_trip", model.name + ".urdf");
@@ -622,7 +646,7 @@ TEST(ExportRoundTrip, UrdfGivesBackTheSameMechanism) {
   for (const std::string& name : testing::BundledModels()) {
     const Model model = LoadModel(testing::ModelPath(name));
     const Model imported = ImportUrdfExport(model);
-    EXPECT_LT((imported.home_controls() - model.home_controls()).norm(), 1e-12) << name;
+    ExpectSameHomeControls(model, imported, name);
     ExpectSameMechanism(model, imported, name + " (urdf)");
   }
   const Model loop = LoadModelFromString(kLoopModel, "qhome_loop.yaml");
@@ -677,7 +701,7 @@ TEST(ExportRoundTrip, SdformatGivesBackTheSameMechanism) {
   for (const std::string& name : testing::BundledModels()) {
     const Model model = LoadModel(testing::ModelPath(name));
     const Model imported = ImportSdformatExport(model);
-    EXPECT_LT((imported.home_controls() - model.home_controls()).norm(), 1e-12) << name;
+    ExpectSameHomeControls(model, imported, name);
     ExpectSameMechanism(model, imported, name + " (sdf)");
   }
   const Model loop = LoadModelFromString(kLoopModel, "qhome_loop.yaml");

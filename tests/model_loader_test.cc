@@ -183,7 +183,7 @@ INSTANTIATE_TEST_SUITE_P(
         Rejection{"universal axes not perpendicular", "axes: [[1, 0, 0], [0, 1, 0]]",
                   "axes: [[1, 0, 0], [0.1, 1, 0]]", "perpendicular", 22},
         Rejection{"unknown joint type", "type: universal", "type: helical", "unknown joint type 'helical'", 19},
-        Rejection{"unknown base type", "type: omni", "type: legged", "unknown base type 'legged'", 11},
+        Rejection{"unknown base type", "type: omni", "type: tracked", "unknown base type 'tracked' (known: omni, differential, legged)", 11},
         Rejection{"unknown actuation", "actuation: complete", "actuation: partial",
                   "unknown actuation 'partial'", 12},
         Rejection{"end-effector on unknown body", "body: arm", "body: hand", "unknown body 'hand'", 24},

@@ -9,9 +9,9 @@
 #include <string>
 
 #include "analyses/internal/import_model_name.h"
+#include "ccma/base_kind.h"
 #include "ccma/internal/format.h"
 #include "ccma/limits.h"
-#include "ccma/rotation.h"
 #include "formats/joint_geometry.h"
 #include "formats/model_loader.h"
 
@@ -48,6 +48,27 @@ MobileBase Base(const RobotDescription& robot, const RobotJoint& joint, const Ro
   return base;
 }
 
+// A floating joint's child as a legged base: the link itself when its frame
+// is upright at the body height its extension gives (the body frame at home).
+MobileBase LeggedBaseOf(const RobotDescription& robot, const RobotJoint& joint, const RobotLink& link) {
+  const Eigen::Isometry3d& X = link.X_WL;
+  if (std::abs(X.translation().z() - joint.legged.height) > 1e-9 || X.linear().col(2).z() < 1 - 1e-12) {
+    Fail(robot, joint.line, "joint " + Quote(joint.name) + ": the legged base link " + Quote(link.name) +
+                                " must be upright at home with its frame at body_height " +
+                                FormatG(joint.legged.height) + " m above the ground (it is at " +
+                                FormatG(X.translation().z()) + " m)");
+  }
+  MobileBase base;
+  base.name = CcmaName(link.name);
+  base.type = BaseType::kLegged;
+  base.legged = joint.legged;
+  base.home_pose = Eigen::Vector3d(X.translation().x(), X.translation().y(),
+                                   std::atan2(X.linear()(1, 0), X.linear()(0, 0)));
+  return base;
+}
+
+bool IsBaseJoint(RobotJointType type) { return type == RobotJointType::kPlanar || type == RobotJointType::kFloating; }
+
 // Bodies: links first (source order), then the bases in control order.
 void AddBodies(const RobotDescription& robot, const std::vector<int>& base_joints, Model* model,
                std::map<std::string, int>* bodies) {
@@ -78,13 +99,14 @@ void AddBodies(const RobotDescription& robot, const std::vector<int>& base_joint
     if (base_links.count(link.name) == 0) add(link);
   }
   for (const int j : base_joints) {
-    const RobotLink& link = robot.links[robot.FindLink(robot.joints[j].child)];
-    MobileBase base = Base(robot, robot.joints[j], link);
+    const RobotJoint& joint = robot.joints[j];
+    const RobotLink& link = robot.links[robot.FindLink(joint.child)];
+    MobileBase base = joint.type == RobotJointType::kFloating ? LeggedBaseOf(robot, joint, link) : Base(robot, joint, link);
     base.body = model->num_bodies();
     add(link);
-    model->bodies.back().base_index = model->num_bases();
-    model->bodies.back().R_WB_home = RotationZ(base.home_pose.z());
-    model->bodies.back().p_WB_home = Eigen::Vector3d(base.home_pose.x(), base.home_pose.y(), 0);
+    Body& body = model->bodies.back();
+    body.base_index = model->num_bases();
+    KindOf(base).HomeFrame(base, &body.R_WB_home, &body.p_WB_home);
     model->mobile_bases.push_back(base);
   }
 }
@@ -156,17 +178,18 @@ void SplitActuated(const RobotDescription& robot, const std::vector<std::string>
     if (j < 0) Fail(robot, 0, "actuated joint " + Quote(name) + ": no joint of " + robot.source + " has that name");
     if (!seen.insert(name).second) Fail(robot, robot.joints[j].line, "joint " + Quote(name) + " is actuated twice");
     const RobotJointType type = robot.joints[j].type;
-    if (type == RobotJointType::kPlanar) {
+    if (IsBaseJoint(type)) {
       bases->push_back(j);
     } else if (type == RobotJointType::kRevolute || type == RobotJointType::kPrismatic) {
       motors->push_back(j);
     } else {
       Fail(robot, robot.joints[j].line, "joint " + Quote(name) +
-                                            " cannot be actuated (only revolute, prismatic and planar joints can)");
+                                            " cannot be actuated (only revolute, prismatic, planar and floating "
+                                            "joints can)");
     }
   }
   for (int j = 0; j < static_cast<int>(robot.joints.size()); ++j) {
-    if (robot.joints[j].type == RobotJointType::kPlanar && std::count(bases->begin(), bases->end(), j) == 0) {
+    if (IsBaseJoint(robot.joints[j].type) && std::count(bases->begin(), bases->end(), j) == 0) {
       bases->push_back(j);
     }
   }
@@ -177,7 +200,7 @@ void SplitActuated(const RobotDescription& robot, const std::vector<std::string>
 std::vector<int> TreeOrder(const RobotDescription& robot, const std::vector<int>& motors) {
   std::vector<int> order, slots;
   for (int j = 0; j < static_cast<int>(robot.joints.size()); ++j) {
-    if (robot.joints[j].type == RobotJointType::kPlanar) continue;
+    if (IsBaseJoint(robot.joints[j].type)) continue;
     if (std::count(motors.begin(), motors.end(), j) > 0) slots.push_back(static_cast<int>(order.size()));
     order.push_back(j);
   }

@@ -59,12 +59,12 @@ class NameSet {
 std::vector<std::string> ControlledNames(const Model& model);
 
 // The spanning tree of the graph whose nodes are world and the bodies and
-// whose edges are the joints and the bases' planar joints (world -> base).
+// whose edges are the joints and the bases' joints (world -> base: planar or floating).
 // Kruskal, keeping first the bases, then revolute, prismatic and universal
 // joints, then fixed, then spherical joints, each group in file order.
 struct SpanningTree {
-  // Per body: the joint that joins it to its parent (-1: a base's planar
-  // joint), the parent body (kWorld allowed), and whether the joint's
+  // Per body: the joint that joins it to its parent (-1: a base's joint from
+  // world), the parent body (kWorld allowed), and whether the joint's
   // `between` runs child -> parent (its first body is the child).
   std::vector<int> parent_joint;
   std::vector<int> parent_body;
