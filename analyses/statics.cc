@@ -150,6 +150,7 @@ StaticsReport ComputeStatics(const Model& model, const State& s, const Eigen::Ve
   const Eigen::VectorXd Q = GeneralizedLoads(model, s, wrench);
   StaticsReport out;
   const Eigen::VectorXd effort = model.compliant() ? CompliantStatics(model, s, u, Q, &out) : RigidStatics(model, s, u, Q, &out);
+  out.control_efforts = effort;
   for (int k = 0; k < model.num_bases(); ++k) {
     const MobileBase& base = model.mobile_bases[static_cast<size_t>(k)];
     const int first = model.base_control(k);

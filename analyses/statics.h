@@ -61,6 +61,10 @@ struct ActuatorEffort {
 struct StaticsReport {
   std::vector<JointReaction> joints;      // every joint, file order
   std::vector<ActuatorEffort> actuators;  // every control, control order (model.h)
+  // The generalized effort of every control, control order (N for a control
+  // in m, N*m for one in rad): what `actuators` reports, except that a legged
+  // base's entries there are its body's wrench (BaseKind::Efforts).
+  Eigen::VectorXd control_efforts;
   bool determinate = true;   // the reactions and efforts are unique (else the minimum-norm ones)
   double residual = 0;       // max |Q + J_s^T lambda| [N or N*m]: loads the joints cannot hold
   bool balanced = true;      // residual within rounding of the loads

@@ -44,8 +44,8 @@ DEFINE_string(color_by, "body",
               "that touch each link in every frame's statics, gravity on the masses and payload) [body|load]");
 
 DEFINE_string(deflection, "",
-              "draw the loaded shape of a compliant model (stiffness keys; the loaded equilibrium of `ccma simulate "
-              "--loaded` under gravity, the payload and --wrench) over the rigid one, its displacement multiplied "
+              "draw the loaded shape of a compliant model (stiffness keys; its loaded equilibrium, as ccma simulate "
+              "computes it, under gravity, the payload and --wrench) over the rigid one, its displacement multiplied "
               "by SCALE, each body coloured by its deflection; a static view only (at home or --controls) "
               "[SCALE in (0, 1e6]]");
 

@@ -1,6 +1,7 @@
 // What a type of mobile base brings to a model: its controls (how many, their
 // names and units), its pose at home, the controls the solver may change and
-// their limits, and the constraint rows that tie its body to its controls.
+// their limits, the constraint rows that tie its body to its controls, its
+// collision shape and what statics reports as its effort.
 // Omni, differential and legged bases are three implementations of this one
 // interface (ccma/bases/); a new base type is one new file there plus one line
 // in ccma/bases/base_kinds.cc, where the types are registered.
@@ -53,6 +54,16 @@ struct BaseEffort {
   double value = 0;
 };
 
+// A base's collision shape: a vertical prism from the floor, turning with
+// its heading. A disc of the model's base radius (collision.base_radius or
+// the base's `radius`) up to collision.base_height, unless the type says
+// otherwise: a rectangle of `half_size` [m] (length along the heading,
+// width), reaching up to its body frame's current height.
+struct BaseCollisionShape {
+  bool rectangle = false;
+  Eigen::Vector2d half_size = Eigen::Vector2d::Zero();
+};
+
 // One block of constraint rows a base contributes: a cost function of the
 // base body's pose and, when `reads_controls`, of its control block.
 struct BaseConstraint {
@@ -83,6 +94,8 @@ class BaseKind {
   virtual std::vector<BaseConstraint> Constraints(const MobileBase& base, bool autodiff) const = 0;
   // Rows of Constraints() together.
   virtual int num_residuals() const = 0;
+  // Its collision shape (default: the disc).
+  virtual BaseCollisionShape CollisionShape(const MobileBase& /*base*/) const { return {}; }
   // What the base exerts on the chain, from the generalized efforts of its
   // controls (`effort`, one per control: N for a control in m, N*m for one in
   // rad) at its control block u. By default each control's own effort, kind

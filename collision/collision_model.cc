@@ -45,15 +45,16 @@ CollisionModel::CollisionModel(const Model& model) {
     PlacedShape s;
     s.radius = g.base_radii.empty() ? g.base_radius : g.base_radii[static_cast<size_t>(k)];
     s.z_max = g.base_height;
-    const LeggedBody& legged = model.mobile_bases[static_cast<size_t>(k)].legged;
-    if (model.mobile_bases[static_cast<size_t>(k)].type == BaseType::kLegged && legged.footprint.x() > 0) {
-      // A legged base with a footprint: a box along its heading from the
-      // floor to its body (PlaceShapes follows the body's height and heading).
+    const MobileBase& base = model.mobile_bases[static_cast<size_t>(k)];
+    const BaseCollisionShape shape = KindOf(base).CollisionShape(base);
+    if (shape.rectangle) {
+      // A box along its heading from the floor to its body (PlaceShapes
+      // follows the body's height and heading).
       s.footprint = Footprint::kRectangle;
-      s.half_size = 0.5 * legged.footprint;
-      s.radius = 0.5 * legged.footprint.norm();
-      s.z_max = legged.height;
-      legged_.insert(static_cast<int>(local_.size()));
+      s.half_size = shape.half_size;
+      s.radius = shape.half_size.norm();
+      s.z_max = model.bodies[static_cast<size_t>(base.body)].p_WB_home.z();
+      boxes_.insert(static_cast<int>(local_.size()));
     }
     local_.push_back(s);
     bodies_.push_back(model.mobile_bases[k].body);
@@ -96,7 +97,7 @@ void CollisionModel::PlaceShapes(const State& s, std::vector<PlacedShape>* shape
     if (body == kWorld) continue;  // obstacles: placed once, box included
     if (IsBase(static_cast<int>(i))) {
       out.center = s.p_WB(body).head<2>();
-      if (legged_.count(static_cast<int>(i)) != 0) {
+      if (boxes_.count(static_cast<int>(i)) != 0) {
         const Eigen::Vector3d heading_W = s.R_WB(body).col(0);
         const double norm = heading_W.head<2>().norm();
         out.cos_yaw = norm > 0 ? heading_W.x() / norm : 1.0;

@@ -59,7 +59,7 @@ class CollisionModel {
   std::vector<int> owners_;         // per shape: body index, or num_bodies + obstacle index
   std::vector<std::string> names_;  // per owner
   std::unordered_set<std::uint64_t> skipped_;  // owner pairs never checked
-  std::unordered_set<int> legged_;  // shapes that are a legged base's footprint box
+  std::unordered_set<int> boxes_;  // base shapes that are boxes up to their body (BaseCollisionShape)
 };
 
 }  // namespace ccma

@@ -80,6 +80,9 @@ TEST_P(ForwardSolvers, NativeAndCeresAgreeAlongAPath) {
 }
 
 TEST_P(UnreachableControls, NativeAndCeresEndAtTheSameStationaryPoint) {
+  // Its beam slides through the second body's sleeve: the chain closes for
+  // any two body poses, so no control is out of reach.
+  if (GetParam() == "4dof_two_legged") GTEST_SKIP() << "assembles at any base poses";
   const Model model = LoadModel(std::string(CCMA_MODELS_DIR) + "/" + GetParam() + ".yaml");
   ForwardOptions ceres_options;
   ceres_options.solver = ForwardSolver::kCeres;

@@ -42,8 +42,9 @@ Eigen::VectorXd Moved(const Model& m, const Eigen::VectorXd& u, double psi, cons
   Eigen::VectorXd v = u;
   const Eigen::Rotation2Dd R(psi);
   for (int k = 0; k < m.num_bases(); ++k) {
-    v.segment<2>(3 * k) = R * u.segment<2>(3 * k) + t;
-    v[3 * k + 2] += psi;
+    const int i = m.base_control(k);
+    v.segment<2>(i) = R * u.segment<2>(i) + t;
+    v[i + 2] += psi;
   }
   return v;
 }
@@ -77,16 +78,17 @@ TEST_P(RigidMotion, IsRecognisedExactlyAndOnlyForOneRigidMotionOfAllBases) {
     EXPECT_NEAR(motion.dtheta, psi, 1e-14);
     EXPECT_LT((motion.t - t).norm(), 1e-14);
     // Headings are angles: a turn of 2 pi on one base changes nothing.
-    v[2 + 3 * (m.num_bases() - 1)] += 2 * M_PI;
+    v[m.base_control(m.num_bases() - 1) + 2] += 2 * M_PI;
     EXPECT_TRUE(PlanarRigidMotionBetween(m, u, v, &motion));
-    // One base off the formation by 1e-9 m, or turned by 1e-9 rad: a change of shape.
-    for (int i = 0; i < 3 * m.num_bases(); ++i) {
+    // One base off the formation by 1e-9 m, or turned by 1e-9 rad (a legged
+    // body raised or tilted by as much): a change of shape.
+    for (int i = 0; i < m.num_base_controls(); ++i) {
       Eigen::VectorXd w = v;
       w[i] += 1e-9;
       EXPECT_FALSE(PlanarRigidMotionBetween(m, u, w, &motion)) << "control " << i;
     }
     // An actuated joint moved: not rigid.
-    for (int i = 3 * m.num_bases(); i < m.num_controls(); ++i) {
+    for (int i = m.num_base_controls(); i < m.num_controls(); ++i) {
       Eigen::VectorXd w = v;
       w[i] += 1e-9;
       EXPECT_FALSE(PlanarRigidMotionBetween(m, u, w, &motion)) << "control " << i;
@@ -100,7 +102,7 @@ TEST_P(RigidMotion, IsRecognisedExactlyAndOnlyForOneRigidMotionOfAllBases) {
   // A non-finite value anywhere, on either side (a position, a heading, the
   // last control), even where the rest is a rigid move.
   Eigen::VectorXd shifted = u;
-  for (int k = 0; k < m.num_bases(); ++k) shifted[3 * k] += 0.01;
+  for (int k = 0; k < m.num_bases(); ++k) shifted[m.base_control(k)] += 0.01;
   ASSERT_TRUE(PlanarRigidMotionBetween(m, u, shifted, &motion));
   for (const int i : {0, 2, static_cast<int>(u.size()) - 1}) {
     for (const double x : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {

@@ -183,8 +183,7 @@ TEST(Statics, VirtualWorkAlongEveryFeasibleMotionOfEveryBundledModel) {
     wrench.moment = Eigen::Vector3d(0.4, 0.1, -0.3);
     const StaticsReport r = ComputeStatics(model, forward.state(), forward.controls(), wrench);
     ASSERT_TRUE(r.balanced) << name << " " << r.residual;
-    Eigen::VectorXd effort(model.num_controls());
-    for (int c = 0; c < effort.size(); ++c) effort[c] = r.actuators[static_cast<size_t>(c)].effort;
+    const Eigen::VectorXd& effort = r.control_efforts;
     const Eigen::VectorXd Q = GeneralizedLoads(model, forward.state(), wrench);
     const Eigen::MatrixXd motions = FeasibleMotions(model, forward.state(), forward.controls());
     ASSERT_GT(motions.cols(), 0) << name;
@@ -231,7 +230,7 @@ TEST(Statics, EffortsMatchThePotentialsSlopeOfReSolvedMotions) {
     };
     const double h = 1e-5, slope = (potential(h) - potential(-h)) / (2 * h);
     double power = 0;
-    for (int c = 0; c < du.size(); ++c) power += r.actuators[static_cast<size_t>(c)].effort * du[c];
+    for (int c = 0; c < du.size(); ++c) power += r.control_efforts[c] * du[c];
     EXPECT_NEAR(power, slope, 1e-6 * (1 + std::abs(slope))) << name;
   }
 }

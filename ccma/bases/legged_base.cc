@@ -39,6 +39,13 @@ class LeggedBaseKind final : public BaseKind {
     limits[5] = base.legged.pitch_limits;
     return limits;
   }
+  // With a footprint, a box along its heading from the floor to its body.
+  BaseCollisionShape CollisionShape(const MobileBase& base) const override {
+    BaseCollisionShape shape;
+    shape.rectangle = base.legged.footprint.x() > 0;
+    shape.half_size = 0.5 * base.legged.footprint;
+    return shape;
+  }
   std::vector<BaseConstraint> Constraints(const MobileBase& /*base*/, bool autodiff) const override {
     std::vector<BaseConstraint> out(1);
     out[0].cost.reset(autodiff ? MakeLeggedBaseMotorAutoDiff() : new LeggedBaseMotorCost());

@@ -1006,6 +1006,9 @@ def view_html(
     meshes: bool = False,
     color_by: str = "body",
     mesh_root: Optional[str | os.PathLike[str] | Sequence[str | os.PathLike[str]]] = None,
+    controls: Optional[ArrayLike] = None,
+    deflection: Optional[float] = None,
+    wrench: Optional[ArrayLike] = None,
 ) -> Tuple[str, ViewResult]:
     """(html, info): the self-contained page of `ccma view` and its summary (a ViewResult: the command's JSON without out), animated along a trajectory CSV or a replay
     directory, or with a `ccma workspace` CSV drawn as a point cloud (at most one of the three);

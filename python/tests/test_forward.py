@@ -46,11 +46,18 @@ def test_constraints_hold_in_numpy(model_path):
             assert abs(world_axis(poses, j.body_a, j.a_A) @ world_axis(poses, j.body_b, j.b_B)) < 1e-10, j.name
     for k, base in enumerate(model.mobile_bases):
         p = poses[base.body]
+        i = model.base_control(k)
+        np.testing.assert_allclose(p.position[:2], u[i:i + 2], atol=1e-10)
+        if base.type == "legged":  # body at (x, y, height) turned by Rz(theta) Ry(pitch) Rx(roll)
+            theta, height, roll, pitch = u[i + 2], u[i + 3], u[i + 4], u[i + 5]
+            assert abs(p.position[2] - height) < 1e-10
+            heading = [np.cos(theta) * np.cos(pitch), np.sin(theta) * np.cos(pitch), -np.sin(pitch)]
+            np.testing.assert_allclose(p.rotation[:, 0], heading, atol=1e-10)
+            continue
         assert abs(p.position[2]) < 1e-12
-        np.testing.assert_allclose(p.position[:2], u[3 * k:3 * k + 2], atol=1e-10)
         np.testing.assert_allclose(p.rotation[:, 2], [0, 0, 1], atol=1e-10)  # turns about z only
         if base.actuation == "complete":
-            assert abs(np.arctan2(p.rotation[1, 0], p.rotation[0, 0]) - u[3 * k + 2]) < 1e-10
+            assert abs(np.arctan2(p.rotation[1, 0], p.rotation[0, 0]) - u[i + 2]) < 1e-10
 
 
 # Models whose controls are all base poses (no actuated joints).
