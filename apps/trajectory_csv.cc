@@ -45,7 +45,7 @@ void WriteEffortHeader(const Model& model, std::ostream& csv) {
 
 void WriteEffortCells(const Model& model, const TrajectoryStep& s, std::ostream& csv) {
   const StaticsReport r = ComputeStatics(model, s.state, s.controls);
-  for (const ActuatorEffort& a : r.actuators) csv << "," << a.effort;
+  for (Eigen::Index c = 0; c < r.control_efforts.size(); ++c) csv << "," << r.control_efforts[c];
   csv << "," << (r.within_limits ? 1 : 0);
 }
 
