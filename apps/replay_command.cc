@@ -97,24 +97,6 @@ nlohmann::json OptionsJson(const ReplayOptions& options) {
             {"max_wheel_speed", g.max_wheel_speed}, {"velocity_feedforward", g.velocity_feedforward}}}};
 }
 
-// RMSE of the reported components, with the existing keys (x_mm ... yaw_rad).
-nlohmann::json RmseJson(const Model& model, const std::array<double, 6>& rmse_m_rad) {
-  nlohmann::json rmse = nlohmann::json::object();
-  for (const int c : ReportedComponents(model)) {
-    rmse[ComponentName(c) + (IsAngle(c) ? "_rad" : "_mm")] = IsAngle(c) ? rmse_m_rad[c] : 1000 * rmse_m_rad[c];
-  }
-  return rmse;
-}
-
-// Models with legged bases: the gait and the two shares of the error.
-nlohmann::json GaitJson(const Model& model, const ReplayOptions& options, const ReplayResult& r) {
-  return {{"hz", options.gait.hz},
-          {"bob_m", options.gait.bob_m},
-          {"sway_rad", options.gait.sway_rad},
-          {"rmse_from_gait", RmseJson(model, r.gait_rmse)},
-          {"rmse_from_tracking", RmseJson(model, r.tracking_rmse)}};
-}
-
 // A time that exists only when something happened: the key is left out
 // otherwise (no null is ever printed as a result).
 void PutTimeIfAny(nlohmann::json* out, const char* key, double seconds) {
@@ -137,8 +119,8 @@ nlohmann::json ReplayJson(const Model& model, const ReplayOptions& options, cons
   out["duration_s"] = r.duration_s;
   out["samples"] = r.samples.size();
   out.update(OptionsJson(options));
-  out["rmse"] = RmseJson(model, r.rmse);
-  if (r.gait) out["gait"] = GaitJson(model, options, r);
+  out["rmse"] = ReplayRmseJson(model, r.rmse);
+  if (r.gait) out["gait"] = ReplayGaitJson(model, options, r);
   if (IsPaperModel(model)) {
     nlohmann::json paper = nlohmann::json::array();
     for (const PaperRow& row : PaperHardwareRmse()) {

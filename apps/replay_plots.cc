@@ -238,12 +238,20 @@ std::string StartsBlock(const Model& model, const ReplayResult& r) {
   return s.str();
 }
 
+// bases.csv's column (1-based) of base k's set x and of its true x: after
+// time_s, each base's set controls, then its true ones.
+int SetXColumn(const Model& model, int k) { return 2 + 2 * model.base_control(k); }
+int TrueXColumn(const Model& model, int k) {
+  return SetXColumn(model, k) + KindOf(model.mobile_bases[static_cast<size_t>(k)]).num_controls();
+}
+
 // Red dots where base k's tracked pose was recorded while the chain was
 // torn (drawn under its paths), followed by ", ".
 std::string TornClause(const Model& model, int k, bool titled) {
-  const int torn_column = 2 + 6 * model.num_bases() + model.num_actuated_joints();  // bases, joints, torn
+  const int torn_column = 2 + 2 * model.num_base_controls() + model.num_actuated_joints();  // bases, joints, torn
+  const int x = TrueXColumn(model, k);
   std::ostringstream s;
-  s << "'bases.csv' using ($" << torn_column << ">0 ? $" << 5 + 6 * k << " : NaN):" << 6 + 6 * k
+  s << "'bases.csv' using ($" << torn_column << ">0 ? $" << x << " : NaN):" << x + 1
     << " with points pt 7 ps 0.4 lc rgb '" << kFailColour << "' "
     << (titled ? "title 'tracked pose while the chain was torn'" : "notitle") << ", ";
   return s.str();
@@ -253,8 +261,9 @@ std::string TornClause(const Model& model, int k, bool titled) {
 std::string PathClauses(const Model& model, int k, const std::string& title) {
   const std::string colour = DistinctColour(k, model.num_bases());
   std::ostringstream s;
-  s << "'bases.csv' using " << 2 + 6 * k << ":" << 3 + 6 * k << " with lines lw 2 lc rgb '" << colour << "' " << title
-    << ", '' using " << 5 + 6 * k << ":" << 6 + 6 * k << " with lines lw 1.5 dt 2 lc rgb '" << colour << "' notitle";
+  const int set_x = SetXColumn(model, k), true_x = TrueXColumn(model, k);
+  s << "'bases.csv' using " << set_x << ":" << set_x + 1 << " with lines lw 2 lc rgb '" << colour << "' " << title
+    << ", '' using " << true_x << ":" << true_x + 1 << " with lines lw 1.5 dt 2 lc rgb '" << colour << "' notitle";
   return s.str();
 }
 

@@ -104,8 +104,11 @@ void WriteReplayCsv(const std::string& dir, const Model& model, const ReplayResu
   for (int k = 0; k < model.num_bases(); ++k) bases << " " << k << " = " << OneLine(model.mobile_bases[k].name);
   bases << ")\ntime_s";
   for (int k = 0; k < model.num_bases(); ++k) {
-    bases << ",set" << k << "_x_m,set" << k << "_y_m,set" << k << "_theta_rad,base" << k << "_x_m,base" << k
-          << "_y_m,base" << k << "_theta_rad";
+    // Every control of the base's type (a legged base's height, roll and pitch too), set then true.
+    const std::vector<BaseControl>& controls = KindOf(model.mobile_bases[static_cast<size_t>(k)]).controls();
+    for (const char* which : {"set", "base"}) {
+      for (const BaseControl& c : controls) bases << "," << which << k << "_" << c.name << "_" << c.unit;
+    }
   }
   // Actuated joints hold their set-points (execution/replay.h): one column each.
   for (const Joint& joint : model.joints) {
@@ -122,14 +125,31 @@ void WriteReplayCsv(const std::string& dir, const Model& model, const ReplayResu
     ee << "," << s.residual_energy << "," << (s.torn ? 1 : 0) << "\n";
     bases << s.time;
     for (int k = 0; k < model.num_bases(); ++k) {
-      for (int c = 0; c < 3; ++c) bases << "," << s.set_controls[model.base_control(k) + c];
-      for (int c = 0; c < 3; ++c) bases << "," << s.true_controls[model.base_control(k) + c];
+      const int first = model.base_control(k), n = KindOf(model.mobile_bases[static_cast<size_t>(k)]).num_controls();
+      for (int c = 0; c < n; ++c) bases << "," << s.set_controls[first + c];
+      for (int c = 0; c < n; ++c) bases << "," << s.true_controls[first + c];
     }
     for (const Joint& joint : model.joints) {
       if (joint.actuated) bases << "," << s.true_controls[joint.control];
     }
     bases << "," << (s.torn ? 1 : 0) << "\n";
   }
+}
+
+nlohmann::json ReplayRmseJson(const Model& model, const std::array<double, 6>& rmse_m_rad) {
+  nlohmann::json rmse = nlohmann::json::object();
+  for (const int c : ReportedComponents(model)) {
+    rmse[ComponentName(c) + (IsAngle(c) ? "_rad" : "_mm")] = IsAngle(c) ? rmse_m_rad[c] : 1000 * rmse_m_rad[c];
+  }
+  return rmse;
+}
+
+nlohmann::json ReplayGaitJson(const Model& model, const ReplayOptions& options, const ReplayResult& result) {
+  return {{"hz", options.gait.hz},
+          {"bob_m", options.gait.bob_m},
+          {"sway_rad", options.gait.sway_rad},
+          {"rmse_from_gait", ReplayRmseJson(model, result.gait_rmse)},
+          {"rmse_from_tracking", ReplayRmseJson(model, result.tracking_rmse)}};
 }
 
 }  // namespace ccma::cli

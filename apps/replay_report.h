@@ -4,8 +4,11 @@
 #ifndef CCMA_APPS_REPLAY_REPORT_H_
 #define CCMA_APPS_REPLAY_REPORT_H_
 
+#include <array>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "ccma/model.h"
 #include "execution/replay.h"
@@ -32,6 +35,13 @@ const std::vector<PaperRow>& PaperHardwareRmse();
 // One line per way the replay failed (plan not converged, chain torn, no
 // samples), each starting with what failed; empty when trustworthy.
 std::vector<std::string> ReplayFailures(const ReplayResult& result);
+
+// An RMSE per reported component [m, rad] as the JSON's "rmse" object
+// (x_mm ... in mm, yaw_rad ... in rad).
+nlohmann::json ReplayRmseJson(const Model& model, const std::array<double, 6>& rmse_m_rad);
+// Models with legged bases: the JSON's "gait" object (the gait used and the
+// two shares of the error, ReplayResult::gait_rmse and tracking_rmse).
+nlohmann::json ReplayGaitJson(const Model& model, const ReplayOptions& options, const ReplayResult& result);
 
 // The RMSE table (markdown): "WARNING: ..." lines at its top when the result
 // is not trustworthy, then the reported components of the simulation, and the

@@ -259,6 +259,13 @@ TEST(LeggedBase, ReplaySeparatesTheGaitsErrorFromTracking) {
   const double z_gait = walk["gait"]["rmse_from_gait"]["z_mm"];
   EXPECT_GT(z_gait, 3.0);
   EXPECT_LT(z_gait, 20.0);
+  // bases.csv carries every control of a legged base, and ccma view animates it.
+  const std::string dir = testing::ScratchPath("legged", "replay");
+  EXPECT_NE(testing::Slurp(dir + "/bases.csv").find("set0_height_m,set0_roll_rad,set0_pitch_rad,base0_x_m"),
+            std::string::npos);
+  const testing::ToolRun view = testing::RunTool({"view", "--model=" + testing::ModelPath("6dof_three_legged"),
+                                                  "--replay=" + dir, "--out=" + testing::ScratchPath("legged", "r.html")});
+  EXPECT_EQ(view.status, 0) << view.err;
   const nlohmann::json still = ReplayWalk({"--gait_bob_m=0", "--gait_sway_rad=0"});
   EXPECT_LT(double(still["gait"]["rmse_from_gait"]["z_mm"]), 1e-9);
   EXPECT_NEAR(double(still["rmse"]["z_mm"]), double(still["gait"]["rmse_from_tracking"]["z_mm"]), 1e-9);

@@ -958,6 +958,9 @@ class ReplayOptions:
         settle_s: float = 1.0,
         torn_residual_energy: float = 1e-5,
         control: ControlOptions = ...,
+        gait_hz: float = 2.0,
+        gait_bob_m: float = 0.01,
+        gait_sway_rad: float = 0.02,
     ) -> None:
         """Defaults, overridden by the given fields, e.g. ReplayOptions(noise='none', seed=3) (unknown keyword: TypeError)."""
     @property
@@ -977,6 +980,21 @@ class ReplayOptions:
         """Output samples per second [Hz], in [0.1, 1000]."""
     @output_hz.setter
     def output_hz(self, value: float) -> None: ...
+    @property
+    def gait_hz(self) -> float:
+        """Legged bases: trotting gait frequency [Hz], in (0, 100]."""
+    @gait_hz.setter
+    def gait_hz(self, value: float) -> None: ...
+    @property
+    def gait_bob_m(self) -> float:
+        """Legged bases: amplitude of a walking body's bob (height) [m], in [0, 1]."""
+    @gait_bob_m.setter
+    def gait_bob_m(self, value: float) -> None: ...
+    @property
+    def gait_sway_rad(self) -> float:
+        """Legged bases: amplitude of a walking body's sway (roll) [rad], in [0, 0.5]."""
+    @gait_sway_rad.setter
+    def gait_sway_rad(self, value: float) -> None: ...
     @property
     def settle_s(self) -> float:
         """Time kept running after the last waypoint [s]."""

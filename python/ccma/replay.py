@@ -39,9 +39,10 @@ def _bases_table(model, a):
     columns = {"time_s": a["time"]}
     for k in range(model.num_bases):
         first = model.base_control(k)
-        for c, name in enumerate(("x_m", "y_m", "theta_rad")):
+        names = model.mobile_bases[k].control_names  # a legged base's height, roll, pitch too
+        for c, name in enumerate(names):
             columns["set%d_%s" % (k, name)] = a["set_controls"][:, first + c]
-        for c, name in enumerate(("x_m", "y_m", "theta_rad")):
+        for c, name in enumerate(names):
             columns["base%d_%s" % (k, name)] = a["true_controls"][:, first + c]
     for joint in model.joints:
         if joint.actuated:

@@ -93,6 +93,16 @@ void BindReplayOptions(py::module_& m) {
           "seed", [](const ReplayOptions& o) { return o.noise.seed; },
           [](ReplayOptions& o, unsigned seed) { o.noise.seed = seed; }, "seed of every random draw")
       .def_readwrite("output_hz", &ReplayOptions::output_hz, "sample rate of the result [Hz]")
+      .def_property(
+          "gait_hz", [](const ReplayOptions& o) { return o.gait.hz; },
+          [](ReplayOptions& o, double v) { o.gait.hz = v; }, "legged bases: trotting gait frequency [Hz]")
+      .def_property(
+          "gait_bob_m", [](const ReplayOptions& o) { return o.gait.bob_m; },
+          [](ReplayOptions& o, double v) { o.gait.bob_m = v; }, "legged bases: amplitude of the body's bob [m]")
+      .def_property(
+          "gait_sway_rad", [](const ReplayOptions& o) { return o.gait.sway_rad; },
+          [](ReplayOptions& o, double v) { o.gait.sway_rad = v; },
+          "legged bases: amplitude of the body's sway (roll) [rad]")
       .def_readwrite("settle_s", &ReplayOptions::settle_s, "kept running after the last waypoint [s]")
       .def_readwrite("torn_residual_energy", &ReplayOptions::torn_residual_energy,
                      "E above which a sample is torn [m^2]")

@@ -324,11 +324,8 @@ nlohmann::json ReplayDocument(const Model& model, const ReplayOptions& options, 
   out["duration_s"] = r.duration_s;
   out["samples"] = r.samples.size();
   out.update(ReplayOptionsJson(options));
-  nlohmann::json rmse = nlohmann::json::object();
-  for (const int c : cli::ReportedComponents(model)) {
-    rmse[cli::ComponentName(c) + (cli::IsAngle(c) ? "_rad" : "_mm")] = cli::IsAngle(c) ? r.rmse[c] : 1000 * r.rmse[c];
-  }
-  out["rmse"] = rmse;
+  out["rmse"] = cli::ReplayRmseJson(model, r.rmse);
+  if (r.gait) out["gait"] = cli::ReplayGaitJson(model, options, r);
   if (cli::IsPaperModel(model)) {
     nlohmann::json paper = nlohmann::json::array();
     for (const cli::PaperRow& row : cli::PaperHardwareRmse()) {

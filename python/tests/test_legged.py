@@ -44,3 +44,16 @@ def test_move_to_and_statics_on_legged_bases():
     kinds = [a["kind"] for a in ccma.statics(control.forward).to_dict()["actuators"][:6]]
     assert kinds == ["base_force_x", "base_force_y", "base_force_z",
                      "base_moment_x", "base_moment_y", "base_moment_z"]
+
+
+def test_replay_reports_the_gait_as_the_tool_does():
+    model = ccma.load_model(LEGGED)
+    walk = np.array([[0, 0, 0, 0.95, 0, 0, 0], [2, 0.1, 0, 0.95, 0, 0, 0]], dtype=float)
+    result = ccma.replay(model, walk, ccma.ReplayOptions(noise="none", gait_bob_m=0.02))
+    gait = result.to_dict()["gait"]
+    assert gait["bob_m"] == 0.02 and gait["hz"] == 2.0
+    assert 3.0 < gait["rmse_from_gait"]["z_mm"] < 20.0
+    still = ccma.replay(model, walk, ccma.ReplayOptions(noise="none", gait_bob_m=0.0, gait_sway_rad=0.0))
+    assert still.to_dict()["gait"]["rmse_from_gait"]["z_mm"] < 1e-9
+    assert list(result.tables["bases"].names)[1:7] == [
+        "set0_x_m", "set0_y_m", "set0_theta_rad", "set0_height_m", "set0_roll_rad", "set0_pitch_rad"]
