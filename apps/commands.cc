@@ -94,13 +94,17 @@ Command ControlCommand() {
 Command TrajectoryCommand() {
   return {"trajectory", "follow end-effector waypoints; one CSV row per control step",
           "ccma trajectory --model=FILE --waypoints=FILE.csv --out=FILE.csv [--controls=...] [--obstacles=FILE]\n"
+          "                [--compensate [--wrench=fx,fy,fz,mx,my,mz]]\n"
           "                [--method=lm|bfgs] [--max_step_m=0.01] [--max_step_rad=0.005] [--lambda=0.5]\n"
           "                [singularity and secondary flags, as ccma control]",
           "Follows end-effector waypoints (docs/waypoints.md) in small control steps and writes one CSV row\n"
           "per step (header names carry units). Stops at the first waypoint it cannot reach and warns.\n"
           "Prints the conditioning along the path (smallest singular value of dX/du, pivot ratio of\n"
-          "dG/ds); the singularity barriers and secondary objectives act at every step as in ccma control.",
-          Concat(Concat({"model", "waypoints", "out", "controls", "obstacles"}, SecondaryFlagNames()), kControlFlags),
+          "dG/ds); the singularity barriers and secondary objectives act at every step as in ccma control.\n"
+          "With --compensate (a model with stiffness keys) every step puts the loaded, deflected end-effector\n"
+          "on the path: each row is the loaded configuration.",
+          Concat(Concat({"model", "waypoints", "out", "controls", "obstacles", "compensate", "wrench"}, SecondaryFlagNames()),
+                 kControlFlags),
           RunTrajectory, {{"out", "the CSV to write, one row per control step [path]"}}};
 }
 

@@ -15,9 +15,6 @@ DEFINE_string(target, "",
               "end-effector target: x,y,z [m], roll,pitch,yaw [rad]; or only the model's controlled "
               "components, in that order [m, rad]");
 
-DEFINE_bool(compensate, false,
-            "control: choose the controls whose loaded end-effector (a model with stiffness keys, under gravity, "
-            "the payload and --wrench) reaches the target (default off) [bool]");
 
 namespace ccma::cli {
 namespace {

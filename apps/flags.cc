@@ -13,6 +13,9 @@ DEFINE_string(from, "", "input file (see the command) [path]");
 DEFINE_string(wrench, "",
               "the loads' external wrench on the end-effector body, world frame: fx,fy,fz [N] at the end-effector "
               "point, mx,my,mz [N*m]; each in [-1e6, 1e6] (default none) [list]");
+DEFINE_bool(compensate, false,
+            "choose the controls whose loaded end-effector (a model with stiffness keys, under gravity, the payload "
+            "and --wrench) reaches the target, or every path step's target (default off) [bool]");
 DEFINE_int32(seed, 1, "seed of every random draw [integer >= 0]");
 DEFINE_string(method, "lm", "control outer loop: lm (Levenberg-Marquardt) or bfgs (the paper's) [lm|bfgs]");
 DEFINE_double(max_step_m, 0.010, "path step: end-effector translation per control step, 1e-6..1000 [m]");

@@ -16,7 +16,8 @@ DECLARE_string(controls);    // simulate control trajectory view
 DECLARE_string(waypoints);   // trajectory replay
 DECLARE_string(out);         // trajectory plan generate import export bench replay view workspace design
 DECLARE_string(from);        // simulate import
-DECLARE_string(wrench);      // statics simulate control view
+DECLARE_string(wrench);      // statics simulate control trajectory view
+DECLARE_bool(compensate);    // control trajectory
 DECLARE_int32(seed);         // bench replay
 DECLARE_string(method);      // control trajectory replay
 DECLARE_double(max_step_m);  // control trajectory replay

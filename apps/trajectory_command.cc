@@ -12,6 +12,7 @@
 #include "apps/json_output.h"
 #include "apps/output_file.h"
 #include "apps/trajectory_csv.h"
+#include "problems/compensated_trajectory.h"
 
 namespace ccma::cli {
 
@@ -23,6 +24,7 @@ int RunTrajectory(const std::vector<std::string>& args) {
   ControlOptions options = ControlOptionsFromFlags();
   ApplySecondaryFlags(&options);
   const Eigen::VectorXd start = ControlsFlagOrHome(model);
+  if (!FLAGS_wrench.empty() && !FLAGS_compensate) throw UsageError("--wrench: only with --compensate (the loads it compensates)");
 
   ControlProblem control(model, options);
   control.SetControls(start);
@@ -33,13 +35,19 @@ int RunTrajectory(const std::vector<std::string>& args) {
   double min_rcond = std::numeric_limits<double>::infinity();
   int null_space_steps = 0;
   double secondary_objective = 0;
-  const TrajectoryResult result = FollowWaypoints(control, waypoints, [&](const TrajectoryStep& s) {
+  State last_state = control.forward().state();  // the last row's (loaded with --compensate)
+  const auto on_step = [&](const TrajectoryStep& s) {
     csv.Write(s);
     min_sigma = std::min(min_sigma, s.result.min_singular_value_dX_du);
     min_rcond = std::min(min_rcond, s.result.rcond);
     null_space_steps += s.result.null_space_steps;
     secondary_objective = s.result.secondary_objective;
-  });
+    last_state = s.state;
+  };
+  CompensatedPath compensated;
+  const TrajectoryResult result = FLAGS_compensate
+                                      ? FollowWaypointsCompensated(control, waypoints, WrenchFlag(), on_step, &compensated)
+                                      : FollowWaypoints(control, waypoints, on_step);
   file.Commit();
 
   nlohmann::json out;
@@ -61,8 +69,9 @@ int RunTrajectory(const std::vector<std::string>& args) {
   out["solve_time_ms"] = result.solve_time_ms;
   out["out"] = out_path;
   out["controls"] = ToJson(control.controls());
-  out["end_effector"] = ToJson(control.forward().end_effector());
-  AddClearance(model, control.forward().state(), "trajectory", &out);
+  out["end_effector"] = ToJson(ComputeEndEffectorPose(model, last_state));
+  if (FLAGS_compensate) out["compensation"] = {{"rounds", compensated.rounds}, {"max_miss", compensated.max_miss}};
+  AddClearance(model, last_state, "trajectory", &out);
   const ClearanceSummary& path_clearance = csv.min_clearance();
   if (path_clearance.any) {
     out["clearance"]["min_on_path"] = path_clearance.min;

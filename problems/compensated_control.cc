@@ -55,6 +55,8 @@ CompensatedResult MoveToCompensated(ControlProblem* control, const PoseTarget& t
   const Model& model = control->forward().model();
   CompensatedResult out;
   out.aim = target;
+  out.aim.position += options.aim_offset.head<3>();
+  out.aim.rpy += options.aim_offset.tail<3>();
   double solve_time_ms = 0;
   AimUpdate update;
   while (out.rounds < options.max_rounds) {

@@ -30,6 +30,9 @@ struct CompensationOptions {
   // The loaded end-effector within this of the target on every controlled
   // component [m or rad].
   double tolerance = 1e-10;
+  // The first round's aim is target + aim_offset (position [m], rpy [rad]):
+  // a path's previous step's correction starts the next step near its aim.
+  Eigen::Matrix<double, 6, 1> aim_offset = Eigen::Matrix<double, 6, 1>::Zero();
 };
 
 struct CompensatedResult {

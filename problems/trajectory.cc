@@ -9,10 +9,8 @@
 
 namespace ccma {
 
-namespace {
-
 // The whole path's step count, bounded before anything runs.
-void CheckStepCount(const ControlProblem& problem, const std::vector<Waypoint>& waypoints) {
+void CheckPathStepCount(const ControlProblem& problem, const std::vector<Waypoint>& waypoints) {
   const ControlOptions& o = problem.options();
   PoseTarget from = problem.CurrentPose();
   double total = 0;
@@ -28,11 +26,9 @@ void CheckStepCount(const ControlProblem& problem, const std::vector<Waypoint>& 
   }
 }
 
-}  // namespace
-
 TrajectoryResult FollowWaypoints(ControlProblem& problem, const std::vector<Waypoint>& waypoints,
                                  const std::function<void(const TrajectoryStep&)>& on_step) {
-  CheckStepCount(problem, waypoints);
+  CheckPathStepCount(problem, waypoints);
   TrajectoryResult out;
   double previous_time = waypoints.empty() ? 0.0 : waypoints.front().time;
   for (size_t w = 0; w < waypoints.size(); ++w) {

@@ -26,6 +26,7 @@
 #include "formats/model_loader.h"
 #include "problems/forward_problem.h"
 #include "problems/compensated_control.h"
+#include "problems/compensated_trajectory.h"
 #include "problems/internal/compliant_equilibrium.h"
 #include "problems/loaded_equilibrium.h"
 #include "model_text.h"
@@ -329,6 +330,45 @@ TEST(CompensatedControl, PutsTheLoadedEndEffectorOnTheTarget) {
   EXPECT_LE(r.rounds, 12);
 }
 
+// A compensated trajectory: every step's loaded end-effector on that step's
+// target (the rows), while the rigid end-effector at the same controls is off
+// by about the deflection.
+TEST(CompensatedTrajectory, EveryStepsLoadedEndEffectorIsOnItsTarget) {
+  Model model = LoadModelFromString(CompliantSixDof(), "6dof.yaml");
+  for (Joint& joint : model.joints) {
+    if (joint.type == JointType::kRevolute) joint.stiffness.rotation = {3e3, 4e3};
+  }
+  ExternalWrench w;
+  w.force = Eigen::Vector3d(3, -2, -8);
+  ControlProblem control(model);
+  ASSERT_TRUE(control.SetControls(model.home_controls()).assembled);
+  const PoseTarget home = control.CurrentPose();
+  std::vector<Waypoint> waypoints(2);
+  waypoints[0].time = 0;
+  waypoints[0].position = home.position;
+  waypoints[0].rpy = home.rpy;
+  waypoints[1].time = 1;
+  waypoints[1].position = home.position + Eigen::Vector3d(0.03, -0.01, 0.01);
+  waypoints[1].rpy = home.rpy + Eigen::Vector3d(0, 0, 0.02);
+  std::vector<TrajectoryStep> steps;
+  CompensatedPath path;
+  const TrajectoryResult r =
+      FollowWaypointsCompensated(control, waypoints, w, [&](const TrajectoryStep& s) { steps.push_back(s); }, &path);
+  ASSERT_TRUE(r.converged) << r.warning;
+  ASSERT_GE(steps.size(), 4u);
+  ForwardProblem rigid(model);
+  for (const TrajectoryStep& s : steps) {
+    ASSERT_TRUE(rigid.Solve(s.controls).assembled);
+    const LoadedEquilibrium loaded = SolveLoadedEquilibrium(model, rigid.state(), s.controls, w);
+    const EndEffectorPose p = ComputeEndEffectorPose(model, loaded.state);
+    EXPECT_LT((p.position - s.target.position).norm(), 1e-9) << s.time;
+    EXPECT_LT((s.reached.position - s.target.position).norm(), 1e-9) << s.time;
+    const double rigid_miss = (rigid.end_effector().position - s.target.position).norm();
+    EXPECT_NEAR(rigid_miss, loaded.deflection.head<3>().norm(), 0.1 * loaded.deflection.head<3>().norm()) << s.time;
+  }
+  EXPECT_LE(path.max_miss, 1e-10);
+}
+
 TEST(LoadedTool, SimulateLoadedAndControlCompensatePrintTheLoadedConfiguration) {
   const std::string cantilever = ::testing::TempDir() + "/cantilever_loaded.yaml";
   std::ofstream(cantilever) << Cantilever(2e3, 5e3, 0.3, 1.2);
@@ -356,6 +396,19 @@ TEST(LoadedTool, SimulateLoadedAndControlCompensatePrintTheLoadedConfiguration) 
   EXPECT_LT(out.at("error").get<double>(), 1e-6);
   EXPECT_NEAR(out.at("end_effector").at("position")[2].get<double>(), 0.62, 1e-6);
   EXPECT_GT(std::abs(out.at("compensation").at("rigid_end_effector").at("position")[2].get<double>() - 0.62), 1e-4);
+  // trajectory --compensate: every row's end-effector (the loaded one) on its target.
+  const std::string path = ::testing::TempDir() + "/compensated_path.csv", rows = ::testing::TempDir() + "/rows.csv";
+  std::ofstream(path) << "time,x,y,z,roll,pitch,yaw\n0,0.03,-0.02,0.62,0,0,0.05\n1,0.04,-0.02,0.63,0,0,0.05\n";
+  run = testing::RunTool({"trajectory", "--model=" + six, "--waypoints=" + path, "--out=" + rows, "--compensate",
+                          "--wrench=3,-2,-8,0,0,0"});
+  ASSERT_EQ(run.status, 0) << run.err;
+  out = nlohmann::json::parse(run.out);
+  EXPECT_TRUE(out.at("converged").get<bool>());
+  EXPECT_LT(out.at("compensation").at("max_miss").get<double>(), 1e-6);
+  EXPECT_NEAR(out.at("end_effector").at("position")[2].get<double>(), 0.63, 1e-6);
+  run = testing::RunTool({"trajectory", "--model=" + six, "--waypoints=" + path, "--out=" + rows, "--wrench=3,-2,-8,0,0,0"});
+  EXPECT_EQ(run.status, 2);  // --wrench without --compensate
+  EXPECT_TRUE(run.out.empty());
 }
 
 }  // namespace
