@@ -16,6 +16,50 @@
 
 namespace ccma::cli {
 
+namespace {
+
+// What the rows say about the whole path: conditioning (steps that could not
+// form it report 0), secondary objectives, the last row's configuration.
+struct TrajectoryTally {
+  double min_sigma = std::numeric_limits<double>::infinity();
+  double min_rcond = std::numeric_limits<double>::infinity();
+  int null_space_steps = 0;
+  double secondary_objective = 0;
+  State last_state;  // the last row's (loaded with --compensate)
+
+  void Add(const TrajectoryStep& s) {
+    min_sigma = std::min(min_sigma, s.result.min_singular_value_dX_du);
+    min_rcond = std::min(min_rcond, s.result.rcond);
+    null_space_steps += s.result.null_space_steps;
+    secondary_objective = s.result.secondary_objective;
+    last_state = s.state;
+  }
+};
+
+nlohmann::json PathJson(const Model& model, const ControlOptions& options, const TrajectoryResult& result,
+                        const TrajectoryTally& tally, size_t waypoints) {
+  nlohmann::json out;
+  out["model"] = model.name;
+  out["method"] = FLAGS_method;
+  out["converged"] = result.converged;
+  out["waypoints"] = waypoints;
+  out["steps"] = result.steps;
+  out["iterations"] = result.iterations;
+  out["max_residual_energy"] = result.max_residual_energy;
+  out["max_error"] = result.max_error;
+  if (result.steps > 0) {
+    out["conditioning"] = {{"min_singular_value_dX_du_on_path", tally.min_sigma},
+                           {"min_dG_ds_pivot_ratio_on_path", tally.min_rcond}};
+  }
+  if (options.secondary.enabled()) {
+    out["secondary"] = SecondaryJson(options.secondary, tally.null_space_steps, tally.secondary_objective);
+  }
+  out["solve_time_ms"] = result.solve_time_ms;
+  return out;
+}
+
+}  // namespace
+
 int RunTrajectory(const std::vector<std::string>& args) {
   ParseCommandFlags(args, "trajectory");
   const Model model = LoadModelOrThrow(RequireFlag(FLAGS_model, "model", "trajectory"));
@@ -30,19 +74,11 @@ int RunTrajectory(const std::vector<std::string>& args) {
   control.SetControls(start);
   OutputFile file(out_path, "out");  // nothing half-written; links and devices kept
   TrajectoryCsv csv(model, file.stream());
-  // Conditioning along the path (steps that could not form it report 0).
-  double min_sigma = std::numeric_limits<double>::infinity();
-  double min_rcond = std::numeric_limits<double>::infinity();
-  int null_space_steps = 0;
-  double secondary_objective = 0;
-  State last_state = control.forward().state();  // the last row's (loaded with --compensate)
+  TrajectoryTally tally;
+  tally.last_state = control.forward().state();
   const auto on_step = [&](const TrajectoryStep& s) {
     csv.Write(s);
-    min_sigma = std::min(min_sigma, s.result.min_singular_value_dX_du);
-    min_rcond = std::min(min_rcond, s.result.rcond);
-    null_space_steps += s.result.null_space_steps;
-    secondary_objective = s.result.secondary_objective;
-    last_state = s.state;
+    tally.Add(s);
   };
   CompensatedPath compensated;
   const TrajectoryResult result = FLAGS_compensate
@@ -50,28 +86,12 @@ int RunTrajectory(const std::vector<std::string>& args) {
                                       : FollowWaypoints(control, waypoints, on_step);
   file.Commit();
 
-  nlohmann::json out;
-  out["model"] = model.name;
-  out["method"] = FLAGS_method;
-  out["converged"] = result.converged;
-  out["waypoints"] = waypoints.size();
-  out["steps"] = result.steps;
-  out["iterations"] = result.iterations;
-  out["max_residual_energy"] = result.max_residual_energy;
-  out["max_error"] = result.max_error;
-  if (result.steps > 0) {
-    out["conditioning"] = {{"min_singular_value_dX_du_on_path", min_sigma},
-                           {"min_dG_ds_pivot_ratio_on_path", min_rcond}};
-  }
-  if (options.secondary.enabled()) {
-    out["secondary"] = SecondaryJson(options.secondary, null_space_steps, secondary_objective);
-  }
-  out["solve_time_ms"] = result.solve_time_ms;
+  nlohmann::json out = PathJson(model, options, result, tally, waypoints.size());
   out["out"] = out_path;
   out["controls"] = ToJson(control.controls());
-  out["end_effector"] = ToJson(ComputeEndEffectorPose(model, last_state));
+  out["end_effector"] = ToJson(ComputeEndEffectorPose(model, tally.last_state));
   if (FLAGS_compensate) out["compensation"] = {{"rounds", compensated.rounds}, {"max_miss", compensated.max_miss}};
-  AddClearance(model, last_state, "trajectory", &out);
+  AddClearance(model, tally.last_state, "trajectory", &out);
   const ClearanceSummary& path_clearance = csv.min_clearance();
   if (path_clearance.any) {
     out["clearance"]["min_on_path"] = path_clearance.min;
