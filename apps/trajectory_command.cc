@@ -25,7 +25,7 @@ struct TrajectoryTally {
   double min_rcond = std::numeric_limits<double>::infinity();
   int null_space_steps = 0;
   double secondary_objective = 0;
-  State last_state;  // the last row's (loaded with --compensate)
+  State last_state;  // the last row's
 
   void Add(const TrajectoryStep& s) {
     min_sigma = std::min(min_sigma, s.result.min_singular_value_dX_du);
@@ -89,9 +89,11 @@ int RunTrajectory(const std::vector<std::string>& args) {
   nlohmann::json out = PathJson(model, options, result, tally, waypoints.size());
   out["out"] = out_path;
   out["controls"] = ToJson(control.controls());
-  out["end_effector"] = ToJson(ComputeEndEffectorPose(model, tally.last_state));
+  // The configuration at the end: the loaded one with --compensate.
+  const State& final_state = FLAGS_compensate ? tally.last_state : control.forward().state();
+  out["end_effector"] = ToJson(ComputeEndEffectorPose(model, final_state));
   if (FLAGS_compensate) out["compensation"] = {{"rounds", compensated.rounds}, {"max_miss", compensated.max_miss}};
-  AddClearance(model, tally.last_state, "trajectory", &out);
+  AddClearance(model, final_state, "trajectory", &out);
   const ClearanceSummary& path_clearance = csv.min_clearance();
   if (path_clearance.any) {
     out["clearance"]["min_on_path"] = path_clearance.min;
