@@ -271,6 +271,27 @@ TEST(LeggedBase, ReplaySeparatesTheGaitsErrorFromTracking) {
   EXPECT_NEAR(double(still["rmse"]["z_mm"]), double(still["gait"]["rmse_from_tracking"]["z_mm"]), 1e-9);
 }
 
+TEST(LeggedBase, WorkspaceMapsAndPlansHoldTheBodyLimits) {
+  // Heights from 0.85 to 1.75 m: the lower ones within reach, the top one
+  // beyond what the bodies (at most 0.55 m) and arms can lift.
+  const std::string map = testing::ScratchPath("legged", "map.csv");
+  testing::ToolRun run = testing::RunTool({"workspace", "--model=" + testing::ModelPath("6dof_three_legged"),
+                                           "--z=0.85:1.75", "--resolution=4", "--out=" + map});
+  ASSERT_EQ(run.status, 0) << run.err;
+  const std::string csv = testing::Slurp(map);
+  EXPECT_NE(csv.find(",u17\n"), std::string::npos);  // 18 controls
+  const nlohmann::json out = nlohmann::json::parse(run.out);
+  EXPECT_EQ(out["samples"], 4);
+  EXPECT_GE(int(out["reachable"]), 2);
+  EXPECT_LT(int(out["reachable"]), 4);
+  const std::string path = testing::ScratchPath("legged", "plan.csv");
+  std::ofstream(path) << "time,x,y,z,roll,pitch,yaw\n0,0,0,0.95,0,0,0\n4,0.2,0,0.95,0,0,0\n8,0.2,0.2,1.0,0,0,0.1\n";
+  run = testing::RunTool({"plan", "--model=" + testing::ModelPath("6dof_three_legged"), "--waypoints=" + path,
+                          "--out=" + testing::ScratchPath("legged", "planned.csv")});
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_TRUE(nlohmann::json::parse(run.out)["converged"].get<bool>());
+}
+
 TEST(LeggedBase, TheGeneratorMakesRigidPlatformsOnAnyNumberOfQuadrupeds) {
   for (const int agents : {3, 5}) {
     const std::string out = testing::ScratchPath("legged", "gen" + std::to_string(agents) + ".yaml");
