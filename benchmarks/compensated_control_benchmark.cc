@@ -4,8 +4,10 @@
 // generated 6-agent CCMA with compliant bases ([2e4, 2e4, 500]) and
 // revolute rotations (2e3 N*m/rad) carrying a 2 kg payload, plain
 // (ControlProblem::MoveTo) and compensated (MoveToCompensated: rounds of
-// MoveTo and loaded equilibria); and the loaded equilibrium alone. The
-// issue's target: compensated within 2x of plain.
+// MoveTo and loaded equilibria), also as one step of a compensated path
+// (the previous step's aim correction carried over); and the loaded
+// equilibrium alone, sparse (the default) and dense. The target:
+// compensated within 2x of plain.
 //   build/benchmarks/compensated_control_benchmark --benchmark_repetitions=5 \
 //       --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
@@ -28,19 +30,34 @@ Model CompliantSixAgents() {
   return model;
 }
 
-void BM_ControlStep(benchmark::State& state, bool compensate) {
+// How a step is compensated: not at all, as `ccma control --compensate`
+// (held decided at the end), or as a step of `ccma trajectory --compensate`
+// (the previous step's aim correction carried over, held not decided).
+enum class Compensation { kNone, kControl, kPathStep };
+
+void BM_ControlStep(benchmark::State& state, Compensation compensation) {
   const Model model = CompliantSixAgents();
   ControlProblem control(model);
   PoseTarget target = control.CurrentPose();
   target.position += Eigen::Vector3d(0.01, 0, 0);
   target.rpy += Eigen::Vector3d(0, 0, 0.01);
+  CompensationOptions options;
+  if (compensation == Compensation::kPathStep) {
+    // The correction a path's previous step leaves: the one at home.
+    const PoseTarget home = control.CurrentPose();
+    const CompensatedResult at_home = MoveToCompensated(&control, home);
+    if (!at_home.converged) state.SkipWithError(at_home.warning.c_str());
+    options.aim_offset << at_home.aim.position - home.position, at_home.aim.rpy - home.rpy;
+    options.start = at_home.loaded;
+    options.check_held = false;
+  }
   int rounds = 0;
   for (auto _ : state) {
     state.PauseTiming();
     control.SetControls(model.home_controls());
     state.ResumeTiming();
-    if (compensate) {
-      const CompensatedResult r = MoveToCompensated(&control, target);
+    if (compensation != Compensation::kNone) {
+      const CompensatedResult r = MoveToCompensated(&control, target, {}, options);
       if (!r.converged) state.SkipWithError(r.warning.c_str());
       rounds = r.rounds;
     } else {
@@ -51,21 +68,26 @@ void BM_ControlStep(benchmark::State& state, bool compensate) {
   state.counters["rounds"] = rounds;
 }
 
-void BM_LoadedEquilibrium(benchmark::State& state) {
+void BM_LoadedEquilibrium(benchmark::State& state, bool sparse) {
   const Model model = CompliantSixAgents();
   ForwardProblem forward(model);
   if (!forward.Solve(model.home_controls()).assembled) state.SkipWithError("not assembled at home");
   int iterations = 0;
   for (auto _ : state) {
-    const LoadedEquilibrium r = SolveLoadedEquilibrium(model, forward.state(), forward.controls());
+    LoadedOptions options;
+    options.sparse = sparse;
+    options.check_held = false;  // (the dense path decides it anyway)
+    const LoadedEquilibrium r = SolveLoadedEquilibrium(model, forward.state(), forward.controls(), {}, options);
     iterations = r.iterations;
   }
   state.counters["iterations"] = iterations;
 }
 
-BENCHMARK_CAPTURE(BM_ControlStep, plain, false)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_ControlStep, compensated, true)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_LoadedEquilibrium)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ControlStep, plain, Compensation::kNone)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ControlStep, compensated, Compensation::kControl)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ControlStep, compensated_path_step, Compensation::kPathStep)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_LoadedEquilibrium, sparse, true)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_LoadedEquilibrium, dense, false)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -42,6 +42,7 @@
 #include "analyses/payload.h"
 #include "problems/forward_problem.h"
 #include "problems/compensated_control.h"
+#include "problems/compensated_trajectory.h"
 #include "problems/loaded_equilibrium.h"
 #include "problems/path.h"
 #include "problems/plan.h"

@@ -63,7 +63,15 @@ CompensatedResult MoveToCompensated(ControlProblem* control, const PoseTarget& t
     ++out.rounds;
     out.control = control->MoveTo(out.aim);
     solve_time_ms += out.control.solve_time_ms;
-    out.loaded = SolveLoadedEquilibrium(model, control->forward().state(), control->controls(), wrench);
+    // Each round's equilibrium starts from the last one: the controls moved little.
+    LoadedOptions loaded_options;
+    loaded_options.check_held = false;
+    const LoadedEquilibrium* start = out.rounds > 1 ? &out.loaded : (options.start ? &*options.start : nullptr);
+    if (start && start->converged) {
+      loaded_options.start_state = start->state;
+      loaded_options.start_yields = start->yields;
+    }
+    out.loaded = SolveLoadedEquilibrium(model, control->forward().state(), control->controls(), wrench, loaded_options);
     if (!out.control.converged || !out.loaded.converged) break;
     const Eigen::Matrix<double, 6, 1> miss = Miss(model, target, ComputeEndEffectorPose(model, out.loaded.state));
     out.miss = miss.cwiseAbs().maxCoeff();
@@ -76,6 +84,7 @@ CompensatedResult MoveToCompensated(ControlProblem* control, const PoseTarget& t
     out.aim.rpy += step.tail<3>();
   }
   out.control.solve_time_ms = solve_time_ms;
+  if (options.check_held && out.loaded.converged) DecideHeld(model, control->controls(), &out.loaded);
   if (out.converged) return out;
   if (!out.control.converged) {
     out.warning = "round " + std::to_string(out.rounds) + ": the rigid end-effector did not reach the compensated aim" +

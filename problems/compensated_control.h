@@ -16,6 +16,7 @@
 #ifndef CCMA_PROBLEMS_COMPENSATED_CONTROL_H_
 #define CCMA_PROBLEMS_COMPENSATED_CONTROL_H_
 
+#include <optional>
 #include <string>
 
 #include "ccma/end_effector.h"
@@ -33,6 +34,14 @@ struct CompensationOptions {
   // The first round's aim is target + aim_offset (position [m], rpy [rad]):
   // a path's previous step's correction starts the next step near its aim.
   Eigen::Matrix<double, 6, 1> aim_offset = Eigen::Matrix<double, 6, 1>::Zero();
+  // Decide the returned loaded equilibrium's `held` (one dense
+  // decomposition, several times a round's cost): a report wants it, a path's
+  // steps do not.
+  bool check_held = true;
+  // The first round's loaded equilibrium starts from this one (a path's
+  // previous step's) instead of the rigid assembly; later rounds start from
+  // the round before.
+  std::optional<LoadedEquilibrium> start;
 };
 
 struct CompensatedResult {

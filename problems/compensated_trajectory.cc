@@ -38,6 +38,7 @@ TrajectoryResult FollowWaypointsCompensated(ControlProblem& problem, const std::
   const ControlOptions& o = problem.options();
   TrajectoryResult out;
   CompensationOptions compensation;
+  compensation.check_held = false;  // no row reports it
   PoseTarget from = problem.CurrentPose();
   double previous_time = waypoints.empty() ? 0.0 : waypoints.front().time;
   for (size_t w = 0; w < waypoints.size() && out.converged; ++w) {
@@ -47,6 +48,7 @@ TrajectoryResult FollowWaypointsCompensated(ControlProblem& problem, const std::
       const PoseTarget target = leg.At(i);
       const CompensatedResult c = MoveToCompensated(&problem, target, wrench, compensation);
       compensation.aim_offset << c.aim.position - target.position, c.aim.rpy - target.rpy;
+      if (c.loaded.converged) compensation.start = c.loaded;
       TrajectoryStep step = LoadedStep(problem, target, c, static_cast<int>(w));
       step.time = previous_time + (waypoints[w].time - previous_time) * double(i) / leg.steps();
       if (on_step) on_step(step);

@@ -13,60 +13,19 @@
 #include "ccma/internal/joint_deviation.h"
 #include "ccma/rotation.h"
 #include "problems/internal/compliant_equilibrium.h"
+#include "problems/internal/loaded_newton.h"
 
 namespace ccma {
 namespace {
 
 constexpr int kMaxNewtonIterations = 25;  // per load step
+constexpr int kMaxSparseIterations = 15;  // the sparse path's, per start
 constexpr double kMinLoadStep = 1e-4;     // the smallest fraction of the loads a step may add
 constexpr int kMaxRestoreSteps = 20;   // minimum-norm corrections onto the rigid rows
 constexpr double kRigidRowTolerance = 1e-13;  // m (or rad-like): a rigid row that holds
 constexpr double kUnheldTolerance = 1e-8;     // as analyses/compliance.cc
 
-// A configuration of the compliant mechanism: the state and the yield of
-// each compliant control (CompliantEquilibrium::compliant_controls order).
-struct Point {
-  State s;
-  Eigen::VectorXd delta;
-};
-
-// The controls the motors' rows see: as commanded plus their yields.
-Eigen::VectorXd Commanded(const Eigen::VectorXd& u, const std::vector<int>& compliant, const Eigen::VectorXd& delta) {
-  Eigen::VectorXd u_eff = u;
-  for (size_t i = 0; i < compliant.size(); ++i) u_eff[compliant[i]] += delta[static_cast<int>(i)];
-  return u_eff;
-}
-
-// The rigid rows' residual g (in the order of CompliantEquilibrium's A) and
-// the springs' stretch e (in the order of its S: the controls' yields, then
-// each compliant joint's spring deviations), at x.
-void Residuals(const Model& model, const ConstraintSet& set, const Point& x, const Eigen::VectorXd& u_eff,
-               Eigen::VectorXd* g, Eigen::VectorXd* e) {
-  Eigen::VectorXd C;
-  set.Evaluate(x.s, u_eff, &C);
-  std::vector<double> rigid, stretch(x.delta.data(), x.delta.data() + x.delta.size());
-  const auto add_block = [&](const ConstraintBlock& block) {
-    for (int r = 0; r < block.rows; ++r) rigid.push_back(C[block.row + r]);
-  };
-  size_t b = 0;
-  for (const Joint& joint : model.joints) {
-    if (!joint.stiffness.has_springs()) {
-      add_block(set.blocks()[b]);
-    } else {
-      const Eigen::VectorXd d = JointDeviation(joint, x.s);
-      const int translations = TranslationSpringCount(joint.type);
-      for (int i = 0; i < d.size(); ++i) {
-        const bool spring = !(i < translations ? joint.stiffness.translation : joint.stiffness.rotation).empty();
-        (spring ? stretch : rigid).push_back(d[i]);
-      }
-    }
-    ++b;
-    if (joint.actuated) add_block(set.blocks()[b++]);
-  }
-  for (; b < set.blocks().size(); ++b) add_block(set.blocks()[b]);
-  *g = Eigen::Map<const Eigen::VectorXd>(rigid.data(), static_cast<Eigen::Index>(rigid.size()));
-  *e = Eigen::Map<const Eigen::VectorXd>(stretch.data(), static_cast<Eigen::Index>(stretch.size()));
-}
+using Point = LoadedPoint;
 
 // One linearisation of the loaded mechanism at a point: its linear system
 // and the generalized force the springs and loads leave unbalanced.
@@ -80,8 +39,8 @@ struct Linearisation {
 // load steps that carry t from 0 to 1.
 class LoadedSolver {
  public:
-  LoadedSolver(const Model& model, const Eigen::VectorXd& u, const ExternalWrench& wrench)
-      : model_(model), set_(model), u_(u), wrench_(wrench), compliant_(CompliantEquilibrium::CompliantControls(model)) {}
+  LoadedSolver(const Model& model, const ConstraintSet& set, const Eigen::VectorXd& u, const ExternalWrench& wrench)
+      : model_(model), set_(set), u_(u), wrench_(wrench), compliant_(CompliantEquilibrium::CompliantControls(model)) {}
 
   const std::vector<int>& compliant() const { return compliant_; }
   Linearisation Linearise(const Point& x, double t) const;
@@ -99,7 +58,7 @@ class LoadedSolver {
   Eigen::VectorXd NewtonStep(const Point& x, double t, const Linearisation& at) const;
 
   const Model& model_;
-  const ConstraintSet set_;
+  const ConstraintSet& set_;
   const Eigen::VectorXd u_;
   const ExternalWrench wrench_;
   const std::vector<int> compliant_;
@@ -107,11 +66,11 @@ class LoadedSolver {
 
 Linearisation LoadedSolver::Linearise(const Point& x, double t) const {
   Linearisation out;
-  const Eigen::VectorXd u_eff = Commanded(u_, compliant_, x.delta);
+  const Eigen::VectorXd u_eff = CommandedControls(u_, compliant_, x.delta);
   out.system = std::make_unique<CompliantEquilibrium>(model_, set_, x.s, u_eff);
   const CompliantEquilibrium& sys = *out.system;
   Eigen::VectorXd g, e;
-  Residuals(model_, set_, x, u_eff, &g, &e);
+  LoadedResiduals(model_, set_, x, u_eff, &g, &e);
   out.force = Eigen::VectorXd::Zero(sys.size());
   out.force.head(sys.state_size()) = t * GeneralizedLoads(model_, x.s, wrench_);
   out.force -= sys.S().transpose() * (sys.k().asDiagonal() * e);
@@ -126,7 +85,7 @@ bool LoadedSolver::Restore(const MinimumNormSolver& projector, Point* x) const {
   Eigen::VectorXd g, e;
   double last = std::numeric_limits<double>::infinity();
   for (int i = 0; i <= kMaxRestoreSteps; ++i) {
-    Residuals(model_, set_, *x, Commanded(u_, compliant_, x->delta), &g, &e);
+    LoadedResiduals(model_, set_, *x, CommandedControls(u_, compliant_, x->delta), &g, &e);
     const double size = g.size() > 0 ? g.lpNorm<Eigen::Infinity>() : 0.0;
     if (size <= kRigidRowTolerance) return true;
     if (!(size < last) || i == kMaxRestoreSteps) return false;
@@ -151,7 +110,7 @@ Eigen::VectorXd LoadedSolver::NewtonStep(const Point& x, double t, const Lineari
   }
   Eigen::MatrixXd extra = Eigen::MatrixXd::Zero(sys.size(), sys.size());
   Eigen::MatrixXd H_s = -t * GeneralizedLoadsJacobian(model_, x.s, wrench_);
-  set_.AddWeightedHessian(x.s, Commanded(u_, compliant_, x.delta), w, &H_s);
+  set_.AddWeightedHessian(x.s, CommandedControls(u_, compliant_, x.delta), w, &H_s);
   extra.topLeftCorner(n, n) = H_s;
   bool newton = false;
   return sys.Displacement(at.force, extra, &newton);
@@ -197,6 +156,82 @@ void Describe(const Model& model, const State& rigid, const Point& x, const std:
   }
 }
 
+
+// The dense path: load steps of Newton's method with minimum-norm
+// restoration (LoadedSolver), from the rigid assembly. Fills converged,
+// load_fraction, unbalanced, held and message; leaves the point in *x.
+void SolveLoadedDense(const Model& model, const ConstraintSet& set, const State& rigid, const Eigen::VectorXd& u,
+                      const ExternalWrench& wrench, double tolerance, const LoadedOptions& options, Point* x,
+                      LoadedEquilibrium* out) {
+  const LoadedSolver solver(model, set, u, wrench);
+  *x = Point{rigid, Eigen::VectorXd::Zero(static_cast<Eigen::Index>(solver.compliant().size()))};
+  // Load steps: the whole load first; a step whose Newton iterations fail is
+  // quartered, a step that succeeds lets the next one double.
+  Linearisation at = solver.Linearise(*x, 0.0);
+  double t = 0, dt = 1;
+  while (t < 1 && dt >= kMinLoadStep && out->iterations < options.max_iterations) {
+    const double next = std::min(1.0, t + dt);
+    const bool ok = solver.Converge(next, tolerance, &out->iterations, x, &at);
+    if (ok) {
+      t = next;
+      dt *= 2;
+    } else {
+      dt /= 4;
+    }
+  }
+  out->load_fraction = t;
+  if (t < 1) at = solver.Linearise(*x, 1.0);
+  out->converged = at.unbalanced <= tolerance;
+  out->unbalanced = at.unbalanced;
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(6, at.system->size());  // the end-effector's motion over [ds; delta]
+  G.leftCols(model.state_size()) = EndEffectorJacobian(model, x->s);
+  out->held = at.system->UnheldMotion(G) <= kUnheldTolerance;
+  if (!out->converged) {
+    out->message = !out->held ? "the loaded mechanism is not held: a motion that no spring resists moves the end-effector"
+                              : "no equilibrium found: the springs held " + FormatG(100 * t, 3) +
+                                    "% of the loads and no more in " + std::to_string(out->iterations) +
+                                    " Newton iterations (past a limit load the mechanism gives way), leaving " +
+                                    FormatG(at.unbalanced) + " N or N*m unbalanced";
+  }
+}
+
+// Whether every motion no spring resists leaves the end-effector in place at x.
+bool Held(const Model& model, const ConstraintSet& set, const Eigen::VectorXd& u, const Point& x) {
+  const std::vector<int> compliant = CompliantEquilibrium::CompliantControls(model);
+  const CompliantEquilibrium system(model, set, x.s, CommandedControls(u, compliant, x.delta));
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(6, system.size());
+  G.leftCols(model.state_size()) = EndEffectorJacobian(model, x.s);
+  return system.UnheldMotion(G) <= kUnheldTolerance;
+}
+
+// The sparse Newton iteration (problems/internal/loaded_newton.h) from the
+// warm start when given, then from the rigid assembly; true when it converged.
+bool SolveLoadedSparse(const Model& model, const ConstraintSet& set, const State& rigid, const Eigen::VectorXd& u,
+                       const ExternalWrench& wrench, double tolerance, const LoadedOptions& options, Point* x,
+                       LoadedEquilibrium* out) {
+  const std::vector<int> compliant = CompliantEquilibrium::CompliantControls(model);
+  std::vector<Point> starts;
+  if (options.start_state && options.start_state->num_bodies() == rigid.num_bodies() &&
+      options.start_yields.size() == model.num_controls()) {
+    Point warm{*options.start_state, Eigen::VectorXd(static_cast<Eigen::Index>(compliant.size()))};
+    for (size_t i = 0; i < compliant.size(); ++i) warm.delta[static_cast<Eigen::Index>(i)] = options.start_yields[compliant[i]];
+    starts.push_back(std::move(warm));
+  }
+  starts.push_back(Point{rigid, Eigen::VectorXd::Zero(static_cast<Eigen::Index>(compliant.size()))});
+  for (Point& start : starts) {
+    const LoadedNewtonResult r =
+        SolveLoadedNewton(model, set, u, wrench, tolerance, std::min(kMaxSparseIterations, options.max_iterations), &start);
+    out->iterations += r.iterations;
+    if (!r.converged) continue;
+    *x = std::move(start);
+    out->converged = true;
+    out->unbalanced = r.unbalanced;
+    out->load_fraction = 1;
+    return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 LoadedEquilibrium SolveLoadedEquilibrium(const Model& model, const State& rigid, const Eigen::VectorXd& u,
@@ -208,40 +243,28 @@ LoadedEquilibrium SolveLoadedEquilibrium(const Model& model, const State& rigid,
     out.converged = true;
     return out;
   }
-  const LoadedSolver solver(model, u, wrench);
-  Point x{rigid, Eigen::VectorXd::Zero(static_cast<Eigen::Index>(solver.compliant().size()))};
+  const ConstraintSet set(model);
   const double scale = 1.0 + GeneralizedLoads(model, rigid, wrench).lpNorm<Eigen::Infinity>();
   const double tolerance = options.force_tolerance * scale;
-  // Load steps: the whole load first; a step whose Newton iterations fail is
-  // quartered, a step that succeeds lets the next one double.
-  Linearisation at = solver.Linearise(x, 0.0);
-  double t = 0, dt = 1;
-  while (t < 1 && dt >= kMinLoadStep && out.iterations < options.max_iterations) {
-    const double next = std::min(1.0, t + dt);
-    const bool ok = solver.Converge(next, tolerance, &out.iterations, &x, &at);
-    if (ok) {
-      t = next;
-      dt *= 2;
-    } else {
-      dt /= 4;
-    }
+  Point x;
+  const bool sparse = options.sparse && SolveLoadedSparse(model, set, rigid, u, wrench, tolerance, options, &x, &out);
+  if (sparse && options.check_held) out.held = Held(model, set, u, x);
+  // Not converged, or a motion no spring resists moves the end-effector: the
+  // dense path says which, and how much of the loads the springs hold.
+  if (!sparse || !out.held) {
+    out = LoadedEquilibrium{};
+    SolveLoadedDense(model, set, rigid, u, wrench, tolerance, options, &x, &out);
   }
-  out.load_fraction = t;
-  if (t < 1) at = solver.Linearise(x, 1.0);
-  out.converged = at.unbalanced <= tolerance;
-  out.unbalanced = at.unbalanced;
-  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(6, at.system->size());  // the end-effector's motion over [ds; delta]
-  G.leftCols(model.state_size()) = EndEffectorJacobian(model, x.s);
-  out.held = at.system->UnheldMotion(G) <= kUnheldTolerance;
-  if (!out.converged) {
-    out.message = !out.held ? "the loaded mechanism is not held: a motion that no spring resists moves the end-effector"
-                            : "no equilibrium found: the springs held " + FormatG(100 * t, 3) +
-                                  "% of the loads and no more in " + std::to_string(out.iterations) +
-                                  " Newton iterations (past a limit load the mechanism gives way), leaving " +
-                                  FormatG(at.unbalanced) + " N or N*m unbalanced";
-  }
-  Describe(model, rigid, x, solver.compliant(), &out);
+  Describe(model, rigid, x, CompliantEquilibrium::CompliantControls(model), &out);
   return out;
+}
+
+void DecideHeld(const Model& model, const Eigen::VectorXd& u, LoadedEquilibrium* loaded) {
+  if (!model.compliant()) return;
+  const std::vector<int> compliant = CompliantEquilibrium::CompliantControls(model);
+  Point x{loaded->state, Eigen::VectorXd(static_cast<Eigen::Index>(compliant.size()))};
+  for (size_t i = 0; i < compliant.size(); ++i) x.delta[static_cast<Eigen::Index>(i)] = loaded->yields[compliant[i]];
+  loaded->held = Held(model, ConstraintSet(model), u, x);
 }
 
 }  // namespace ccma

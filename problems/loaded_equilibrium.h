@@ -12,7 +12,10 @@
 // configuration) plus the springs' forces -S^T k e do no work along any
 // motion the rigid rows allow.
 //
-// Method: Newton's method from the rigid assembly, each step that of the
+// Method: first Newton's method on the sparse KKT system at the full loads
+// (problems/internal/loaded_newton.h), from LoadedOptions::start_state when
+// given and then from the rigid assembly; where it does not converge (large
+// loads, a limit load), the dense path: Newton's method from the rigid assembly, each step that of the
 // linear compliant system plus the preload's geometric stiffness (the
 // rigid rows' exact second derivatives weighted by their multipliers, and
 // the loads' moments turning with the bodies), restored onto the rigid rows
@@ -26,6 +29,7 @@
 #ifndef CCMA_PROBLEMS_LOADED_EQUILIBRIUM_H_
 #define CCMA_PROBLEMS_LOADED_EQUILIBRIUM_H_
 
+#include <optional>
 #include <string>
 
 #include <Eigen/Core>
@@ -41,6 +45,18 @@ struct LoadedOptions {
   // Converged when the unbalanced force along the allowed motions is below
   // force_tolerance * (1 + the largest load) [N or N*m].
   double force_tolerance = 1e-10;
+  // Start from this configuration (a nearby loaded equilibrium, e.g. a
+  // previous control round's) instead of the rigid assembly: its state and
+  // its yields per control (LoadedEquilibrium::yields, num_controls).
+  // Ignored when the sizes do not fit.
+  std::optional<State> start_state;
+  Eigen::VectorXd start_yields;
+  // Decide `held` (one dense decomposition); false leaves it true unless the
+  // dense path ran (a control round's loaded equilibrium, whose report does
+  // not need it).
+  bool check_held = true;
+  // false: the dense path alone (the tests compare the two paths).
+  bool sparse = true;
 };
 
 struct LoadedEquilibrium {
@@ -69,6 +85,10 @@ struct LoadedEquilibrium {
 // kMaxStaticsEntries doubles (ccma/limits.h).
 LoadedEquilibrium SolveLoadedEquilibrium(const Model& model, const State& rigid, const Eigen::VectorXd& u,
                                          const ExternalWrench& wrench = {}, const LoadedOptions& options = {});
+
+// Decides loaded->held at its configuration (one dense decomposition), for
+// an equilibrium solved with check_held = false; u as given to the solve.
+void DecideHeld(const Model& model, const Eigen::VectorXd& u, LoadedEquilibrium* loaded);
 
 }  // namespace ccma
 

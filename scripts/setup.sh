@@ -15,6 +15,7 @@ cd "$(dirname "$0")/.."
 
 register=0
 tool_only=0
+npm_late=0
 for arg in "$@"; do
   case "$arg" in
     --register-python) register=1 ;;
@@ -43,8 +44,11 @@ if ((!tool_only)); then
              python3-matplotlib  # the Python trajectory example's plot (its test expects the plot when present)
              libfcl-dev  # tests: FCL's distances, the independent check of ccma's clearances
              gnuplot-nox)  # before the configure: the C++ trajectory example's test expects its plot when gnuplot is found
-  # The viewer's browser tests: Node.js and npm (playwright-core from the npm registry).
-  command -v npm > /dev/null || PACKAGES+=(npm)
+  # The viewer's browser tests: Node.js and npm (playwright-core from the npm
+  # registry). Only the tests need them, and npm brings about 370 packages:
+  # installed while the build runs, then the build is configured again so
+  # that it adds the browser tests (npm_late below).
+  command -v npm > /dev/null || { LATE_PACKAGES+=(npm); npm_late=1; }
   LATE_PACKAGES+=(python3-pytest  # the Python tests
                   python3-distributed  # ccma.workspace on a Dask cluster (and its local-cluster test)
                   python3-zarr python3-tqdm)  # sweeps: finished chunks kept for resuming; the progress bar
@@ -121,36 +125,41 @@ cmake -S . -B build "${generator[@]}" -DCMAKE_BUILD_TYPE="$BUILD_TYPE" "${launch
   || { cat build.log; exit 1; }
 echo "setup: building $what into build/ ($BUILD_TYPE), $estimate; log in build.log"
 
-# The build runs in the background; a line for every 10 % and, between
-# them, a line at least every 20 s naming what is being compiled.
-cmake --build build -j"$(nproc)" "${target_args[@]}" >> build.log 2>&1 &
-build_pid=$!
-start=$SECONDS last_print=$SECONDS next=0
-while kill -0 "$build_pid" 2> /dev/null; do
-  sleep 2
-  # make prints "[ 42%] ...", ninja (a build/ configured with -G Ninja) "[42/180] ...".
-  line=$(grep -E '^\[ *[0-9]+(%|/[0-9]+)\]' build.log | tail -n 1 || true)
-  p=$(sed -nE 's/^\[ *([0-9]+)%\].*/\1/p' <<< "$line")
-  if [[ -z "$p" && "$line" =~ ^\[([0-9]+)/([0-9]+)\] ]]; then
-    p=$(( 100 * BASH_REMATCH[1] / BASH_REMATCH[2] ))
+# build_with_progress ARGS...: `cmake --build build ARGS` in the background; a
+# line for every 10 % and, between them, a line at least every 20 s naming
+# what is being compiled. Exits the script when the build fails.
+build_with_progress() {
+  local build_pid start=$SECONDS last_print=$SECONDS next=0 line p what_now
+  cmake --build build -j"$(nproc)" "$@" >> build.log 2>&1 &
+  build_pid=$!
+  while kill -0 "$build_pid" 2> /dev/null; do
+    sleep 2
+    # make prints "[ 42%] ...", ninja (a build/ configured with -G Ninja) "[42/180] ...".
+    line=$(grep -E '^\[ *[0-9]+(%|/[0-9]+)\]' build.log | tail -n 1 || true)
+    p=$(sed -nE 's/^\[ *([0-9]+)%\].*/\1/p' <<< "$line")
+    if [[ -z "$p" && "$line" =~ ^\[([0-9]+)/([0-9]+)\] ]]; then
+      p=$(( 100 * BASH_REMATCH[1] / BASH_REMATCH[2] ))
+    fi
+    if [[ -n "$p" ]] && (( p >= next )); then
+      printf 'setup: building %3d%% (%d s)\n' "$p" $((SECONDS - start))
+      next=$(( p - p % 10 + 10 ))
+      last_print=$SECONDS
+    elif (( SECONDS - last_print >= 20 )); then
+      what_now=${line#*] }
+      echo "setup: building ${p:-0}% ($((SECONDS - start)) s): ${what_now#Building CXX object }"
+      last_print=$SECONDS
+    fi
+  done
+  if ! wait "$build_pid"; then
+    # A half-finished apt-get must not be cut off (dpkg would be left locked mid-install).
+    [ -z "$late_pid" ] || wait "$late_pid" || true
+    grep -E 'error|Error' build.log | head -20
+    tail -30 build.log
+    exit 1
   fi
-  if [[ -n "$p" ]] && (( p >= next )); then
-    printf 'setup: building %3d%% (%d s)\n' "$p" $((SECONDS - start))
-    next=$(( p - p % 10 + 10 ))
-    last_print=$SECONDS
-  elif (( SECONDS - last_print >= 20 )); then
-    what_now=${line#*] }
-    echo "setup: building ${p:-0}% ($((SECONDS - start)) s): ${what_now#Building CXX object }"
-    last_print=$SECONDS
-  fi
-done
-if ! wait "$build_pid"; then
-  # A half-finished apt-get must not be cut off (dpkg would be left locked mid-install).
-  [ -z "$late_pid" ] || wait "$late_pid" || true
-  grep -E 'error|Error' build.log | head -20
-  tail -30 build.log
-  exit 1
-fi
+}
+start=$SECONDS
+build_with_progress "${target_args[@]}"
 echo "setup: built $what in $((SECONDS - start)) s (build/apps/ccma; log in build.log)"
 if [ -n "$late_pid" ]; then
   while kill -0 "$late_pid" 2> /dev/null; do
@@ -159,6 +168,11 @@ if [ -n "$late_pid" ]; then
   done
   wait "$late_pid" || { tail -30 apt-late.log; exit 1; }
   echo "setup: installed the run-time packages"
+  if ((npm_late)); then
+    echo "setup: npm is here now: configuring build/ again for the browser tests and building what they add (npm ci of playwright-core, about 20 s)"
+    cmake -S . -B build >> build.log 2>&1 || { tail -30 build.log; exit 1; }
+    build_with_progress
+  fi
 fi
 
 # `import ccma` without PYTHONPATH, on request only: a ccma-build.pth file in

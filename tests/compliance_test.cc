@@ -18,6 +18,7 @@
 #include "analyses/statics.h"
 #include "bundled_models.h"
 #include "ccma/internal/constraint_set.h"
+#include "ccma/internal/dense_factorizations.h"
 #include "ccma/loads.h"
 #include "ccma/rotation.h"
 #include "formats/model_loader.h"
@@ -181,7 +182,7 @@ void ExpectEnergyStationary(const Model& model, const Eigen::VectorXd& u, const 
   ConstraintSet(model).Evaluate(forward.state(), u, &C, &J_s, &J_u);
   Eigen::MatrixXd J(J_s.rows(), J_s.cols() + J_u.cols());
   J << J_s, J_u;
-  Eigen::FullPivLU<Eigen::MatrixXd> lu(J);
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(J);  // its kernel basis: directions the forward problem assembles exactly
   lu.setThreshold(1e-10);
   const Eigen::MatrixXd allowed = lu.kernel().bottomRows(J_u.cols());
   const Eigen::VectorXd force = k.asDiagonal() * (u - u0);  // the springs' pull, -effort
@@ -250,9 +251,9 @@ TEST(Compliance, LoadsAndSpringsDoNoWorkAlongAllowedMotions) {
   f.head(model.state_size()) = GeneralizedLoads(model, forward.state());
   const Eigen::VectorXd y = system.Displacement(f);
   const Eigen::VectorXd g = f - system.SpringForce(y);
-  Eigen::FullPivLU<Eigen::MatrixXd> lu(system.A());
-  lu.setThreshold(1e-10);
-  const Eigen::MatrixXd Z = lu.kernel();
+  MinimumNormSolver cod;
+  cod.setThreshold(1e-10).compute(system.A());
+  const Eigen::MatrixXd Z = cod.nullSpace();
   ASSERT_GT(Z.cols(), 0);
   EXPECT_LT((Z.transpose() * g).cwiseAbs().maxCoeff(), 1e-9 * f.cwiseAbs().maxCoeff());
   EXPECT_LT((system.A() * y).cwiseAbs().maxCoeff(), 1e-12);  // the deflection keeps the rigid rows
@@ -338,8 +339,8 @@ TEST(Compliance, EffortsOfRigidControlsObeyVirtualWork) {
   const StaticsReport r = ComputeStatics(model, forward.state(), forward.controls());
   Eigen::VectorXd e(model.num_controls());
   for (int c = 0; c < e.size(); ++c) e[c] = r.actuators[static_cast<size_t>(c)].effort;
-  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(system.A());
-  cod.setThreshold(1e-10);
+  MinimumNormSolver cod;
+  cod.setThreshold(1e-10).compute(system.A());
   std::mt19937 rng(36);
   std::normal_distribution<double> normal;
   for (int trial = 0; trial < 5; ++trial) {

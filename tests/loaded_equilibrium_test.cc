@@ -19,6 +19,7 @@
 
 #include "analyses/statics.h"
 #include "ccma/internal/constraint_set.h"
+#include "ccma/internal/dense_factorizations.h"
 #include "ccma/internal/joint_deviation.h"
 #include "ccma/internal/joint_spring_directions.h"
 #include "ccma/loads.h"
@@ -249,9 +250,9 @@ TEST(LoadedEquilibrium, SpringsAndLoadsDoNoWorkAlongAllowedMotionsOfACcma) {
   f.head(model.state_size()) = GeneralizedLoads(model, r.state, w);
   const double load = f.cwiseAbs().maxCoeff();
   f -= system.S().transpose() * (system.k().asDiagonal() * e);
-  Eigen::FullPivLU<Eigen::MatrixXd> lu(system.A());
-  lu.setThreshold(1e-10);
-  const Eigen::MatrixXd Z = lu.kernel();
+  MinimumNormSolver cod;
+  cod.setThreshold(1e-10).compute(system.A());
+  const Eigen::MatrixXd Z = cod.nullSpace();
   ASSERT_GT(Z.cols(), 0);
   EXPECT_LT((Z.transpose() * f).cwiseAbs().maxCoeff(), 1e-8 * load);
   Eigen::VectorXd C;
@@ -308,6 +309,50 @@ Model CompliantSixDofWithHinges() {
     if (joint.type == JointType::kRevolute) joint.stiffness.rotation = {3e3, 4e3};
   }
   return model;
+}
+
+// The sparse Newton path (problems/internal/loaded_newton.h) and the dense
+// load steps find the same equilibrium: the 6-DOF CCMA under a large wrench
+// (redundant rigid rows: the bases' planar and motor rows), and the
+// cantilever bent by 0.4 rad; a warm start from a nearby equilibrium lands
+// there too, in fewer iterations.
+TEST(LoadedEquilibrium, TheSparseAndTheDensePathsAgree) {
+  ExternalWrench w;
+  w.force = Eigen::Vector3d(3, -2, -8);
+  w.moment = Eigen::Vector3d(0.2, 0.1, -0.3);
+  const Model ccma = CompliantSixDofWithHinges();
+  const Model cantilever = LoadModelFromString(Cantilever(2e3, 5e3, 0.3, 1.2), "cantilever.yaml");
+  for (const auto& [model, wrench] : {std::make_pair(&ccma, w), std::make_pair(&cantilever, Down(600))}) {
+    ForwardProblem forward(*model);
+    ASSERT_TRUE(forward.Solve(model->home_controls()).assembled);
+    LoadedOptions dense_only;
+    dense_only.sparse = false;
+    const LoadedEquilibrium sparse = SolveLoadedEquilibrium(*model, forward.state(), forward.controls(), wrench);
+    const LoadedEquilibrium dense =
+        SolveLoadedEquilibrium(*model, forward.state(), forward.controls(), wrench, dense_only);
+    ASSERT_TRUE(sparse.converged && dense.converged) << sparse.message << dense.message;
+    ASSERT_GT(dense.deflection.norm(), 1e-2) << model->name;
+    EXPECT_LT((sparse.deflection - dense.deflection).cwiseAbs().maxCoeff(), 1e-10) << model->name;
+    EXPECT_LT((sparse.yields - dense.yields).cwiseAbs().maxCoeff(), 1e-10) << model->name;
+    for (int b = 0; b < model->num_bodies(); ++b) {
+      EXPECT_LT((sparse.state.p_WB(b) - dense.state.p_WB(b)).norm(), 1e-10) << model->name << " body " << b;
+    }
+    EXPECT_TRUE(sparse.held && dense.held);
+    const double load = GeneralizedLoads(*model, forward.state(), wrench).lpNorm<Eigen::Infinity>();
+    EXPECT_LE(sparse.unbalanced, 1e-10 * (1 + load));
+    // Warm: the controls moved a little; start from the equilibrium above.
+    Eigen::VectorXd u = forward.controls();
+    u[0] += 1e-3;
+    ASSERT_TRUE(forward.Solve(u).assembled);
+    LoadedOptions warm;
+    warm.start_state = sparse.state;
+    warm.start_yields = sparse.yields;
+    const LoadedEquilibrium cold = SolveLoadedEquilibrium(*model, forward.state(), u, wrench);
+    const LoadedEquilibrium hot = SolveLoadedEquilibrium(*model, forward.state(), u, wrench, warm);
+    ASSERT_TRUE(cold.converged && hot.converged);
+    EXPECT_LT((cold.deflection - hot.deflection).cwiseAbs().maxCoeff(), 1e-10) << model->name;
+    EXPECT_LE(hot.iterations, cold.iterations) << model->name;
+  }
 }
 
 // --compensate: the loaded end-effector lands on the target (1e-6 m is the

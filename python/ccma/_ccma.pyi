@@ -768,14 +768,20 @@ class ControlProblem:
         model.controlled in that order (as `ccma control --target`, e.g. [x, y, z, yaw] on a 4dof
         model); components not controlled are ignored. ValueError on any other length."""
     @overload
-    def follow(self, waypoints: Sequence[Waypoint], out: Optional[str | os.PathLike[str]] = None) -> TrajectoryResult:
+    def follow(self, waypoints: Sequence[Waypoint], out: Optional[str | os.PathLike[str]] = None,
+               compensate: bool = False, wrench: Optional[ArrayLike] = None) -> TrajectoryResult:
         """`ccma trajectory`: follows ccma.Waypoint's (e.g. load_waypoints(path)) from the current controls; stops at the first unreachable one.
 
         Returns a ccma.TrajectoryResult (the command's JSON as attributes, its CSV as `table`);
         out=PATH writes the CSV too. ValueError (naming the waypoint) on a time not finite,
-        beyond 1e6 s, or smaller than the one before."""
+        beyond 1e6 s, or smaller than the one before. compensate=True (`ccma trajectory
+        --compensate`, a model with stiffness keys): every step puts the loaded end-effector
+        (gravity, payload and wrench [fx, fy, fz [N], mx, my, mz [N*m]]) on its target; the rows,
+        end_effector and clearance are the loaded ones, and `compensation` is
+        {rounds, max_miss [m or rad]}."""
     @overload
-    def follow(self, waypoints: ArrayLike, out: Optional[str | os.PathLike[str]] = None) -> TrajectoryResult:
+    def follow(self, waypoints: ArrayLike, out: Optional[str | os.PathLike[str]] = None,
+               compensate: bool = False, wrench: Optional[ArrayLike] = None) -> TrajectoryResult:
         """The same for an (N x 7) array of rows [time [s], x, y, z [m], roll, pitch, yaw [rad]]."""
     def objective(self, target: ArrayLike) -> Tuple[float, NDArray[np.float64]]:
         """(O, dO/du_eff) at the current controls for target (6 values, or the controlled components); the gradient over the effective controls.

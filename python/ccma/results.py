@@ -55,6 +55,8 @@ class TrajectoryResult(_Tabled):
                                  "joints [rad or m])")
     end_effector = Field("end_effector", _POSE)
     clearance = Field("clearance", _CLEARANCE)
+    compensation = Field("compensation", "follow(..., compensate=True): Record {rounds (rigid control solves, all "
+                                         "steps), max_miss [m or rad]}; None otherwise")
     warning = Field("warning", "the first waypoint not reached ('' when every one was)", "")
 
 

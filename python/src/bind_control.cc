@@ -305,10 +305,13 @@ ControlSolution MoveTo(ControlProblem& p, const Eigen::VectorXd& values, bool co
   return s;
 }
 
-// `ccma trajectory` in Python: the JSON summary and the CSV (as a ccma.Table),
-// written to `out` too when given.
-py::object Follow(ControlProblem& p, const std::vector<Waypoint>& waypoints, const py::object& out) {
+// `ccma trajectory [--compensate]` in Python: the JSON summary and the CSV
+// (as a ccma.Table), written to `out` too when given.
+py::object Follow(ControlProblem& p, const std::vector<Waypoint>& waypoints, const py::object& out, bool compensate,
+                  const std::optional<Eigen::VectorXd>& wrench) {
   CheckWaypoints(waypoints);
+  if (wrench && !compensate) throw py::value_error("follow: wrench only with compensate=True (the loads it compensates)");
+  const ExternalWrench w = WrenchFrom(wrench, "follow");
   const std::string out_path = OutPath(out);
   std::ostringstream csv_text;
   nlohmann::json document;
@@ -318,13 +321,18 @@ py::object Follow(ControlProblem& p, const std::vector<Waypoint>& waypoints, con
     cli::TrajectoryCsv csv(p.forward().model(), csv_text);
     PathSummary path;
     path.min_sigma = path.min_rcond = std::numeric_limits<double>::infinity();
-    const TrajectoryResult r = FollowWaypoints(p, waypoints, [&](const TrajectoryStep& step) {
+    const auto on_step = [&](const TrajectoryStep& step) {
       csv.Write(step);
       path.min_sigma = std::min(path.min_sigma, step.result.min_singular_value_dX_du);
       path.min_rcond = std::min(path.min_rcond, step.result.rcond);
       path.null_space_steps += step.result.null_space_steps;
       path.secondary_objective = step.result.secondary_objective;
-    });
+      if (compensate) path.loaded_state = step.state;
+    };
+    if (compensate) path.compensation.emplace();  // (ValueError from std::invalid_argument, as the plain path's)
+    const TrajectoryResult r = compensate ? FollowWaypointsCompensated(p, waypoints, w, on_step, &*path.compensation)
+                                          : FollowWaypoints(p, waypoints, on_step);
+    if (compensate && !path.loaded_state) path.loaded_state = p.forward().state();
     path.path_clearance = csv.min_clearance();
     document = TrajectoryDocument(p, r, waypoints.size(), path);
   }
@@ -375,19 +383,25 @@ void BindControlSolves(ProblemClass& c) {
                         "`compensation` tells how. ") +
             kTargetForms)
                .c_str())
-      .def("follow", &Follow, py::arg("waypoints"), py::arg("out") = py::none(),
+      .def("follow", &Follow, py::arg("waypoints"), py::arg("out") = py::none(), py::arg("compensate") = false,
+           py::arg("wrench") = py::none(),
            "`ccma trajectory`: follows a list of ccma.Waypoint (e.g. ccma.load_waypoints(path)); stops at the "
            "first waypoint it cannot reach. Returns a ccma.TrajectoryResult: the command's JSON as attributes "
            "(to_dict()), its CSV, one row per path step, as `table`; out=PATH writes that CSV too. ValueError "
            "(naming the waypoint) on a value the waypoint CSV refuses: a time not finite, beyond 1e6 s or "
-           "smaller than the one before, a position or angle not finite or beyond 1e4, more than 1e6 waypoints.")
+           "smaller than the one before, a position or angle not finite or beyond 1e4, more than 1e6 waypoints. "
+           "compensate=True (`ccma trajectory --compensate`, a model with stiffness keys): every step puts the "
+           "loaded end-effector (under gravity, the payload and wrench [fx, fy, fz [N], mx, my, mz [N*m]]) on "
+           "its target; the rows, end_effector and clearance are then the loaded ones, and `compensation` "
+           "{rounds, max_miss [m or rad]} tells how.")
       .def(
           "follow",
-          [](ControlProblem& p, const Eigen::Ref<const RowMatrix>& a, const py::object& out) {
-            return Follow(p, WaypointsFromArray(a), out);
+          [](ControlProblem& p, const Eigen::Ref<const RowMatrix>& a, const py::object& out, bool compensate,
+             const std::optional<Eigen::VectorXd>& wrench) {
+            return Follow(p, WaypointsFromArray(a), out, compensate, wrench);
           },
-          py::arg("waypoints"), py::arg("out") = py::none(),
-          "The same for an (N x 7) array of rows [time, x, y, z, roll, pitch, yaw].");
+          py::arg("waypoints"), py::arg("out") = py::none(), py::arg("compensate") = false,
+          py::arg("wrench") = py::none(), "The same for an (N x 7) array of rows [time, x, y, z, roll, pitch, yaw].");
 }
 
 // The objective, the sensitivities and where the problem is now.

@@ -9,6 +9,7 @@
 #ifndef CCMA_PYTHON_SRC_DOCUMENTS_H_
 #define CCMA_PYTHON_SRC_DOCUMENTS_H_
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,11 @@ struct PathSummary {
   int null_space_steps = 0;
   double secondary_objective = 0;  // the last step's
   ClearanceSummary path_clearance;  // the smallest over the steps (TrajectoryCsv::min_clearance)
+  // compensate=True (`ccma trajectory --compensate`): the last row's loaded
+  // configuration, which end_effector and clearance then describe, and the
+  // rounds' tally (the JSON's `compensation`).
+  std::optional<State> loaded_state;
+  std::optional<CompensatedPath> compensation;
 };
 
 // apps/trajectory_command.cc: RunTrajectory (without "out": the caller adds it).

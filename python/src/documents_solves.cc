@@ -188,8 +188,12 @@ nlohmann::json TrajectoryDocument(const ControlProblem& control, const Trajector
   }
   out["solve_time_ms"] = r.solve_time_ms;
   out["controls"] = ToJson(control.controls());
-  out["end_effector"] = ToJson(control.forward().end_effector());
-  PutClearance(model, control.forward().state(), &out);
+  const State& final_state = path.loaded_state ? *path.loaded_state : control.forward().state();
+  out["end_effector"] = ToJson(ComputeEndEffectorPose(model, final_state));
+  if (path.compensation) {
+    out["compensation"] = {{"rounds", path.compensation->rounds}, {"max_miss", path.compensation->max_miss}};
+  }
+  PutClearance(model, final_state, &out);
   AddPathClearance(path.path_clearance, &out);
   if (!r.warning.empty()) out["warning"] = r.warning;
   return out;

@@ -147,3 +147,29 @@ def test_compensated_move_puts_the_loaded_end_effector_on_target(tmp_path):
         assert d[key] == cli[key], key
     plain = ccma.ControlProblem(ccma.load_model(path)).move_to(target)
     assert plain.compensation is None and plain.deflection is None
+
+
+def test_compensated_path_matches_trajectory_compensate(tmp_path):
+    path = tmp_path / "6dof_compliant.yaml"
+    path.write_text(compliant_six_dof())
+    waypoints = tmp_path / "w.csv"
+    waypoints.write_text("time,x,y,z,roll,pitch,yaw\n0,0,0,0.6,0,0,0\n1,0.03,-0.02,0.62,0,0,0.05\n")
+    wrench = [3, -2, -8, 0, 0, 0]
+    cli_csv = tmp_path / "cli.csv"
+    cli = run_tool("trajectory", f"--model={path}", f"--waypoints={waypoints}", f"--out={cli_csv}", "--compensate",
+                   "--wrench=" + ",".join(map(str, wrench)))
+    control = ccma.ControlProblem(ccma.load_model(path))
+    r = control.follow(ccma.load_waypoints(waypoints), out=tmp_path / "py.csv", compensate=True, wrench=wrench)
+    assert r.converged and r.compensation["max_miss"] < 1e-9 and r.compensation["rounds"] >= r.steps
+    d = r.to_dict()
+    for key in ("compensation", "end_effector", "controls", "steps", "converged", "max_error"):
+        assert d[key] == cli[key], key
+    def rows(path):  # the CSV without its timing column
+        lines = [line.split(",") for line in path.read_text().splitlines()]
+        keep = [i for i, name in enumerate(lines[0]) if name != "solve_time_ms"]
+        return [[line[i] for i in keep] for line in lines]
+    assert rows(tmp_path / "py.csv") == rows(cli_csv)
+    # The last row is the loaded configuration: its end-effector is on the last waypoint.
+    np.testing.assert_allclose(r.end_effector.position, [0.03, -0.02, 0.62], atol=1e-9)
+    with pytest.raises(ValueError):
+        control.follow(ccma.load_waypoints(waypoints), wrench=wrench)

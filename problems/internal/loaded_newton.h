@@ -1,0 +1,69 @@
+// The loaded equilibrium's Newton iteration on its sparse KKT system
+// (problems/loaded_equilibrium.h): the fast path, tried first.
+//
+// At a point x = (s, delta) (the rigid rows need not hold there), with the
+// rigid rows' residual g and Jacobian A, the springs' stretch e, and
+// force = Q(s) - S^T k e, one step solves
+//   [H + eps_H I   A^T ] [y ]   [force]
+//   [A          -eps_A I] [mu] = [-g   ]
+// with H = S^T diag(k) S + sum_i w_i Hess(C_i) - dQ/ds (the springs, the
+// preload's geometric stiffness with the previous step's multipliers w, and
+// the loads turning with the bodies), by one sparse LU (Eigen's SparseLU),
+// then refines the solution twice against eps_A = 0. eps_H gives the idle
+// motions (no spring, no rigid row: a leg spinning about its axis) a
+// stiffness far above any rounding force, so they stay put; eps_A keeps
+// redundant rigid rows (a wheeled base's planar and motor rows both lock its
+// tilt) factorisable, and the refinement removes its bias on g. Neither
+// moves the fixed point: y = 0 exactly where the rigid rows hold and the
+// loads and springs balance along every motion they allow.
+// Converged when |force - A^T mu| and |g| are below their tolerances; the
+// dense path (load steps, minimum-norm restoration) takes over otherwise.
+// Units: m, rad, N, N*m.
+#ifndef CCMA_PROBLEMS_INTERNAL_LOADED_NEWTON_H_
+#define CCMA_PROBLEMS_INTERNAL_LOADED_NEWTON_H_
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "ccma/internal/constraint_set.h"
+#include "ccma/loads.h"
+#include "ccma/model.h"
+#include "ccma/state.h"
+
+namespace ccma {
+
+// A configuration of the compliant mechanism: the state and the yield of
+// each compliant control (CompliantEquilibrium::compliant_controls order).
+struct LoadedPoint {
+  State s;
+  Eigen::VectorXd delta;
+};
+
+// The controls the motors' rows see: as commanded plus their yields.
+Eigen::VectorXd CommandedControls(const Eigen::VectorXd& u, const std::vector<int>& compliant,
+                                  const Eigen::VectorXd& delta);
+
+// The rigid rows' residual g (in the order of CompliantEquilibrium's A) and
+// the springs' stretch e (in the order of its S: the controls' yields, then
+// each compliant joint's spring deviations), at x with effective controls
+// u_eff.
+void LoadedResiduals(const Model& model, const ConstraintSet& set, const LoadedPoint& x, const Eigen::VectorXd& u_eff,
+                     Eigen::VectorXd* g, Eigen::VectorXd* e);
+
+struct LoadedNewtonResult {
+  bool converged = false;
+  int iterations = 0;     // KKT factorisations
+  double unbalanced = 0;  // max |force - A^T mu| at the last point [N or N*m]
+};
+
+// Newton's method at the full loads from *x; on convergence *x is the
+// equilibrium (rigid rows within 1e-13), else *x is unchanged.
+// `force_tolerance` [N or N*m] as LoadedOptions' (already scaled).
+LoadedNewtonResult SolveLoadedNewton(const Model& model, const ConstraintSet& set, const Eigen::VectorXd& u,
+                                     const ExternalWrench& wrench, double force_tolerance, int max_iterations,
+                                     LoadedPoint* x);
+
+}  // namespace ccma
+
+#endif  // CCMA_PROBLEMS_INTERNAL_LOADED_NEWTON_H_
