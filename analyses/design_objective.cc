@@ -76,7 +76,17 @@ bool EffortTerms(DesignObjective objective, const Model& at_p, const State& s, c
     }
     terms->push_back({[](const Model& m) { return m; }, peak.w, {}});
   }
-  for (EffortTerm& t : *terms) t.adjoint = eq.AdjointOf(t.w, GeneralizedLoads(t.loads(at_p), s));
+  for (EffortTerm& t : *terms) {
+    t.adjoint = eq.AdjointOf(t.w, GeneralizedLoads(t.loads(at_p), s));
+    // A compliant mechanism's efforts are the rigid ones wherever those are
+    // unique; elsewhere the springs share the loads, which this adjoint
+    // (of the rigid statics) does not follow.
+    if (at_p.compliant() && !t.adjoint.unique) {
+      *why = "the efforts of this statically indeterminate mechanism come from its springs (stiffness keys), "
+             "whose sharing of the loads the gradient does not follow";
+      return false;
+    }
+  }
   return true;
 }
 

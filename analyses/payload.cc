@@ -7,6 +7,7 @@
 
 #include "ccma/internal/format.h"
 #include "ccma/loads.h"
+#include "problems/internal/compliant_equilibrium.h"
 #include "problems/internal/equilibrium.h"
 
 namespace ccma {
@@ -110,9 +111,18 @@ PayloadCapacity ComputePayloadCapacity(const Model& model, const State& s, const
   const Equilibrium eq(set, s, u);
   const Eigen::VectorXd Q0 = GeneralizedLoads(WithoutPayload(model), s), Q1 = GeneralizedLoads(PayloadPerKilogram(model), s);
   const Eigen::VectorXd l0 = eq.Multipliers(Q0), l1 = eq.Multipliers(Q1);
-  const double residual = std::max((eq.J_s().transpose() * l0 + Q0).lpNorm<Eigen::Infinity>(),
-                                   (eq.J_s().transpose() * l1 + Q1).lpNorm<Eigen::Infinity>());
-  const Eigen::VectorXd e0 = eq.Efforts(l0), e1 = eq.Efforts(l1);
+  double residual = std::max((eq.J_s().transpose() * l0 + Q0).lpNorm<Eigen::Infinity>(),
+                             (eq.J_s().transpose() * l1 + Q1).lpNorm<Eigen::Infinity>());
+  Eigen::VectorXd e0 = eq.Efforts(l0), e1 = eq.Efforts(l1);
+  if (model.compliant()) {
+    // The compliant mechanism's efforts, as `ccma statics` reports them
+    // (unique where the rigid ones are not; linear in the loads too).
+    const CompliantEquilibrium system(model, set, s, u);
+    double r0 = 0, r1 = 0;
+    e0 = system.Efforts(Q0, &r0);
+    e1 = system.Efforts(Q1, &r1);
+    residual = std::max(r0, r1);
+  }
   std::vector<std::pair<std::string, Bound>> bounds;
   for (int k = 0; k < model.num_bases(); ++k) {
     const MobileBase& base = model.mobile_bases[static_cast<size_t>(k)];

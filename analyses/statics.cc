@@ -136,11 +136,8 @@ Eigen::VectorXd CompliantStatics(const Model& model, const State& s, const Eigen
       return g;
     }));
   }
-  Eigen::VectorXd effort = -system.A_u().transpose() * lambda;
-  const std::vector<int>& compliant = system.compliant_controls();
-  for (size_t i = 0; i < compliant.size(); ++i) effort[compliant[i]] = -stretch[static_cast<int>(i)];
   out->compliance = ComputeCompliance(model, s, system, f);
-  return effort;
+  return system.Efforts(Q);
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 #include <Eigen/LU>
 
+#include "analyses/payload.h"
 #include "analyses/statics.h"
 #include "bundled_models.h"
 #include "ccma/internal/constraint_set.h"
@@ -229,6 +230,43 @@ TEST(Compliance, FourAgentBasesYieldCompatiblyAndMoveTheEndEffectorAsPredicted) 
     EXPECT_LT((moved - predicted).norm(), 1e-4 * predicted.norm()) << stem << "\n" << moved << "\n" << predicted;
     ExpectEnergyStationary(model, u, w, stem);
   }
+}
+
+// Payload capacity of a compliant mechanism comes from the efforts `ccma
+// statics` reports for it (the springs' sharing of the loads, unique), not
+// from the rigid minimum-norm ones: with the capacity's payload on, the
+// limiting base pushes exactly at its limit. The rigid 4-agent CCMA is
+// statically indeterminate, so the two capacities differ.
+TEST(Compliance, PayloadCapacityFollowsTheCompliantEfforts) {
+  const std::string rigid_text =
+      InsertAfterEach(ReadModel("4dof_reduced"), "type: omni,", {" push_limit: 40,", " push_limit: 35,", " push_limit: 45,"});
+  const std::string text = InsertAfterEach(rigid_text, "type: omni,",
+                                           {" stiffness: [2.0e4, 3.0e4, 600],", " stiffness: [1.0e4, 1.0e4, 400],",
+                                            " stiffness: [3.0e4, 2.0e4, 900],"});
+  const Model rigid = LoadModelFromString(rigid_text, "rigid.yaml");
+  const Model model = LoadModelFromString(text, "compliant.yaml");
+  ForwardProblem forward(model);
+  ASSERT_TRUE(forward.Solve(model.home_controls()).assembled);
+  const State& s = forward.state();
+  const Eigen::VectorXd& u = forward.controls();
+  ASSERT_FALSE(ComputeStatics(rigid, s, u, {}).determinate);
+  const PayloadCapacity capacity = ComputePayloadCapacity(model, s, u);
+  ASSERT_TRUE(capacity.defined && !capacity.unbounded) << capacity.why;
+  const PayloadCapacity rigid_capacity = ComputePayloadCapacity(rigid, s, u);
+  ASSERT_TRUE(rigid_capacity.defined);
+  EXPECT_GT(std::abs(capacity.mass - rigid_capacity.mass), 1e-3 * capacity.mass);
+  Model loaded = model;
+  if (!(model.end_effector.payload.mass > 0)) loaded.end_effector.payload.com_B = model.end_effector.p_B;
+  loaded.end_effector.payload.mass += capacity.mass;
+  const StaticsReport r = ComputeStatics(loaded, s, u, {});
+  int at = -1;
+  for (int k = 0; k < model.num_bases(); ++k) {
+    if (model.mobile_bases[static_cast<size_t>(k)].name == capacity.limiting) at = k;
+  }
+  ASSERT_GE(at, 0) << capacity.limiting;
+  const int first = model.base_control(at);
+  const double push = std::hypot(r.control_efforts[first], r.control_efforts[first + 1]);
+  EXPECT_NEAR(push, model.mobile_bases[static_cast<size_t>(at)].push_limit, 1e-9 * push);
 }
 
 // Virtual work in the compliant mechanism: along every motion the rigid rows

@@ -219,6 +219,23 @@ Eigen::VectorXd CompliantEquilibrium::Multipliers(const Eigen::VectorXd& y, cons
   return cod_.solve(SpringForce(y) - f);
 }
 
+Eigen::VectorXd CompliantEquilibrium::Efforts(const Eigen::VectorXd& Q, double* unbalanced) const {
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(size());
+  f.head(Q.size()) = Q;
+  const Eigen::VectorXd y = Displacement(f);
+  const Eigen::VectorXd lambda = Multipliers(y, f);
+  Eigen::VectorXd effort = lambda.size() > 0 ? Eigen::VectorXd(-A_u_.transpose() * lambda)
+                                             : Eigen::VectorXd::Zero(static_cast<Eigen::Index>(delta_of_control_.size()));
+  const Eigen::VectorXd stretch = k_.asDiagonal() * (S_ * y);  // the springs' forces
+  for (size_t i = 0; i < compliant_.size(); ++i) effort[compliant_[i]] = -stretch[static_cast<Eigen::Index>(i)];
+  if (unbalanced) {
+    Eigen::VectorXd r = SpringForce(y) - f;
+    if (lambda.size() > 0) r -= A_.transpose() * lambda;
+    *unbalanced = r.size() > 0 ? r.lpNorm<Eigen::Infinity>() : 0.0;
+  }
+  return effort;
+}
+
 Eigen::MatrixXd CompliantEquilibrium::Compliance(const Eigen::MatrixXd& G) const {
   if (Z1_.cols() == 0) return Eigen::MatrixXd::Zero(G.rows(), G.rows());
   const Eigen::MatrixXd GZ = G * Z1_;

@@ -91,6 +91,11 @@ class CompliantEquilibrium {
   Eigen::VectorXd SpringForce(const Eigen::VectorXd& y) const;
   // lambda: A^T lambda = H y - f in least squares, minimum norm.
   Eigen::VectorXd Multipliers(const Eigen::VectorXd& y, const Eigen::VectorXd& f) const;
+  // Every control's effort under the generalized loads Q (state size) [N
+  // or N*m]: -dC/du^T lambda, a compliant control's -k delta; unique even
+  // where the rigid mechanism is indeterminate. *unbalanced (if given): what
+  // the springs and rigid rows leave of the loads [N or N*m].
+  Eigen::VectorXd Efforts(const Eigen::VectorXd& Q, double* unbalanced = nullptr) const;
   // G Z1 K1^-1 Z1^T G^T for G (rows x size()), exactly symmetric.
   Eigen::MatrixXd Compliance(const Eigen::MatrixXd& G) const;
   // max |G Z0| relative to max |G|: 0 when no idle motion moves G y.
