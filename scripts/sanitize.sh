@@ -6,7 +6,7 @@
 # CLI tests, the installed-package consumer), whose output a test may swallow:
 # every report is also written under build-asan/sanitizer-logs/.
 #   scripts/sanitize.sh                 # configure, build, run everything
-#   scripts/sanitize.sh -R cli_test     # extra arguments go to ctest
+#   scripts/sanitize.sh -R Cli          # extra arguments go to ctest
 # It installs nothing: run scripts/test.sh (or scripts/setup.sh) first on a
 # fresh machine. Re-running is incremental (build-asan/ is kept, ccache is
 # used when installed): after a small change it rebuilds only what changed.

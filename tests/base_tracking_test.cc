@@ -17,7 +17,7 @@
 #include "execution/replay.h"
 
 namespace ccma {
-namespace {
+namespace base_tracking_test {
 
 TEST(OmniWheels, InverseThenForwardIsTheIdentity) {
   std::vector<Wheel> mecanum(4);  // 4 wheels all driving along x, rollers at +-45 degrees

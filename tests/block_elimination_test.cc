@@ -7,7 +7,7 @@
 #include "problems/internal/block_elimination.h"
 
 namespace ccma {
-namespace {
+namespace block_elimination_test {
 
 // An arrow (every column coupled to the last one only): no fill.
 TEST(BlockElimination, ArrowHasNoFill) {

@@ -24,7 +24,7 @@
 #include "tool_run.h"
 
 namespace ccma {
-namespace {
+namespace clearance_control_test {
 
 std::string Bundled(const std::string& name) {
   return testing::Slurp(std::string(CCMA_MODELS_DIR) + "/" + name + ".yaml");

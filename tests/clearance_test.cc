@@ -19,7 +19,7 @@
 #include "formats/obstacles_file.h"
 
 namespace ccma {
-namespace {
+namespace clearance_test {
 
 PlacedShape Disc(double x, double y, double r, double z0, double z1) {
   PlacedShape s;

@@ -41,7 +41,7 @@
 #include "tests/tool_run.h"
 
 namespace ccma {
-namespace {
+namespace collection_round_trip_test {
 
 namespace fs = std::filesystem;
 

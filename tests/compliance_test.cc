@@ -29,7 +29,7 @@
 #include "tool_run.h"
 
 namespace ccma {
-namespace {
+namespace compliance_test {
 
 using testing::InsertAfterEach;
 using testing::ReadModel;

@@ -17,7 +17,7 @@
 #include "ccma/internal/dense_factorizations.h"
 
 namespace ccma {
-namespace {
+namespace control_test {
 
 Model LoadReference(const std::string& name) {
   return LoadModel(std::string(CCMA_MODELS_DIR) + "/" + name + ".yaml");

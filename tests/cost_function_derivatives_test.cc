@@ -23,7 +23,7 @@
 #include "tests/derivative_checker.h"
 
 namespace ccma {
-namespace {
+namespace cost_function_derivatives_test {
 
 using testing::CompareJacobians;
 using testing::ParameterBlock;

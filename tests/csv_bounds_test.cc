@@ -11,7 +11,7 @@
 #include "viewer/csv_table.h"
 
 namespace ccma {
-namespace {
+namespace csv_bounds_test {
 
 using testing::ModelPath;
 using testing::RunTool;

@@ -9,7 +9,7 @@
 #include "ccma/internal/dense_factorizations.h"
 
 namespace ccma {
-namespace {
+namespace dense_factorizations_test {
 
 // rows x cols of rank r (r <= min(rows, cols)), entries of order 1.
 Eigen::MatrixXd RankDeficient(int rows, int cols, int r, std::mt19937* rng) {

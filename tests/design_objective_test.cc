@@ -24,7 +24,7 @@
 #include "tests/tool_run.h"
 
 namespace ccma {
-namespace {
+namespace design_objective_test {
 
 constexpr double kTolerance = 1e-5;  // relative, analytic vs re-solved differences
 constexpr double kDelta = 1e-4;      // design step of the differences [m]

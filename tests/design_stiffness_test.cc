@@ -26,7 +26,7 @@
 #include "tests/tool_run.h"
 
 namespace ccma {
-namespace {
+namespace design_stiffness_test {
 
 constexpr double kTolerance = 1e-5;  // relative, analytic vs re-solved differences
 // Design step of the re-solved differences [m]: small, since the largest
@@ -259,7 +259,7 @@ TEST(StiffnessDesignCommand, RigidModelIsRefused) {
 }  // namespace ccma
 
 namespace ccma {
-namespace {
+namespace design_stiffness_test {
 
 // `ccma workspace` on a compliant model: stiffness_min_N_per_m per sample,
 // 1 / `ccma statics`' most_compliant at that sample's controls where

@@ -24,7 +24,7 @@
 #include "tests/tool_run.h"
 
 namespace ccma {
-namespace {
+namespace design_test {
 
 using testing::RunTool;
 using testing::Slurp;

@@ -17,7 +17,7 @@
 #include "execution/replay.h"
 
 namespace ccma {
-namespace {
+namespace differential_drive_test {
 
 const double kNaN = std::nan("");
 const double kInf = HUGE_VAL;

@@ -30,7 +30,7 @@
 
 #include <gtest/gtest.h>
 
-namespace {
+namespace docs_test {
 
 struct ToolRun {
   int status = -1;

@@ -20,7 +20,7 @@
 #include "problems/internal/equilibrium.h"
 
 namespace ccma {
-namespace {
+namespace effort_limit_test {
 
 Model LoadFile(const std::string& relative) { return LoadModel(std::string(CCMA_MODELS_DIR) + "/../" + relative); }
 

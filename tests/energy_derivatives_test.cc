@@ -20,7 +20,7 @@
 #include "tests/bundled_models.h"
 
 namespace ccma {
-namespace {
+namespace energy_derivatives_test {
 
 constexpr double kStep = 1e-4;  // [m, rad]
 

@@ -36,7 +36,7 @@
 #include "tests/tool_run.h"
 
 namespace ccma {
-namespace {
+namespace export_test {
 
 constexpr double kTolerance = 1e-9;
 

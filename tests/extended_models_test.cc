@@ -31,7 +31,7 @@
 #include "problems/forward_problem.h"
 
 namespace ccma {
-namespace {
+namespace extended_models_test {
 
 constexpr double kPi = 3.14159265358979323846;
 

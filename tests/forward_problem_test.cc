@@ -18,7 +18,7 @@
 #include "tests/model_text.h"
 
 namespace ccma {
-namespace {
+namespace forward_problem_test {
 
 const std::vector<std::string> kReferenceModels = {"4dof_reduced", "4dof_complete", "6dof_symmetric",
                                                    "6dof_asymmetric", "6dof_six_agents"};

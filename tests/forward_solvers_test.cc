@@ -22,7 +22,7 @@
 #include "tests/bundled_models.h"
 
 namespace ccma {
-namespace {
+namespace forward_solvers_test {
 
 using testing::BundledModels;
 

@@ -16,7 +16,7 @@
 #include "tests/model_text.h"
 
 namespace ccma {
-namespace {
+namespace generated_models_test {
 
 class GeneratedStewart : public ::testing::TestWithParam<int> {};
 

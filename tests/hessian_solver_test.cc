@@ -17,7 +17,7 @@
 #include "tests/bundled_models.h"
 
 namespace ccma {
-namespace {
+namespace hessian_solver_test {
 
 using Reference = Eigen::SimplicialLDLT<SparseColMajor, Eigen::Lower, Eigen::NaturalOrdering<int>>;
 

@@ -18,7 +18,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-namespace {
+namespace hostile_cli_test {
 
 namespace fs = std::filesystem;
 

@@ -15,7 +15,7 @@
 #include "tests/tool_run.h"
 
 namespace ccma {
-namespace {
+namespace import_cli_test {
 
 using testing::RunTool;
 using testing::ToolRun;

@@ -18,7 +18,7 @@
 #include "formats/urdf_reader.h"
 
 namespace ccma {
-namespace {
+namespace import_collision_test {
 
 const std::string kRobots = std::string(CCMA_MODELS_DIR) + "/robots/example-parallel-robots/";
 constexpr double kRadius = 0.02;

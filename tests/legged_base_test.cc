@@ -20,7 +20,7 @@
 #include "tool_run.h"
 
 namespace ccma {
-namespace {
+namespace legged_base_test {
 
 // One quadruped at (0.2, -0.1) heading 0.3, body 0.45 m high, carrying a
 // mast welded to its body; the end-effector at the mast's tip.

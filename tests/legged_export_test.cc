@@ -24,7 +24,7 @@
 #include "tests/tool_run.h"
 
 namespace ccma {
-namespace {
+namespace legged_export_test {
 
 const std::vector<std::string> kLeggedModels = {"6dof_three_legged", "4dof_two_legged"};
 

@@ -23,7 +23,7 @@
 #include "tests/hinge_model.h"
 
 namespace ccma {
-namespace {
+namespace limits_and_differential_test {
 
 
 std::string Slurp(const std::string& path) {
@@ -176,7 +176,7 @@ TEST(DifferentialBases, CheckSaysWhenWeldedPostsLeaveTooFewDof) {
 }  // namespace ccma
 
 namespace ccma {
-namespace {
+namespace limits_and_differential_test {
 
 // Generated Stewart-Gough platforms: rigid with their legs fixed, 6-DOF
 // platform, and every leg's coordinate equal to its control after a solve.

@@ -34,7 +34,7 @@
 #include "tool_run.h"
 
 namespace ccma {
-namespace {
+namespace loaded_equilibrium_test {
 
 // Every joint type in one chain, axes oblique.
 constexpr const char* kChain =

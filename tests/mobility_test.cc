@@ -23,7 +23,7 @@
 #include "tests/hinge_model.h"
 
 namespace ccma {
-namespace {
+namespace mobility_test {
 
 struct Expected {
   std::string name;

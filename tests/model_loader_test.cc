@@ -28,7 +28,7 @@
 #include "tests/model_text.h"
 
 namespace ccma {
-namespace {
+namespace model_loader_test {
 
 // A small valid model; tests replace one line to break it.
 const char kValid[] = R"(name: tiny

@@ -11,7 +11,7 @@
 #include "tests/model_text.h"
 
 namespace ccma {
-namespace {
+namespace model_meshes_test {
 
 // A grounded arm (body at a general pose) and an omni base; MESHES_ARM and
 // MESHES_BASE are replaced by each test.

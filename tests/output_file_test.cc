@@ -21,7 +21,7 @@
 #include "tests/tool_run.h"
 
 namespace ccma {
-namespace {
+namespace output_file_test {
 
 namespace fs = std::filesystem;
 using testing::Slurp;

@@ -21,7 +21,7 @@
 #include "tool_run.h"
 
 namespace ccma {
-namespace {
+namespace plan_test {
 
 const std::string kExamples = std::string(CCMA_SOURCE_DIR) + "/examples/obstacles/";
 

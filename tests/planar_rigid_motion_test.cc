@@ -24,7 +24,7 @@
 #include "tests/leg_closed_form.h"
 
 namespace ccma {
-namespace {
+namespace planar_rigid_motion_test {
 
 using testing::BundledModels;
 

@@ -15,7 +15,7 @@
 #include <gtest/gtest.h>
 
 namespace ccma::cli {
-namespace {
+namespace plots_test {
 
 namespace fs = std::filesystem;
 

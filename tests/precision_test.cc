@@ -14,7 +14,7 @@
 #include "problems/forward_problem.h"
 
 namespace ccma {
-namespace {
+namespace precision_test {
 
 // [p - p0; Log(R R0^T)] (world axes).
 Eigen::Matrix<double, 6, 1> PoseChange(const EndEffectorPose& pose, const EndEffectorPose& home) {

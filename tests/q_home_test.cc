@@ -12,7 +12,7 @@
 #include "problems/forward_problem.h"
 
 namespace ccma {
-namespace {
+namespace q_home_test {
 
 // A door on an actuated hinge about z at the origin; the end-effector 1 m
 // out along x. Its encoder reads Q0 at home.

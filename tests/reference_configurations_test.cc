@@ -13,7 +13,7 @@
 #include "tests/leg_closed_form.h"
 
 namespace ccma {
-namespace {
+namespace reference_configurations_test {
 
 using testing::BasePoseForLeg;
 using testing::FindLegs;

@@ -17,7 +17,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-namespace {
+namespace replay_cli_test {
 
 namespace fs = std::filesystem;
 

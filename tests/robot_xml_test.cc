@@ -21,7 +21,7 @@
 
 namespace ccma {
 namespace internal {
-namespace {
+namespace robot_xml_test {
 
 namespace fs = std::filesystem;
 

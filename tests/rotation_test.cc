@@ -31,7 +31,7 @@
 #endif
 
 namespace ccma {
-namespace {
+namespace rotation_test {
 
 using Eigen::Matrix3d;
 using Eigen::Quaterniond;

@@ -21,7 +21,7 @@
 #include "tests/tool_run.h"
 
 namespace ccma {
-namespace {
+namespace sdformat_reader_test {
 
 namespace fs = std::filesystem;
 

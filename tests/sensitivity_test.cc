@@ -12,7 +12,7 @@
 #include "problems/internal/sensitivity.h"
 
 namespace ccma {
-namespace {
+namespace sensitivity_test {
 
 constexpr double kRelativeTolerance = 1e-6;
 constexpr double kStep = 1e-5;  // finite-difference step [m, rad]

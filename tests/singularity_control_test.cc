@@ -20,7 +20,7 @@
 #include "tool_run.h"
 
 namespace ccma {
-namespace {
+namespace singularity_control_test {
 
 Model LoadReference(const std::string& name) {
   return LoadModel(std::string(CCMA_MODELS_DIR) + "/" + name + ".yaml");

@@ -13,7 +13,7 @@
 #include "ccma/rotation.h"
 
 namespace ccma {
-namespace {
+namespace spring_directions_test {
 
 Eigen::Matrix3d FrameR(const State& s, int body) { return body == kWorld ? Eigen::Matrix3d::Identity() : s.R_WB(body); }
 Eigen::Vector3d FrameP(const State& s, int body) { return body == kWorld ? Eigen::Vector3d::Zero() : s.p_WB(body); }

@@ -23,7 +23,7 @@
 #include "tool_run.h"
 
 namespace ccma {
-namespace {
+namespace statics_test {
 
 // Three prismatic legs from the unit circle on the ground to an apex 1 m up,
 // spherical at both ends; `mass` kg at the apex.

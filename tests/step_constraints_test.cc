@@ -19,7 +19,7 @@
 #include "tests/hinge_model.h"
 
 namespace ccma {
-namespace {
+namespace step_constraints_test {
 
 // kHinge: tests/hinge_model.h.
 

@@ -11,7 +11,7 @@
 #include "tool_run.h"
 
 namespace ccma {
-namespace {
+namespace stiffness_keys_test {
 
 // Line 6: the base; line 8: the actuated revolute; line 9: the weld.
 const char* const kText =

@@ -27,7 +27,7 @@
 #include "problems/forward_problem.h"
 
 namespace ccma {
-namespace {
+namespace urdf_import_test {
 
 const std::string kRobots = std::string(CCMA_MODELS_DIR) + "/robots/example-parallel-robots/";
 
@@ -263,7 +263,7 @@ INSTANTIATE_TEST_SUITE_P(ExampleParallelRobots, CopiedRobot, ::testing::ValuesIn
 }  // namespace ccma
 
 namespace ccma {
-namespace {
+namespace urdf_import_test {
 
 // ---- The closure file's q_home (ccma's own key, written by `ccma export`) ----
 

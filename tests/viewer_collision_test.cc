@@ -24,7 +24,7 @@
 #include "viewer/view_frames.h"
 
 namespace ccma::viewer {
-namespace {
+namespace viewer_collision_test {
 
 using ccma::testing::ModelPath;
 using ccma::testing::RunTool;

@@ -18,7 +18,7 @@
 #include "viewer/scene.h"
 
 namespace ccma::viewer {
-namespace {
+namespace viewer_deflection_test {
 
 using nlohmann::json;
 using ccma::testing::ModelPath;

@@ -17,7 +17,7 @@
 #include "viewer/scene.h"
 
 namespace ccma::viewer {
-namespace {
+namespace viewer_loads_test {
 
 using nlohmann::json;
 using ccma::testing::ModelPath;

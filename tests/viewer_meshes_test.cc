@@ -22,7 +22,7 @@
 #include "viewer/view_frames.h"
 
 namespace ccma::viewer {
-namespace {
+namespace viewer_meshes_test {
 
 namespace fs = std::filesystem;
 using ccma::testing::ModelPath;

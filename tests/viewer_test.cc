@@ -17,7 +17,7 @@
 #include "viewer/view_frames.h"
 
 namespace ccma::viewer {
-namespace {
+namespace viewer_test {
 
 namespace fs = std::filesystem;
 using ccma::testing::RunTool;

@@ -18,7 +18,7 @@
 #include "viewer/workspace_cloud.h"
 
 namespace ccma::viewer {
-namespace {
+namespace viewer_workspace_test {
 
 namespace fs = std::filesystem;
 using ccma::testing::RunTool;

@@ -16,7 +16,7 @@
 #include "formats/waypoints.h"
 
 namespace ccma {
-namespace {
+namespace waypoints_test {
 
 const char kHeader[] = "time,x,y,z,roll,pitch,yaw\n";
 

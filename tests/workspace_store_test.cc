@@ -31,7 +31,7 @@
 #include "tests/tool_run.h"
 
 namespace ccma {
-namespace {
+namespace workspace_store_test {
 
 namespace fs = std::filesystem;
 using cli::DecodeWorkspaceTile;

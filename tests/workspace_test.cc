@@ -20,7 +20,7 @@
 #include "tests/tool_run.h"
 
 namespace ccma {
-namespace {
+namespace workspace_test {
 
 std::string ModelFile(const std::string& name) { return std::string(CCMA_MODELS_DIR) + "/" + name + ".yaml"; }
 
