@@ -32,7 +32,7 @@ std::vector<FreeMotion> FreeMotions(const Eigen::MatrixXd& J_s, int rank) {
     const int moving = RankAbove(block.singularValues(), kMovingBodyTolerance);
     if (moving == 0) continue;
     const Eigen::MatrixXd rotated = unassigned * block.matrixV();
-    for (int k = 0; k < moving; ++k) motions.push_back({rotated.col(k), FreeMotionBodies(rotated.col(k))});
+    for (int k = 0; k < moving; ++k) motions.push_back({rotated.col(k), FreeMotionBodies(rotated.col(k)), {}});
     unassigned = rotated.rightCols(rotated.cols() - moving);
   }
   return motions;

@@ -116,7 +116,7 @@ std::vector<FreeMotion> SplitByBody(Eigen::MatrixXd unassigned) {
     if (moving == 0) continue;
     const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(rows.transpose());
     unassigned = unassigned * qr.householderQ();
-    for (int k = 0; k < moving; ++k) motions.push_back({unassigned.col(k), FreeMotionBodies(unassigned.col(k))});
+    for (int k = 0; k < moving; ++k) motions.push_back({unassigned.col(k), FreeMotionBodies(unassigned.col(k)), {}});
     unassigned = unassigned.rightCols(unassigned.cols() - moving).eval();
   }
   return motions;
