@@ -15,6 +15,10 @@
   ccma/internal/dense_factorizations.cc: elsewhere the wrappers of
   dense_factorizations.h (each instantiation costs 9-13 s of compile time per
   translation unit).
+- a test file tests/<stem>_test.cc keeps its helpers in `namespace <stem>`,
+  not in an anonymous namespace: the files of one test executable are
+  compiled together (unity batches), where two files' anonymous namespaces
+  are one.
 Functions are found by braces: a `{` at namespace or class level whose text
 since the previous `;`, `{` or `}` has a `)` and is not a namespace, class,
 struct, enum or initialiser. Comments and string literals are blanked first.
@@ -111,6 +115,19 @@ def check_text(path, text):
     return breaches
 
 
+def check_test_file(path, text):
+    """The breaches of one test file tests/<stem>_test.cc: an anonymous namespace."""
+    m = re.fullmatch(r"tests/(\w+_test)\.cc", path)
+    if not m:
+        return []
+    breaches = []
+    for a in re.finditer(r"\bnamespace\s*\{", blank(text)):
+        line = text.count("\n", 0, a.start()) + 1
+        breaches.append(f"{path}:{line}: an anonymous namespace (this file is compiled together with others of "
+                        f"its area: use namespace {m.group(1)})")
+    return breaches
+
+
 def self_test():
     """Planted breaches are found; their clean twins are not."""
     body = "".join(f"  x += {i};\n" for i in range(58))
@@ -138,6 +155,9 @@ def self_test():
     assert len(check_text("ccma/a.cc", "P = A.completeOrthogonalDecomposition().pseudoInverse();\n")) == 1
     assert len(check_text("ccma/a.cc", "s = A.jacobiSvd().singularValues();\n")) == 1
     assert not check_text("ccma/a.cc", "MinimumNormSolver cod(A);  // not A.completeOrthogonalDecomposition()\n")
+    assert len(check_test_file("tests/a_test.cc", "namespace ccma {\nnamespace {\nint x;\n}\n}\n")) == 1
+    assert not check_test_file("tests/a_test.cc", "namespace ccma {\nnamespace a_test {\nint x;\n}\n}\n")
+    assert not check_test_file("tests/a_test.cc", "// namespace {\nconst char* s = \"namespace {\";\n")
     print("layout self-test: ok")
     return 0
 
@@ -156,6 +176,10 @@ def main():
                 path = os.path.relpath(os.path.join(dirpath, n), ROOT)
                 text = open(os.path.join(ROOT, path), encoding="utf-8").read()
                 breaches += check_text(path, text)
+    tests = os.path.join(ROOT, "tests")
+    for n in sorted(os.listdir(tests)):
+        if n.endswith("_test.cc"):
+            breaches += check_test_file("tests/" + n, open(os.path.join(tests, n), encoding="utf-8").read())
     for b in breaches:
         print(b)
     print(f"layout: {len(breaches)} breaches")

@@ -109,7 +109,7 @@ generator=()
 parts=(-DCCMA_BUILD_TESTS=ON -DCCMA_BUILD_BENCHMARKS=ON -DCCMA_BUILD_EXAMPLES=ON -DCCMA_BUILD_PYTHON=ON)
 target_args=()
 what="everything (library, tool, tests, benchmarks, examples, Python module)"
-estimate="about 7 minutes on 2 cores after the demo, 11 from nothing"
+estimate="about 6 minutes on 2 cores after the demo, 10 from nothing"
 if ((tool_only)); then
   target_args=(--target ccma_tool)
   what="the ccma tool"
