@@ -12,7 +12,7 @@
 #   scripts/demo.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
-echo "demo: set-up and build of the ccma tool first (about 4 to 5 minutes on 2 cores the first time, apt-get included), then about 10 s of runs"
+echo "demo: set-up and build of the ccma tool first (about 5 to 6 minutes on 2 cores the first time, apt-get included), then about 10 s of runs"
 scripts/setup.sh --tool
 ccma=build/apps/ccma
 out=build/demo
