@@ -78,8 +78,8 @@ std::vector<PoseTarget> SeededPath(const Model& m, const PoseTarget& home, int s
   PoseTarget current = home;
   const int half = (steps + 1) / 2;
   for (int i = 0; i < half; ++i) {
-    const Eigen::Vector3d direction = Eigen::Vector3d(n(rng), n(rng), n(rng)).normalized();
-    const Eigen::Vector3d axis = tilts ? Eigen::Vector3d(n(rng), n(rng), n(rng)).normalized()
+    const Eigen::Vector3d direction = Eigen::Vector3d{n(rng), n(rng), n(rng)}.normalized();
+    const Eigen::Vector3d axis = tilts ? Eigen::Vector3d{n(rng), n(rng), n(rng)}.normalized()
                                        : Eigen::Vector3d(0, 0, n(rng) > 0 ? 1 : -1);
     current.position += 0.010 * direction;
     current.rpy = RpyFromRotation(QuaternionExp(0.005 * axis).toRotationMatrix() * RotationFromRpy(current.rpy));

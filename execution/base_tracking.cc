@@ -193,9 +193,9 @@ Eigen::Vector3d SimulatedBases::MeasuredPose(int base) {
     while (std::next(it) != history_.end() && std::next(it)->first <= wanted + 1e-12) ++it;
     std::normal_distribution<double> n;
     for (size_t k = 0; k < poses_.size(); ++k) {
-      measured_[k] = it->second[k] + Eigen::Vector3d(noise_.position_sigma * n(rng_),
+      measured_[k] = it->second[k] + Eigen::Vector3d{noise_.position_sigma * n(rng_),
                                                      noise_.position_sigma * n(rng_),
-                                                     noise_.heading_sigma * n(rng_));
+                                                     noise_.heading_sigma * n(rng_)};
     }
     next_sample_time_ = time_ + 1.0 / noise_.mocap_hz;
   }

@@ -33,7 +33,7 @@ TEST(OmniWheels, InverseThenForwardIsTheIdentity) {
   for (const auto& layout : {DefaultWheels(), mecanum}) {
     const OmniWheelKinematics k(layout);
     for (int trial = 0; trial < 50; ++trial) {
-      const Eigen::Vector3d twist(d(rng), d(rng), d(rng));
+      const Eigen::Vector3d twist{d(rng), d(rng), d(rng)};
       EXPECT_LT((k.Twist(k.WheelSpeeds(twist)) - twist).norm(), 1e-12);
     }
   }

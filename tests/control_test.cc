@@ -27,11 +27,11 @@ Model LoadReference(const std::string& name) {
 PoseTarget SeededTarget(const Model& m, std::mt19937& rng) {
   std::normal_distribution<double> n;
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  const Eigen::Vector3d direction = Eigen::Vector3d(n(rng), n(rng), n(rng)).normalized();
+  const Eigen::Vector3d direction = Eigen::Vector3d{n(rng), n(rng), n(rng)}.normalized();
   PoseTarget t;
   t.position = m.end_effector.p_W_home + 0.05 * unit(rng) * direction;
   if (m.end_effector.controlled[kRoll]) {
-    const Eigen::Vector3d axis = Eigen::Vector3d(n(rng), n(rng), n(rng)).normalized();
+    const Eigen::Vector3d axis = Eigen::Vector3d{n(rng), n(rng), n(rng)}.normalized();
     t.rpy = RpyFromRotation(QuaternionExp(0.1 * unit(rng) * axis).toRotationMatrix());
   } else {
     t.rpy = Eigen::Vector3d(0, 0, 0.1 * (2 * unit(rng) - 1));

@@ -38,17 +38,24 @@ Eigen::Vector3d RandomVector(std::mt19937& rng, double scale = 1.0) {
 }
 Eigen::Vector3d RandomUnit(std::mt19937& rng) {
   std::normal_distribution<double> n;
-  return Eigen::Vector3d(n(rng), n(rng), n(rng)).normalized();
+  return Eigen::Vector3d{n(rng), n(rng), n(rng)}.normalized();
 }
 Eigen::Quaterniond RandomRotation(std::mt19937& rng) {
   std::normal_distribution<double> n;
-  return Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized();
+  return Eigen::Quaterniond{n(rng), n(rng), n(rng), n(rng)}.normalized();
 }
 ParameterBlock Pose(const Eigen::Quaterniond& q, const Eigen::Vector3d& p) {
   ParameterBlock b;
   b.is_pose = true;
   b.values = {q.x(), q.y(), q.z(), q.w(), p.x(), p.y(), p.z()};
   return b;
+}
+
+// A random pose: the rotation drawn first, then the position (draws in one
+// statement, so every compiler draws them in this order).
+ParameterBlock RandomPose(std::mt19937& rng) {
+  const Eigen::Quaterniond q = RandomRotation(rng);
+  return Pose(q, RandomVector(rng));
 }
 
 // A cost function with random geometry, and its autodiff twin with the same
@@ -187,8 +194,8 @@ TEST_P(CostFunctionDerivatives, RandomStates) {
   for (int seed = 0; seed < kRandomStates; ++seed) {
     std::mt19937 rng(seed);
     const auto cost = c.make(rng, false);
-    const auto A = Pose(RandomRotation(rng), RandomVector(rng));
-    const auto B = Pose(RandomRotation(rng), RandomVector(rng));
+    const auto A = RandomPose(rng);
+    const auto B = RandomPose(rng);
     ExpectMatches(*cost, Blocks(c, A, B, RandomVector(rng, 4.0)), "seed " + std::to_string(seed));
   }
 }
@@ -242,8 +249,8 @@ TEST_P(CostFunctionDerivatives, SecondOrderTermsMatchNumericHessian) {
     Eigen::Quaterniond q_A = RandomRotation(rng), q_B = RandomRotation(rng);
     if (seed % 10 == 1) q_A = Eigen::Quaterniond(RotationFromRpy({0.2, M_PI / 2, 0.5}));  // pitched 90
     if (seed % 10 == 2) q_B = QuaternionExp(RandomUnit(rng) * (M_PI - 1e-7)) * q_A;  // near pi
-    const auto blocks = Blocks(c, Pose(q_A, RandomVector(rng)), Pose(q_B, RandomVector(rng)),
-                               RandomVector(rng, 4.0));
+    const Eigen::Vector3d p_A = RandomVector(rng), p_B = RandomVector(rng);
+    const auto blocks = Blocks(c, Pose(q_A, p_A), Pose(q_B, p_B), RandomVector(rng, 4.0));
     Eigen::VectorXd w(cost->num_residuals());
     for (int i = 0; i < w.size(); ++i) w[i] = std::uniform_real_distribution<double>(-1, 1)(rng);
     const int n = 6 * c.pose_blocks;
@@ -265,7 +272,7 @@ void ExpectNoStateControlCoupling(const ceres::CostFunction& motor, const std::v
   for (int trial = 0; trial < 20; ++trial) {
     std::vector<double> u = u0;
     u[2] = 2.0 * trial / 20 * M_PI;
-    const std::vector<ParameterBlock> blocks = {Pose(RandomRotation(rng), RandomVector(rng)), {u, false}};
+    const std::vector<ParameterBlock> blocks = {RandomPose(rng), {u, false}};
     Eigen::VectorXd w(rows);
     for (int i = 0; i < rows; ++i) w[i] = std::uniform_real_distribution<double>(-1, 1)(rng);
     const double h = 1e-4;
@@ -293,9 +300,9 @@ TEST(SecondOrder, NoConstraintCouplesStateAndControlsAtSecondOrder) {
 TEST(DerivativeChecker, RejectsAWrongHessian) {
   // Dropping the universal joint's cross term is caught.
   std::mt19937 rng(21);
-  const UniversalJointCost cost(RandomVector(rng), RandomVector(rng), RandomUnit(rng), RandomUnit(rng));
-  const std::vector<ParameterBlock> blocks = {Pose(RandomRotation(rng), RandomVector(rng)),
-                                              Pose(RandomRotation(rng), RandomVector(rng))};
+  const UniversalJointCost cost{RandomVector(rng), RandomVector(rng), RandomUnit(rng), RandomUnit(rng)};
+  const std::vector<ParameterBlock> blocks = {RandomPose(rng),
+                                              RandomPose(rng)};
   const Eigen::VectorXd w = Eigen::Vector4d(0, 0, 0, 1.0);
   Eigen::MatrixXd analytic = Eigen::MatrixXd::Zero(12, 12);
   std::vector<const double*> params = {blocks[0].values.data(), blocks[1].values.data()};
@@ -328,8 +335,8 @@ TEST_P(CostFunctionDerivatives, AutodiffTwinAgrees) {
     const Eigen::Quaterniond q_A =
         seed % 10 == 1 ? Eigen::Quaterniond(RotationFromRpy({0.2, M_PI / 2, 0.5})) : RandomRotation(rng);
     if (seed % 10 == 2) q_B = QuaternionExp(RandomUnit(rng) * (M_PI - 1e-7)) * q_A;
-    const auto blocks = Blocks(c, Pose(q_A, RandomVector(rng)), Pose(q_B, RandomVector(rng)),
-                               RandomVector(rng, 4.0));
+    const Eigen::Vector3d p_A = RandomVector(rng), p_B = RandomVector(rng);
+    const auto blocks = Blocks(c, Pose(q_A, p_A), Pose(q_B, p_B), RandomVector(rng, 4.0));
     const int rows = analytic->num_residuals();
     std::vector<const double*> params;
     std::vector<std::vector<double>> Ja, Jt;
@@ -385,9 +392,9 @@ class WrongRevoluteCost final : public ceres::SizedCostFunction<6, 7, 7> {
 
 TEST(DerivativeChecker, RejectsAWrongJacobian) {
   std::mt19937 rng(7);
-  const WrongRevoluteCost wrong(RandomVector(rng), RandomVector(rng), RandomUnit(rng));
-  const auto A = Pose(RandomRotation(rng), RandomVector(rng));
-  const auto B = Pose(RandomRotation(rng), RandomVector(rng));
+  const WrongRevoluteCost wrong{RandomVector(rng), RandomVector(rng), RandomUnit(rng)};
+  const auto A = RandomPose(rng);
+  const auto B = RandomPose(rng);
   const auto cmp = CompareJacobians(wrong, {A, B});
   EXPECT_GT(cmp.max_abs_error, 1e-2);  // far above kTolerance: caught
 }
@@ -407,7 +414,7 @@ TEST(DerivativeChecker, RejectsASmallSignSlip) {
     SphericalJointCost right_;
   } slipped(r_A, r_B);
   const auto cmp = CompareJacobians(
-      slipped, {Pose(RandomRotation(rng), RandomVector(rng)), Pose(RandomRotation(rng), RandomVector(rng))});
+      slipped, {RandomPose(rng), RandomPose(rng)});
   EXPECT_GT(cmp.max_abs_error, kTolerance);
 }
 
@@ -423,7 +430,7 @@ TEST(DerivativeChecker, RejectsANonZeroLiftedColumn) {
   } lifted;
   std::mt19937 rng(9);
   const auto cmp = CompareJacobians(
-      lifted, {Pose(RandomRotation(rng), RandomVector(rng)), Pose(RandomRotation(rng), RandomVector(rng))});
+      lifted, {RandomPose(rng), RandomPose(rng)});
   EXPECT_TRUE(cmp.lifted_column_nonzero);
 }
 

@@ -38,10 +38,10 @@ Model WithLoads(Model model, unsigned seed) {
   std::uniform_real_distribution<double> mass(0.5, 3.0), offset(-0.05, 0.05);
   for (Body& body : model.bodies) {
     body.inertia.mass = mass(rng);
-    body.inertia.com_B = Eigen::Vector3d(offset(rng), offset(rng), offset(rng));
+    body.inertia.com_B = Eigen::Vector3d{offset(rng), offset(rng), offset(rng)};
   }
   model.end_effector.payload.mass = mass(rng);
-  model.end_effector.payload.com_B = model.end_effector.p_B + Eigen::Vector3d(offset(rng), offset(rng), 0);
+  model.end_effector.payload.com_B = model.end_effector.p_B + Eigen::Vector3d{offset(rng), offset(rng), 0};
   for (Joint& joint : model.joints) {
     if (joint.actuated) joint.effort = {true, -400.0, 300.0};
   }

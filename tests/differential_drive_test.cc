@@ -131,7 +131,7 @@ TEST(LateralDisplacement, ZeroOnEveryArcAndTheSidewaysStepOtherwise) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> pos(-2, 2), turn(-3.1, 3.1), len(-1, 1);
   for (int trial = 0; trial < 200; ++trial) {
-    const Eigen::Vector3d p0(pos(rng), pos(rng), pos(rng));
+    const Eigen::Vector3d p0{pos(rng), pos(rng), pos(rng)};
     const double length = len(rng), change = turn(rng);
     const Eigen::Vector3d p1 = AlongArc(p0, length, change);
     EXPECT_LT(std::abs(LateralDisplacement(p0, p1)), 1e-14) << trial;
@@ -174,8 +174,8 @@ TEST(SimulatedDifferentialBase, NeverMovesSidewaysAndMixesWithOmniBases) {
   std::uniform_real_distribution<double> w(-20, 20);
   double omni_lateral = 0;
   for (int tick = 0; tick < 200; ++tick) {
-    bases.CommandWheels(0, Eigen::Vector3d(w(rng), w(rng), w(rng)));
-    bases.CommandWheels(1, Eigen::Vector2d(w(rng), w(rng)));
+    bases.CommandWheels(0, Eigen::Vector3d{w(rng), w(rng), w(rng)});
+    bases.CommandWheels(1, Eigen::Vector2d{w(rng), w(rng)});
     for (int i = 0; i < 10; ++i) {
       const Eigen::Vector3d d0 = bases.TruePose(1), o0 = bases.TruePose(0);
       bases.Advance(1e-3);

@@ -592,8 +592,8 @@ std::vector<Eigen::VectorXd> SeededControls(const Model& model, unsigned seed) {
     }
     ControlProblem control(model);
     PoseTarget target;
-    target.position = home.position + Eigen::Vector3d(offset(rng), offset(rng), offset(rng));
-    target.rpy = home.rpy + Eigen::Vector3d(offset(rng), offset(rng), offset(rng));
+    target.position = home.position + Eigen::Vector3d{offset(rng), offset(rng), offset(rng)};
+    target.rpy = home.rpy + Eigen::Vector3d{offset(rng), offset(rng), offset(rng)};
     EXPECT_TRUE(control.MoveTo(target).assembled) << model.name << " target " << k;
     controls.push_back(control.controls());
   }

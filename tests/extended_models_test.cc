@@ -142,8 +142,8 @@ TEST(StewartGough, ForwardKinematicsMatchesClosedFormLegLengths) {
   double longest = 0;
   for (int k = 0; k < 20; ++k) {
     Pose pose;
-    pose.position = home + Eigen::Vector3d(offset(rng), offset(rng), offset(rng));
-    pose.rotation = RotationFromRpy(Eigen::Vector3d(angle(rng), angle(rng), angle(rng)));
+    pose.position = home + Eigen::Vector3d{offset(rng), offset(rng), offset(rng)};
+    pose.rotation = RotationFromRpy(Eigen::Vector3d{angle(rng), angle(rng), angle(rng)});
     const Eigen::VectorXd u = LegControls(m, legs, pose);
     longest = std::max(longest, u.cwiseAbs().maxCoeff());
     ExpectForwardReaches(m, u, pose, "pose " + std::to_string(k));

@@ -73,7 +73,7 @@ TEST_P(EveryReferenceModel, RigidPlanarMotionOfAllBasesMovesTheEndEffectorRigidl
   std::uniform_real_distribution<double> d(-1.0, 1.0);
   for (int trial = 0; trial < 10; ++trial) {
     const double psi = 0.6 * d(rng);
-    const Eigen::Vector2d t(0.2 * d(rng), 0.2 * d(rng));
+    const Eigen::Vector2d t{0.2 * d(rng), 0.2 * d(rng)};
     ForwardProblem forward(m, WithoutRigidPredictor());
     const ForwardResult r = forward.Assemble(RigidlyMovedControls(m, psi, t));
     ASSERT_TRUE(r.assembled) << r.residual_energy;
@@ -109,7 +109,7 @@ TEST_P(EveryReferenceModel, SameAssemblyWhateverTheBodiesHomeOrientation) {
   for (const std::string& kind : {"pitched", "random"}) {
     const std::string rotated = testing::WithBodyRpy(ReadReference(GetParam()), [&](const std::string&) {
       return kind == "pitched" ? Eigen::Vector3d(0.3, M_PI / 2, -0.7)
-                               : Eigen::Vector3d(d(rng), d(rng) / 2, d(rng));
+                               : Eigen::Vector3d{d(rng), d(rng) / 2, d(rng)};
     });
     ASSERT_NE(rotated.find("rpy"), std::string::npos);
     const Model turned = LoadModelFromString(rotated, GetParam() + "_" + kind + ".yaml");

@@ -46,8 +46,8 @@ std::vector<Eigen::VectorXd> ControlPath(const Model& model, unsigned seed) {
   std::vector<Eigen::VectorXd> path;
   for (int target = 0; target < 2; ++target) {
     PoseTarget t = control.CurrentPose();
-    t.position += 0.03 * Eigen::Vector3d(d(rng), d(rng), d(rng));
-    t.rpy += 0.03 * Eigen::Vector3d(d(rng), d(rng), d(rng));
+    t.position += 0.03 * Eigen::Vector3d{d(rng), d(rng), d(rng)};
+    t.rpy += 0.03 * Eigen::Vector3d{d(rng), d(rng), d(rng)};
     control.MoveTo(t, [&](const PoseTarget&, const ControlStepResult&) { path.push_back(control.controls()); });
   }
   return path;

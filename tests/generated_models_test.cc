@@ -27,8 +27,8 @@ Model RotatedModel(int agents, std::mt19937& rng) {
   int count = 0;
   const std::string text = testing::WithBodyRpy(GenerateStewartModel(options), [&](const std::string&) {
     // Every third body pitched exactly 90 degrees; the others at random.
-    return ++count % 3 == 0 ? Eigen::Vector3d(d(rng), M_PI / 2, d(rng))
-                            : Eigen::Vector3d(d(rng), d(rng) / 2, d(rng));
+    return ++count % 3 == 0 ? Eigen::Vector3d{d(rng), M_PI / 2, d(rng)}
+                            : Eigen::Vector3d{d(rng), d(rng) / 2, d(rng)};
   });
   EXPECT_NE(text.find("rpy"), std::string::npos);
   return LoadModelFromString(text, "stewart.yaml");
@@ -57,8 +57,8 @@ TEST_P(GeneratedStewart, ClosedFormControlsPutTheEndEffectorOnTarget) {
   ASSERT_EQ(static_cast<int>(legs.size()), n);
   std::uniform_real_distribution<double> d(-1.0, 1.0);
   for (int trial = 0; trial < 20; ++trial) {
-    const Eigen::Vector3d p = m.end_effector.p_W_home + 0.03 * Eigen::Vector3d(d(rng), d(rng), d(rng));
-    const Eigen::Matrix3d R = RotationFromRpy(0.05 * Eigen::Vector3d(d(rng), d(rng), d(rng)));
+    const Eigen::Vector3d p = m.end_effector.p_W_home + 0.03 * Eigen::Vector3d{d(rng), d(rng), d(rng)};
+    const Eigen::Matrix3d R = RotationFromRpy(0.05 * Eigen::Vector3d{d(rng), d(rng), d(rng)});
     Eigen::VectorXd u = m.home_controls();
     for (const auto& leg : legs) {
       ASSERT_EQ(leg.shape, "RRS");
@@ -113,8 +113,8 @@ TEST(GeneratedStewart, FewerThanSixAgentsAreRigidToo) {
     ASSERT_EQ(static_cast<int>(legs.size()), n);
     // F-R-S legs: closed-form controls reach seeded poses exactly.
     std::uniform_real_distribution<double> d(-1.0, 1.0);
-    const Eigen::Vector3d p = m.end_effector.p_W_home + 0.02 * Eigen::Vector3d(d(rng), d(rng), d(rng));
-    const Eigen::Matrix3d R = RotationFromRpy(0.03 * Eigen::Vector3d(d(rng), d(rng), d(rng)));
+    const Eigen::Vector3d p = m.end_effector.p_W_home + 0.02 * Eigen::Vector3d{d(rng), d(rng), d(rng)};
+    const Eigen::Matrix3d R = RotationFromRpy(0.03 * Eigen::Vector3d{d(rng), d(rng), d(rng)});
     Eigen::VectorXd u = m.home_controls();
     for (const auto& leg : legs) {
       ASSERT_EQ(leg.shape, "FRS");

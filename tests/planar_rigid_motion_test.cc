@@ -55,8 +55,8 @@ Eigen::VectorXd OffHome(const Model& m, unsigned seed) {
   std::uniform_real_distribution<double> d(-1, 1);
   ControlProblem control(m);
   PoseTarget target = control.CurrentPose();
-  target.position += 0.02 * Eigen::Vector3d(d(rng), d(rng), d(rng));
-  target.rpy += 0.02 * Eigen::Vector3d(d(rng), d(rng), d(rng));
+  target.position += 0.02 * Eigen::Vector3d{d(rng), d(rng), d(rng)};
+  target.rpy += 0.02 * Eigen::Vector3d{d(rng), d(rng), d(rng)};
   control.MoveTo(target);
   return control.controls();
 }
@@ -71,7 +71,7 @@ TEST_P(RigidMotion, IsRecognisedExactlyAndOnlyForOneRigidMotionOfAllBases) {
   std::uniform_real_distribution<double> d(-1, 1);
   for (int trial = 0; trial < 20; ++trial) {
     const double psi = 1.5 * d(rng);
-    const Eigen::Vector2d t(0.5 * d(rng), 0.5 * d(rng));
+    const Eigen::Vector2d t{0.5 * d(rng), 0.5 * d(rng)};
     Eigen::VectorXd v = Moved(m, u, psi, t);
     PlanarRigidMotion motion;
     ASSERT_TRUE(PlanarRigidMotionBetween(m, u, v, &motion)) << "trial " << trial;
@@ -140,7 +140,7 @@ TEST_P(RigidMotion, FormationMovesEndWithoutAnIterationWhereTheGeometrySays) {
     const bool jump = step % 2 == 1 && MovesRigidlyWithItsBases(m);
     const double scale = jump ? 0.3 : 0.002;
     const double psi = (jump ? 0.5 : 0.002) * d(rng);
-    const Eigen::Vector2d t(scale * d(rng), scale * d(rng));
+    const Eigen::Vector2d t{scale * d(rng), scale * d(rng)};
     const EndEffectorPose before = forward.end_effector();
     u = Moved(m, u, psi, t);
     const ForwardResult r = forward.Solve(u);

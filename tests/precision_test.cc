@@ -41,7 +41,7 @@ void ExpectCovarianceMatchesMonteCarlo(const std::string& name) {
   Eigen::Matrix<double, 6, 1> mean = Eigen::Matrix<double, 6, 1>::Zero();
   for (int i = 0; i < kSamples; ++i) {
     Eigen::VectorXd u = u0;
-    for (int k = 0; k < model.num_bases(); ++k) u.segment<3>(3 * k) += Eigen::Vector3d(position(rng), position(rng), heading(rng));
+    for (int k = 0; k < model.num_bases(); ++k) u.segment<3>(3 * k) += Eigen::Vector3d{position(rng), position(rng), heading(rng)};
     forward.SetState(home);
     forward.Solve(u);
     const Eigen::Matrix<double, 6, 1> x = PoseChange(forward.end_effector(), pose0);

@@ -37,8 +37,8 @@ Target MakeTarget(const Model& m, std::mt19937& rng) {
   std::uniform_real_distribution<double> d(-1.0, 1.0);
   const bool tilts = m.end_effector.controlled[kRoll];
   Target t;
-  t.p_EE = m.end_effector.p_W_home + 0.03 * Eigen::Vector3d(d(rng), d(rng), d(rng));
-  const Eigen::Vector3d rpy(tilts ? 0.05 * d(rng) : 0.0, tilts ? 0.05 * d(rng) : 0.0, 0.05 * d(rng));
+  t.p_EE = m.end_effector.p_W_home + 0.03 * Eigen::Vector3d{d(rng), d(rng), d(rng)};
+  const Eigen::Vector3d rpy{tilts ? 0.05 * d(rng) : 0.0, tilts ? 0.05 * d(rng) : 0.0, 0.05 * d(rng)};
   t.R_EE = RotationFromRpy(rpy);
   t.u = m.home_controls();
   for (const Leg& leg : FindLegs(m)) {

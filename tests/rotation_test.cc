@@ -57,7 +57,7 @@ using PlusFn = std::function<void(const double* x, const double* delta, double* 
 Vector3d RandomUnit(std::mt19937& rng) {
   std::normal_distribution<double> n;
   Vector3d v;
-  do v = Vector3d(n(rng), n(rng), n(rng));
+  do v = Vector3d{n(rng), n(rng), n(rng)};
   while (v.norm() < 1e-3);
   return v.normalized();
 }
@@ -68,7 +68,7 @@ Vector3d RandomVector(std::mt19937& rng, double scale) {
 // Uniform on SO(3) (normalised 4D Gaussian).
 Quaterniond RandomRotation(std::mt19937& rng) {
   std::normal_distribution<double> n;
-  return Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized();
+  return Quaterniond{n(rng), n(rng), n(rng), n(rng)}.normalized();
 }
 
 const std::vector<Vector3d>& Axes() {
@@ -97,7 +97,10 @@ std::vector<Vector3d> RotationVectorsBelowPi(std::mt19937& rng) {
   }
   for (double a : angles) out.push_back(a * RandomUnit(rng));
   std::uniform_real_distribution<double> angle(0.0, kPi);
-  for (int i = 0; i < kRandomSamples; ++i) out.push_back(angle(rng) * RandomUnit(rng));
+  for (int i = 0; i < kRandomSamples; ++i) {
+    const double a = angle(rng);  // drawn before the axis, on every compiler
+    out.push_back(a * RandomUnit(rng));
+  }
   return out;
 }
 
@@ -286,7 +289,8 @@ std::vector<Pose> Poses(std::mt19937& rng) {
                            MakePose(Quaterniond(0, 1, 0, 0), Vector3d::Zero()),
                            MakePose(Quaterniond(0, 0, 0.6, 0.8), Vector3d(1e3, -1e3, 5e2))};
   for (int i = 0; i < kRandomSamples / 4; ++i) {
-    out.push_back(MakePose(RandomRotation(rng), RandomVector(rng, 10.0)));
+    const Quaterniond q = RandomRotation(rng);
+    out.push_back(MakePose(q, RandomVector(rng, 10.0)));
   }
   return out;
 }
@@ -468,7 +472,7 @@ TEST(Rpy, AnglesRoundTripAwayFromGimbalLock) {
   std::uniform_real_distribution<double> angle(-kPi, kPi), pitch(-kPi / 2 + 0.1, kPi / 2 - 0.1);
   std::vector<Vector3d> rpys = {Vector3d::Zero(), Vector3d(kPi, 0, 0), Vector3d(0, 0, kPi),
                                 Vector3d(kPi, 0.3, kPi), Vector3d(-3.1, -1.4, 3.1)};
-  for (int i = 0; i < kRandomSamples; ++i) rpys.emplace_back(angle(rng), pitch(rng), angle(rng));
+  for (int i = 0; i < kRandomSamples; ++i) rpys.push_back(Vector3d{angle(rng), pitch(rng), angle(rng)});
   EXPECT_TRUE(AnglesSurviveRpy(rpys, RotationFromRpy, RpyFromRotation));
 }
 
@@ -487,7 +491,7 @@ TEST(Rpy, GimbalLockRotationRoundTripsWithRollZero) {
   std::vector<Matrix3d> Rs;
   for (double pitch : {kPi / 2, -kPi / 2}) {
     for (int i = 0; i < kRandomSamples / 2; ++i) {
-      const Vector3d rpy(angle(rng), pitch, angle(rng));
+      const Vector3d rpy{angle(rng), pitch, angle(rng)};
       Rs.push_back(RotationFromRpy(rpy));
       const Vector3d back = RpyFromRotation(Rs.back());
       EXPECT_EQ(back.x(), 0.0);
@@ -508,7 +512,7 @@ TEST(Rpy, NearGimbalLockRotationRoundTrips) {
   for (double c : {1e-3, 1e-5, 1e-7, 1e-8, 1e-9, 3e-10, 1.1e-10, 9e-11, 1e-11, 1e-13, 1e-15}) {
     for (double sign : {1.0, -1.0}) {
       for (int i = 0; i < 50; ++i) {
-        Rs.push_back(RotationFromRpy(Vector3d(angle(rng), sign * (kPi / 2 - c), angle(rng))));
+        Rs.push_back(RotationFromRpy(Vector3d{angle(rng), sign * (kPi / 2 - c), angle(rng)}));
       }
     }
   }
@@ -588,8 +592,8 @@ std::vector<Tangent> Deltas(std::mt19937& rng) {
   for (double scale : {1e-12, 1e-8, 1e-4, 1e-2, 0.5, 1.5, 3.0}) {
     for (int i = 0; i < 4; ++i) {
       // Rotation part of length <= scale < pi.
-      d << scale * RandomUnit(rng) * std::uniform_real_distribution<double>(0.0, 1.0)(rng),
-          RandomVector(rng, scale);
+      const Vector3d axis = RandomUnit(rng);
+      d << scale * axis * std::uniform_real_distribution<double>(0.0, 1.0)(rng), RandomVector(rng, scale);
       out.push_back(d);
     }
   }
@@ -608,7 +612,8 @@ TEST(PoseManifold, Sizes) {
 
 TEST(PoseManifold, MinusUndoesPlus) {
   std::mt19937 rng(40);
-  EXPECT_TRUE(MinusUndoesPlus(Poses(rng), Deltas(rng), RealPlus()));
+  const auto poses = Poses(rng);
+  EXPECT_TRUE(MinusUndoesPlus(poses, Deltas(rng), RealPlus()));
 }
 
 TEST(PoseManifold, PlusUndoesMinus) {
@@ -709,13 +714,15 @@ TEST(State, PlusMinusRoundTrip) {
     EXPECT_EQ(s.num_bodies(), n);
     EXPECT_EQ(s.tangent_size(), 6 * n);
     for (int b = 0; b < n; ++b) {
-      s.SetPose(b, RandomRotation(rng), RandomVector(rng, 5.0));
-      t.SetPose(b, RandomRotation(rng), RandomVector(rng, 5.0));
+      const Quaterniond q_s = RandomRotation(rng);
+      s.SetPose(b, q_s, RandomVector(rng, 5.0));
+      const Quaterniond q_t = RandomRotation(rng);
+      t.SetPose(b, q_t, RandomVector(rng, 5.0));
     }
     Eigen::VectorXd ds(6 * n);
     for (int b = 0; b < n; ++b) {
-      ds.segment<3>(6 * b) =
-          2.5 * RandomUnit(rng) * std::uniform_real_distribution<double>(0, 1)(rng);
+      const Vector3d axis = RandomUnit(rng);
+      ds.segment<3>(6 * b) = 2.5 * axis * std::uniform_real_distribution<double>(0, 1)(rng);
       ds.segment<3>(6 * b + 3) = RandomVector(rng, 1.0);
     }
     State s_plus = s;

@@ -307,8 +307,8 @@ TEST(Statics, StewartLegForcesAreTheInverseTransposedJacobianOfTheWrench) {
     ASSERT_TRUE(forward.Assemble(u).assembled);
     const State& s = forward.state();
     ExternalWrench w;
-    w.force = Eigen::Vector3d(load(rng), load(rng), load(rng));
-    w.moment = Eigen::Vector3d(load(rng), load(rng), load(rng)) / 10;
+    w.force = Eigen::Vector3d{load(rng), load(rng), load(rng)};
+    w.moment = Eigen::Vector3d{load(rng), load(rng), load(rng)} / 10;
     const StaticsReport r = ComputeStatics(model, s, forward.controls(), w);
     ASSERT_TRUE(r.determinate);
     Eigen::Matrix<double, 6, 6> J;
