@@ -19,6 +19,12 @@
   not in an anonymous namespace: the files of one test executable are
   compiled together (unity batches), where two files' anonymous namespaces
   are one.
+- no call's or constructor's parentheses hold two draws from a random engine
+  (`d(rng)`, `RandomUnit(rng)`: any call passed `rng`, `rng_` or `random`)
+  outside braces: the order in which a call's arguments (or an operator's
+  operands) are evaluated is unspecified, so the same seed gave g++ and
+  clang different samples. A braced list (`Eigen::Vector3d{d(rng), d(rng),
+  d(rng)}`) or one statement per draw is evaluated in order.
 Functions are found by braces: a `{` at namespace or class level whose text
 since the previous `;`, `{` or `}` has a `)` and is not a namespace, class,
 struct, enum or initialiser. Comments and string literals are blanked first.
@@ -115,6 +121,36 @@ def check_text(path, text):
     return breaches
 
 
+DRAW = re.compile(r"\((?:rng_?|random)\s*[,)]")
+NOT_CALLS = {"if", "for", "while", "switch", "return", "sizeof", "catch"}
+
+
+def unsequenced_draws(path, text):
+    """Calls whose parentheses hold two or more random draws outside braces."""
+    code = blank(text)
+    breaches, stack = [], []  # stack of [kind, start, draws]: kind '(' call, '(' other, '{'
+    for m in re.finditer(r"[(){}]", code):
+        c, i = m.group(0), m.start()
+        if c == "{":
+            stack.append(["{", i, 0])
+        elif c == "(":
+            before = re.search(r"([A-Za-z_]\w*|>|\))\s*$", code[max(0, i - 80):i])
+            call = bool(before) and before.group(1) not in NOT_CALLS
+            if DRAW.match(code, i):  # the draw itself: count it in the enclosing call
+                for frame in reversed(stack):
+                    if frame[0] == "{":
+                        break
+                    frame[2] += 1
+            stack.append(["call" if call else "(", i, 0])
+        elif stack:
+            kind, start, draws = stack.pop()
+            if kind == "call" and draws >= 2:
+                line = text.count("\n", 0, start) + 1
+                breaches.append(f"{path}:{line}: {draws} random draws in one call's arguments (their order is "
+                                f"unspecified: draw them in separate statements or in a braced list)")
+    return breaches
+
+
 def check_test_file(path, text):
     """The breaches of one test file tests/<stem>_test.cc: an anonymous namespace."""
     m = re.fullmatch(r"tests/(\w+_test)\.cc", path)
@@ -158,6 +194,13 @@ def self_test():
     assert len(check_test_file("tests/a_test.cc", "namespace ccma {\nnamespace {\nint x;\n}\n}\n")) == 1
     assert not check_test_file("tests/a_test.cc", "namespace ccma {\nnamespace a_test {\nint x;\n}\n}\n")
     assert not check_test_file("tests/a_test.cc", "// namespace {\nconst char* s = \"namespace {\";\n")
+    assert len(unsequenced_draws("tests/a_test.cc", "v = Eigen::Vector3d(d(rng), d(rng), d(rng));\n")) == 1
+    assert len(unsequenced_draws("tests/a_test.cc", "f(a(rng) * RandomUnit(rng));\n")) == 1
+    assert len(unsequenced_draws("execution/a.cc", "g(Pose(RandomRotation(rng_), RandomVector(rng_, 2.0)));\n")) >= 1
+    assert not unsequenced_draws("tests/a_test.cc", "v = Eigen::Vector3d{d(rng), d(rng), d(rng)};\n")
+    assert not unsequenced_draws("tests/a_test.cc", "const double a = d(rng), b = d(rng);\nu << d(rng), d(rng);\n")
+    assert not unsequenced_draws("tests/a_test.cc", "push_back(Vector3d{d(rng), d(rng)});\nif (d(rng) > d(rng)) x();\n")
+    assert not unsequenced_draws("ccma/a.cc", "M = NullaryExpr(n, m, [&]() { return d(random); });\nf(d(rng));\n")
     print("layout self-test: ok")
     return 0
 
@@ -175,11 +218,18 @@ def main():
                     continue
                 path = os.path.relpath(os.path.join(dirpath, n), ROOT)
                 text = open(os.path.join(ROOT, path), encoding="utf-8").read()
-                breaches += check_text(path, text)
+                breaches += check_text(path, text) + unsequenced_draws(path, text)
     tests = os.path.join(ROOT, "tests")
     for n in sorted(os.listdir(tests)):
         if n.endswith("_test.cc"):
-            breaches += check_test_file("tests/" + n, open(os.path.join(tests, n), encoding="utf-8").read())
+            text = open(os.path.join(tests, n), encoding="utf-8").read()
+            breaches += check_test_file("tests/" + n, text) + unsequenced_draws("tests/" + n, text)
+    for d in ["benchmarks", "examples", "fuzz"]:
+        for dirpath, _, names in os.walk(os.path.join(ROOT, d)):
+            for n in sorted(names):
+                if n.endswith((".h", ".cc")):
+                    path = os.path.relpath(os.path.join(dirpath, n), ROOT)
+                    breaches += unsequenced_draws(path, open(os.path.join(ROOT, path), encoding="utf-8").read())
     for b in breaches:
         print(b)
     print(f"layout: {len(breaches)} breaches")
