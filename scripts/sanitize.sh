@@ -52,7 +52,18 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:log_path=$LOG_DIR/repor
 
 launcher=()
 command -v ccache > /dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
-if ! cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCCMA_SANITIZE=ON \
+# The compiler of a new build-asan/: g++ when installed (its sanitizer
+# runtime comes with it), else clang++, whose runtime is a package of its own
+# (scripts/setup.sh installs clang alone).
+compiler=()
+if [ ! -f "$BUILD_DIR/CMakeCache.txt" ] && [ -z "${CXX:-}" ] && ! command -v g++ > /dev/null; then
+  if ! dpkg-query -W -f='${Status}' libclang-rt-14-dev 2>/dev/null | grep -q "install ok installed"; then
+    echo "sanitize: clang's sanitizer runtime is missing: apt-get install libclang-rt-14-dev (or g++)" >&2
+    exit 1
+  fi
+  compiler=(-DCMAKE_CXX_COMPILER=clang++)
+fi
+if ! cmake -S . -B "$BUILD_DIR" "${compiler[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCCMA_SANITIZE=ON \
      -DCCMA_BUILD_BENCHMARKS=OFF -DCCMA_BUILD_PYTHON=OFF "${launcher[@]}" \
      > "$BUILD_DIR/configure.log" 2>&1; then
   cat "$BUILD_DIR/configure.log"
