@@ -50,6 +50,8 @@ void BM_ControlStep(benchmark::State& state, Compensation compensation) {
     options.aim_offset << at_home.aim.position - home.position, at_home.aim.rpy - home.rpy;
     options.start = at_home.loaded;
     options.check_held = false;
+    options.workspace = NewLoadedWorkspace();  // as the path's (analysed at its first step)
+    MoveToCompensated(&control, target, {}, options);
   }
   int rounds = 0;
   for (auto _ : state) {

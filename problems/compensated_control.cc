@@ -59,6 +59,7 @@ CompensatedResult MoveToCompensated(ControlProblem* control, const PoseTarget& t
   out.aim.rpy += options.aim_offset.tail<3>();
   double solve_time_ms = 0;
   AimUpdate update;
+  const std::shared_ptr<LoadedWorkspace> workspace = options.workspace ? options.workspace : NewLoadedWorkspace();
   while (out.rounds < options.max_rounds) {
     ++out.rounds;
     out.control = control->MoveTo(out.aim);
@@ -66,6 +67,7 @@ CompensatedResult MoveToCompensated(ControlProblem* control, const PoseTarget& t
     // Each round's equilibrium starts from the last one: the controls moved little.
     LoadedOptions loaded_options;
     loaded_options.check_held = false;
+    loaded_options.workspace = workspace;
     const LoadedEquilibrium* start = out.rounds > 1 ? &out.loaded : (options.start ? &*options.start : nullptr);
     if (start && start->converged) {
       loaded_options.start_state = start->state;

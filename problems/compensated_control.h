@@ -16,6 +16,7 @@
 #ifndef CCMA_PROBLEMS_COMPENSATED_CONTROL_H_
 #define CCMA_PROBLEMS_COMPENSATED_CONTROL_H_
 
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -42,6 +43,9 @@ struct CompensationOptions {
   // previous step's) instead of the rigid assembly; later rounds start from
   // the round before.
   std::optional<LoadedEquilibrium> start;
+  // The loaded equilibria's workspace (NewLoadedWorkspace), shared by a
+  // path's steps; each call makes its own when not given.
+  std::shared_ptr<LoadedWorkspace> workspace;
 };
 
 struct CompensatedResult {

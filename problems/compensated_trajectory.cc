@@ -39,6 +39,7 @@ TrajectoryResult FollowWaypointsCompensated(ControlProblem& problem, const std::
   TrajectoryResult out;
   CompensationOptions compensation;
   compensation.check_held = false;  // no row reports it
+  compensation.workspace = NewLoadedWorkspace();
   PoseTarget from = problem.CurrentPose();
   double previous_time = waypoints.empty() ? 0.0 : waypoints.front().time;
   for (size_t w = 0; w < waypoints.size() && out.converged; ++w) {

@@ -218,9 +218,10 @@ bool SolveLoadedSparse(const Model& model, const ConstraintSet& set, const State
     starts.push_back(std::move(warm));
   }
   starts.push_back(Point{rigid, Eigen::VectorXd::Zero(static_cast<Eigen::Index>(compliant.size()))});
+  const std::shared_ptr<LoadedWorkspace> workspace = options.workspace ? options.workspace : NewLoadedWorkspace();
   for (Point& start : starts) {
-    const LoadedNewtonResult r =
-        SolveLoadedNewton(model, set, u, wrench, tolerance, std::min(kMaxSparseIterations, options.max_iterations), &start);
+    const LoadedNewtonResult r = SolveLoadedNewton(model, set, u, wrench, tolerance,
+                                                   std::min(kMaxSparseIterations, options.max_iterations), workspace.get(), &start);
     out->iterations += r.iterations;
     if (!r.converged) continue;
     *x = std::move(start);
@@ -233,6 +234,8 @@ bool SolveLoadedSparse(const Model& model, const ConstraintSet& set, const State
 }
 
 }  // namespace
+
+std::shared_ptr<LoadedWorkspace> NewLoadedWorkspace() { return std::make_shared<LoadedWorkspace>(); }
 
 LoadedEquilibrium SolveLoadedEquilibrium(const Model& model, const State& rigid, const Eigen::VectorXd& u,
                                          const ExternalWrench& wrench, const LoadedOptions& options) {

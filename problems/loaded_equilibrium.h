@@ -29,6 +29,7 @@
 #ifndef CCMA_PROBLEMS_LOADED_EQUILIBRIUM_H_
 #define CCMA_PROBLEMS_LOADED_EQUILIBRIUM_H_
 
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -39,6 +40,13 @@
 #include "ccma/state.h"
 
 namespace ccma {
+
+// What the sparse path keeps between equilibria of one model (the symbolic
+// analysis of its KKT factorisation): a compensated control's rounds and a
+// path's steps share one, so that only the first analyses. Reusable with
+// another model (it analyses again); one per thread.
+class LoadedWorkspace;
+std::shared_ptr<LoadedWorkspace> NewLoadedWorkspace();
 
 struct LoadedOptions {
   int max_iterations = 100;
@@ -57,6 +65,9 @@ struct LoadedOptions {
   bool check_held = true;
   // false: the dense path alone (the tests compare the two paths).
   bool sparse = true;
+  // Shared between calls when given (NewLoadedWorkspace); else each call
+  // makes its own. Results do not depend on it.
+  std::shared_ptr<LoadedWorkspace> workspace;
 };
 
 struct LoadedEquilibrium {

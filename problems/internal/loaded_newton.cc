@@ -7,12 +7,12 @@
 #include <vector>
 
 #include <Eigen/SparseCore>
-#include <Eigen/SparseLU>
 
 #include "ccma/internal/joint_deviation.h"
 #include "ccma/internal/joint_spring_directions.h"
 #include "ccma/internal/pose_manifold.h"
 #include "problems/internal/compliant_equilibrium.h"
+#include "problems/internal/kkt_factorization.h"
 
 namespace ccma {
 namespace {
@@ -24,7 +24,13 @@ constexpr double kKktRowTolerance = 1e-13;  // as the dense path
 constexpr double kKktIdleStiffness = 1e-6;
 // eps_A against the rigid rows' O(1) entries, refined away.
 constexpr double kKktRowRegularization = 1e-10;
-constexpr int kKktRefinements = 2;
+constexpr int kKktRefinements = 4;
+// A refined KKT solution's residual must be within this of max(1, |rhs|)
+// (N or m): the LU's is about 1e-15 of it, the LDL^T's without pivoting
+// 1e-14 after refinement here; a worse one falls back to the LU. Refinement
+// stops early at a hundredth of it.
+constexpr double kKktResidual = 1e-12;
+constexpr double kKktTightResidual = 1e-2;
 constexpr double kKktMaxStep = 0.5;  // m or rad per Newton step
 
 using KktSparse = Eigen::SparseMatrix<double>;
@@ -135,17 +141,14 @@ class KktNewtonStep {
     force_ = force;
   }
 
-  // [y; mu], refined against eps_A = 0; false when the LU fails.
-  bool Solve(Eigen::VectorXd* z) {
-    lu_.compute(K_);
-    if (lu_.info() != Eigen::Success) return false;
-    *z = lu_.solve(rhs_);
-    for (int r = 0; r < kKktRefinements && z->allFinite(); ++r) {
-      Eigen::VectorXd residual = rhs_ - K_ * *z;
-      residual.tail(m_) -= eps_A_ * z->tail(m_);
-      *z += lu_.solve(residual);
-    }
-    return lu_.info() == Eigen::Success && z->allFinite();
+  // [y; mu], refined against eps_A = 0, by `kkt` (which keeps its
+  // analysis from the previous steps): by its LDL^T, or its LU when the
+  // LDL^T's refined solution leaves more than kKktResidual; false when
+  // both fail.
+  bool Solve(KktFactorization* kkt, Eigen::VectorXd* z) const {
+    if (!kkt->Factorize(K_)) return false;
+    if (SolveRefined(*kkt, z)) return true;
+    return !kkt->uses_lu() && kkt->UseLu() && SolveRefined(*kkt, z);
   }
 
   // max |force - A^T mu|: what the multipliers leave unbalanced.
@@ -155,11 +158,29 @@ class KktNewtonStep {
   }
 
  private:
+  // z from kkt's factor with up to kKktRefinements steps of iterative
+  // refinement against K_ without eps_A; true when the residual is within
+  // kKktResidual of |rhs|.
+  bool SolveRefined(const KktFactorization& kkt, Eigen::VectorXd* z) const {
+    *z = kkt.Solve(rhs_);
+    const double target = kKktResidual * std::max(1.0, rhs_.lpNorm<Eigen::Infinity>());
+    double size = std::numeric_limits<double>::infinity();
+    for (int r = 0; r <= kKktRefinements && z->allFinite(); ++r) {
+      Eigen::VectorXd residual = rhs_ - K_ * *z;
+      residual.tail(m_) -= eps_A_ * z->tail(m_);
+      const double next = residual.lpNorm<Eigen::Infinity>();
+      if (!(next < size)) break;  // refinement has stopped gaining
+      size = next;
+      if (r == kKktRefinements || size <= kKktTightResidual * target) break;
+      *z += kkt.Solve(residual);
+    }
+    return z->allFinite() && size <= target;
+  }
+
   Eigen::Index N_, m_;
   double eps_A_ = 0;
   KktSparse A_, K_;
   Eigen::VectorXd rhs_, force_;
-  Eigen::SparseLU<KktSparse> lu_;
 };
 
 }  // namespace
@@ -201,13 +222,14 @@ void LoadedResiduals(const Model& model, const ConstraintSet& set, const LoadedP
 
 LoadedNewtonResult SolveLoadedNewton(const Model& model, const ConstraintSet& set, const Eigen::VectorXd& u,
                                      const ExternalWrench& wrench, double force_tolerance, int max_iterations,
-                                     LoadedPoint* x) {
+                                     LoadedWorkspace* workspace, LoadedPoint* x) {
   LoadedNewtonResult out;
   const std::vector<int> compliant = CompliantEquilibrium::CompliantControls(model);
   LoadedPoint trial = *x;
   Eigen::VectorXd w = Eigen::VectorXd::Zero(set.num_rows());  // the rigid rows' multipliers, set order
   Eigen::VectorXd mu_last;  // the same in A's order (empty before the first solve)
   double last = std::numeric_limits<double>::infinity();
+  KktFactorization& kkt = workspace->kkt;
   for (int i = 0; i <= max_iterations; ++i) {
     const Eigen::VectorXd u_eff = CommandedControls(u, compliant, trial.delta);
     const CompliantEquilibrium sys(model, set, trial.s, u_eff, /*factorize=*/false);
@@ -222,7 +244,7 @@ LoadedNewtonResult SolveLoadedNewton(const Model& model, const ConstraintSet& se
     const double stiffest = sys.k().size() > 0 ? sys.k().maxCoeff() : 1.0;
     KktNewtonStep step(sys, extra, force, g, kKktIdleStiffness * std::max(1.0, stiffest));
     Eigen::VectorXd z;
-    if (!step.Solve(&z)) return out;
+    if (!step.Solve(&kkt, &z)) return out;
     const Eigen::VectorXd mu = z.tail(z.size() - sys.size());
     const double unbalanced = step.Unbalanced(mu);
     const double row_size = g.size() > 0 ? g.lpNorm<Eigen::Infinity>() : 0.0;

@@ -8,8 +8,9 @@
 //   [A          -eps_A I] [mu] = [-g   ]
 // with H = S^T diag(k) S + sum_i w_i Hess(C_i) - dQ/ds (the springs, the
 // preload's geometric stiffness with the previous step's multipliers w, and
-// the loads turning with the bodies), by one sparse LU (Eigen's SparseLU),
-// then refines the solution twice against eps_A = 0. eps_H gives the idle
+// the loads turning with the bodies), by one sparse LDL^T (KktFactorization:
+// its analysis kept in the LoadedWorkspace, an LU where the LDL^T fails),
+// then refines the solution against eps_A = 0. eps_H gives the idle
 // motions (no spring, no rigid row: a leg spinning about its axis) a
 // stiffness far above any rounding force, so they stay put; eps_A keeps
 // redundant rigid rows (a wheeled base's planar and motor rows both lock its
@@ -30,6 +31,8 @@
 #include "ccma/loads.h"
 #include "ccma/model.h"
 #include "ccma/state.h"
+#include "problems/internal/kkt_factorization.h"
+#include "problems/loaded_equilibrium.h"
 
 namespace ccma {
 
@@ -51,6 +54,12 @@ Eigen::VectorXd CommandedControls(const Eigen::VectorXd& u, const std::vector<in
 void LoadedResiduals(const Model& model, const ConstraintSet& set, const LoadedPoint& x, const Eigen::VectorXd& u_eff,
                      Eigen::VectorXd* g, Eigen::VectorXd* e);
 
+// The public LoadedOptions::workspace (problems/loaded_equilibrium.h).
+class LoadedWorkspace {
+ public:
+  KktFactorization kkt;
+};
+
 struct LoadedNewtonResult {
   bool converged = false;
   int iterations = 0;     // KKT factorisations
@@ -59,10 +68,11 @@ struct LoadedNewtonResult {
 
 // Newton's method at the full loads from *x; on convergence *x is the
 // equilibrium (rigid rows within 1e-13), else *x is unchanged.
-// `force_tolerance` [N or N*m] as LoadedOptions' (already scaled).
+// `force_tolerance` [N or N*m] as LoadedOptions' (already scaled);
+// `workspace` keeps the factorisation's analysis between calls.
 LoadedNewtonResult SolveLoadedNewton(const Model& model, const ConstraintSet& set, const Eigen::VectorXd& u,
                                      const ExternalWrench& wrench, double force_tolerance, int max_iterations,
-                                     LoadedPoint* x);
+                                     LoadedWorkspace* workspace, LoadedPoint* x);
 
 }  // namespace ccma
 
