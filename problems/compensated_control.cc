@@ -73,7 +73,8 @@ CompensatedResult MoveToCompensated(ControlProblem* control, const PoseTarget& t
       loaded_options.start_state = start->state;
       loaded_options.start_yields = start->yields;
     }
-    out.loaded = SolveLoadedEquilibrium(model, control->forward().state(), control->controls(), wrench, loaded_options);
+    out.loaded = SolveLoadedEquilibrium(model, control->forward().constraints(), control->forward().state(),
+                                        control->controls(), wrench, loaded_options);
     if (!out.control.converged || !out.loaded.converged) break;
     const Eigen::Matrix<double, 6, 1> miss = Miss(model, target, ComputeEndEffectorPose(model, out.loaded.state));
     out.miss = miss.cwiseAbs().maxCoeff();
@@ -86,7 +87,9 @@ CompensatedResult MoveToCompensated(ControlProblem* control, const PoseTarget& t
     out.aim.rpy += step.tail<3>();
   }
   out.control.solve_time_ms = solve_time_ms;
-  if (options.check_held && out.loaded.converged) DecideHeld(model, control->controls(), &out.loaded);
+  if (options.check_held && out.loaded.converged) {
+    DecideHeld(model, control->forward().constraints(), control->controls(), &out.loaded);
+  }
   if (out.converged) return out;
   if (!out.control.converged) {
     out.warning = "round " + std::to_string(out.rounds) + ": the rigid end-effector did not reach the compensated aim" +

@@ -198,7 +198,8 @@ void SolveLoadedDense(const Model& model, const ConstraintSet& set, const State&
 // Whether every motion no spring resists leaves the end-effector in place at x.
 bool Held(const Model& model, const ConstraintSet& set, const Eigen::VectorXd& u, const Point& x) {
   const std::vector<int> compliant = CompliantEquilibrium::CompliantControls(model);
-  const CompliantEquilibrium system(model, set, x.s, CommandedControls(u, compliant, x.delta));
+  const CompliantEquilibrium system(model, set, x.s, CommandedControls(u, compliant, x.delta),
+                                    CompliantEquilibrium::Factorization::kIdleMotions);
   Eigen::MatrixXd G = Eigen::MatrixXd::Zero(6, system.size());
   G.leftCols(model.state_size()) = EndEffectorJacobian(model, x.s);
   return system.UnheldMotion(G) <= kUnheldTolerance;
@@ -233,20 +234,30 @@ bool SolveLoadedSparse(const Model& model, const ConstraintSet& set, const State
   return false;
 }
 
+// A model without stiffness: its rigid assembly, converged.
+LoadedEquilibrium RigidEquilibrium(const Model& model, const State& rigid) {
+  LoadedEquilibrium out;
+  out.converged = true;
+  out.state = rigid;
+  out.yields = Eigen::VectorXd::Zero(model.num_controls());
+  return out;
+}
+
 }  // namespace
 
 std::shared_ptr<LoadedWorkspace> NewLoadedWorkspace() { return std::make_shared<LoadedWorkspace>(); }
 
 LoadedEquilibrium SolveLoadedEquilibrium(const Model& model, const State& rigid, const Eigen::VectorXd& u,
                                          const ExternalWrench& wrench, const LoadedOptions& options) {
+  if (!model.compliant()) return RigidEquilibrium(model, rigid);
+  return SolveLoadedEquilibrium(model, ConstraintSet(model), rigid, u, wrench, options);
+}
+
+LoadedEquilibrium SolveLoadedEquilibrium(const Model& model, const ConstraintSet& set, const State& rigid,
+                                         const Eigen::VectorXd& u, const ExternalWrench& wrench,
+                                         const LoadedOptions& options) {
+  if (!model.compliant()) return RigidEquilibrium(model, rigid);
   LoadedEquilibrium out;
-  out.state = rigid;
-  out.yields = Eigen::VectorXd::Zero(model.num_controls());
-  if (!model.compliant()) {
-    out.converged = true;
-    return out;
-  }
-  const ConstraintSet set(model);
   const double scale = 1.0 + GeneralizedLoads(model, rigid, wrench).lpNorm<Eigen::Infinity>();
   const double tolerance = options.force_tolerance * scale;
   Point x;
@@ -263,11 +274,15 @@ LoadedEquilibrium SolveLoadedEquilibrium(const Model& model, const State& rigid,
 }
 
 void DecideHeld(const Model& model, const Eigen::VectorXd& u, LoadedEquilibrium* loaded) {
+  if (model.compliant()) DecideHeld(model, ConstraintSet(model), u, loaded);
+}
+
+void DecideHeld(const Model& model, const ConstraintSet& set, const Eigen::VectorXd& u, LoadedEquilibrium* loaded) {
   if (!model.compliant()) return;
   const std::vector<int> compliant = CompliantEquilibrium::CompliantControls(model);
   Point x{loaded->state, Eigen::VectorXd(static_cast<Eigen::Index>(compliant.size()))};
   for (size_t i = 0; i < compliant.size(); ++i) x.delta[static_cast<Eigen::Index>(i)] = loaded->yields[compliant[i]];
-  loaded->held = Held(model, ConstraintSet(model), u, x);
+  loaded->held = Held(model, set, u, x);
 }
 
 }  // namespace ccma

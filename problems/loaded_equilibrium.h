@@ -41,6 +41,8 @@
 
 namespace ccma {
 
+class ConstraintSet;  // internal (ccma/internal/constraint_set.h)
+
 // What the sparse path keeps between equilibria of one model (the symbolic
 // analysis of its KKT factorisation): a compensated control's rounds and a
 // path's steps share one, so that only the first analyses. Reusable with
@@ -96,10 +98,16 @@ struct LoadedEquilibrium {
 // kMaxStaticsEntries doubles (ccma/limits.h).
 LoadedEquilibrium SolveLoadedEquilibrium(const Model& model, const State& rigid, const Eigen::VectorXd& u,
                                          const ExternalWrench& wrench = {}, const LoadedOptions& options = {});
+// The same with the model's constraint set, which a caller solving many
+// equilibria of one model has already (ForwardProblem::constraints()).
+LoadedEquilibrium SolveLoadedEquilibrium(const Model& model, const ConstraintSet& set, const State& rigid,
+                                         const Eigen::VectorXd& u, const ExternalWrench& wrench = {},
+                                         const LoadedOptions& options = {});
 
 // Decides loaded->held at its configuration (one dense decomposition), for
 // an equilibrium solved with check_held = false; u as given to the solve.
 void DecideHeld(const Model& model, const Eigen::VectorXd& u, LoadedEquilibrium* loaded);
+void DecideHeld(const Model& model, const ConstraintSet& set, const Eigen::VectorXd& u, LoadedEquilibrium* loaded);
 
 }  // namespace ccma
 

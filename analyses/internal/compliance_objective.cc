@@ -78,7 +78,7 @@ double ComplianceLagrangian(const ComplianceAdjoint& adjoint, const Model& model
                             const Eigen::VectorXd& u) {
   if (adjoint.primal.size() == 0) return 0;  // a deflection of 0
   const ConstraintSet set(model);
-  const CompliantEquilibrium system(model, set, s, u, /*factorize=*/false);
+  const CompliantEquilibrium system(model, set, s, u, CompliantEquilibrium::Factorization::kNone);
   const Eigen::MatrixXd G = EndEffectorMotion(model, s, system.size());
   const Eigen::VectorXd& y = adjoint.primal;
   const Eigen::VectorXd Gw = G.transpose() * adjoint.weight;

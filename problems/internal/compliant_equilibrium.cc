@@ -58,7 +58,7 @@ std::vector<int> CompliantEquilibrium::CompliantControls(const Model& model) {
 }
 
 CompliantEquilibrium::CompliantEquilibrium(const Model& model, const ConstraintSet& set, const State& s,
-                                           const Eigen::VectorXd& u, bool factorize)
+                                           const Eigen::VectorXd& u, Factorization factorization)
     : n_(set.state_size()), delta_of_control_(static_cast<size_t>(model.num_controls()), -1) {
   compliant_ = CompliantControls(model);
   std::vector<double> control_k;
@@ -91,7 +91,7 @@ CompliantEquilibrium::CompliantEquilibrium(const Model& model, const ConstraintS
   Eigen::MatrixXd J_s, J_u;
   set.Evaluate(s, u, &C, &J_s, &J_u);
   AddBlocks(model, set, J_s, J_u, s);
-  if (factorize) Factorize();
+  if (factorization != Factorization::kNone) Factorize(factorization);
 }
 
 void CompliantEquilibrium::AddBlocks(const Model& model, const ConstraintSet& set, const Eigen::MatrixXd& J_s,
@@ -144,7 +144,7 @@ void CompliantEquilibrium::AddBlocks(const Model& model, const ConstraintSet& se
   for (; b < set.blocks().size(); ++b) add_block(set.blocks()[b]);
 }
 
-void CompliantEquilibrium::Factorize() {
+void CompliantEquilibrium::Factorize(Factorization factorization) {
   const int N = size();
   Eigen::MatrixXd Z;
   int rank = 0;
@@ -166,6 +166,7 @@ void CompliantEquilibrium::Factorize() {
   }
   Z1_ = Z * V.leftCols(stretching);
   Z0_ = Z * V.rightCols(V.cols() - stretching);
+  if (factorization == Factorization::kIdleMotions) return;
   const Eigen::MatrixXd B = S_ * Z1_;
   K1_.compute(B.transpose() * k_.asDiagonal() * B);
   determinate_ = Determinate(rank);

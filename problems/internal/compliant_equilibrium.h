@@ -54,14 +54,20 @@ struct CompliantJointRows {
 
 class CompliantEquilibrium {
  public:
+  // How much of the decomposition the constructor makes.
+  enum class Factorization {
+    kNone,          // A, A_u, S and k only (a design adjoint's Lagrangian at
+                    // nearby states, a Newton step): nothing that solves
+                    // (Displacement, Multipliers, Compliance, UnheldMotion,
+                    // determinate) may be called
+    kIdleMotions,   // also the split of null(A) into Z1 and Z0: UnheldMotion only
+    kFull,          // everything
+  };
+
   // Builds A, S, k at (s, u) and factorises. Throws std::invalid_argument
-  // when a dense matrix would exceed kMaxStaticsEntries doubles. With
-  // factorize = false, A, A_u, S and k only (a design adjoint's Lagrangian
-  // at nearby states, analyses/design_objective.cc): nothing that solves
-  // (Displacement, Multipliers, Compliance, UnheldMotion, determinate) may
-  // be called then.
+  // when a dense matrix would exceed kMaxStaticsEntries doubles.
   CompliantEquilibrium(const Model& model, const ConstraintSet& set, const State& s, const Eigen::VectorXd& u,
-                       bool factorize = true);
+                       Factorization factorization = Factorization::kFull);
 
   // The compliant controls of a model, in the order of delta: every control
   // of a base with `stiffness`, then every actuated joint whose motor has one.
@@ -107,7 +113,7 @@ class CompliantEquilibrium {
  private:
   void AddBlocks(const Model& model, const ConstraintSet& set, const Eigen::MatrixXd& J_s, const Eigen::MatrixXd& J_u,
                  const State& s);
-  void Factorize();
+  void Factorize(Factorization factorization);
   bool Determinate(int rank) const;
 
   int n_ = 0;

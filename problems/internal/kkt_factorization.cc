@@ -4,10 +4,9 @@ namespace ccma {
 
 bool KktFactorization::Factorize(const Sparse& K) {
   const bool same_size = pattern_.rows() == K.rows() && pattern_.cols() == K.cols();
-  if (same_size) padded_ = K + pattern_;  // K's values on the union of both patterns
+  padded_ = same_size ? Sparse(K + pattern_) : K;  // K's values on the union of both patterns
   if (!same_size || padded_.nonZeros() != pattern_.nonZeros()) {
-    pattern_ = (same_size ? padded_ : K) * 0.0;
-    padded_ = K + pattern_;
+    pattern_ = padded_ * 0.0;
     ldlt_.analyzePattern(padded_);
     ++analyses_;
   }

@@ -183,6 +183,16 @@ class KktNewtonStep {
   Eigen::VectorXd rhs_, force_;
 };
 
+// A's multipliers mu in the constraint set's row order (0 on the rows A
+// does not have: a compliant joint's springs).
+Eigen::VectorXd SetOrder(const CompliantEquilibrium& sys, const Eigen::VectorXd& mu, int set_rows) {
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(set_rows);
+  for (size_t r = 0; r < sys.set_rows().size(); ++r) {
+    if (sys.set_rows()[r] >= 0) w[sys.set_rows()[r]] = mu[static_cast<Eigen::Index>(r)];
+  }
+  return w;
+}
+
 }  // namespace
 
 Eigen::VectorXd CommandedControls(const Eigen::VectorXd& u, const std::vector<int>& compliant,
@@ -226,14 +236,19 @@ LoadedNewtonResult SolveLoadedNewton(const Model& model, const ConstraintSet& se
   LoadedNewtonResult out;
   const std::vector<int> compliant = CompliantEquilibrium::CompliantControls(model);
   LoadedPoint trial = *x;
-  Eigen::VectorXd w = Eigen::VectorXd::Zero(set.num_rows());  // the rigid rows' multipliers, set order
-  Eigen::VectorXd mu_last;  // the same in A's order (empty before the first solve)
+  // The rigid rows' multipliers in set order (w) and in A's (mu_last), which
+  // weigh their curvature in the Newton matrix: the last equilibrium's of
+  // this workspace when they fit (a nearby one carries nearly the same
+  // preload, so the first step is nearly Newton's), else none.
+  Eigen::VectorXd w = workspace->w.size() == set.num_rows() ? workspace->w : Eigen::VectorXd::Zero(set.num_rows());
+  Eigen::VectorXd mu_last;
   double last = std::numeric_limits<double>::infinity();
   KktFactorization& kkt = workspace->kkt;
   for (int i = 0; i <= max_iterations; ++i) {
     const Eigen::VectorXd u_eff = CommandedControls(u, compliant, trial.delta);
-    const CompliantEquilibrium sys(model, set, trial.s, u_eff, /*factorize=*/false);
+    const CompliantEquilibrium sys(model, set, trial.s, u_eff, CompliantEquilibrium::Factorization::kNone);
     const int n = sys.state_size();
+    if (i == 0 && workspace->mu.size() == sys.A().rows() && workspace->w.size() == set.num_rows()) mu_last = workspace->mu;
     Eigen::VectorXd g, e;
     LoadedResiduals(model, set, trial, u_eff, &g, &e);
     Eigen::VectorXd force = -sys.S().transpose() * (sys.k().asDiagonal() * e);
@@ -252,6 +267,8 @@ LoadedNewtonResult SolveLoadedNewton(const Model& model, const ConstraintSet& se
     if (unbalanced <= force_tolerance && row_size <= kKktRowTolerance) {
       out.converged = true;
       *x = std::move(trial);
+      workspace->mu = mu;
+      workspace->w = SetOrder(sys, mu, set.num_rows());
       return out;
     }
     // Newton converges fast or not at all: a growing imbalance hands over to the dense path.
@@ -266,10 +283,7 @@ LoadedNewtonResult SolveLoadedNewton(const Model& model, const ConstraintSet& se
     trial.s.Plus(z.head(n));
     trial.delta += z.segment(n, sys.size() - n);
     mu_last = mu;
-    w.setZero();
-    for (size_t r = 0; r < sys.set_rows().size(); ++r) {
-      if (sys.set_rows()[r] >= 0) w[sys.set_rows()[r]] = mu[static_cast<Eigen::Index>(r)];
-    }
+    w = SetOrder(sys, mu, set.num_rows());
   }
   return out;
 }

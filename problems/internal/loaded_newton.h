@@ -58,6 +58,10 @@ void LoadedResiduals(const Model& model, const ConstraintSet& set, const LoadedP
 class LoadedWorkspace {
  public:
   KktFactorization kkt;
+  // The last equilibrium's rigid-row multipliers, in the constraint set's
+  // row order (w) and in CompliantEquilibrium's A order (mu): the next
+  // solve's first Newton matrix weighs the rows' curvature by them.
+  Eigen::VectorXd w, mu;
 };
 
 struct LoadedNewtonResult {
