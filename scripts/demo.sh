@@ -6,14 +6,14 @@
 #   paper's two 4-DOF paths with trajectory, a simulated replay of the first
 #   with plots, and 3D pages of every model and of the replay (ccma view:
 #   open them in a browser).
-# It builds only the `ccma` tool (about 4 to 6 minutes on 2 cores the first time, apt-get
-# included; the runs take about 10 s); scripts/test.sh builds and runs everything else.
+# It builds only the `ccma` tool (about 3 to 6 minutes on 2 cores the first time, apt-get
+# included; the runs take about 20 s); scripts/test.sh builds and runs everything else.
 # Without the viewer's JavaScript (the npm registry unreachable when the build was
 # configured: build.log says why) it skips the 3D pages and says so.
 #   scripts/demo.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
-echo "demo: set-up and build of the ccma tool first (about 4 to 6 minutes on 2 cores the first time, apt-get included), then about 10 s of runs"
+echo "demo: set-up and build of the ccma tool first (about 3 to 6 minutes on 2 cores the first time, apt-get included), then about 20 s of runs"
 scripts/setup.sh --tool
 ccma=build/apps/ccma
 out=build/demo

@@ -118,11 +118,11 @@ fi
 parts=(-DCCMA_BUILD_TESTS=ON -DCCMA_BUILD_BENCHMARKS=ON -DCCMA_BUILD_EXAMPLES=ON -DCCMA_BUILD_PYTHON=ON)
 target_args=()
 what="everything (library, tool, tests, benchmarks, examples, Python module)"
-estimate="about 6 to 8 minutes on 2 cores after the demo, 10 to 13 from nothing"
+estimate="about 4 to 8 minutes on 2 cores after the demo, 6 to 13 from nothing"
 if ((tool_only)); then
   target_args=(--target ccma_tool)
   what="the ccma tool"
-  estimate="about 4 to 5 minutes on 2 cores the first time"
+  estimate="about 3 to 5 minutes on 2 cores the first time"
   if grep -qs '^CCMA_BUILD_TESTS:BOOL=ON' build/CMakeCache.txt; then
     parts=()
   else
