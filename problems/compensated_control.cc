@@ -50,6 +50,27 @@ class AimUpdate {
   bool have_last_ = false;
 };
 
+namespace {
+
+// The rigid control problem toward `aim` from the current controls [adds
+// its time to *solve_time_ms]. A later round (`start` given) moves them by
+// the aim's small correction; where so small a move is ill-conditioned (a
+// differential base heads where it drives, and the direction of a 1e-8 m
+// move is anyone's), it is solved again from `start`, the first round's
+// controls: a move of the whole step.
+ControlResult RigidRound(ControlProblem* control, const PoseTarget& aim, const Eigen::VectorXd* start,
+                         double* solve_time_ms) {
+  ControlResult result = control->MoveTo(aim);
+  *solve_time_ms += result.solve_time_ms;
+  if (result.converged || !start) return result;
+  control->SetControls(*start);
+  result = control->MoveTo(aim);
+  *solve_time_ms += result.solve_time_ms;
+  return result;
+}
+
+}  // namespace
+
 CompensatedResult MoveToCompensated(ControlProblem* control, const PoseTarget& target, const ExternalWrench& wrench,
                                     const CompensationOptions& options) {
   const Model& model = control->forward().model();
@@ -60,10 +81,10 @@ CompensatedResult MoveToCompensated(ControlProblem* control, const PoseTarget& t
   double solve_time_ms = 0;
   AimUpdate update;
   const std::shared_ptr<LoadedWorkspace> workspace = options.workspace ? options.workspace : NewLoadedWorkspace();
+  const Eigen::VectorXd start_controls = control->controls();
   while (out.rounds < options.max_rounds) {
     ++out.rounds;
-    out.control = control->MoveTo(out.aim);
-    solve_time_ms += out.control.solve_time_ms;
+    out.control = RigidRound(control, out.aim, out.rounds == 1 ? nullptr : &start_controls, &solve_time_ms);
     // Each round's equilibrium starts from the last one: the controls moved little.
     LoadedOptions loaded_options;
     loaded_options.check_held = false;

@@ -11,7 +11,9 @@
 // controls is small against the controls' own effect, so each round shrinks
 // the miss by that ratio; Broyden updates of the aim's correction make the
 // rounds converge superlinearly (5 to 10 rounds to 1e-10 m on a 6-DOF CCMA
-// that deflects by centimetres).
+// that deflects by centimetres). A later round the rigid problem does not
+// reach from the previous round's controls is solved again from the first
+// round's (differential bases: the heading of a tiny move is ill-defined).
 // Units: m, rad, N, N*m.
 #ifndef CCMA_PROBLEMS_COMPENSATED_CONTROL_H_
 #define CCMA_PROBLEMS_COMPENSATED_CONTROL_H_

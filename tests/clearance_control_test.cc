@@ -22,6 +22,7 @@
 #include "problems/forward_problem.h"
 #include "problems/trajectory.h"
 #include "tool_run.h"
+#include "tests/tool_run.h"
 
 namespace ccma {
 namespace clearance_control_test {
@@ -165,7 +166,7 @@ TEST(ClearanceControl, BasesTooCloseForADefaultRadiusAreRefusedNamingTheKey) {
       LoadModelFromString(text + "collision: {base_radius: 0.01}\n" + kFarPillar, "close.yaml"));
   EXPECT_NO_THROW(LoadModelFromString(text + "collision: {ignore: [[left, right]]}\n" + kFarPillar,
                                       "close.yaml"));
-  const std::string dir = ::testing::TempDir();
+  const std::string dir = ccma::testing::TestDir();
   std::ofstream(dir + "/close.yaml") << text;
   std::ofstream(dir + "/far.yaml") << kFarPillar;
   const testing::ToolRun run = testing::RunTool(
@@ -192,7 +193,7 @@ TEST(ClearanceControl, SixAgentsWithAPillarAddedGoRoundItNotThroughEachOther) {
     EXPECT_GE((s.controls.segment<2>(3) - pillar).norm(),
               0.1 + base_radius + model.collision.margin - 1e-9);
   }
-  const std::string dir = ::testing::TempDir();
+  const std::string dir = ccma::testing::TestDir();
   const testing::ToolRun run = testing::RunTool(
       {"trajectory", "--model=" + std::string(CCMA_MODELS_DIR) + "/6dof_six_agents.yaml",
        "--obstacles=" + obstacles,
@@ -294,7 +295,7 @@ TEST(ClearanceControl, APairBelowTheMarginAtTheStartIsNeverMadeWorse) {
 // Every trajectory row's clearance_m is what its controls give, simulated
 // again from home, row after row (the check the contract allows a user).
 TEST(ClearanceControl, TrajectoryCsvRowsCarryTheirClearance) {
-  const std::string dir = ::testing::TempDir();
+  const std::string dir = ccma::testing::TestDir();
   {
     std::ofstream(dir + "/pillar.yaml") << Bundled("6dof_six_agents") << kSixAgentsPillar;
     std::ofstream path(dir + "/path.csv");
@@ -329,7 +330,7 @@ TEST(ClearanceControl, TrajectoryCsvRowsCarryTheirClearance) {
 }
 
 TEST(ClearanceControl, CliReportsClearanceAndNamesTheStoppingPair) {
-  const std::string dir = ::testing::TempDir();
+  const std::string dir = ccma::testing::TestDir();
   { std::ofstream(dir + "/room.yaml") << "obstacles:\n  - {name: pillar, cylinder: {center: [1.0, -0.29], radius: 0.1, height: 1.0}}\n"; }
   const std::string model = std::string(CCMA_MODELS_DIR) + "/4dof_reduced.yaml";
   const testing::ToolRun check = testing::RunTool({"check", "--model=" + model, "--obstacles=" + dir + "/room.yaml"});

@@ -17,6 +17,7 @@
 #include "collision/collision_model.h"
 #include "formats/model_loader.h"
 #include "formats/obstacles_file.h"
+#include "tests/tool_run.h"
 
 namespace ccma {
 namespace clearance_test {
@@ -374,7 +375,7 @@ TEST(CollisionLoader, RejectsMalformedShapesNamingFileLineAndKey) {
 }
 
 TEST(ObstaclesFile, AddsObstaclesAndRejectsOtherKeys) {
-  const std::string dir = ::testing::TempDir();
+  const std::string dir = ccma::testing::TestDir();
   Model model = LoadModel(std::string(CCMA_MODELS_DIR) + "/4dof_reduced.yaml");
   ASSERT_FALSE(model.collision.enabled);
   {

@@ -14,6 +14,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "tests/tool_run.h"
+
 namespace cli_test {
 
 struct ToolRun {
@@ -29,7 +31,7 @@ std::string Slurp(const std::string& path) {
 }
 
 ToolRun Ccma(const std::string& args) {
-  const std::string dir = ::testing::TempDir();
+  const std::string dir = ccma::testing::TestDir();
   // Unique per process: CTest runs these tests in parallel.
   const std::string tag = std::to_string(getpid());
   const std::string out = dir + "/ccma_out_" + tag + ".txt", err = dir + "/ccma_err_" + tag + ".txt";
@@ -43,7 +45,7 @@ std::string Model(const std::string& name) {
 }
 
 std::string WriteFile(const std::string& name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + "/" + std::to_string(getpid()) + "_" + name;
+  const std::string path = ccma::testing::TestDir() + "/" + std::to_string(getpid()) + "_" + name;
   std::ofstream(path) << text;
   return path;
 }
@@ -157,7 +159,7 @@ TEST(Cli, ControlReportsAnUnreachableTarget) {
 }
 
 TEST(Cli, TrajectoryWritesOneRowPerStep) {
-  const std::string out = ::testing::TempDir() + "/" + std::to_string(getpid()) + "_traj.csv";
+  const std::string out = ccma::testing::TestDir() + "/" + std::to_string(getpid()) + "_traj.csv";
   const ToolRun r = Ccma("trajectory " + Model("4dof_complete") + " --waypoints=" + CCMA_MODELS_DIR +
                          "/paths/4dof_combined.csv --out=" + out);
   ASSERT_EQ(r.status, 0) << r.err;
@@ -172,7 +174,7 @@ TEST(Cli, TrajectoryWritesOneRowPerStep) {
 }
 
 TEST(Cli, GenerateWritesAModelThatChecks) {
-  const std::string out = ::testing::TempDir() + "/" + std::to_string(getpid()) + "_gen.yaml";
+  const std::string out = ccma::testing::TestDir() + "/" + std::to_string(getpid()) + "_gen.yaml";
   ASSERT_EQ(Ccma("generate --agents=12 --out=" + out).status, 0);
   const ToolRun r = Ccma("check --model=" + out);
   ASSERT_EQ(r.status, 0) << r.err;
@@ -184,7 +186,7 @@ TEST(Cli, GenerateWritesAModelThatChecks) {
 }
 
 TEST(Cli, BenchPrintsTheStudyAndWritesItsFiles) {
-  const std::string dir = ::testing::TempDir() + "/" + std::to_string(getpid()) + "_bench";
+  const std::string dir = ccma::testing::TestDir() + "/" + std::to_string(getpid()) + "_bench";
   const ToolRun r = Ccma("bench " + Model("4dof_reduced") + " --steps=2 --out=" + dir);
   ASSERT_EQ(r.status, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
@@ -212,7 +214,7 @@ TEST(Cli, BenchPrintsTheStudyAndWritesItsFiles) {
 }
 
 TEST(Cli, ReplayWritesSimulationLabelledOutputs) {
-  const std::string dir = ::testing::TempDir() + "/" + std::to_string(getpid()) + "_replay";
+  const std::string dir = ccma::testing::TestDir() + "/" + std::to_string(getpid()) + "_replay";
   const ToolRun r = Ccma("replay " + Model("4dof_complete") + " --waypoints=" + CCMA_MODELS_DIR +
                          "/paths/4dof_combined.csv --out=" + dir + " --noise=none");
   ASSERT_EQ(r.status, 0) << r.err;

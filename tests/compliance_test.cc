@@ -27,6 +27,7 @@
 #include "problems/internal/compliant_equilibrium.h"
 #include "model_text.h"
 #include "tool_run.h"
+#include "tests/tool_run.h"
 
 namespace ccma {
 namespace compliance_test {
@@ -304,7 +305,7 @@ TEST(Compliance, LoadsAndSpringsDoNoWorkAlongAllowedMotions) {
 // still spins freely, which moves the end-effector: not held, said in a flag
 // and a warning, no stiffness, and no NaN anywhere.
 TEST(Compliance, AMechanismItsSpringsDoNotHoldIsReportedWithoutNaN) {
-  const std::string path = ::testing::TempDir() + "/free_arm.yaml";
+  const std::string path = ccma::testing::TestDir() + "/free_arm.yaml";
   std::ofstream(path) << "name: free_arm\nbodies:\n  - {name: post, position: [0, 0, 0.5]}\n"
                          "  - {name: arm, position: [0.3, 0, 1.0], mass: 1}\nmobile_bases:\n"
                          "  - {name: base0, type: omni, actuation: complete, pose: [0, 0, 0], stiffness: [2.0e4, 2.0e4, "
@@ -408,7 +409,7 @@ TEST(Compliance, RigidModelsReportNoComplianceKeys) {
 }
 
 TEST(Compliance, TheToolReportsTheComplianceKeys) {
-  const std::string path = ::testing::TempDir() + "/cantilever_tool.yaml";
+  const std::string path = ccma::testing::TestDir() + "/cantilever_tool.yaml";
   std::ofstream(path) << Cantilever(2e3, 0.3, "{rotation: 5000}", 1.2);
   const testing::ToolRun run = testing::RunTool({"statics", "--model=" + path, "--wrench=0,0,-7,0,0,0"});
   ASSERT_EQ(run.status, 0) << run.err;

@@ -15,6 +15,7 @@
 #include "problems/internal/end_effector_error.h"
 #include "problems/trajectory.h"
 #include "ccma/internal/dense_factorizations.h"
+#include "tests/tool_run.h"
 
 namespace ccma {
 namespace control_test {
@@ -214,7 +215,7 @@ TEST(Control, FiniteDifferenceGradientsReachTheSameControls) {
 }
 
 TEST(Waypoints, MalformedFilesNameTheLine) {
-  const std::string path = ::testing::TempDir() + "/" + std::to_string(getpid()) + "_bad.csv";
+  const std::string path = ccma::testing::TestDir() + "/" + std::to_string(getpid()) + "_bad.csv";
   auto error_of = [&](const std::string& text) {
     std::ofstream(path) << text;
     try {

@@ -183,7 +183,7 @@ TEST(PayloadCapacity, PutsTheLimitingEffortOnItsLimit) {
 // stdout); an objective the model cannot define is a warning, not a value.
 TEST(DesignObjectiveCommand, RaisesThePayloadOfTheExample) {
   const std::string examples = std::string(CCMA_MODELS_DIR) + "/../examples/statics/";
-  const std::string out = ::testing::TempDir() + "/payload_designed.yaml";
+  const std::string out = ccma::testing::TestDir() + "/payload_designed.yaml";
   const testing::ToolRun run = testing::RunTool(
       {"design", "--model=" + examples + "4dof_payload.yaml", "--targets=" + examples + "4dof_payload_targets.csv",
        "--out=" + out, "--objective=payload", "--vary_length=joint2:joint1,joint5:joint4,joint8:joint7",

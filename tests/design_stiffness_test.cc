@@ -228,7 +228,7 @@ double MostCompliant(const std::string& model) {
 // "Design for stiffness"); `ccma statics` on the written model confirms it
 // at home (the first target).
 TEST(StiffnessDesignCommand, StiffensTheExampleAndStaticsConfirmsIt) {
-  const std::string out = ::testing::TempDir() + "/stiffness_designed.yaml";
+  const std::string out = ccma::testing::TestDir() + "/stiffness_designed.yaml";
   const testing::ToolRun run = testing::RunTool(
       {"design", "--model=" + ExamplePath("stewart_gough_compliant.yaml"),
        "--targets=" + ExamplePath("stewart_gough_compliant_targets.csv"), "--out=" + out, "--objective=stiffness",
@@ -249,7 +249,7 @@ TEST(StiffnessDesignCommand, StiffensTheExampleAndStaticsConfirmsIt) {
 TEST(StiffnessDesignCommand, RigidModelIsRefused) {
   const testing::ToolRun run = testing::RunTool(
       {"design", "--model=" + std::string(CCMA_MODELS_DIR) + "/4dof_reduced.yaml",
-       "--targets=" + ExamplePath("4dof_payload_targets.csv"), "--out=" + ::testing::TempDir() + "/rigid.yaml",
+       "--targets=" + ExamplePath("4dof_payload_targets.csv"), "--out=" + ccma::testing::TestDir() + "/rigid.yaml",
        "--objective=deflection", "--vary=joint0.x"});
   EXPECT_EQ(run.status, 2);
   EXPECT_EQ(run.out, "");
@@ -266,7 +266,7 @@ namespace design_stiffness_test {
 // 1 / `ccma statics`' most_compliant at that sample's controls where
 // reached, 0 where not; a rigid model's map has no such column.
 TEST(WorkspaceStiffnessColumn, IsStaticsMostCompliantInverted) {
-  const std::string csv = ::testing::TempDir() + "/stiffness_map.csv";
+  const std::string csv = ccma::testing::TestDir() + "/stiffness_map.csv";
   // z up to 0.75: beyond the legs' 0.1 m stroke, so some samples are unreachable.
   testing::ToolRun r = testing::RunTool({"workspace", "--model=" + ExamplePath("stewart_gough_compliant.yaml"),
                                          "--x=-0.05:0.05", "--z=0.45:0.75", "--resolution=3", "--out=" + csv});

@@ -250,7 +250,7 @@ class DesignExample : public ::testing::TestWithParam<std::string> {};
 TEST_P(DesignExample, LengthensThePostsSoThatHighTargetsBecomeReachable) {
   const std::string models = CCMA_MODELS_DIR;
   const std::string targets_path = models + "/targets/4dof_high_z.csv";
-  const std::string out = ::testing::TempDir() + "/design_4dof_high_z.yaml";
+  const std::string out = ccma::testing::TestDir() + "/design_4dof_high_z.yaml";
   const ToolRun r = RunTool({"design", "--model=" + models + "/4dof_reduced.yaml", "--targets=" + targets_path,
                              "--out=" + out, GetParam()});
   ASSERT_EQ(r.status, 0) << r.err;
@@ -300,7 +300,7 @@ TEST(DesignCommand, RejectsBadInputNamingTheFlag) {
   const std::string models = CCMA_MODELS_DIR;
   const std::string model = "--model=" + models + "/4dof_reduced.yaml";
   const std::string targets = "--targets=" + models + "/targets/4dof_high_z.csv";
-  const std::string out = "--out=" + ::testing::TempDir() + "/design_bad.yaml";
+  const std::string out = "--out=" + ccma::testing::TestDir() + "/design_bad.yaml";
   struct Case {
     std::vector<std::string> args;
     std::string expected;
@@ -329,11 +329,11 @@ TEST(DesignCommand, RejectsBadInputNamingTheFlag) {
 TEST(DesignCommand, AByteOrderMarkChangesNothing) {
   const std::string models = CCMA_MODELS_DIR;
   const std::string plain_model = models + "/4dof_reduced.yaml";
-  const std::string bom_model = ::testing::TempDir() + "/design_bom.yaml";
+  const std::string bom_model = ccma::testing::TestDir() + "/design_bom.yaml";
   const std::string bom = "\xEF\xBB\xBF";
   std::ofstream(bom_model, std::ios::binary) << bom << Slurp(plain_model);
-  const std::string plain_out = ::testing::TempDir() + "/design_plain_out.yaml";
-  const std::string bom_out = ::testing::TempDir() + "/design_bom_out.yaml";
+  const std::string plain_out = ccma::testing::TestDir() + "/design_plain_out.yaml";
+  const std::string bom_out = ccma::testing::TestDir() + "/design_bom_out.yaml";
   const std::string targets = "--targets=" + models + "/targets/4dof_high_z.csv";
   const std::string vary = "--vary=joint1.z,joint4.z,joint7.z";
   const ToolRun plain = RunTool({"design", "--model=" + plain_model, targets, "--out=" + plain_out, vary});
@@ -354,13 +354,13 @@ TEST(DesignCommand, AByteOrderMarkChangesNothing) {
 // minute, a directory or a missing folder as --out is refused at once.
 TEST(DesignCommand, ABadOutIsRefusedBeforeTheRun) {
   const std::string models = CCMA_MODELS_DIR;
-  const std::string targets = ::testing::TempDir() + "/design_many_targets.csv";
+  const std::string targets = ccma::testing::TestDir() + "/design_many_targets.csv";
   {
     std::ofstream csv(targets);
     csv << "time,x,y,z,roll,pitch,yaw\n";
     for (int i = 0; i < 150; ++i) csv << i << ",0," << 0.0002 * i << ",0.95,0,0,0\n";
   }
-  const std::string dir = ::testing::TempDir() + "/design_out_dir";
+  const std::string dir = ccma::testing::TestDir() + "/design_out_dir";
   std::filesystem::create_directories(dir);
   for (const auto& [out, expected] : std::vector<std::pair<std::string, std::string>>{
            {dir, "is a directory"}, {dir + "/missing/new.yaml", "cannot write"}}) {

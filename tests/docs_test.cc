@@ -30,6 +30,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/tool_run.h"
+
 namespace docs_test {
 
 struct ToolRun {
@@ -45,7 +47,7 @@ std::string Slurp(const std::string& path) {
 }
 
 std::string TempPath(const std::string& name) {
-  return ::testing::TempDir() + "/docs_test_" + std::to_string(getpid()) + "_" + name;
+  return ccma::testing::TestDir() + "/docs_test_" + std::to_string(getpid()) + "_" + name;
 }
 
 // Runs the tool (fork/exec, no shell) with stdout and stderr in files.

@@ -559,7 +559,7 @@ TEST(ExportCommand, BadInputExitsTwoWithNothingOnStdout) {
       {"export", "--model=" + testing::ModelPath("4dof_reduced"), "--out=" + out},
       {"export", "--model=" + testing::ModelPath("4dof_reduced"), "--format=urdf"},
       {"export", "--model=/nonexistent.yaml", "--format=sdf", "--out=" + out},
-      {"export", "--model=" + testing::ModelPath("4dof_reduced"), "--format=urdf", "--out=" + ::testing::TempDir()}};
+      {"export", "--model=" + testing::ModelPath("4dof_reduced"), "--format=urdf", "--out=" + ccma::testing::TestDir()}};
   for (const auto& args : cases) {
     const testing::ToolRun run = testing::RunTool(args);
     EXPECT_EQ(run.status, 2) << args[2] << " " << args.back();

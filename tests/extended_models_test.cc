@@ -29,6 +29,7 @@
 #include "ccma/rotation.h"
 #include "ccma/state.h"
 #include "problems/forward_problem.h"
+#include "tests/tool_run.h"
 
 namespace ccma {
 namespace extended_models_test {
@@ -441,7 +442,7 @@ struct ToolRun {
 
 ToolRun Ccma(const std::string& args) {
   const std::string tag = std::to_string(getpid());
-  const std::string out = ::testing::TempDir() + "/ext_out_" + tag, err = ::testing::TempDir() + "/ext_err_" + tag;
+  const std::string out = ccma::testing::TestDir() + "/ext_out_" + tag, err = ccma::testing::TestDir() + "/ext_err_" + tag;
   const int raw = std::system((std::string(CCMA_TOOL_PATH) + " " + args + " >" + out + " 2>" + err).c_str());
   auto slurp = [](const std::string& path) {
     std::ifstream in(path);

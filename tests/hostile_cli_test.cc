@@ -18,6 +18,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "tests/tool_run.h"
+
 namespace hostile_cli_test {
 
 namespace fs = std::filesystem;
@@ -37,7 +39,7 @@ std::string Slurp(const std::string& path) {
 
 // Runs the tool with an argument vector (no shell), killed after `timeout_s`.
 ToolRun Ccma(const std::vector<std::string>& args, int timeout_s = 60) {
-  const std::string dir = ::testing::TempDir();
+  const std::string dir = ccma::testing::TestDir();
   const std::string tag = std::to_string(getpid());
   const std::string out = dir + "/hostile_out_" + tag, err = dir + "/hostile_err_" + tag;
   const auto start = std::chrono::steady_clock::now();
@@ -69,7 +71,7 @@ std::string ModelFlag(const std::string& name) {
 }
 
 std::string Scratch(const std::string& name) {
-  const std::string dir = ::testing::TempDir() + "/hostile_" + std::to_string(getpid());
+  const std::string dir = ccma::testing::TestDir() + "/hostile_" + std::to_string(getpid());
   fs::create_directories(dir);
   return dir + "/" + name;
 }

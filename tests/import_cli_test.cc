@@ -25,7 +25,7 @@ const std::string kRobots = std::string(CCMA_MODELS_DIR) + "/robots/example-para
 class ImportCli : public ::testing::Test {
  protected:
   ImportCli() {
-    dir_ = std::filesystem::path(::testing::TempDir()) /
+    dir_ = std::filesystem::path(ccma::testing::TestDir()) /
            ("ccma_import_" + std::to_string(::getpid()) + "_" +
             ::testing::UnitTest::GetInstance()->current_test_info()->name());
     std::filesystem::create_directories(dir_);

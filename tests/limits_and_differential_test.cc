@@ -21,6 +21,7 @@
 #include "problems/control_problem.h"
 #include "problems/trajectory.h"
 #include "tests/hinge_model.h"
+#include "tests/tool_run.h"
 
 namespace ccma {
 namespace limits_and_differential_test {
@@ -123,7 +124,7 @@ TEST(JointLimits, AStopReturnsTheLastAssembledConfiguration) {
 
 TEST(JointLimits, EveryTrajectoryRowKeepsTheLimits) {
   const Model model = LoadModelFromString(kHinge, "hinge.yaml");
-  const std::string waypoints = ::testing::TempDir() + "/hinge_path_" + std::to_string(::getpid()) + ".csv";
+  const std::string waypoints = ccma::testing::TestDir() + "/hinge_path_" + std::to_string(::getpid()) + ".csv";
   // Up past the upper limit, then down past the lower one.
   std::ofstream(waypoints) << "time,x,y,z,roll,pitch,yaw\n0,0,0.2,0.3,0,0,0\n1,0,0.17,0.4,0,0,0\n2,0,0.19,0.22,0,0,0\n";
   ControlProblem control(model);

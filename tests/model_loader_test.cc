@@ -26,6 +26,7 @@
 #include "ccma/rotation.h"
 #include "bundled_models.h"
 #include "tests/model_text.h"
+#include "tests/tool_run.h"
 
 namespace ccma {
 namespace model_loader_test {
@@ -247,7 +248,7 @@ TEST(ModelLoader, RepeatedKeysNameBothLines) {
             "bad.yaml:19: key 'axis' given twice in one mapping (first at line 18); remove one");
   EXPECT_NE(ErrorOf(std::string(kValid) + "x-anchor: &a {k: 1, k: 2}\nx-alias: *a\n").find("key 'k' given twice"),
             std::string::npos);
-  const std::string dir = ::testing::TempDir();
+  const std::string dir = ccma::testing::TestDir();
   std::ofstream(dir + "/twice_obstacles.yaml") << obstacles << obstacles;
   Model model = LoadModelFromString(kValid, "tiny.yaml");
   try {
@@ -294,7 +295,7 @@ TEST(ModelLoader, LoadsEveryReferenceModel) {
 class ScratchDir {
  public:
   ScratchDir() {
-    path_ = std::filesystem::path(::testing::TempDir()) /
+    path_ = std::filesystem::path(ccma::testing::TestDir()) /
             ("ccma_loader_" + std::to_string(::getpid()) + "_" + std::to_string(counter_++));
     std::filesystem::create_directories(path_);
   }

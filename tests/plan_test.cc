@@ -19,6 +19,7 @@
 #include "problems/plan.h"
 #include "problems/trajectory.h"
 #include "tool_run.h"
+#include "tests/tool_run.h"
 
 namespace ccma {
 namespace plan_test {
@@ -210,7 +211,7 @@ TEST(Plan, TimeBoundStopsTheOptimisationAndProgressIsReported) {
             std::vector<std::string>({"greedy walk", "detour seeds", "optimisation", "finishing"}));
   for (size_t i = 1; i < seen.size(); ++i) EXPECT_GE(seen[i].elapsed_s, seen[i - 1].elapsed_s);
 
-  const std::string dir = ::testing::TempDir();
+  const std::string dir = ccma::testing::TestDir();
   const testing::ToolRun run =
       testing::RunTool({"plan", "--model=" + kExamples + "pillar_detour.yaml",
                         "--waypoints=" + kExamples + "one_metre_x.csv",
@@ -248,7 +249,7 @@ TEST(Plan, RefusesWhatItDoesNotHandle) {
 }
 
 TEST(Plan, CliWritesTheTrajectoryCsvAndSaysWhichItKept) {
-  const std::string dir = ::testing::TempDir();
+  const std::string dir = ccma::testing::TestDir();
   const testing::ToolRun run =
       testing::RunTool({"plan", "--model=" + kExamples + "pillar_detour.yaml",
                         "--waypoints=" + kExamples + "one_metre_x.csv", "--out=" + dir + "/plan.csv"});

@@ -1,6 +1,7 @@
 // apps/plots.h: gnuplot started without a shell, strings quoted so that no
 // input can run a command, and the replay's plots and report.
 #include "apps/plots.h"
+#include "tests/tool_run.h"
 
 #include <unistd.h>
 
@@ -30,7 +31,7 @@ std::string Slurp(const fs::path& path) {
 
 // A fresh, empty folder per test.
 fs::path FreshDir(const std::string& name) {
-  const fs::path dir = fs::path(::testing::TempDir()) / ("plots_test_" + std::to_string(getpid()) + "_" + name);
+  const fs::path dir = fs::path(ccma::testing::TestDir()) / ("plots_test_" + std::to_string(getpid()) + "_" + name);
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
@@ -141,7 +142,7 @@ TEST(RunGnuplot, GnuplotNotOnThePathIsReported) {
   const std::string saved = old != nullptr ? old : "";
   setenv("PATH", "/nonexistent_dir_for_ccma_test", 1);
   const std::string found = FindGnuplot();
-  const std::string error = RunGnuplot("print 1\n", ::testing::TempDir());
+  const std::string error = RunGnuplot("print 1\n", ccma::testing::TestDir());
   setenv("PATH", saved.c_str(), 1);
   EXPECT_EQ(found, "");
   EXPECT_NE(error.find("gnuplot not found"), std::string::npos) << error;

@@ -17,6 +17,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "tests/tool_run.h"
+
 namespace replay_cli_test {
 
 namespace fs = std::filesystem;
@@ -35,7 +37,7 @@ std::string Slurp(const fs::path& path) {
 }
 
 fs::path FreshDir(const std::string& name) {
-  const fs::path dir = fs::path(::testing::TempDir()) / ("replay_cli_" + std::to_string(getpid()) + "_" + name);
+  const fs::path dir = fs::path(ccma::testing::TestDir()) / ("replay_cli_" + std::to_string(getpid()) + "_" + name);
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;

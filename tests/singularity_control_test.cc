@@ -18,6 +18,7 @@
 #include "problems/internal/end_effector_error.h"
 #include "ccma/internal/dense_factorizations.h"
 #include "tool_run.h"
+#include "tests/tool_run.h"
 
 namespace ccma {
 namespace singularity_control_test {
@@ -480,12 +481,12 @@ TEST(SingularityCli, ControlFlagsReachTheTiltedTargetAndReportSigmaOnThePath) {
 // the path: the tilt as one waypoint, both barriers on.
 TEST(SingularityCli, TrajectoryTakesTheBarriersAndReportsConditioning) {
   const std::string model = std::string(CCMA_MODELS_DIR) + "/6dof_symmetric.yaml";
-  const std::string waypoints = ::testing::TempDir() + "/tilt_waypoints.csv";
+  const std::string waypoints = ccma::testing::TestDir() + "/tilt_waypoints.csv";
   {
     std::ofstream f(waypoints);
     f << "time,x,y,z,roll,pitch,yaw\n0,0,0,0.6,0,0,0\n1,0,0,0.6,0,0.44,0\n";
   }
-  const std::string out = ::testing::TempDir() + "/tilt_trajectory.csv";
+  const std::string out = ccma::testing::TestDir() + "/tilt_trajectory.csv";
   const testing::ToolRun r = testing::RunTool({"trajectory", "--model=" + model, "--waypoints=" + waypoints,
                                                "--out=" + out, "--singularity_weight=1", "--singularity_threshold=0.6",
                                                "--pivot_weight=1", "--pivot_threshold=0.002"});

@@ -21,6 +21,7 @@
 #include "problems/forward_problem.h"
 #include "ccma/internal/dense_factorizations.h"
 #include "tool_run.h"
+#include "tests/tool_run.h"
 
 namespace ccma {
 namespace statics_test {
@@ -338,7 +339,7 @@ TEST(Statics, StewartLegForcesAreTheInverseTransposedJacobianOfTheWrench) {
 // beyond a 10 N limit: no payload is safe. The capacity is 0 (never
 // negative), names the leg it breaks and says by how much.
 TEST(Statics, PayloadCapacityIsZeroWhenTheUnloadedMechanismBreaksALimit) {
-  const std::string dir = ::testing::TempDir();
+  const std::string dir = ccma::testing::TestDir();
   std::ofstream(dir + "/heavy_tripod.yaml") << Tripod(3.0, ", effort_limits: [-10, 10]");
   const testing::ToolRun run = testing::RunTool({"statics", "--model=" + dir + "/heavy_tripod.yaml"});
   ASSERT_EQ(run.status, 0) << run.err;
@@ -360,7 +361,7 @@ TEST(Statics, PayloadCapacityIsZeroWhenTheUnloadedMechanismBreaksALimit) {
 }
 
 TEST(Statics, TrajectoryRowsCarryTheEfforts) {
-  const std::string dir = ::testing::TempDir();
+  const std::string dir = ccma::testing::TestDir();
   {
     std::ofstream(dir + "/tripod.yaml") << Tripod(3.0, ", effort_limits: [-20, 20]");
     std::ofstream(dir + "/path.csv") << "time,x,y,z,roll,pitch,yaw\n1,0,0,1.05,0,0,0\n";

@@ -9,6 +9,7 @@
 #include "formats/model_loader.h"
 #include "tests/model_text.h"
 #include "tool_run.h"
+#include "tests/tool_run.h"
 
 namespace ccma {
 namespace stiffness_keys_test {
@@ -118,7 +119,7 @@ TEST(StiffnessKeys, APrismaticJointTakesTwoTranslations) {
 }
 
 TEST(StiffnessKeys, TheToolRefusesAMalformedStiffnessWithExitTwo) {
-  const std::string path = ::testing::TempDir() + "/bad_stiffness.yaml";
+  const std::string path = ccma::testing::TestDir() + "/bad_stiffness.yaml";
   std::ofstream(path) << With("", "", ", stiffness: {rotation: [1, -2, 3]}");
   const testing::ToolRun run = testing::RunTool({"statics", "--model=" + path});
   EXPECT_EQ(run.status, 2);

@@ -63,6 +63,15 @@ inline ToolRun RunTool(const std::vector<std::string>& args, int timeout_s = 120
 // A bundled model file's path (models/NAME.yaml).
 inline std::string ModelPath(const std::string& name) { return std::string(CCMA_MODELS_DIR) + "/" + name + ".yaml"; }
 
+// This test process's own scratch folder, TempDir()/ccma_test_PID (created):
+// ctest runs every test in a process of its own, two at a time, so files in
+// TempDir() itself (path.csv, rows.csv) would be written by two tests at once.
+inline std::string TestDir() {
+  const std::string dir = ::testing::TempDir() + "/ccma_test_" + std::to_string(getpid());
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
 // A path in this test process's own scratch folder TempDir()/PREFIX_PID (created).
 inline std::string ScratchPath(const std::string& prefix, const std::string& name) {
   const std::string dir = ::testing::TempDir() + "/" + prefix + "_" + std::to_string(getpid());

@@ -78,7 +78,7 @@ TEST(ViewFrames, BadFilesNameFileLineAndColumn) {
   EXPECT_THROW(FramesFromTrajectory(model, bad), ViewInputError);  // no control columns
   std::ofstream(bad) << header << "\n" << row << ",1\n";
   EXPECT_THROW(FramesFromTrajectory(model, bad), ViewInputError);  // one cell too many
-  EXPECT_THROW(FramesFromTrajectory(model, ::testing::TempDir()), ViewInputError);  // a directory
+  EXPECT_THROW(FramesFromTrajectory(model, ccma::testing::TestDir()), ViewInputError);  // a directory
   EXPECT_THROW(FramesFromReplay(model, Scratch("no_such_dir")), ViewInputError);
 }
 

@@ -184,7 +184,7 @@ TEST(WorkspaceCloud, BadMapsNameFileLineAndColumn) {
     }
   }
   EXPECT_THROW(CloudFromWorkspaceCsv(model, Scratch("no_such.csv")), ViewInputError);
-  EXPECT_THROW(CloudFromWorkspaceCsv(model, ::testing::TempDir()), ViewInputError);  // a directory
+  EXPECT_THROW(CloudFromWorkspaceCsv(model, ccma::testing::TestDir()), ViewInputError);  // a directory
 }
 
 TEST(WorkspaceCloud, MoreRowsThanAnyMapAreRefused) {

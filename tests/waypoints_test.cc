@@ -14,6 +14,7 @@
 
 #include "ccma/limits.h"
 #include "formats/waypoints.h"
+#include "tests/tool_run.h"
 
 namespace ccma {
 namespace waypoints_test {
@@ -23,7 +24,7 @@ const char kHeader[] = "time,x,y,z,roll,pitch,yaw\n";
 class WaypointFiles : public ::testing::Test {
  protected:
   WaypointFiles() {
-    dir_ = std::filesystem::path(::testing::TempDir()) /
+    dir_ = std::filesystem::path(ccma::testing::TestDir()) /
            ("ccma_waypoints_" + std::to_string(::getpid()) + "_" +
             ::testing::UnitTest::GetInstance()->current_test_info()->name());
     std::filesystem::create_directories(dir_);

@@ -329,7 +329,7 @@ std::vector<std::string> Split(const std::string& line) {
 }
 
 TEST(WorkspaceCli, CsvColumnsAndJsonSummary) {
-  const std::string out = ::testing::TempDir() + "/workspace_cli.csv";
+  const std::string out = ccma::testing::TestDir() + "/workspace_cli.csv";
   const testing::ToolRun r = Ccma({"workspace", "--model=" + ModelFile("4dof_reduced"), "--out=" + out,
                                    "--z=0.5:1.0", "--resolution=3", "--threads=2"});
   ASSERT_EQ(r.status, 0) << r.err;
@@ -365,7 +365,7 @@ TEST(WorkspaceCli, CsvColumnsAndJsonSummary) {
 }
 
 TEST(WorkspaceCli, FarSamplesUnreachableNotAnAbort) {
-  const std::string out = ::testing::TempDir() + "/workspace_far.csv";
+  const std::string out = ccma::testing::TestDir() + "/workspace_far.csv";
   const testing::ToolRun r = Ccma({"workspace", "--model=" + ModelFile("4dof_reduced"), "--out=" + out,
                                    "--x=0:2000", "--z=0.5:0.75", "--resolution=2"});
   ASSERT_EQ(r.status, 0) << r.err;
@@ -386,7 +386,7 @@ TEST(WorkspaceCli, FarSamplesUnreachableNotAnAbort) {
 
 TEST(WorkspaceCli, HostileFlagsExitTwoWithNothingOnStdout) {
   const std::string model = "--model=" + ModelFile("4dof_reduced");
-  const std::string out = "--out=" + ::testing::TempDir() + "/workspace_bad.csv";
+  const std::string out = "--out=" + ccma::testing::TestDir() + "/workspace_bad.csv";
   const std::vector<std::pair<std::vector<std::string>, std::string>> calls = {
       {{"workspace", model, out}, "range"},
       {{"workspace", model, out, "--z=0.5"}, "--z"},
@@ -406,7 +406,7 @@ TEST(WorkspaceCli, HostileFlagsExitTwoWithNothingOnStdout) {
       {{"workspace", model, out, "--z=0:1", "--lambda=3"}, "lambda"},
       {{"workspace", model, "--z=0:1"}, "--out"},
       {{"workspace", out, "--z=0:1"}, "--model"},
-      {{"workspace", model, "--out=" + ::testing::TempDir(), "--z=0:1"}, "out"},
+      {{"workspace", model, "--out=" + ccma::testing::TestDir(), "--z=0:1"}, "out"},
       {{"workspace", model, out, "--z=0:1", "--bogus=1"}, "bogus"},
   };
   for (const auto& [args, word] : calls) {
@@ -420,7 +420,7 @@ TEST(WorkspaceCli, HostileFlagsExitTwoWithNothingOnStdout) {
 }
 
 TEST(WorkspaceCli, PlotsWrittenWhenGnuplotIsPresent) {
-  const std::string dir = ::testing::TempDir() + "/workspace_plots";
+  const std::string dir = ccma::testing::TestDir() + "/workspace_plots";
   const testing::ToolRun r = Ccma({"workspace", "--model=" + ModelFile("4dof_reduced"),
                                    "--out=" + dir + "/w.csv", "--z=0.5:0.95", "--yaw=-0.2:0.2", "--resolution=3",
                                    "--plot=" + dir});
