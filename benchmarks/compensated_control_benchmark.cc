@@ -3,9 +3,11 @@
 // from home, the mechanism assembled again at home before each) on the
 // generated 6-agent CCMA with compliant bases ([2e4, 2e4, 500]) and
 // revolute rotations (2e3 N*m/rad) carrying a 2 kg payload, plain
-// (ControlProblem::MoveTo) and compensated (MoveToCompensated: rounds of
-// MoveTo and loaded equilibria), also as one step of a compensated path
-// (the previous step's aim correction carried over); and the loaded
+// (ControlProblem::MoveTo) and compensated (MoveToCompensated: a MoveTo,
+// then Newton's method on the loaded equilibrium and the controls together,
+// and `held` decided), also as one step of a compensated path
+// (from the previous step's controls, its aim correction and loaded
+// equilibrium carried over: the step from the compensated home); and the loaded
 // equilibrium alone, sparse (the default) and dense. The target:
 // compensated within 2x of plain.
 //   build/benchmarks/compensated_control_benchmark --benchmark_repetitions=5 \
@@ -42,6 +44,7 @@ void BM_ControlStep(benchmark::State& state, Compensation compensation) {
   target.position += Eigen::Vector3d(0.01, 0, 0);
   target.rpy += Eigen::Vector3d(0, 0, 0.01);
   CompensationOptions options;
+  Eigen::VectorXd start = model.home_controls();  // each repetition starts here
   if (compensation == Compensation::kPathStep) {
     // The correction a path's previous step leaves: the one at home.
     const PoseTarget home = control.CurrentPose();
@@ -49,6 +52,7 @@ void BM_ControlStep(benchmark::State& state, Compensation compensation) {
     if (!at_home.converged) state.SkipWithError(at_home.warning.c_str());
     options.aim_offset << at_home.aim.position - home.position, at_home.aim.rpy - home.rpy;
     options.start = at_home.loaded;
+    start = control.controls();  // the previous step's: its loaded equilibrium is options.start
     options.check_held = false;
     options.workspace = NewLoadedWorkspace();  // as the path's (analysed at its first step)
     MoveToCompensated(&control, target, {}, options);
@@ -56,7 +60,7 @@ void BM_ControlStep(benchmark::State& state, Compensation compensation) {
   int rounds = 0;
   for (auto _ : state) {
     state.PauseTiming();
-    control.SetControls(model.home_controls());
+    control.SetControls(start);
     state.ResumeTiming();
     if (compensation != Compensation::kNone) {
       const CompensatedResult r = MoveToCompensated(&control, target, {}, options);

@@ -30,13 +30,23 @@ Eigen::VectorXd GeneralizedLoads(const Model& model, const State& s, const Exter
   return Q;
 }
 
-Eigen::MatrixXd GeneralizedLoadsJacobian(const Model& model, const State& s, const ExternalWrench& wrench) {
-  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(s.tangent_size(), s.tangent_size());
-  ForEachPointForce(model, s, wrench, [&K](int b, const Eigen::Vector3d& r, const Eigen::Vector3d& F) {
+std::vector<Eigen::Matrix3d> GeneralizedLoadsJacobianBlocks(const Model& model, const State& s,
+                                                            const ExternalWrench& wrench) {
+  std::vector<Eigen::Matrix3d> blocks(static_cast<size_t>(s.num_bodies()), Eigen::Matrix3d::Zero());
+  ForEachPointForce(model, s, wrench, [&blocks](int b, const Eigen::Vector3d& r, const Eigen::Vector3d& F) {
     // d(r x F) = (dphi x r) x F = [F]x [r]x dphi; the force and the world
     // moment do not change.
-    K.block<3, 3>(kPoseTangentSize * b, kPoseTangentSize * b) += Skew(F) * Skew(r);
+    blocks[static_cast<size_t>(b)] += Skew(F) * Skew(r);
   });
+  return blocks;
+}
+
+Eigen::MatrixXd GeneralizedLoadsJacobian(const Model& model, const State& s, const ExternalWrench& wrench) {
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(s.tangent_size(), s.tangent_size());
+  const std::vector<Eigen::Matrix3d> blocks = GeneralizedLoadsJacobianBlocks(model, s, wrench);
+  for (size_t b = 0; b < blocks.size(); ++b) {
+    K.block<3, 3>(kPoseTangentSize * static_cast<Eigen::Index>(b), kPoseTangentSize * static_cast<Eigen::Index>(b)) = blocks[b];
+  }
   return K;
 }
 

@@ -6,6 +6,8 @@
 #ifndef CCMA_CCMA_LOADS_H_
 #define CCMA_CCMA_LOADS_H_
 
+#include <vector>
+
 #include <Eigen/Core>
 
 #include "ccma/model.h"
@@ -28,6 +30,10 @@ Eigen::VectorXd GeneralizedLoads(const Model& model, const State& s, const Exter
 // origins turn with the bodies (the forces and the wrench's moment are fixed
 // in the world). Analytic.
 Eigen::MatrixXd GeneralizedLoadsJacobian(const Model& model, const State& s, const ExternalWrench& wrench = {});
+// The same by its only nonzero blocks: per body b, the 3 x 3 block of its
+// moment over its rotation, dQ[6b..6b+3) / dphi_b (num_bodies entries).
+std::vector<Eigen::Matrix3d> GeneralizedLoadsJacobianBlocks(const Model& model, const State& s,
+                                                            const ExternalWrench& wrench = {});
 
 }  // namespace ccma
 

@@ -2,10 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
+#include <utility>
 
 #include "ccma/internal/dense_factorizations.h"
-
 #include "ccma/internal/format.h"
+#include "problems/internal/end_effector_error.h"
+#include "problems/internal/compensated_newton.h"
+#include "problems/internal/compliant_equilibrium.h"
 
 namespace ccma {
 namespace {
@@ -69,6 +74,121 @@ ControlResult RigidRound(ControlProblem* control, const PoseTarget& aim, const E
   return result;
 }
 
+// The aim a corrected round stands for: the rigid end-effector's pose at
+// the controls, on the controlled components.
+void AimAtRigidPose(const ControlProblem& control, PoseTarget* aim) {
+  const PoseTarget rigid = control.CurrentPose();
+  for (int c = 0; c < 6; ++c) {
+    if (!control.forward().model().end_effector.controlled[c]) continue;
+    (c < 3 ? aim->position[c] : aim->rpy[c - 3]) = c < 3 ? rigid.position[c] : rigid.rpy[c - 3];
+  }
+}
+
+// Where a loaded equilibrium is expected after the controls moved the rigid
+// assembly from `rigid_from` to `rigid_to`: the latter deflected as the
+// last equilibrium `loaded` was from the former (each body by the same
+// tangent, the yields kept). Its error is the deflection's change, not the
+// controls' move, so the Newton iteration starts about that much closer.
+LoadedOptions StartFrom(const LoadedEquilibrium& loaded, const State& rigid_from, const State& rigid_to) {
+  LoadedOptions options;
+  State start = rigid_to;
+  start.Plus(loaded.state.Minus(rigid_from));
+  options.start_state = std::move(start);
+  options.start_yields = loaded.yields;
+  return options;
+}
+
+// The Newton finish after the first rigid round
+// (problems/internal/compensated_newton.h): the loaded equilibrium and the
+// controls that put its end-effector on the target, from the round's
+// controls and the loaded configuration expected there (`start`, or the
+// rigid assembly). True when the control problem accepts the controls
+// (ControlProblem::CorrectTo) and the loaded end-effector is on the target
+// (the Newton iteration's last point passed the loaded equilibrium's own
+// tests): out->loaded, miss, aim and rounds are then set.
+bool NewtonFinish(ControlProblem* control, const PoseTarget& target, const ExternalWrench& wrench,
+                  const CompensationOptions& options, const LoadedOptions& start,
+                  const std::shared_ptr<LoadedWorkspace>& workspace, CompensatedResult* out) {
+  const Model& model = control->forward().model();
+  if (!model.compliant() || !control->correctable()) return false;  // (a rigid model's loaded end-effector is its own)
+  const ConstraintSet& set = control->forward().constraints();
+  const std::vector<int> compliant = CompliantEquilibrium::CompliantControls(model);
+  LoadedPoint x{start.start_state ? *start.start_state : control->forward().state(),
+                Eigen::VectorXd::Zero(static_cast<Eigen::Index>(compliant.size()))};
+  for (size_t i = 0; start.start_state && i < compliant.size(); ++i) {
+    x.delta[static_cast<Eigen::Index>(i)] = start.start_yields[compliant[i]];
+  }
+  Eigen::VectorXd u = control->controls();
+  CompensatedNewtonOptions newton;
+  newton.force_tolerance = LoadedOptions().force_tolerance *
+                           (1 + GeneralizedLoads(model, control->forward().state(), wrench).lpNorm<Eigen::Infinity>());
+  newton.error_tolerance = 0.1 * options.tolerance;
+  const CompensatedNewtonResult newton_result =
+      SolveCompensatedNewton(model, set, target, control->effective_controls(), wrench, newton, workspace.get(), &x, &u);
+  if (!newton_result.converged || !control->CorrectTo(u)) return false;
+  LoadedEquilibrium loaded;
+  loaded.converged = true;
+  loaded.iterations = newton_result.iterations;
+  loaded.unbalanced = newton_result.unbalanced;
+  DescribeLoadedPoint(model, control->forward().state(), x, compliant, &loaded);
+  const double miss = Miss(model, target, ComputeEndEffectorPose(model, loaded.state)).cwiseAbs().maxCoeff();
+  if (!(miss <= options.tolerance)) return false;
+  out->loaded = std::move(loaded);
+  out->miss = miss;
+  out->converged = true;
+  ++out->rounds;
+  AimAtRigidPose(*control, &out->aim);
+  out->control.residual_energy = control->forward().Energy();
+  return true;
+}
+
+// Rounds of rigid control and loaded equilibria (the header's method), the
+// first round's rigid control already made: from its loaded equilibrium
+// (started from `first`), the aim moves by Broyden's update until the
+// loaded end-effector is on the target. `start_controls`: those the call
+// began with (RigidRound's retry).
+void Rounds(ControlProblem* control, const PoseTarget& target, const ExternalWrench& wrench,
+            const CompensationOptions& options, LoadedOptions first, const std::shared_ptr<LoadedWorkspace>& workspace,
+            const Eigen::VectorXd& start_controls, double* solve_time_ms, CompensatedResult* out) {
+  const Model& model = control->forward().model();
+  AimUpdate update;
+  LoadedOptions loaded_options = std::move(first);
+  while (true) {
+    loaded_options.check_held = false;
+    loaded_options.workspace = workspace;
+    out->loaded = SolveLoadedEquilibrium(model, control->forward().constraints(), control->forward().state(),
+                                         control->controls(), wrench, loaded_options);
+    if (!out->control.converged || !out->loaded.converged) return;
+    const Eigen::Matrix<double, 6, 1> miss = Miss(model, target, ComputeEndEffectorPose(model, out->loaded.state));
+    out->miss = miss.cwiseAbs().maxCoeff();
+    if (out->miss <= options.tolerance) {
+      out->converged = true;
+      return;
+    }
+    if (out->rounds >= options.max_rounds) return;
+    const Eigen::Matrix<double, 6, 1> step = update.Next(miss);
+    out->aim.position += step.head<3>();
+    out->aim.rpy += step.tail<3>();
+    ++out->rounds;
+    // Each round's equilibrium starts from the last one's deflection, on
+    // the new rigid assembly.
+    const State rigid_before = control->forward().state();
+    out->control = RigidRound(control, out->aim, &start_controls, solve_time_ms);
+    loaded_options = StartFrom(out->loaded, rigid_before, control->forward().state());
+  }
+}
+
+// Why the compensation did not converge.
+std::string Warning(const CompensatedResult& out) {
+  if (!out.control.converged) {
+    return "round " + std::to_string(out.rounds) + ": the rigid end-effector did not reach the compensated aim" +
+           (out.control.warning.empty() ? "" : " (" + out.control.warning + ")");
+  }
+  if (!out.loaded.converged) return "the loaded equilibrium was not found: " + out.loaded.message;
+  return "the loaded end-effector is still " + FormatG(out.miss) + " m or rad from the target after " +
+         std::to_string(out.rounds) + " rounds";
+}
+
 }  // namespace
 
 CompensatedResult MoveToCompensated(ControlProblem* control, const PoseTarget& target, const ExternalWrench& wrench,
@@ -79,48 +199,25 @@ CompensatedResult MoveToCompensated(ControlProblem* control, const PoseTarget& t
   out.aim.position += options.aim_offset.head<3>();
   out.aim.rpy += options.aim_offset.tail<3>();
   double solve_time_ms = 0;
-  AimUpdate update;
   const std::shared_ptr<LoadedWorkspace> workspace = options.workspace ? options.workspace : NewLoadedWorkspace();
+  const State rigid_before = control->forward().state();
   const Eigen::VectorXd start_controls = control->controls();
-  while (out.rounds < options.max_rounds) {
-    ++out.rounds;
-    out.control = RigidRound(control, out.aim, out.rounds == 1 ? nullptr : &start_controls, &solve_time_ms);
-    // Each round's equilibrium starts from the last one: the controls moved little.
-    LoadedOptions loaded_options;
-    loaded_options.check_held = false;
-    loaded_options.workspace = workspace;
-    const LoadedEquilibrium* start = out.rounds > 1 ? &out.loaded : (options.start ? &*options.start : nullptr);
-    if (start && start->converged) {
-      loaded_options.start_state = start->state;
-      loaded_options.start_yields = start->yields;
-    }
-    out.loaded = SolveLoadedEquilibrium(model, control->forward().constraints(), control->forward().state(),
-                                        control->controls(), wrench, loaded_options);
-    if (!out.control.converged || !out.loaded.converged) break;
-    const Eigen::Matrix<double, 6, 1> miss = Miss(model, target, ComputeEndEffectorPose(model, out.loaded.state));
-    out.miss = miss.cwiseAbs().maxCoeff();
-    if (out.miss <= options.tolerance) {
-      out.converged = true;
-      break;
-    }
-    const Eigen::Matrix<double, 6, 1> step = update.Next(miss);
-    out.aim.position += step.head<3>();
-    out.aim.rpy += step.tail<3>();
+  out.rounds = 1;
+  out.control = RigidRound(control, out.aim, nullptr, &solve_time_ms);
+  // The first loaded equilibrium is expected where options.start's
+  // deflection puts the new rigid assembly.
+  LoadedOptions first;
+  if (options.start && options.start->converged && options.start->state.num_bodies() == rigid_before.num_bodies()) {
+    first = StartFrom(*options.start, rigid_before, control->forward().state());
+  }
+  if (!out.control.converged || !NewtonFinish(control, target, wrench, options, first, workspace, &out)) {
+    Rounds(control, target, wrench, options, first, workspace, start_controls, &solve_time_ms, &out);
   }
   out.control.solve_time_ms = solve_time_ms;
   if (options.check_held && out.loaded.converged) {
     DecideHeld(model, control->forward().constraints(), control->controls(), &out.loaded);
   }
-  if (out.converged) return out;
-  if (!out.control.converged) {
-    out.warning = "round " + std::to_string(out.rounds) + ": the rigid end-effector did not reach the compensated aim" +
-                  (out.control.warning.empty() ? "" : " (" + out.control.warning + ")");
-  } else if (!out.loaded.converged) {
-    out.warning = "the loaded equilibrium was not found: " + out.loaded.message;
-  } else {
-    out.warning = "the loaded end-effector is still " + FormatG(out.miss) + " m or rad from the target after " +
-                  std::to_string(out.rounds) + " rounds";
-  }
+  if (!out.converged) out.warning = Warning(out);
   return out;
 }
 

@@ -3,17 +3,25 @@
 // loaded equilibrium, problems/loaded_equilibrium.h) reaches the target; the
 // rigid end-effector is then off target by about the deflection.
 //
-// Method: rounds of the rigid control problem toward an aim that starts at
-// the target, each followed by the loaded equilibrium at its controls; the
-// aim moves by what the loaded end-effector missed (controlled components
-// only, angles wrapped), so the fixed point puts the loaded end-effector on
-// the target. The aim's correction is the deflection, whose change with the
-// controls is small against the controls' own effect, so each round shrinks
-// the miss by that ratio; Broyden updates of the aim's correction make the
-// rounds converge superlinearly (5 to 10 rounds to 1e-10 m on a 6-DOF CCMA
-// that deflects by centimetres). A later round the rigid problem does not
-// reach from the previous round's controls is solved again from the first
-// round's (differential bases: the heading of a tiny move is ill-defined).
+// Method: first the rigid control problem toward an aim (the target plus
+// options.aim_offset), so that the large move gets a control step's limits,
+// branch checks and conditioning; then Newton's method on the loaded
+// equilibrium and the loaded end-effector error together, over the
+// configuration and the effective controls
+// (problems/internal/compensated_newton.h), from where the last loaded
+// equilibrium's deflection puts the new rigid assembly: 3 to 4
+// factorisations, the controls then taken by ControlProblem::CorrectTo
+// (refused on differential bases, under a secondary objective, at a limit).
+// Where that fails, rounds: the rigid control problem toward an aim moved
+// by what the loaded end-effector missed (controlled components only, angles
+// wrapped), each followed by the loaded equilibrium at its controls. The
+// aim's correction is the deflection, whose change with the controls is
+// small against the controls' own effect, so each round shrinks the miss by
+// that ratio; Broyden updates of the aim's correction make the rounds
+// converge superlinearly (5 to 10 rounds to 1e-10 m on a 6-DOF CCMA that
+// deflects by centimetres). A later round the rigid problem does not reach
+// from the previous round's controls is solved again from those the call
+// began with (differential bases: the heading of a tiny move is ill-defined).
 // Units: m, rad, N, N*m.
 #ifndef CCMA_PROBLEMS_COMPENSATED_CONTROL_H_
 #define CCMA_PROBLEMS_COMPENSATED_CONTROL_H_
@@ -52,9 +60,9 @@ struct CompensationOptions {
 
 struct CompensatedResult {
   bool converged = false;      // the loaded end-effector reached the target
-  int rounds = 0;              // rigid control problems solved
-  ControlResult control;       // the last round's (its error is the rigid end-effector's, to the aim)
-  PoseTarget aim;              // the rigid target of the last round
+  int rounds = 0;              // rigid control problems solved, and the Newton finish (one round)
+  ControlResult control;       // the last rigid round's (its error is the rigid end-effector's, to its aim)
+  PoseTarget aim;              // the rigid end-effector's pose the returned controls aim at (controlled components)
   LoadedEquilibrium loaded;    // at the returned controls
   double miss = 0;             // max |target - loaded end-effector| over the controlled components [m or rad]
   std::string warning;         // why it did not converge (empty when it did)

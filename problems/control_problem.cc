@@ -115,6 +115,21 @@ ForwardResult ControlProblem::SetControls(const Eigen::VectorXd& u) {
   return forward_.Assemble(u);
 }
 
+bool ControlProblem::correctable() const {
+  return !workspace_->step_constraints.has_equalities() && !options_.secondary.enabled();
+}
+
+bool ControlProblem::CorrectTo(const Eigen::VectorXd& u) {
+  const StepConstraints& constraints = workspace_->step_constraints;
+  if (!correctable() || u.size() != forward_.controls().size()) return false;
+  const State s0 = forward_.state();
+  const Eigen::VectorXd u0 = forward_.controls();
+  const ForwardResult r = forward_.Assemble(u);
+  if (r.assembled && (constraints.empty() || constraints.Hold(u, forward_.state(), 1e-9))) return true;
+  forward_.Restore(s0, u0);
+  return false;
+}
+
 PoseTarget ControlProblem::CurrentPose() const {
   const EndEffectorPose pose = forward_.end_effector();
   return {pose.position, pose.rpy};

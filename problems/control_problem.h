@@ -182,6 +182,18 @@ class ControlProblem {
   // branch) and makes u the starting controls.
   ForwardResult SetControls(const Eigen::VectorXd& u);
 
+  // Moves the controls straight to u, a correction too small to need a
+  // control step (a compensated control's, problems/compensated_control.h),
+  // when nothing a control step enforces could object: no step constraint
+  // holds equalities (differential arcs), no secondary objective shapes the
+  // redundancy, the mechanism assembles at u and every step constraint
+  // (joint and effort limits, clearance) holds there to 1e-9. Otherwise the
+  // controls and state stay as they were and it returns false.
+  bool CorrectTo(const Eigen::VectorXd& u);
+  // Whether CorrectTo may accept anything: no differential arcs, no
+  // secondary objective.
+  bool correctable() const;
+
   // One outer solve toward `target`, warm-started from the current controls.
   // Throws std::invalid_argument for a target entry that is not finite or
   // outside [-kMaxMagnitude, kMaxMagnitude].

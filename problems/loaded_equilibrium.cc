@@ -141,22 +141,6 @@ bool LoadedSolver::Converge(double t, double tolerance, int* iterations, Point* 
   return false;
 }
 
-// Deflection, body displacements and yields of x against the rigid assembly.
-void Describe(const Model& model, const State& rigid, const Point& x, const std::vector<int>& compliant,
-              LoadedEquilibrium* out) {
-  out->state = x.s;
-  out->yields = Eigen::VectorXd::Zero(model.num_controls());
-  for (size_t i = 0; i < compliant.size(); ++i) out->yields[compliant[i]] = x.delta[static_cast<int>(i)];
-  const EndEffectorPose before = ComputeEndEffectorPose(model, rigid), after = ComputeEndEffectorPose(model, x.s);
-  out->deflection.head<3>() = after.position - before.position;
-  out->deflection.tail<3>() = QuaternionLog(Eigen::Quaterniond(after.rotation * before.rotation.transpose()));
-  out->max_body_m = 0;
-  for (int b = 0; b < model.num_bodies(); ++b) {
-    out->max_body_m = std::max(out->max_body_m, (x.s.p_WB(b) - rigid.p_WB(b)).norm());
-  }
-}
-
-
 // The dense path: load steps of Newton's method with minimum-norm
 // restoration (LoadedSolver), from the rigid assembly. Fills converged,
 // load_fraction, unbalanced, held and message; leaves the point in *x.
@@ -245,6 +229,20 @@ LoadedEquilibrium RigidEquilibrium(const Model& model, const State& rigid) {
 
 }  // namespace
 
+void DescribeLoadedPoint(const Model& model, const State& rigid, const LoadedPoint& x, const std::vector<int>& compliant,
+                         LoadedEquilibrium* out) {
+  out->state = x.s;
+  out->yields = Eigen::VectorXd::Zero(model.num_controls());
+  for (size_t i = 0; i < compliant.size(); ++i) out->yields[compliant[i]] = x.delta[static_cast<int>(i)];
+  const EndEffectorPose before = ComputeEndEffectorPose(model, rigid), after = ComputeEndEffectorPose(model, x.s);
+  out->deflection.head<3>() = after.position - before.position;
+  out->deflection.tail<3>() = QuaternionLog(Eigen::Quaterniond(after.rotation * before.rotation.transpose()));
+  out->max_body_m = 0;
+  for (int b = 0; b < model.num_bodies(); ++b) {
+    out->max_body_m = std::max(out->max_body_m, (x.s.p_WB(b) - rigid.p_WB(b)).norm());
+  }
+}
+
 std::shared_ptr<LoadedWorkspace> NewLoadedWorkspace() { return std::make_shared<LoadedWorkspace>(); }
 
 LoadedEquilibrium SolveLoadedEquilibrium(const Model& model, const State& rigid, const Eigen::VectorXd& u,
@@ -266,10 +264,11 @@ LoadedEquilibrium SolveLoadedEquilibrium(const Model& model, const ConstraintSet
   // Not converged, or a motion no spring resists moves the end-effector: the
   // dense path says which, and how much of the loads the springs hold.
   if (!sparse || !out.held) {
+    if (options.workspace) options.workspace->at_solution = false;  // its factorisation is not at the dense path's point
     out = LoadedEquilibrium{};
     SolveLoadedDense(model, set, rigid, u, wrench, tolerance, options, &x, &out);
   }
-  Describe(model, rigid, x, CompliantEquilibrium::CompliantControls(model), &out);
+  DescribeLoadedPoint(model, rigid, x, CompliantEquilibrium::CompliantControls(model), &out);
   return out;
 }
 

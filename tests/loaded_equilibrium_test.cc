@@ -324,7 +324,8 @@ TEST(LoadedEquilibrium, TheSparseAndTheDensePathsAgree) {
   const Model ccma = CompliantSixDofWithHinges();
   const Model cantilever = LoadModelFromString(Cantilever(2e3, 5e3, 0.3, 1.2), "cantilever.yaml");
   // One workspace for every solve below, of both models: the results are
-  // those of solves with their own.
+  // those of solves with their own, to the equilibrium's tolerance (forces
+  // within 1e-10 of the loads leave the springs 1e-12 m apart).
   LoadedOptions shared;
   shared.workspace = NewLoadedWorkspace();
   for (const auto& [model, wrench] : {std::make_pair(&ccma, w), std::make_pair(&cantilever, Down(600))}) {
@@ -348,8 +349,8 @@ TEST(LoadedEquilibrium, TheSparseAndTheDensePathsAgree) {
     for (int repeat = 0; repeat < 2; ++repeat) {
       const LoadedEquilibrium again = SolveLoadedEquilibrium(*model, forward.state(), forward.controls(), wrench, shared);
       ASSERT_TRUE(again.converged);
-      EXPECT_LT((again.deflection - sparse.deflection).cwiseAbs().maxCoeff(), 1e-12) << model->name;
-      EXPECT_LT((again.yields - sparse.yields).cwiseAbs().maxCoeff(), 1e-12) << model->name;
+      EXPECT_LT((again.deflection - sparse.deflection).cwiseAbs().maxCoeff(), 1e-11) << model->name;
+      EXPECT_LT((again.yields - sparse.yields).cwiseAbs().maxCoeff(), 1e-11) << model->name;
     }
     // Warm: the controls moved a little; start from the equilibrium above.
     Eigen::VectorXd u = forward.controls();

@@ -31,8 +31,9 @@ class KktFactorization {
  public:
   using Sparse = Eigen::SparseMatrix<double>;
 
-  // Factorises the symmetric K (both triangles stored): the LDL^T, or the
-  // LU when the LDL^T fails. False when neither could.
+  // Factorises the symmetric K (its lower triangle is read; the upper may
+  // be stored or not): the LDL^T, or the LU when the LDL^T fails. False when neither could. K must outlive the
+  // next UseLu (it may be factorised in place).
   bool Factorize(const Sparse& K);
   // Factorises the last K by the LU from now on; false when it fails.
   bool UseLu();
@@ -46,7 +47,8 @@ class KktFactorization {
 
  private:
   Sparse pattern_;  // the union of the patterns seen, values 0
-  Sparse padded_;   // the last K on pattern_
+  Sparse padded_;   // the last K on pattern_, where its own pattern differs
+  const Sparse* factorized_ = nullptr;  // the last K or padded_
   Eigen::SimplicialLDLT<Sparse, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt_;
   Eigen::SparseLU<Sparse> lu_;
   bool use_lu_ = false;

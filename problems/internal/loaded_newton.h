@@ -8,7 +8,8 @@
 //   [A          -eps_A I] [mu] = [-g   ]
 // with H = S^T diag(k) S + sum_i w_i Hess(C_i) - dQ/ds (the springs, the
 // preload's geometric stiffness with the previous step's multipliers w, and
-// the loads turning with the bodies), by one sparse LDL^T (KktFactorization:
+// the loads turning with the bodies), assembled block by block into a
+// pattern fixed per model (problems/internal/loaded_kkt.h), by one sparse LDL^T (KktFactorization:
 // its analysis kept in the LoadedWorkspace, an LU where the LDL^T fails),
 // then refines the solution against eps_A = 0. eps_H gives the idle
 // motions (no spring, no rigid row: a leg spinning about its axis) a
@@ -23,6 +24,7 @@
 #ifndef CCMA_PROBLEMS_INTERNAL_LOADED_NEWTON_H_
 #define CCMA_PROBLEMS_INTERNAL_LOADED_NEWTON_H_
 
+#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
@@ -32,16 +34,10 @@
 #include "ccma/model.h"
 #include "ccma/state.h"
 #include "problems/internal/kkt_factorization.h"
+#include "problems/internal/loaded_kkt.h"
 #include "problems/loaded_equilibrium.h"
 
 namespace ccma {
-
-// A configuration of the compliant mechanism: the state and the yield of
-// each compliant control (CompliantEquilibrium::compliant_controls order).
-struct LoadedPoint {
-  State s;
-  Eigen::VectorXd delta;
-};
 
 // The controls the motors' rows see: as commanded plus their yields.
 Eigen::VectorXd CommandedControls(const Eigen::VectorXd& u, const std::vector<int>& compliant,
@@ -57,7 +53,18 @@ void LoadedResiduals(const Model& model, const ConstraintSet& set, const LoadedP
 // The public LoadedOptions::workspace (problems/loaded_equilibrium.h).
 class LoadedWorkspace {
  public:
+  // The KKT matrix's layout and pattern for the model last solved (built
+  // again for another), and its factorisation.
+  std::unique_ptr<LoadedKkt> system;
   KktFactorization kkt;
+  // Whether system and kkt are at the last equilibrium solved (the sparse
+  // path converged there): its sensitivities need no new factorisation
+  // (problems/internal/loaded_sensitivity.h).
+  bool at_solution = false;
+
+  // `system` for `model` with `set` (built when it is another's; the
+  // multipliers then dropped), at_solution cleared: a solve begins.
+  LoadedKkt& SystemFor(const Model& model, const ConstraintSet& set);
   // The last equilibrium's rigid-row multipliers, in the constraint set's
   // row order (w) and in CompliantEquilibrium's A order (mu): the next
   // solve's first Newton matrix weighs the rows' curvature by them.
@@ -69,6 +76,11 @@ struct LoadedNewtonResult {
   int iterations = 0;     // KKT factorisations
   double unbalanced = 0;  // max |force - A^T mu| at the last point [N or N*m]
 };
+
+// out's state, yields, deflection and largest body displacement: x against
+// the rigid assembly `rigid` (compliant: the model's compliant controls).
+void DescribeLoadedPoint(const Model& model, const State& rigid, const LoadedPoint& x, const std::vector<int>& compliant,
+                         LoadedEquilibrium* out);
 
 // Newton's method at the full loads from *x; on convergence *x is the
 // equilibrium (rigid rows within 1e-13), else *x is unchanged.

@@ -1,0 +1,65 @@
+#include "problems/internal/kkt_newton_step.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace ccma {
+namespace {
+
+constexpr int kKktRefinements = 4;
+// A refined KKT solution's residual must be within this of max(1, |rhs|)
+// (N or m): the LU's is about 1e-15 of it, the LDL^T's without pivoting
+// 1e-14 after refinement here; a worse one falls back to the LU. Refinement
+// stops as soon as it is reached.
+constexpr double kKktResidual = 1e-12;
+
+}  // namespace
+
+KktNewtonStep::KktNewtonStep(const LoadedKkt& system) : system_(system) {
+  rhs_.resize(system.size() + system.rigid_rows());
+  rhs_.head(system.size()) = system.force();
+  rhs_.tail(system.rigid_rows()) = -system.g();
+}
+
+bool KktNewtonStep::Solve(KktFactorization* kkt, Eigen::VectorXd* z) const {
+  if (!kkt->Factorize(system_.K())) return false;
+  if (SolveRefined(*kkt, rhs_, z)) return true;
+  return !kkt->uses_lu() && kkt->UseLu() && SolveRefined(*kkt, rhs_, z);
+}
+
+bool KktNewtonStep::SolveAgain(const KktFactorization& kkt, const Eigen::VectorXd& rhs, Eigen::VectorXd* z) const {
+  return SolveRefined(kkt, rhs, z);
+}
+
+void KktNewtonStep::RemoveIdleBias(const KktFactorization& kkt, Eigen::VectorXd* z) const {
+  Eigen::VectorXd bias = Eigen::VectorXd::Zero(z->size());
+  bias.head(system_.size()) = system_.eps_H() * z->head(system_.size());
+  *z += kkt.Solve(bias);
+}
+
+double KktNewtonStep::Unbalanced(const Eigen::VectorXd& mu) const {
+  const Eigen::VectorXd r = system_.force() - system_.A().transpose() * mu;
+  return r.size() > 0 ? r.lpNorm<Eigen::Infinity>() : 0.0;
+}
+
+// z from kkt's factor with up to kKktRefinements steps of iterative
+// refinement against K without eps_A; true when the residual is within
+// kKktResidual of |rhs|.
+bool KktNewtonStep::SolveRefined(const KktFactorization& kkt, const Eigen::VectorXd& rhs, Eigen::VectorXd* z) const {
+  const Eigen::Index m = system_.rigid_rows();
+  *z = kkt.Solve(rhs);
+  const double target = kKktResidual * std::max(1.0, rhs.lpNorm<Eigen::Infinity>());
+  double size = std::numeric_limits<double>::infinity();
+  for (int r = 0; r <= kKktRefinements && z->allFinite(); ++r) {
+    Eigen::VectorXd residual = rhs - system_.K().selfadjointView<Eigen::Lower>() * *z;
+    residual.tail(m) -= kKktRowRegularization * z->tail(m);
+    const double next = residual.lpNorm<Eigen::Infinity>();
+    if (!(next < size)) break;  // refinement has stopped gaining
+    size = next;
+    if (r == kKktRefinements || size <= target) break;
+    *z += kkt.Solve(residual);
+  }
+  return z->allFinite() && size <= target;
+}
+
+}  // namespace ccma

@@ -1,0 +1,60 @@
+// One Newton step of the loaded equilibrium (problems/internal/loaded_newton.h)
+// at an assembled point (problems/internal/loaded_kkt.h): the solve of
+//   K [y; mu] = [force; -g]
+// by the workspace's factorisation, refined against K without eps_A, and
+// the tolerances the iterations that use it share.
+// Units: m, rad, N, N*m.
+#ifndef CCMA_PROBLEMS_INTERNAL_KKT_NEWTON_STEP_H_
+#define CCMA_PROBLEMS_INTERNAL_KKT_NEWTON_STEP_H_
+
+#include <Eigen/Core>
+
+#include "problems/internal/kkt_factorization.h"
+#include "problems/internal/loaded_kkt.h"
+
+namespace ccma {
+
+constexpr double kKktRowTolerance = 1e-13;  // a rigid row that holds [m or rad-like], as the dense path
+// eps_H relative to the stiffest spring: idle motions move by a rounding
+// force over it (1e-13 N over 1e-2 N/m), the Newton steps change by 1e-6 of a
+// spring's stiffness (the iteration's rate, not its fixed point).
+constexpr double kKktIdleStiffness = 1e-6;
+// eps_A against the rigid rows' O(1) entries, refined away.
+constexpr double kKktRowRegularization = 1e-10;
+constexpr double kKktMaxStep = 0.5;  // m or rad per Newton step
+
+class KktNewtonStep {
+ public:
+  // The right-hand side [force; -g] of `system`, assembled with
+  // eps_A = kKktRowRegularization.
+  explicit KktNewtonStep(const LoadedKkt& system);
+
+  // [y; mu] by `kkt` (which keeps its analysis from the previous steps):
+  // factorises K by its LDL^T, or its LU when the LDL^T's refined solution
+  // leaves more than 1e-12 of max(1, |rhs|); false when both fail.
+  bool Solve(KktFactorization* kkt, Eigen::VectorXd* z) const;
+  // K^-1 rhs for another right-hand side, by the factorisation Solve made,
+  // refined the same way; false when it does not reach that accuracy.
+  bool SolveAgain(const KktFactorization& kkt, const Eigen::VectorXd& rhs, Eigen::VectorXd* z) const;
+
+  // One step of refinement against eps_H = 0: z += K^-1 [eps_H y; 0].
+  // eps_H biases a Newton step by eps_H / k (the iteration then gains only
+  // that factor a step, 2e-5 on a 6-agent CCMA); one step squares it. Along
+  // an idle motion (no spring, no rigid row) the step doubles instead, from
+  // a rounding force over eps_H: harmless (1e-11 m), and a mechanism that
+  // is not held is told by the step's length as before.
+  void RemoveIdleBias(const KktFactorization& kkt, Eigen::VectorXd* z) const;
+
+  // max |force - A^T mu|: what the multipliers leave unbalanced.
+  double Unbalanced(const Eigen::VectorXd& mu) const;
+
+ private:
+  bool SolveRefined(const KktFactorization& kkt, const Eigen::VectorXd& rhs, Eigen::VectorXd* z) const;
+
+  const LoadedKkt& system_;
+  Eigen::VectorXd rhs_;
+};
+
+}  // namespace ccma
+
+#endif  // CCMA_PROBLEMS_INTERNAL_KKT_NEWTON_STEP_H_
