@@ -264,7 +264,6 @@ LoadedEquilibrium SolveLoadedEquilibrium(const Model& model, const ConstraintSet
   // Not converged, or a motion no spring resists moves the end-effector: the
   // dense path says which, and how much of the loads the springs hold.
   if (!sparse || !out.held) {
-    if (options.workspace) options.workspace->at_solution = false;  // its factorisation is not at the dense path's point
     out = LoadedEquilibrium{};
     SolveLoadedDense(model, set, rigid, u, wrench, tolerance, options, &x, &out);
   }

@@ -31,6 +31,63 @@ bool ControlInverse(const LoadedKkt& system, const KktFactorization& kkt, const 
   return J_pinv->allFinite();
 }
 
+// The step from the solve z = [y0; mu0] at the point: the controls' du =
+// J^+ (-(e + de/ds y0)) (J_pinv over the effective controls), the
+// configuration's y = y0 + (K^-1 [0; -A_u du])_top, and the multipliers
+// after it.
+struct JointStep {
+  Eigen::VectorXd y, du, mu;
+};
+JointStep StepFrom(const LoadedKkt& system, const KktFactorization& kkt, const Eigen::VectorXd& z,
+                   const Eigen::VectorXd& e, const Eigen::MatrixXd& de_ds, const Eigen::MatrixXd& J_pinv,
+                   const std::vector<int>& effective) {
+  const int n = system.state_size(), N = system.size(), m = system.rigid_rows();
+  JointStep out;
+  const Eigen::VectorXd du_effective = J_pinv * (-(e + de_ds * z.head(n)));
+  out.du.setZero(system.A_u().cols());
+  for (size_t c = 0; c < effective.size(); ++c) out.du[effective[c]] = du_effective[static_cast<Eigen::Index>(c)];
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(z.size());
+  rhs.tail(m) = -system.A_u() * out.du;
+  const Eigen::VectorXd dz = kkt.Solve(rhs);  // (a correction: eps's biases are below the iteration's rate)
+  out.y = z.head(N) + dz.head(N);
+  out.mu = z.tail(m) + dz.tail(m);
+  return out;
+}
+
+// [y0; mu] at the point `system` was last evaluated at: a full step
+// factorises K there; a chord step solves with the last factorisation for
+// the residuals [force - A^T mu_last; -g] and adds the multipliers' change
+// to mu_last. False when the solve fails.
+bool SolveAt(const LoadedKkt& system, bool full, const Eigen::VectorXd& mu_last, KktFactorization* kkt,
+             Eigen::VectorXd* z) {
+  const KktNewtonStep step(system);
+  if (full) {
+    if (!step.Solve(kkt, z)) return false;
+  } else {
+    Eigen::VectorXd rhs = step.rhs();
+    rhs.head(system.size()) -= system.reaction();
+    if (!step.SolveAgain(*kkt, rhs, z)) return false;
+    z->tail(system.rigid_rows()) += mu_last;
+  }
+  step.RemoveIdleBias(*kkt, z);
+  return true;
+}
+
+// What the tests measure at a point: the unbalanced force with the
+// current rows and the multipliers mu (a full step's own; a chord step's
+// the last ones, the certificate its residual was taken with), the rigid
+// rows' residual, the end-effector error e.
+struct Residuals {
+  double unbalanced = 0, rows = 0, miss = 0;
+};
+Residuals ResidualsAt(const LoadedKkt& system, bool chord, const Eigen::VectorXd& mu, const Eigen::VectorXd& e) {
+  Residuals r;
+  r.unbalanced = chord ? (system.force() - system.reaction()).lpNorm<Eigen::Infinity>() : KktNewtonStep(system).Unbalanced(mu);
+  r.rows = system.g().size() > 0 ? system.g().lpNorm<Eigen::Infinity>() : 0.0;
+  r.miss = e.size() > 0 ? e.lpNorm<Eigen::Infinity>() : 0.0;
+  return r;
+}
+
 }  // namespace
 
 CompensatedNewtonResult SolveCompensatedNewton(const Model& model, const ConstraintSet& set, const PoseTarget& target,
@@ -42,55 +99,57 @@ CompensatedNewtonResult SolveCompensatedNewton(const Model& model, const Constra
   const EndEffectorError error(model);
   LoadedPoint trial = *x;
   Eigen::VectorXd u_trial = *u;
-  Eigen::VectorXd w = workspace->w.size() == set.num_rows() ? workspace->w : Eigen::VectorXd::Zero(set.num_rows());
   Eigen::VectorXd mu_last = workspace->mu.size() == system.rigid_rows() ? workspace->mu : Eigen::VectorXd();
   const int n = system.state_size(), N = system.size();
-  double last = std::numeric_limits<double>::infinity();
-  Eigen::VectorXd e, z, dz, du;
+  double last_merit = std::numeric_limits<double>::infinity(), last_size = last_merit;
+  int full_steps = 0, chords = 0;
+  bool full = true;
+  Eigen::VectorXd e, z;
   Eigen::MatrixXd de_ds, J_pinv;
   for (int i = 0; i <= options.max_iterations; ++i) {
-    system.Assemble(model, set, trial, u_trial, wrench, w, mu_last, kKktIdleStiffness * system.stiffest(),
-                    kKktRowRegularization);
-    const KktNewtonStep step(system);
-    if (!step.Solve(&workspace->kkt, &z)) return out;
-    step.RemoveIdleBias(workspace->kkt, &z);
-    const Eigen::VectorXd mu = z.tail(system.rigid_rows());
-    const double unbalanced = step.Unbalanced(mu);
-    const double row_size = system.g().size() > 0 ? system.g().lpNorm<Eigen::Infinity>() : 0.0;
+    const bool chord = !full && mu_last.size() == system.rigid_rows();
+    if (!chord) {
+      const Eigen::VectorXd w = mu_last.size() > 0 ? system.SetOrder(mu_last) : Eigen::VectorXd::Zero(set.num_rows());
+      system.Assemble(model, set, trial, u_trial, wrench, w, mu_last, kKktIdleStiffness * system.stiffest(),
+                      kKktRowRegularization);
+    } else {
+      system.AssembleResiduals(model, set, trial, u_trial, wrench, mu_last);
+    }
+    if (!SolveAt(system, !chord, mu_last, &workspace->kkt, &z)) return out;
     error.Evaluate(trial.s, target, &e, &de_ds);
-    const double miss = e.size() > 0 ? e.lpNorm<Eigen::Infinity>() : 0.0;
-    out.unbalanced = unbalanced;
-    if (unbalanced <= options.force_tolerance && row_size <= kKktRowTolerance && miss <= options.error_tolerance) {
+    const Eigen::VectorXd mu = chord ? mu_last : Eigen::VectorXd(z.tail(system.rigid_rows()));
+    const Residuals r = ResidualsAt(system, chord, mu, e);
+    out.unbalanced = r.unbalanced;
+    if (r.unbalanced <= options.force_tolerance && r.rows <= kKktRowTolerance && r.miss <= options.error_tolerance) {
       out.converged = true;
       *x = std::move(trial);
       *u = std::move(u_trial);
       workspace->mu = mu;
       workspace->w = system.SetOrder(mu);
-      workspace->at_solution = true;
       return out;
     }
-    // Newton converges fast or not at all: a growing merit gives up (the caller falls back to rounds).
-    const double merit = unbalanced / options.force_tolerance + row_size / kKktRowTolerance + miss / options.error_tolerance;
-    if ((i >= 2 && !(merit < 2 * last)) || i == options.max_iterations) return out;
-    last = merit;
-    // du = J^+ (-(e + de/ds y0)), J at this point.
-    if (!ControlInverse(system, workspace->kkt, de_ds, effective, &J_pinv)) return out;
-    const Eigen::VectorXd du_effective = J_pinv * (-(e + de_ds * z.head(n)));
-    du.setZero(system.A_u().cols());
-    for (size_t c = 0; c < effective.size(); ++c) du[effective[c]] = du_effective[static_cast<Eigen::Index>(c)];
-    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(z.size());
-    rhs.tail(system.rigid_rows()) = -system.A_u() * du;
-    dz = workspace->kkt.Solve(rhs);  // (a correction: eps's biases are below the iteration's rate)
-    const Eigen::VectorXd y = z.head(N) + dz.head(N);
-    if (!(y.lpNorm<Eigen::Infinity>() <= kKktMaxStep) || !(du.lpNorm<Eigen::Infinity>() <= options.max_control_step)) {
+    if (!chord) {
+      // Newton converges fast or not at all: a growing merit gives up (the caller falls back to rounds).
+      const double merit = r.unbalanced / options.force_tolerance + r.rows / kKktRowTolerance + r.miss / options.error_tolerance;
+      if ((full_steps++ >= 2 && !(merit < 2 * last_merit)) || i == options.max_iterations) return out;
+      last_merit = merit;
+      if (!ControlInverse(system, workspace->kkt, de_ds, effective, &J_pinv)) return out;
+      chords = 0;
+    }
+    const JointStep next = StepFrom(system, workspace->kkt, z, e, de_ds, J_pinv, effective);
+    const double size = std::max(next.y.lpNorm<Eigen::Infinity>(), next.du.lpNorm<Eigen::Infinity>());
+    if (!(next.y.lpNorm<Eigen::Infinity>() <= kKktMaxStep) || !(next.du.lpNorm<Eigen::Infinity>() <= options.max_control_step)) {
       return out;
     }
     ++out.iterations;
-    trial.s.Plus(y.head(n));
-    trial.delta += y.tail(N - n);
-    u_trial += du;
-    mu_last = mu + dz.tail(system.rigid_rows());
-    w = system.SetOrder(mu_last);
+    trial.s.Plus(next.y.head(n));
+    trial.delta += next.y.tail(N - n);
+    u_trial += next.du;
+    mu_last = next.mu;
+    // Chord steps (the last factorisation, new residuals) while they shrink
+    // at least tenfold; a full step where they stall.
+    full = ++chords > options.max_chords || !(size < 0.1 * last_size);
+    last_size = size;
   }
   return out;
 }

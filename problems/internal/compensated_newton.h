@@ -14,11 +14,21 @@
 //   du = J^+ (-(e + de/ds y0))              minimum norm over the effective controls,
 //   y = y0 + (K^-1 [0; -A_u du])_top        the configuration the new controls move.
 // That is Newton's step on the bordered system with the controls' step of
-// least norm, so it converges quadratically from a start near the solution
-// (a rigid round's controls, the loaded configuration expected there): 3 to
-// 4 factorisations where rounds of rigid control and loaded equilibria took
-// 9 to 12. The caller checks the controls against what a control step
-// enforces (ControlProblem::CorrectTo).
+// least norm. Its rate is about 1e-3 a step (a stretched rotation spring's
+// virtual-work direction differs from its deviation's derivative by the
+// stretch, so the symmetric K is not the exact Jacobian), so the steps
+// after the first are chord steps while they shrink tenfold: the last
+// factorisation against the new residuals [force - A^T mu_last; -g]
+// (LoadedKkt::AssembleResiduals, the rows' Jacobians at the new point), as
+// fast a rate at a fifth of the cost; a full step (assembly, factorisation,
+// sensitivity) where they stall. Every step tests convergence at its point
+// with the loaded equilibrium's own tolerances: the unbalanced force with
+// the current rows and the multipliers of the step's solve (a chord step's:
+// the last ones), the rigid rows, the end-effector error. From a rigid
+// round's controls and the loaded configuration expected there: one
+// factorisation and 3 chord steps, where rounds of rigid control and loaded
+// equilibria took 9 to 12 factorisations. The caller checks the controls
+// against what a control step enforces (ControlProblem::CorrectTo).
 // Units: m, rad, N, N*m.
 #ifndef CCMA_PROBLEMS_INTERNAL_COMPENSATED_NEWTON_H_
 #define CCMA_PROBLEMS_INTERNAL_COMPENSATED_NEWTON_H_
@@ -39,12 +49,13 @@ struct CompensatedNewtonOptions {
   double force_tolerance = 1e-10;  // [N or N*m], as LoadedOptions' (already scaled)
   double error_tolerance = 1e-11;  // max |e| [m or rad]
   double max_control_step = 0.01;  // per step, any control [m or rad]
-  int max_iterations = 8;
+  int max_chords = 6;       // chord steps in a row before a full one
+  int max_iterations = 12;  // steps, chord and full
 };
 
 struct CompensatedNewtonResult {
   bool converged = false;
-  int iterations = 0;     // steps taken (factorisations: one more)
+  int iterations = 0;     // steps taken, full and chord
   double unbalanced = 0;  // max |force - A^T mu| at the last point [N or N*m]
 };
 

@@ -45,6 +45,8 @@ class KktNewtonStep {
   // is not held is told by the step's length as before.
   void RemoveIdleBias(const KktFactorization& kkt, Eigen::VectorXd* z) const;
 
+  const Eigen::VectorXd& rhs() const { return rhs_; }
+
   // max |force - A^T mu|: what the multipliers leave unbalanced.
   double Unbalanced(const Eigen::VectorXd& mu) const;
 

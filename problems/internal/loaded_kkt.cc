@@ -228,39 +228,74 @@ void LoadedKkt::AddPair(int body_a, int body_b, const PairMatrix& local) {
 void LoadedKkt::Assemble(const Model& model, const ConstraintSet& set, const LoadedPoint& x, const Eigen::VectorXd& u,
                          const ExternalWrench& wrench, const Eigen::VectorXd& w, const Eigen::VectorXd& mu,
                          double eps_H, double eps_A) {
+  matrices_ = true;
   K_.coeffs().setZero();
   A_.coeffs().setZero();
-  force_.setZero();
   recording_ = tape_.empty();
   tape_position_ = 0;
   eps_H_ = eps_H;
+  Evaluate(model, set, x, u, wrench, w, mu);
+  for (int i = 0; i < N_; ++i) K_.coeffRef(i, i) += eps_H;
+  for (int i = 0; i < m_; ++i) K_.coeffRef(N_ + i, N_ + i) -= eps_A;
+  if (tape_position_ != (recording_ ? 0 : tape_.size())) throw std::logic_error("loaded KKT: the assembly changed its order");
+}
+
+void LoadedKkt::AssembleResiduals(const Model& model, const ConstraintSet& set, const LoadedPoint& x,
+                                  const Eigen::VectorXd& u, const ExternalWrench& wrench, const Eigen::VectorXd& mu) {
+  matrices_ = false;
+  reaction_.setZero(N_);
+  Evaluate(model, set, x, u, wrench, Eigen::VectorXd(), mu);
+}
+
+void LoadedKkt::Evaluate(const Model& model, const ConstraintSet& set, const LoadedPoint& x, const Eigen::VectorXd& u,
+                         const ExternalWrench& wrench, const Eigen::VectorXd& w, const Eigen::VectorXd& mu) {
+  force_.setZero();
   Eigen::VectorXd u_eff = u;
   for (size_t i = 0; i < compliant_.size(); ++i) u_eff[compliant_[i]] += x.delta[static_cast<Eigen::Index>(i)];
-  AssembleBlocks(set, x.s, u_eff, w);
+  AssembleBlocks(set, x.s, u_eff, w, mu);
   AssembleSprings(model, x.s, mu);
   // The compliant controls' springs: e = delta, k on the diagonal.
   for (size_t i = 0; i < compliant_.size(); ++i) {
     const int d = static_cast<int>(i);
     e_[d] = x.delta[d];
     force_[n_ + d] -= k_[d] * e_[d];
-    K_.valuePtr()[Where(K_, n_ + d, n_ + d)] += k_[d];
+    if (matrices_) K_.valuePtr()[Where(K_, n_ + d, n_ + d)] += k_[d];
   }
   // The loads and how their moments turn with the bodies (-dQ/ds).
   force_.head(n_) += GeneralizedLoads(model, x.s, wrench);
+  if (!matrices_) return;
   const std::vector<Eigen::Matrix3d> turning = GeneralizedLoadsJacobianBlocks(model, x.s, wrench);
   for (size_t b = 0; b < turning.size(); ++b) {
     const Eigen::Matrix3d symmetric = -0.5 * (turning[b] + turning[b].transpose());  // (as the curvature's)
     AddToK(kTan * static_cast<int>(b), kTan * static_cast<int>(b), symmetric);
   }
-  for (int i = 0; i < N_; ++i) K_.coeffRef(i, i) += eps_H;
-  for (int i = 0; i < m_; ++i) K_.coeffRef(N_ + i, N_ + i) -= eps_A;
-  if (tape_position_ != (recording_ ? 0 : tape_.size())) throw std::logic_error("loaded KKT: the assembly changed its order");
+}
+
+// reaction_ += the block's rows' A^T mu (mu in A's order, or empty: none),
+// from its Jacobians (EvaluateInFrames' storage: poses, then controls).
+void LoadedKkt::AddReaction(const ConstraintBlock& block, int a_row, const double* const* jacobians,
+                            const Eigen::VectorXd& mu) {
+  using AmbientJacobian = Eigen::Matrix<double, Eigen::Dynamic, kPoseAmbientSize, Eigen::RowMajor, kMaxKktBlockRows>;
+  using ControlJacobian = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor, kMaxKktBlockRows, kMaxBaseControls>;
+  if (mu.size() == 0) return;
+  const Eigen::VectorXd mu_block = mu.segment(a_row, block.rows);
+  for (int p = 0; p < block.num_poses; ++p) {
+    if (block.bodies[p] == kWorld) continue;
+    const Eigen::Map<const AmbientJacobian> J(jacobians[p], block.rows, kPoseAmbientSize);
+    reaction_.segment<kTan>(kTan * block.bodies[p]).noalias() += J.leftCols<kTan>().transpose() * mu_block;
+  }
+  if (block.control_size == 0) return;
+  const Eigen::Map<const ControlJacobian> J_u(jacobians[block.num_poses], block.rows, block.control_size);
+  for (int c = 0; c < block.control_size; ++c) {
+    const int d = delta_of_control_[static_cast<size_t>(block.control_offset + c)];
+    if (d >= 0) reaction_[n_ + d] += J_u.col(c).dot(mu_block);
+  }
 }
 
 // The constraint blocks that are rigid rows (every block but a compliant
 // joint's own): g, A and the rows' curvature weighted by w.
 void LoadedKkt::AssembleBlocks(const ConstraintSet& set, const State& s, const Eigen::VectorXd& u_eff,
-                               const Eigen::VectorXd& w) {
+                               const Eigen::VectorXd& w, const Eigen::VectorXd& mu) {
   using AmbientJacobian = Eigen::Matrix<double, Eigen::Dynamic, kPoseAmbientSize, Eigen::RowMajor, kMaxKktBlockRows>;
   using ControlJacobian = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor, kMaxKktBlockRows, kMaxBaseControls>;
   BodyFrames frames;
@@ -280,6 +315,10 @@ void LoadedKkt::AssembleBlocks(const ConstraintSet& set, const State& s, const E
     ConstraintSet::BlockFrames(block, frames, block_frames);
     block.framed->EvaluateInFrames(block_frames, params, residuals, jacobians);
     g_.segment(a_row, block.rows) = Eigen::Map<const Eigen::VectorXd>(residuals, block.rows);
+    if (!matrices_) {
+      AddReaction(block, a_row, jacobians, mu);
+      continue;
+    }
     for (int p = 0; p < poses; ++p) {
       if (block.bodies[p] == kWorld) continue;
       const Eigen::Map<const AmbientJacobian> J(jac_storage[p], block.rows, kPoseAmbientSize);
@@ -308,7 +347,7 @@ void LoadedKkt::AssembleSprings(const Model& model, const State& s, const Eigen:
     const SpringDirections d = JointSpringDirections(joint, s);
     const Eigen::VectorXd deviation = JointDeviation(joint, s);
     Eigen::Matrix<double, 6, 1> lambda = Eigen::Matrix<double, 6, 1>::Zero();
-    Eigen::Matrix<double, 12, 1> pull = Eigen::Matrix<double, 12, 1>::Zero();
+    Eigen::Matrix<double, 12, 1> pull = Eigen::Matrix<double, 12, 1>::Zero(), reaction = pull;
     PairMatrix local = PairMatrix::Zero();
     int a = spring.a_row, s_row = spring.s_row;
     for (int i = 0; i < d.rows(); ++i) {
@@ -319,15 +358,23 @@ void LoadedKkt::AssembleSprings(const Model& model, const State& s, const Eigen:
         e_[s_row] = deviation[i];
         lambda[i] = k_[s_row] * e_[s_row];
         pull += D.transpose() * lambda[i];
-        local += k_[s_row] * D.transpose() * D;
+        if (matrices_) local += k_[s_row] * D.transpose() * D;
         ++s_row;
       } else {
         g_[a] = deviation[i];
         lambda[i] = mu.size() > a ? mu[a] : 0.0;
-        if (joint.body_a != kWorld) AddRigid(a, kTan * joint.body_a, D.leftCols<kTan>());
-        if (joint.body_b != kWorld) AddRigid(a, kTan * joint.body_b, D.rightCols<kTan>());
+        if (!matrices_) reaction.noalias() += D.transpose() * lambda[i];
+        if (matrices_ && joint.body_a != kWorld) AddRigid(a, kTan * joint.body_a, D.leftCols<kTan>());
+        if (matrices_ && joint.body_b != kWorld) AddRigid(a, kTan * joint.body_b, D.rightCols<kTan>());
         ++a;
       }
+    }
+    if (joint.body_a != kWorld) force_.segment<kTan>(kTan * joint.body_a) -= pull.head<kTan>();
+    if (joint.body_b != kWorld) force_.segment<kTan>(kTan * joint.body_b) -= pull.tail<kTan>();
+    if (!matrices_) {
+      if (joint.body_a != kWorld) reaction_.segment<kTan>(kTan * joint.body_a) += reaction.head<kTan>();
+      if (joint.body_b != kWorld) reaction_.segment<kTan>(kTan * joint.body_b) += reaction.tail<kTan>();
+      continue;
     }
     // The curvature's symmetric part: its skew part is the rotations' own
     // (world-frame increments compose on the left), 0 at an equilibrium,
@@ -336,8 +383,6 @@ void LoadedKkt::AssembleSprings(const Model& model, const State& s, const Eigen:
         JointCurvature(joint, s, lambda, d.rows(), d.D.topRows(d.rows()).transpose() * lambda.head(d.rows()));
     local += 0.5 * (curvature + curvature.transpose());
     AddPair(joint.body_a, joint.body_b, local);
-    if (joint.body_a != kWorld) force_.segment<kTan>(kTan * joint.body_a) -= pull.head<kTan>();
-    if (joint.body_b != kWorld) force_.segment<kTan>(kTan * joint.body_b) -= pull.tail<kTan>();
   }
 }
 

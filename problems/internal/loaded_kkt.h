@@ -71,6 +71,14 @@ class LoadedKkt {
                 const ExternalWrench& wrench, const Eigen::VectorXd& w, const Eigen::VectorXd& mu, double eps_H,
                 double eps_A);
 
+  // g, e and force at x, and reaction = A(x)^T mu (mu in A's order, the
+  // last multipliers), K, A and A_u left as the last Assemble made them: a
+  // chord step, the last factorisation solving for the new residuals
+  // [force - reaction; -g] and the multipliers' change.
+  void AssembleResiduals(const Model& model, const ConstraintSet& set, const LoadedPoint& x, const Eigen::VectorXd& u,
+                         const ExternalWrench& wrench, const Eigen::VectorXd& mu);
+  const Eigen::VectorXd& reaction() const { return reaction_; }
+
   const Sparse& K() const { return K_; }  // the lower triangle of the symmetric K
   double eps_H() const { return eps_H_; }  // as last assembled
   const RowSparse& A() const { return A_; }
@@ -90,8 +98,13 @@ class LoadedKkt {
   };
 
   static std::vector<double> Signature(const Model& model, const ConstraintSet& set);
+  // The residuals, and with matrices_ K and A, at x.
+  void Evaluate(const Model& model, const ConstraintSet& set, const LoadedPoint& x, const Eigen::VectorXd& u,
+                const ExternalWrench& wrench, const Eigen::VectorXd& w, const Eigen::VectorXd& mu);
   void BuildPattern(const Model& model, const ConstraintSet& set);
-  void AssembleBlocks(const ConstraintSet& set, const State& s, const Eigen::VectorXd& u_eff, const Eigen::VectorXd& w);
+  void AssembleBlocks(const ConstraintSet& set, const State& s, const Eigen::VectorXd& u_eff, const Eigen::VectorXd& w,
+                      const Eigen::VectorXd& mu);
+  void AddReaction(const ConstraintBlock& block, int a_row, const double* const* jacobians, const Eigen::VectorXd& mu);
   void AssembleSprings(const Model& model, const State& s, const Eigen::VectorXd& mu);
   // Where entry (row, col) of K (or of A) is in its values: found in the
   // pattern by the first assembly, which records the places in the order it
@@ -123,7 +136,8 @@ class LoadedKkt {
   std::vector<int> tape_;
   size_t tape_position_ = 0;
   bool recording_ = true;
-  Eigen::VectorXd g_, e_, force_;
+  bool matrices_ = true;  // Assemble (true) or AssembleResiduals
+  Eigen::VectorXd g_, e_, force_, reaction_;
 };
 
 }  // namespace ccma

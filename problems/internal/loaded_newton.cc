@@ -53,7 +53,6 @@ LoadedKkt& LoadedWorkspace::SystemFor(const Model& model, const ConstraintSet& s
     w.resize(0);
     mu.resize(0);
   }
-  at_solution = false;
   return *system;
 }
 
@@ -86,7 +85,6 @@ LoadedNewtonResult SolveLoadedNewton(const Model& model, const ConstraintSet& se
       *x = std::move(trial);
       workspace->mu = mu;
       workspace->w = system.SetOrder(mu);
-      workspace->at_solution = true;
       return out;
     }
     // Newton converges fast or not at all: a growing imbalance hands over to the dense path.

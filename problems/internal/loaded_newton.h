@@ -57,13 +57,9 @@ class LoadedWorkspace {
   // again for another), and its factorisation.
   std::unique_ptr<LoadedKkt> system;
   KktFactorization kkt;
-  // Whether system and kkt are at the last equilibrium solved (the sparse
-  // path converged there): its sensitivities need no new factorisation
-  // (problems/internal/loaded_sensitivity.h).
-  bool at_solution = false;
 
   // `system` for `model` with `set` (built when it is another's; the
-  // multipliers then dropped), at_solution cleared: a solve begins.
+  // multipliers then dropped).
   LoadedKkt& SystemFor(const Model& model, const ConstraintSet& set);
   // The last equilibrium's rigid-row multipliers, in the constraint set's
   // row order (w) and in CompliantEquilibrium's A order (mu): the next
