@@ -120,8 +120,7 @@ bool NewtonFinish(ControlProblem* control, const PoseTarget& target, const Exter
   }
   Eigen::VectorXd u = control->controls();
   CompensatedNewtonOptions newton;
-  newton.force_tolerance = LoadedOptions().force_tolerance *
-                           (1 + GeneralizedLoads(model, control->forward().state(), wrench).lpNorm<Eigen::Infinity>());
+  newton.tolerances = LoadedTolerancesFor(model, control->forward().state(), wrench, LoadedOptions().force_tolerance);
   newton.error_tolerance = 0.1 * options.tolerance;
   const CompensatedNewtonResult newton_result =
       SolveCompensatedNewton(model, set, target, control->effective_controls(), wrench, newton, workspace.get(), &x, &u);

@@ -44,9 +44,9 @@ class LoadedSolver {
 
   const std::vector<int>& compliant() const { return compliant_; }
   Linearisation Linearise(const Point& x, double t) const;
-  // Newton iterations at load fraction t from x until the unbalanced force
-  // is below `tolerance`; false (x unchanged) when they do not get there.
-  bool Converge(double t, double tolerance, int* iterations, Point* x, Linearisation* at) const;
+  // Newton iterations at load fraction t from x until `tolerances` hold;
+  // false (x unchanged) when they do not get there.
+  bool Converge(double t, const LoadedTolerances& tolerances, int* iterations, Point* x, Linearisation* at) const;
 
  private:
   // Moves x back onto the rigid rows with minimum-norm corrections of
@@ -116,18 +116,24 @@ Eigen::VectorXd LoadedSolver::NewtonStep(const Point& x, double t, const Lineari
   return sys.Displacement(at.force, extra, &newton);
 }
 
-bool LoadedSolver::Converge(double t, double tolerance, int* iterations, Point* x, Linearisation* at) const {
+bool LoadedSolver::Converge(double t, const LoadedTolerances& tolerances, int* iterations, Point* x,
+                            Linearisation* at) const {
   Point trial = *x;
   Linearisation here = Linearise(trial, t);
   for (int i = 0; i < kMaxNewtonIterations; ++i) {
-    if (here.unbalanced <= tolerance) {
+    const CompliantEquilibrium& sys = *here.system;
+    const Eigen::VectorXd y = NewtonStep(trial, t, here);
+    // The step moves nothing along the motions no spring resists: it tells
+    // the distance to the equilibrium only where no force acts along them.
+    const double step_size = sys.IdleForce(here.force) <= tolerances.force && y.size() > 0
+                                 ? y.lpNorm<Eigen::Infinity>()
+                                 : std::numeric_limits<double>::infinity();
+    if (tolerances.Converged(here.unbalanced, step_size)) {
       *x = std::move(trial);
       *at = std::move(here);
       return true;
     }
     ++*iterations;
-    const CompliantEquilibrium& sys = *here.system;
-    const Eigen::VectorXd y = NewtonStep(trial, t, here);
     MinimumNormSolver projector;
     if (sys.A().rows() > 0) projector.setThreshold(1e-10).compute(sys.A());
     trial.s.Plus(y.head(sys.state_size()));
@@ -145,8 +151,8 @@ bool LoadedSolver::Converge(double t, double tolerance, int* iterations, Point* 
 // restoration (LoadedSolver), from the rigid assembly. Fills converged,
 // load_fraction, unbalanced, held and message; leaves the point in *x.
 void SolveLoadedDense(const Model& model, const ConstraintSet& set, const State& rigid, const Eigen::VectorXd& u,
-                      const ExternalWrench& wrench, double tolerance, const LoadedOptions& options, Point* x,
-                      LoadedEquilibrium* out) {
+                      const ExternalWrench& wrench, const LoadedTolerances& tolerances, const LoadedOptions& options,
+                      Point* x, LoadedEquilibrium* out) {
   const LoadedSolver solver(model, set, u, wrench);
   *x = Point{rigid, Eigen::VectorXd::Zero(static_cast<Eigen::Index>(solver.compliant().size()))};
   // Load steps: the whole load first; a step whose Newton iterations fail is
@@ -155,7 +161,7 @@ void SolveLoadedDense(const Model& model, const ConstraintSet& set, const State&
   double t = 0, dt = 1;
   while (t < 1 && dt >= kMinLoadStep && out->iterations < options.max_iterations) {
     const double next = std::min(1.0, t + dt);
-    const bool ok = solver.Converge(next, tolerance, &out->iterations, x, &at);
+    const bool ok = solver.Converge(next, tolerances, &out->iterations, x, &at);
     if (ok) {
       t = next;
       dt *= 2;
@@ -165,7 +171,7 @@ void SolveLoadedDense(const Model& model, const ConstraintSet& set, const State&
   }
   out->load_fraction = t;
   if (t < 1) at = solver.Linearise(*x, 1.0);
-  out->converged = at.unbalanced <= tolerance;
+  out->converged = t >= 1;
   out->unbalanced = at.unbalanced;
   Eigen::MatrixXd G = Eigen::MatrixXd::Zero(6, at.system->size());  // the end-effector's motion over [ds; delta]
   G.leftCols(model.state_size()) = EndEffectorJacobian(model, x->s);
@@ -192,8 +198,8 @@ bool Held(const Model& model, const ConstraintSet& set, const Eigen::VectorXd& u
 // The sparse Newton iteration (problems/internal/loaded_newton.h) from the
 // warm start when given, then from the rigid assembly; true when it converged.
 bool SolveLoadedSparse(const Model& model, const ConstraintSet& set, const State& rigid, const Eigen::VectorXd& u,
-                       const ExternalWrench& wrench, double tolerance, const LoadedOptions& options, Point* x,
-                       LoadedEquilibrium* out) {
+                       const ExternalWrench& wrench, const LoadedTolerances& tolerances, const LoadedOptions& options,
+                       Point* x, LoadedEquilibrium* out) {
   const std::vector<int> compliant = CompliantEquilibrium::CompliantControls(model);
   std::vector<Point> starts;
   if (options.start_state && options.start_state->num_bodies() == rigid.num_bodies() &&
@@ -205,7 +211,7 @@ bool SolveLoadedSparse(const Model& model, const ConstraintSet& set, const State
   starts.push_back(Point{rigid, Eigen::VectorXd::Zero(static_cast<Eigen::Index>(compliant.size()))});
   const std::shared_ptr<LoadedWorkspace> workspace = options.workspace ? options.workspace : NewLoadedWorkspace();
   for (Point& start : starts) {
-    const LoadedNewtonResult r = SolveLoadedNewton(model, set, u, wrench, tolerance,
+    const LoadedNewtonResult r = SolveLoadedNewton(model, set, u, wrench, tolerances,
                                                    std::min(kMaxSparseIterations, options.max_iterations), workspace.get(), &start);
     out->iterations += r.iterations;
     if (!r.converged) continue;
@@ -256,16 +262,15 @@ LoadedEquilibrium SolveLoadedEquilibrium(const Model& model, const ConstraintSet
                                          const LoadedOptions& options) {
   if (!model.compliant()) return RigidEquilibrium(model, rigid);
   LoadedEquilibrium out;
-  const double scale = 1.0 + GeneralizedLoads(model, rigid, wrench).lpNorm<Eigen::Infinity>();
-  const double tolerance = options.force_tolerance * scale;
+  const LoadedTolerances tolerances = LoadedTolerancesFor(model, rigid, wrench, options.force_tolerance);
   Point x;
-  const bool sparse = options.sparse && SolveLoadedSparse(model, set, rigid, u, wrench, tolerance, options, &x, &out);
+  const bool sparse = options.sparse && SolveLoadedSparse(model, set, rigid, u, wrench, tolerances, options, &x, &out);
   if (sparse && options.check_held) out.held = Held(model, set, u, x);
   // Not converged, or a motion no spring resists moves the end-effector: the
   // dense path says which, and how much of the loads the springs hold.
   if (!sparse || !out.held) {
     out = LoadedEquilibrium{};
-    SolveLoadedDense(model, set, rigid, u, wrench, tolerance, options, &x, &out);
+    SolveLoadedDense(model, set, rigid, u, wrench, tolerances, options, &x, &out);
   }
   DescribeLoadedPoint(model, rigid, x, CompliantEquilibrium::CompliantControls(model), &out);
   return out;

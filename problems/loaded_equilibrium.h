@@ -52,8 +52,10 @@ std::shared_ptr<LoadedWorkspace> NewLoadedWorkspace();
 
 struct LoadedOptions {
   int max_iterations = 100;
-  // Converged when the unbalanced force along the allowed motions is below
-  // force_tolerance * (1 + the largest load) [N or N*m].
+  // Converged when the rigid rows hold and the unbalanced force along the
+  // allowed motions is below force_tolerance * (1 + the largest load)
+  // [N or N*m], or the Newton step there is below 1e-13 m (or rad) per metre
+  // of the model's size (rounding: problems/internal/loaded_tolerances.h).
   double force_tolerance = 1e-10;
   // Start from this configuration (a nearby loaded equilibrium, e.g. a
   // previous control round's) instead of the rigid assembly: its state and

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "formats/model_generator.h"
 #include "formats/model_loader.h"
 #include "tests/model_text.h"
 #include "tool_run.h"
@@ -52,6 +53,21 @@ TEST(StiffnessKeys, LoadIntoTheModel) {
   const Model motor_only = LoadModelFromString(With("", ", stiffness: 2.5e3", ""), "ok.yaml");
   EXPECT_EQ(motor_only.joints[0].stiffness.axis, 2.5e3);
   EXPECT_FALSE(LoadModelFromString(With("", "", ""), "ok.yaml").compliant());
+}
+
+// A legged base's `stiffness` is that of its x, y and heading, as a wheeled
+// base's; its height, roll and pitch stay rigid.
+TEST(StiffnessKeys, ALeggedBaseTakesTheWheeledBasesThree) {
+  LeggedOptions options;
+  const std::string text = testing::InsertAfterEach(GenerateLeggedModel(options), "    type: legged\n",
+                                                    {"    stiffness: [2.0e4, 3.0e4, 500]\n"});
+  const Model m = LoadModelFromString(text, "legged.yaml");
+  EXPECT_EQ(m.mobile_bases[0].stiffness.k, Eigen::Vector3d(2e4, 3e4, 500));
+  EXPECT_FALSE(m.mobile_bases[1].stiffness.given());
+  EXPECT_TRUE(m.compliant());
+  const std::string six = testing::InsertAfterEach(GenerateLeggedModel(options), "    type: legged\n",
+                                                   {"    stiffness: [2.0e4, 3.0e4, 500, 1, 2, 3]\n"});
+  EXPECT_NE(ErrorOf(six).find("must be a list of 3 positive numbers"), std::string::npos) << ErrorOf(six);
 }
 
 struct Bad {

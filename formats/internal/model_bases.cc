@@ -54,8 +54,8 @@ MobileBase ModelParser::ParseBase(const YAML::Node& at, const std::string& path)
     base.legged = ParseLeggedBody(node, path);
   } else {
     ParseActuation(node, path, &base);
-    base.stiffness = ParseBaseStiffness(node, path);
   }
+  base.stiffness = ParseBaseStiffness(node, path);
   base.push_limit = ParsePushLimit(node, path);
   if (YamlReader::Has(node, "wheels")) {
     if (base.type == BaseType::kDifferential) {
@@ -76,7 +76,7 @@ void ModelParser::CheckTypeKeys(const YAML::Node& node, const std::string& path,
       r_.Fail(node[key], path + "." + key, std::string("only legged bases have ") + key);
     }
   }
-  for (const char* key : {"actuation", "wheels", "stiffness"}) {
+  for (const char* key : {"actuation", "wheels"}) {
     if (legged && YamlReader::Has(node, key)) {
       r_.Fail(node[key], path + "." + key, std::string("is not a key of a legged base (all six controls are effective)"));
     }

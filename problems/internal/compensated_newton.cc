@@ -120,7 +120,9 @@ CompensatedNewtonResult SolveCompensatedNewton(const Model& model, const Constra
     const Eigen::VectorXd mu = chord ? mu_last : Eigen::VectorXd(z.tail(system.rigid_rows()));
     const Residuals r = ResidualsAt(system, chord, mu, e);
     out.unbalanced = r.unbalanced;
-    if (r.unbalanced <= options.force_tolerance && r.rows <= kKktRowTolerance && r.miss <= options.error_tolerance) {
+    const double step_size = z.head(N).lpNorm<Eigen::Infinity>();
+    if (options.tolerances.Converged(r.unbalanced, step_size) && r.rows <= kKktRowTolerance &&
+        r.miss <= options.error_tolerance) {
       out.converged = true;
       *x = std::move(trial);
       *u = std::move(u_trial);
@@ -130,7 +132,7 @@ CompensatedNewtonResult SolveCompensatedNewton(const Model& model, const Constra
     }
     if (!chord) {
       // Newton converges fast or not at all: a growing merit gives up (the caller falls back to rounds).
-      const double merit = r.unbalanced / options.force_tolerance + r.rows / kKktRowTolerance + r.miss / options.error_tolerance;
+      const double merit = r.unbalanced / options.tolerances.force + r.rows / kKktRowTolerance + r.miss / options.error_tolerance;
       if ((full_steps++ >= 2 && !(merit < 2 * last_merit)) || i == options.max_iterations) return out;
       last_merit = merit;
       if (!ControlInverse(system, workspace->kkt, de_ds, effective, &J_pinv)) return out;

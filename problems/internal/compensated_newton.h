@@ -42,11 +42,12 @@
 #include "ccma/loads.h"
 #include "ccma/model.h"
 #include "problems/internal/loaded_newton.h"
+#include "problems/internal/loaded_tolerances.h"
 
 namespace ccma {
 
 struct CompensatedNewtonOptions {
-  double force_tolerance = 1e-10;  // [N or N*m], as LoadedOptions' (already scaled)
+  LoadedTolerances tolerances;     // the loaded equilibrium's (LoadedTolerancesFor)
   double error_tolerance = 1e-11;  // max |e| [m or rad]
   double max_control_step = 0.01;  // per step, any control [m or rad]
   int max_chords = 6;       // chord steps in a row before a full one

@@ -47,7 +47,8 @@ double ControlStiffness(const Model& model, int c) {
 std::vector<int> CompliantEquilibrium::CompliantControls(const Model& model) {
   std::vector<int> out;
   for (int b = 0; b < model.num_bases(); ++b) {
-    // (Only wheeled bases have `stiffness`: x, y, theta.)
+    // `stiffness` [kx, ky, ktheta]: a base's first three controls (a legged
+    // base's height, roll and pitch stay rigid).
     if (!model.mobile_bases[static_cast<size_t>(b)].stiffness.given()) continue;
     for (int i = 0; i < 3; ++i) out.push_back(model.base_control(b) + i);
   }
@@ -242,6 +243,11 @@ Eigen::MatrixXd CompliantEquilibrium::Compliance(const Eigen::MatrixXd& G) const
   const Eigen::MatrixXd GZ = G * Z1_;
   const Eigen::MatrixXd C = GZ * K1_.solve(GZ.transpose());
   return 0.5 * (C + C.transpose());
+}
+
+double CompliantEquilibrium::IdleForce(const Eigen::VectorXd& f) const {
+  if (Z0_.cols() == 0) return 0.0;
+  return (Z0_.transpose() * f).cwiseAbs().maxCoeff();
 }
 
 double CompliantEquilibrium::UnheldMotion(const Eigen::MatrixXd& G) const {

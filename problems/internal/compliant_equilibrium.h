@@ -106,6 +106,9 @@ class CompliantEquilibrium {
   Eigen::MatrixXd Compliance(const Eigen::MatrixXd& G) const;
   // max |G Z0| relative to max |G|: 0 when no idle motion moves G y.
   double UnheldMotion(const Eigen::MatrixXd& G) const;
+  // max |Z0^T f|: the generalized force f (size()) along the motions no
+  // spring resists, which no displacement can balance [N or N*m].
+  double IdleForce(const Eigen::VectorXd& f) const;
   // The loads fix every joint's reaction and every control's effort: no
   // null vector of A^T moves them (equilibrium.h's test, on A).
   bool determinate() const { return determinate_; }

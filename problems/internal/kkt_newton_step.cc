@@ -1,6 +1,7 @@
 #include "problems/internal/kkt_newton_step.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace ccma {
@@ -44,7 +45,7 @@ double KktNewtonStep::Unbalanced(const Eigen::VectorXd& mu) const {
 
 // z from kkt's factor with up to kKktRefinements steps of iterative
 // refinement against K without eps_A; true when the residual is within
-// kKktResidual of |rhs|.
+// kKktResidual of |rhs| or of the products K z sums (ComponentwiseScale).
 bool KktNewtonStep::SolveRefined(const KktFactorization& kkt, const Eigen::VectorXd& rhs, Eigen::VectorXd* z) const {
   const Eigen::Index m = system_.rigid_rows();
   *z = kkt.Solve(rhs);
@@ -59,7 +60,25 @@ bool KktNewtonStep::SolveRefined(const KktFactorization& kkt, const Eigen::Vecto
     if (r == kKktRefinements || size <= target) break;
     *z += kkt.Solve(residual);
   }
-  return z->allFinite() && size <= target;
+  if (!z->allFinite()) return false;
+  return size <= target || size <= kKktResidual * ComponentwiseScale(*z);
+}
+
+// max_i (|K| |z|)_i: the size of the products a residual of K z sums. With
+// stiff springs (1e7 N/m) over millimetres it is far above |rhs|, and the
+// rounding of a residual is relative to it, not to |rhs| (Oettli-Prager).
+double KktNewtonStep::ComponentwiseScale(const Eigen::VectorXd& z) const {
+  const Eigen::VectorXd abs_z = z.cwiseAbs();
+  Eigen::VectorXd products = Eigen::VectorXd::Zero(z.size());
+  const LoadedKkt::Sparse& K = system_.K();  // lower triangle
+  for (int col = 0; col < K.outerSize(); ++col) {
+    for (LoadedKkt::Sparse::InnerIterator it(K, col); it; ++it) {
+      const double a = std::abs(it.value());
+      products[it.row()] += a * abs_z[col];
+      if (it.row() != col) products[col] += a * abs_z[it.row()];
+    }
+  }
+  return products.size() > 0 ? products.lpNorm<Eigen::Infinity>() : 0.0;
 }
 
 }  // namespace ccma

@@ -15,10 +15,13 @@
 namespace ccma {
 
 constexpr double kKktRowTolerance = 1e-13;  // a rigid row that holds [m or rad-like], as the dense path
-// eps_H relative to the stiffest spring: idle motions move by a rounding
-// force over it (1e-13 N over 1e-2 N/m), the Newton steps change by 1e-6 of a
-// spring's stiffness (the iteration's rate, not its fixed point).
-constexpr double kKktIdleStiffness = 1e-6;
+// eps_H relative to the stiffest spring. It biases the step along a motion
+// of curvature c by eps_H / c (squared after RemoveIdleBias), so it must lie
+// far below the softest resisted motion, which geometry can put 1e-6 of the
+// stiffest spring (a generated 3-agent CCMA: 2.8 N*m/rad under a 1e7 N/m
+// spring; 1e-6 gave a linear rate of 0.6 there). Idle motions move by a
+// rounding force over it: eps |F| L / (1e-12 k), 1e-4 of a deflection F / k.
+constexpr double kKktIdleStiffness = 1e-12;
 // eps_A against the rigid rows' O(1) entries, refined away.
 constexpr double kKktRowRegularization = 1e-10;
 constexpr double kKktMaxStep = 0.5;  // m or rad per Newton step
@@ -31,7 +34,7 @@ class KktNewtonStep {
 
   // [y; mu] by `kkt` (which keeps its analysis from the previous steps):
   // factorises K by its LDL^T, or its LU when the LDL^T's refined solution
-  // leaves more than 1e-12 of max(1, |rhs|); false when both fail.
+  // leaves more than 1e-12 of max(1, |rhs|, (|K| |z|)); false when both fail.
   bool Solve(KktFactorization* kkt, Eigen::VectorXd* z) const;
   // K^-1 rhs for another right-hand side, by the factorisation Solve made,
   // refined the same way; false when it does not reach that accuracy.
@@ -52,6 +55,7 @@ class KktNewtonStep {
 
  private:
   bool SolveRefined(const KktFactorization& kkt, const Eigen::VectorXd& rhs, Eigen::VectorXd* z) const;
+  double ComponentwiseScale(const Eigen::VectorXd& z) const;
 
   const LoadedKkt& system_;
   Eigen::VectorXd rhs_;

@@ -57,7 +57,7 @@ LoadedKkt& LoadedWorkspace::SystemFor(const Model& model, const ConstraintSet& s
 }
 
 LoadedNewtonResult SolveLoadedNewton(const Model& model, const ConstraintSet& set, const Eigen::VectorXd& u,
-                                     const ExternalWrench& wrench, double force_tolerance, int max_iterations,
+                                     const ExternalWrench& wrench, const LoadedTolerances& tolerances, int max_iterations,
                                      LoadedWorkspace* workspace, LoadedPoint* x) {
   LoadedNewtonResult out;
   LoadedKkt& system = workspace->SystemFor(model, set);
@@ -79,8 +79,9 @@ LoadedNewtonResult SolveLoadedNewton(const Model& model, const ConstraintSet& se
     const Eigen::VectorXd mu = z.tail(system.rigid_rows());
     const double unbalanced = step.Unbalanced(mu);
     const double row_size = system.g().size() > 0 ? system.g().lpNorm<Eigen::Infinity>() : 0.0;
+    const double step_size = z.head(system.size()).lpNorm<Eigen::Infinity>();
     out.unbalanced = unbalanced;
-    if (unbalanced <= force_tolerance && row_size <= kKktRowTolerance) {
+    if (row_size <= kKktRowTolerance && tolerances.Converged(unbalanced, step_size)) {
       out.converged = true;
       *x = std::move(trial);
       workspace->mu = mu;
@@ -88,13 +89,13 @@ LoadedNewtonResult SolveLoadedNewton(const Model& model, const ConstraintSet& se
       return out;
     }
     // Newton converges fast or not at all: a growing imbalance hands over to the dense path.
-    const double merit = unbalanced / force_tolerance + row_size / kKktRowTolerance;
+    const double merit = unbalanced / tolerances.force + row_size / kKktRowTolerance;
     if (i >= 2 && !(merit < 2 * last)) return out;
     last = merit;
     if (i == max_iterations) break;
     // A step this long crosses a motion nothing resists (eps_H alone holds
     // it: the mechanism is not held) or a limit load: the dense path decides.
-    if (!(z.head(system.size()).lpNorm<Eigen::Infinity>() <= kKktMaxStep)) return out;
+    if (!(step_size <= kKktMaxStep)) return out;
     ++out.iterations;
     trial.s.Plus(z.head(n));
     trial.delta += z.segment(n, system.size() - n);

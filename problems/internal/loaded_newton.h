@@ -18,7 +18,8 @@
 // tilt) factorisable, and the refinement removes its bias on g. Neither
 // moves the fixed point: y = 0 exactly where the rigid rows hold and the
 // loads and springs balance along every motion they allow.
-// Converged when |force - A^T mu| and |g| are below their tolerances; the
+// Converged when |g| is below its tolerance and |force - A^T mu| or the
+// Newton step is below its own (problems/internal/loaded_tolerances.h); the
 // dense path (load steps, minimum-norm restoration) takes over otherwise.
 // Units: m, rad, N, N*m.
 #ifndef CCMA_PROBLEMS_INTERNAL_LOADED_NEWTON_H_
@@ -35,6 +36,7 @@
 #include "ccma/state.h"
 #include "problems/internal/kkt_factorization.h"
 #include "problems/internal/loaded_kkt.h"
+#include "problems/internal/loaded_tolerances.h"
 #include "problems/loaded_equilibrium.h"
 
 namespace ccma {
@@ -80,10 +82,10 @@ void DescribeLoadedPoint(const Model& model, const State& rigid, const LoadedPoi
 
 // Newton's method at the full loads from *x; on convergence *x is the
 // equilibrium (rigid rows within 1e-13), else *x is unchanged.
-// `force_tolerance` [N or N*m] as LoadedOptions' (already scaled);
+// `tolerances` from LoadedTolerancesFor;
 // `workspace` keeps the factorisation's analysis between calls.
 LoadedNewtonResult SolveLoadedNewton(const Model& model, const ConstraintSet& set, const Eigen::VectorXd& u,
-                                     const ExternalWrench& wrench, double force_tolerance, int max_iterations,
+                                     const ExternalWrench& wrench, const LoadedTolerances& tolerances, int max_iterations,
                                      LoadedWorkspace* workspace, LoadedPoint* x);
 
 }  // namespace ccma
