@@ -15,17 +15,6 @@
 namespace ccma {
 namespace {
 
-// target - reached on the controlled components [m, rad] (angles wrapped to
-// (-pi, pi]); 0 on the others.
-Eigen::Matrix<double, 6, 1> Miss(const Model& model, const PoseTarget& target, const EndEffectorPose& reached) {
-  Eigen::Matrix<double, 6, 1> miss;
-  miss << target.position - reached.position, target.rpy - reached.rpy;
-  for (int c = 0; c < 6; ++c) {
-    if (c >= 3) miss[c] = std::remainder(miss[c], 2 * M_PI);
-    if (!model.end_effector.controlled[c]) miss[c] = 0;
-  }
-  return miss;
-}
 
 }  // namespace
 
@@ -130,7 +119,7 @@ bool NewtonFinish(ControlProblem* control, const PoseTarget& target, const Exter
   loaded.iterations = newton_result.iterations;
   loaded.unbalanced = newton_result.unbalanced;
   DescribeLoadedPoint(model, control->forward().state(), x, compliant, &loaded);
-  const double miss = Miss(model, target, ComputeEndEffectorPose(model, loaded.state)).cwiseAbs().maxCoeff();
+  const double miss = ControlledMiss(model, target, ComputeEndEffectorPose(model, loaded.state)).cwiseAbs().maxCoeff();
   if (!(miss <= options.tolerance)) return false;
   out->loaded = std::move(loaded);
   out->miss = miss;
@@ -157,9 +146,11 @@ void Rounds(ControlProblem* control, const PoseTarget& target, const ExternalWre
     loaded_options.workspace = workspace;
     out->loaded = SolveLoadedEquilibrium(model, control->forward().constraints(), control->forward().state(),
                                          control->controls(), wrench, loaded_options);
-    if (!out->control.converged || !out->loaded.converged) return;
-    const Eigen::Matrix<double, 6, 1> miss = Miss(model, target, ComputeEndEffectorPose(model, out->loaded.state));
+    // The miss of the configuration reported, also when a round failed
+    // (the loaded one at the fraction of the loads it held).
+    const Eigen::Matrix<double, 6, 1> miss = ControlledMiss(model, target, ComputeEndEffectorPose(model, out->loaded.state));
     out->miss = miss.cwiseAbs().maxCoeff();
+    if (!out->control.converged || !out->loaded.converged) return;
     if (out->miss <= options.tolerance) {
       out->converged = true;
       return;
@@ -189,6 +180,16 @@ std::string Warning(const CompensatedResult& out) {
 }
 
 }  // namespace
+
+Eigen::Matrix<double, 6, 1> ControlledMiss(const Model& model, const PoseTarget& target, const EndEffectorPose& reached) {
+  Eigen::Matrix<double, 6, 1> miss;
+  miss << target.position - reached.position, target.rpy - reached.rpy;
+  for (int c = 0; c < 6; ++c) {
+    if (c >= 3) miss[c] = std::remainder(miss[c], 2 * M_PI);
+    if (!model.end_effector.controlled[c]) miss[c] = 0;
+  }
+  return miss;
+}
 
 CompensatedResult MoveToCompensated(ControlProblem* control, const PoseTarget& target, const ExternalWrench& wrench,
                                     const CompensationOptions& options) {

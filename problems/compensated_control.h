@@ -64,9 +64,16 @@ struct CompensatedResult {
   ControlResult control;       // the last rigid round's (its error is the rigid end-effector's, to its aim)
   PoseTarget aim;              // the rigid end-effector's pose the returned controls aim at (controlled components)
   LoadedEquilibrium loaded;    // at the returned controls
-  double miss = 0;             // max |target - loaded end-effector| over the controlled components [m or rad]
+  // max |target - loaded end-effector| over the controlled components [m or
+  // rad]; where it did not converge, that of `loaded` as it is (at the
+  // fraction of the loads it held when loaded.converged is false).
+  double miss = 0;
   std::string warning;         // why it did not converge (empty when it did)
 };
+
+// target - reached on the controlled components [m, rad] (angles wrapped to
+// (-pi, pi]); 0 on the others.
+Eigen::Matrix<double, 6, 1> ControlledMiss(const Model& model, const PoseTarget& target, const EndEffectorPose& reached);
 
 // Drives `control` (from its current controls) so that the loaded
 // end-effector under gravity, the payload and `wrench` reaches `target`.

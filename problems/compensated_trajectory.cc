@@ -19,7 +19,10 @@ TrajectoryStep LoadedStep(const ControlProblem& problem, const PoseTarget& targe
   step.reached = ComputeEndEffectorPose(problem.forward().model(), step.state);
   step.result.reached = c.converged;
   step.result.assembled = c.control.assembled;
-  step.result.error = c.miss;
+  // The distance of the row's own configuration (the rigid one where no
+  // loaded equilibrium was found).
+  step.result.error = c.loaded.converged ? c.miss
+                                         : ControlledMiss(problem.forward().model(), target, step.reached).cwiseAbs().maxCoeff();
   step.result.iterations = c.control.iterations;
   step.result.residual_energy = c.control.residual_energy;
   step.result.time_ms = c.control.solve_time_ms;
@@ -59,6 +62,7 @@ TrajectoryResult FollowWaypointsCompensated(ControlProblem& problem, const std::
       out.max_residual_energy = std::max(out.max_residual_energy, c.control.max_step_residual_energy);
       path->rounds += c.rounds;
       path->max_miss = std::max(path->max_miss, c.miss);
+      out.max_error = std::max(out.max_error, step.result.error);
       if (!c.converged) {
         out.converged = false;
         out.warning = "waypoint " + std::to_string(w) + " (time " + FormatG(waypoints[w].time) + " s), step " +
@@ -67,7 +71,6 @@ TrajectoryResult FollowWaypointsCompensated(ControlProblem& problem, const std::
       }
     }
     if (!out.converged) break;
-    out.max_error = std::max(out.max_error, path->max_miss);
     ++out.reached_waypoints;
     previous_time = waypoints[w].time;
     from = to;

@@ -7,11 +7,13 @@
 // deflection of `ccma statics` recovered as the load shrinks (ratio -> 1);
 // virtual work at the loaded equilibrium of a 6-DOF CCMA; rigid and unheld
 // mechanisms; the tool's JSON.
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <random>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -511,6 +513,47 @@ TEST(LoadedTool, SimulateLoadedAndControlCompensatePrintTheLoadedConfiguration) 
   run = testing::RunTool({"trajectory", "--model=" + six, "--waypoints=" + path, "--out=" + rows, "--wrench=3,-2,-8,0,0,0"});
   EXPECT_EQ(run.status, 2);  // --wrench without --compensate
   EXPECT_TRUE(run.out.empty());
+}
+
+// A compensated move that fails (the target 8 m away, beyond the legs'
+// limits) reports the real distance of the end-effector it prints, in
+// `error`, `compensation.miss`, the trajectory's `max_error` and its CSV
+// rows, never 0.
+TEST(LoadedTool, AFailedCompensationReportsTheRealDistance) {
+  const std::string stewart = std::string(CCMA_SOURCE_DIR) + "/examples/statics/stewart_gough_compliant.yaml";
+  testing::ToolRun run = testing::RunTool({"control", "--model=" + stewart, "--compensate", "--target=5,5,5,0,0,0"});
+  ASSERT_EQ(run.status, 0) << run.err;
+  nlohmann::json out = nlohmann::json::parse(run.out);
+  EXPECT_FALSE(out.at("converged").get<bool>());
+  const nlohmann::json& p = out.at("end_effector").at("position");
+  const double distance = std::max({5 - p[0].get<double>(), 5 - p[1].get<double>(), 5 - p[2].get<double>()});
+  EXPECT_GT(distance, 4);
+  EXPECT_NEAR(out.at("error").get<double>(), distance, 1e-12);
+  EXPECT_NEAR(out.at("compensation").at("miss").get<double>(), distance, 1e-12);
+  EXPECT_NE(run.err.find("--compensate"), std::string::npos) << run.err;
+  // The same through trajectory --compensate: the last row is the step that failed.
+  const std::string path = ccma::testing::TestDir() + "/far_path.csv", rows = ccma::testing::TestDir() + "/far_rows.csv";
+  std::ofstream(path) << "time,x,y,z,roll,pitch,yaw\n0,0,0,0.5,0,0,0\n1,0.0,0.0,1.5,0,0,0\n";
+  run = testing::RunTool({"trajectory", "--model=" + stewart, "--waypoints=" + path, "--out=" + rows, "--compensate"});
+  ASSERT_EQ(run.status, 0) << run.err;
+  out = nlohmann::json::parse(run.out);
+  EXPECT_FALSE(out.at("converged").get<bool>());
+  EXPECT_GT(out.at("max_error").get<double>(), 1e-4);
+  std::ifstream csv(rows);
+  std::string header, line, last;
+  std::getline(csv, header);
+  while (std::getline(csv, line)) last = line;
+  const auto split = [](const std::string& text) {
+    std::vector<std::string> out;
+    std::stringstream in(text);
+    for (std::string cell; std::getline(in, cell, ',');) out.push_back(cell);
+    return out;
+  };
+  const std::vector<std::string> columns = split(header), values = split(last);
+  const size_t error_column = std::find(columns.begin(), columns.end(), "error_m_or_rad") - columns.begin();
+  ASSERT_LT(error_column, values.size()) << header;
+  EXPECT_GT(std::stod(values[error_column]), 1e-4) << last;
+  EXPECT_NEAR(std::stod(values[error_column]), out.at("max_error").get<double>(), 1e-9);
 }
 
 }  // namespace
