@@ -7,10 +7,10 @@
 #include <vector>
 
 #include <gflags/gflags.h>
-#include <glog/logging.h>
 
 #include "apps/cli.h"
 #include "apps/commands.h"
+#include "apps/library_logging.h"
 
 namespace {
 
@@ -35,9 +35,8 @@ int Dispatch(const ccma::cli::Command& command, const std::vector<std::string>& 
 }  // namespace
 
 int main(int argc, char** argv) {
-  google::InitGoogleLogging(argv[0]);
+  ccma::cli::InitLibraryLogging(argv[0]);  // stderr only, never a log file
   gflags::SetArgv(argc, const_cast<const char**>(argv));  // for CommandLineForShell (cli.h)
-  FLAGS_minloglevel = google::GLOG_ERROR;  // Ceres' own chatter stays quiet
   if (argc < 2) {
     std::cerr << ccma::cli::GlobalHelp();
     return 2;

@@ -13,7 +13,6 @@
 #include <vector>
 
 #include <tinyxml.h>
-#include <sdf/Console.hh>
 #include <sdf/Element.hh>
 #include <sdf/Error.hh>
 #include <sdf/Geometry.hh>
@@ -31,6 +30,7 @@
 #include "formats/internal/legged_extension.h"
 #include "formats/internal/mesh_paths.h"
 #include "formats/internal/robot_xml.h"
+#include "formats/internal/sdformat_console.h"
 #include "formats/internal/sdformat_cost.h"
 #include "formats/model_loader.h"
 
@@ -448,8 +448,8 @@ RobotDescription ReadSdformatFromString(const std::string& text, const std::stri
   if (text.size() > kMaxSdformatFileBytes) {
     throw ModelError(path + ": larger than " + std::to_string(kMaxSdformatFileBytes) + " bytes");
   }
+  internal::QuietSdformatConsole();  // before anything of libsdformat: no log file, nothing printed
   CheckXml(text, path);
-  sdf::Console::Instance()->SetQuiet(true);  // the library prints nothing
   sdf::Root root;
   const sdf::Errors errors = Unforgiven(root.LoadSdfString(text));
   if (!errors.empty()) ThrowSdfErrors(errors, path);
