@@ -20,7 +20,10 @@ int Dispatch(const ccma::cli::Command& command, const std::vector<std::string>& 
   try {
     return command.run(args);
   } catch (const ccma::cli::UsageError& e) {
-    std::cerr << e.what() << "\n";
+    // Every message names the command; those about one flag ("--target:
+    // ...") are thrown without it.
+    const std::string message = e.what();
+    std::cerr << (message.rfind("ccma ", 0) == 0 ? "" : "ccma " + command.name + ": ") << message << "\n";
   } catch (const ccma::ModelError& e) {
     std::cerr << "ccma " << command.name << ": " << e.what() << "\n";
   } catch (const std::invalid_argument& e) {  // input out of its documented range
