@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -143,6 +144,39 @@ TEST(HostileFiles, AMisspeltKeyIsRefusedWithASuggestion) {
   std::ofstream(model) << text;
   const ToolRun r = Ccma({"check", "--model=" + model});
   ExpectRefused(r, model + ":23: joints[4]: unknown key 'betwen' (did you mean 'between'?)");
+}
+
+// issue 49: yaml-cpp reads a file's first YAML document and ignores the
+// rest, malformed or not. A model (or obstacles) file holds one document: a
+// second is refused naming the line that starts it, and a malformed one
+// naming its own line.
+TEST(HostileFiles, YamlDocumentsAfterTheModelAreRefused) {
+  const std::string text = Slurp(std::string(CCMA_MODELS_DIR) + "/4dof_reduced.yaml");
+  const int lines = static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+  struct Case {
+    std::string tail, needle;
+  };
+  const std::vector<Case> cases = {
+      {"---\nname: other\n", ":" + std::to_string(lines + 1) + ": a second YAML document: the file must hold exactly one"},
+      {"\n# a comment\n--- \n", ":" + std::to_string(lines + 3) + ": a second YAML document"},
+      {"...\nname: other\n", ":" + std::to_string(lines + 2) + ": a second YAML document"},
+      {"---\n[unclosed\n", ":" + std::to_string(lines + 3) + ": not valid YAML"},
+      {"...\n{a: [\n", ":" + std::to_string(lines + 3) + ": not valid YAML"},
+  };
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const std::string model = Scratch("two_documents_" + std::to_string(i) + ".yaml");
+    std::ofstream(model) << text << cases[i].tail;
+    ExpectRefused(Ccma({"check", "--model=" + model}), model + cases[i].needle);
+  }
+  // One document between markers is one document.
+  const std::string framed = Scratch("framed.yaml");
+  std::ofstream(framed) << "---\n" << text << "...\n";
+  const ToolRun ok = Ccma({"check", "--model=" + framed});
+  EXPECT_EQ(ok.status, 0) << ok.err;
+  const std::string obstacles = Scratch("obstacles.yaml");
+  std::ofstream(obstacles) << "obstacles: []\n---\nobstacles: []\n";
+  ExpectRefused(Ccma({"check", ModelFlag("4dof_reduced"), "--obstacles=" + obstacles}),
+                obstacles + ":2: a second YAML document");
 }
 
 // Millimetres and degrees load, with one warning line per kind on stderr;

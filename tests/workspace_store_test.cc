@@ -444,6 +444,22 @@ TEST(WorkspaceStoreManifest, ALinkOrFifoIsRefused) {
   EXPECT_EQ(testing::Slurp(victim), text);
 }
 
+// issue 49: a key given twice (nlohmann keeps the last value, so a manifest
+// naming two maps read as the second) is refused, naming the line.
+TEST(WorkspaceStoreManifest, AKeyGivenTwiceIsRefused) {
+  const std::string dir = FilledStore("duplicate");
+  const nlohmann::json own = nlohmann::json::parse(testing::Slurp(dir + "/store/store.json"));
+  const std::string key = own["key"];
+  WriteBytes(dir + "/store/store.json", "{\"ccma_workspace_store\": 1,\n \"key\": \"0123\",\n \"key\": \"" + key +
+                                            "\",\n \"tiles\": 4}\n");
+  ExpectManifestRefused(dir, "(line 3: the key 'key' given twice)");
+  const std::string want = cli::StoreManifestText("fuzz", 16);
+  std::string why;
+  const std::string twice = R"({"ccma_workspace_store": 1, "key": "1", "tiles": 16, "tiles": 16})";
+  EXPECT_EQ(cli::CheckStoreManifest(twice, want, &why), cli::ManifestMatch::kMalformed);
+  EXPECT_EQ(why, "line 1: the key 'tiles' given twice");
+}
+
 TEST(WorkspaceStoreManifest, OtherKeysTypesAndVersionsAreMalformed) {
   const std::string want = cli::StoreManifestText("fuzz", 16);
   std::string why;
