@@ -11,6 +11,7 @@
 #include "apps/cli.h"
 #include "apps/commands.h"
 #include "apps/library_logging.h"
+#include "apps/temporary_files.h"
 
 namespace {
 
@@ -38,6 +39,7 @@ int Dispatch(const ccma::cli::Command& command, const std::vector<std::string>& 
 }  // namespace
 
 int main(int argc, char** argv) {
+  ccma::cli::RemoveTemporariesOnSignal();  // Ctrl-C and SIGTERM leave no hidden temporary behind
   ccma::cli::InitLibraryLogging(argv[0]);  // stderr only, never a log file
   gflags::SetArgv(argc, const_cast<const char**>(argv));  // for CommandLineForShell (cli.h)
   if (argc < 2) {

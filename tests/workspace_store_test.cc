@@ -72,23 +72,12 @@ void WriteBytes(const std::string& path, const std::string& bytes) {
 // taking the machine's memory, and an alarm that ends a hang.
 testing::ToolRun RunBounded(const std::vector<std::string>& args, int timeout_s = 120) {
   const std::string out = testing::ScratchPath("store", "bounded_out"), err = testing::ScratchPath("store", "bounded_err");
-  const pid_t pid = fork();
-  if (pid == 0) {
+  const pid_t pid = testing::SpawnTool(args, timeout_s, out, err, [] {
 #ifndef __SANITIZE_ADDRESS__  // AddressSanitizer's shadow memory alone needs terabytes of address space
     const rlimit limit{std::uint64_t{2} << 30, std::uint64_t{2} << 30};
     setrlimit(RLIMIT_AS, &limit);
 #endif
-    const int o = open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-    const int e = open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-    dup2(o, 1);
-    dup2(e, 2);
-    alarm(static_cast<unsigned>(timeout_s));
-    std::vector<char*> argv = {const_cast<char*>(CCMA_TOOL_PATH)};
-    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    execv(CCMA_TOOL_PATH, argv.data());
-    _exit(127);
-  }
+  });
   int raw = 0;
   waitpid(pid, &raw, 0);
   testing::ToolRun r;
