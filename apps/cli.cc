@@ -8,22 +8,37 @@
 
 #include <gflags/gflags.h>
 
+#include "ccma/internal/format.h"
+
 namespace ccma::cli {
+namespace {
+
+bool IsIntegerType(const std::string& gflags_type) {
+  return gflags_type == "int32" || gflags_type == "int64" || gflags_type == "uint32" || gflags_type == "uint64";
+}
+
+// An optional sign and decimal digits, nothing else: gflags would read
+// "0x10" as 16 (and strtol skips leading spaces).
+bool PlainDecimal(const std::string& value) {
+  const std::size_t digits = value[0] == '+' || value[0] == '-' ? 1 : 0;
+  return value.size() > digits && value.find_first_not_of("0123456789", digits) == std::string::npos;
+}
+
+}  // namespace
 
 void ParseFlags(const std::vector<std::string>& args, const std::set<std::string>& allowed,
                 const std::string& command) {
   std::set<std::string> seen;
   for (const std::string& arg : args) {
     if (arg.rfind("--", 0) != 0 || arg.size() == 2) {
-      throw UsageError("ccma " + command + ": unexpected argument '" + arg +
-                       "' (flags are --name=value)");
+      throw UsageError("ccma " + command + ": unexpected argument " + Quote(arg) + " (flags are --name=value)");
     }
     const size_t eq = arg.find('=');
     const std::string name = arg.substr(2, eq == std::string::npos ? std::string::npos : eq - 2);
     if (allowed.count(name) == 0) {
       std::string known;
       for (const std::string& a : allowed) known += " --" + a;
-      throw UsageError("ccma " + command + ": unknown flag '--" + name + "' (known:" + known + ")");
+      throw UsageError("ccma " + command + ": unknown flag " + Quote("--" + name) + " (known:" + known + ")");
     }
     if (!seen.insert(name).second) {
       throw UsageError("ccma " + command + ": flag '--" + name + "' given twice");
@@ -40,8 +55,12 @@ void ParseFlags(const std::vector<std::string>& args, const std::set<std::string
     }
     // SetCommandLineOption validates the value's type and returns "" on error
     // (unlike ParseCommandLineFlags, it never exits the process).
+    if (IsIntegerType(info.type) && !PlainDecimal(value)) {
+      throw UsageError("ccma " + command + ": bad value " + Quote(value) + " for --" + name +
+                       " (a decimal integer: digits, no hex, no spaces)");
+    }
     if (gflags::SetCommandLineOption(name.c_str(), value.c_str()).empty()) {
-      throw UsageError("ccma " + command + ": bad value '" + value + "' for --" + name);
+      throw UsageError("ccma " + command + ": bad value " + Quote(value) + " for --" + name);
     }
   }
 }
@@ -59,7 +78,7 @@ Eigen::VectorXd ParseNumberList(const std::string& text, const std::string& flag
     // Decimal only (strtod also reads hex floats); underflow to a subnormal is a number.
     const bool decimal = item.find_first_not_of("0123456789+-.eE ") == std::string::npos;
     if (item.empty() || end == begin || *end != '\0' || !decimal || !std::isfinite(v)) {
-      throw UsageError("--" + flag + ": '" + item + "' is not a finite number");
+      throw UsageError("--" + flag + ": " + Quote(item) + " is not a finite number");
     }
     values.push_back(v);
   }

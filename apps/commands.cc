@@ -458,7 +458,7 @@ ControlOptions ControlOptionsFromFlags() {
   } else if (FLAGS_method == "bfgs") {
     options.method = ControlMethod::kBfgs;
   } else {
-    throw UsageError("--method: '" + FLAGS_method + "' is not lm or bfgs");
+    throw UsageError("--method: " + Quote(FLAGS_method) + " is not lm or bfgs");
   }
   options.max_step_m = FLAGS_max_step_m;
   options.max_step_rad = FLAGS_max_step_rad;

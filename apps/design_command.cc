@@ -120,8 +120,8 @@ DesignOptions DesignOptionsFromFlags() {
   options.target_tolerance = FLAGS_target_tolerance;
   options.max_iterations = FLAGS_design_iterations;
   if (!ParseDesignObjective(FLAGS_objective, &options.objective)) {
-    throw UsageError("ccma design: --objective must be reach, payload, peak_push, ee_std, stiffness or deflection, got '" + FLAGS_objective +
-                     "'");
+    throw UsageError("ccma design: --objective must be reach, payload, peak_push, ee_std, stiffness or deflection, "
+                     "got " + Quote(FLAGS_objective));
   }
   options.noise = PoseNoiseFromFlags();
   std::string why;

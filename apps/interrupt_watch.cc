@@ -7,6 +7,8 @@
 #include <ctime>
 #include <utility>
 
+#include "apps/temporary_files.h"
+
 namespace ccma::cli {
 
 InterruptWatch::InterruptWatch(std::function<void(int)> report) : report_(std::move(report)) {
@@ -33,6 +35,7 @@ void InterruptWatch::Watch() {
     const int signal_number = sigtimedwait(&watched_, nullptr, &tick);
     if (signal_number <= 0) continue;  // the tick ran out, or EINTR
     report_(signal_number);
+    RemoveTemporaries();  // the hidden temporaries of unfinished outputs (apps/temporary_files.h)
     // End as the signal would have: default action, unblocked here, raised
     // at this thread (process-wide termination, the parent sees the signal).
     std::signal(signal_number, SIG_DFL);

@@ -4,7 +4,8 @@
 // that made it and in every thread started from it afterwards, and one
 // watcher thread waits for them (sigtimedwait). When one arrives, the watcher
 // calls `report` -- in an ordinary thread, not a signal handler, so it may
-// lock, allocate and print -- and then ends the process by that same signal
+// lock, allocate and print -- removes the temporaries of unfinished outputs
+// (apps/temporary_files.h), and then ends the process by that same signal
 // with its default action: the parent sees a death by SIGINT (a shell: exit
 // status 130), as without the watch. A signal the process ignores when the
 // watch starts (a background job's SIGINT) stays ignored.

@@ -7,10 +7,11 @@
 #include <vector>
 
 #include <gflags/gflags.h>
-#include <glog/logging.h>
 
 #include "apps/cli.h"
 #include "apps/commands.h"
+#include "apps/library_logging.h"
+#include "apps/temporary_files.h"
 
 namespace {
 
@@ -20,7 +21,10 @@ int Dispatch(const ccma::cli::Command& command, const std::vector<std::string>& 
   try {
     return command.run(args);
   } catch (const ccma::cli::UsageError& e) {
-    std::cerr << e.what() << "\n";
+    // Every message names the command; those about one flag ("--target:
+    // ...") are thrown without it.
+    const std::string message = e.what();
+    std::cerr << (message.rfind("ccma ", 0) == 0 ? "" : "ccma " + command.name + ": ") << message << "\n";
   } catch (const ccma::ModelError& e) {
     std::cerr << "ccma " << command.name << ": " << e.what() << "\n";
   } catch (const std::invalid_argument& e) {  // input out of its documented range
@@ -35,9 +39,9 @@ int Dispatch(const ccma::cli::Command& command, const std::vector<std::string>& 
 }  // namespace
 
 int main(int argc, char** argv) {
-  google::InitGoogleLogging(argv[0]);
+  ccma::cli::RemoveTemporariesOnSignal();  // Ctrl-C and SIGTERM leave no hidden temporary behind
+  ccma::cli::InitLibraryLogging(argv[0]);  // stderr only, never a log file
   gflags::SetArgv(argc, const_cast<const char**>(argv));  // for CommandLineForShell (cli.h)
-  FLAGS_minloglevel = google::GLOG_ERROR;  // Ceres' own chatter stays quiet
   if (argc < 2) {
     std::cerr << ccma::cli::GlobalHelp();
     return 2;

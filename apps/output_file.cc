@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "apps/cli.h"
+#include "apps/temporary_files.h"
 
 namespace ccma::cli {
 
@@ -157,12 +158,19 @@ void OutputFile::OpenTemporary(bool follow) {
   const std::string prefix = "." + target.filename().string() + ".ccma-tmp-";
   RemoveStale(target.parent_path(), prefix);
   std::string name = Unique(target.parent_path(), prefix);
-  // mkostemp opens with O_CREAT | O_EXCL (mode 0600), retrying names.
-  fd_ = ::mkostemp(name.data(), O_CLOEXEC | O_NOFOLLOW);
-  if (fd_ >= 0) temporary_ = name;
+  {
+    const HoldSignals held;  // a signal between the two is taken after both
+    // mkostemp opens with O_CREAT | O_EXCL (mode 0600), retrying names.
+    fd_ = ::mkostemp(name.data(), O_CLOEXEC | O_NOFOLLOW);
+    if (fd_ >= 0) {
+      temporary_ = name;
+      RegisterTemporary(temporary_);  // removed if a signal ends the run before Commit
+    }
+  }
   if (fd_ >= 0 && ::fchmod(fd_, ModeFor(target_, follow)) != 0) {
     ::close(fd_);
     ::unlink(temporary_.c_str());
+    ForgetTemporary(temporary_);
     temporary_.clear();
     fd_ = -1;
   }
@@ -170,7 +178,10 @@ void OutputFile::OpenTemporary(bool follow) {
 
 OutputFile::~OutputFile() {
   if (fd_ >= 0) ::close(fd_);
-  if (!committed_ && !temporary_.empty()) ::unlink(temporary_.c_str());
+  if (!committed_ && !temporary_.empty()) {
+    ::unlink(temporary_.c_str());
+    ForgetTemporary(temporary_);
+  }
 }
 
 void OutputFile::Commit() {
@@ -183,14 +194,19 @@ void OutputFile::Commit() {
   fd_ = -1;
   if (ok && !temporary_.empty()) ok = std::rename(temporary_.c_str(), target_.c_str()) == 0;
   if (!ok) throw std::runtime_error("could not write '" + path_ + "'");
-  if (!temporary_.empty()) SyncFolder(fs::path(target_).parent_path());
+  if (!temporary_.empty()) {
+    ForgetTemporary(temporary_);  // after the rename: a signal between the two removes nothing
+    SyncFolder(fs::path(target_).parent_path());
+  }
   committed_ = true;
 }
 
 std::string MakeScratchFolder(const std::string& dir, const std::string& flag) {
   RemoveStale(dir, ".ccma-plot-");
   std::string name = Unique(dir, ".ccma-plot-");
+  const HoldSignals held;
   if (::mkdtemp(name.data()) == nullptr) throw UsageError("--" + flag + ": cannot write into '" + dir + "'");
+  RegisterTemporary(name, true);
   return name;
 }
 
@@ -207,6 +223,7 @@ bool MoveIntoFolder(const std::string& scratch, const std::string& name, const s
 void RemoveScratchFolder(const std::string& scratch) {
   std::error_code ignored;
   fs::remove_all(scratch, ignored);
+  ForgetTemporary(scratch);
 }
 
 FolderOutput::FolderOutput(const std::string& dir, const std::string& flag)

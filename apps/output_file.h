@@ -17,7 +17,9 @@
 // ExistingName::kReplace: whatever entry is at the name (a planted link,
 // FIFO or device included) is replaced by the new file, never followed or
 // written into; only a directory is refused.
-// Without Commit() (an exception on the way), the temporary file is removed.
+// Without Commit() (an exception on the way), the temporary file is removed;
+// so is it, and a scratch folder, when the tool is stopped by SIGINT,
+// SIGTERM or SIGHUP (apps/temporary_files.h).
 // Replacing NAME gives it a new inode: other hard links to the old file keep
 // the old content.
 #ifndef CCMA_APPS_OUTPUT_FILE_H_

@@ -74,7 +74,7 @@ void ApplySecondaryFlags(ControlOptions* options) {
   } else if (FLAGS_secondary == "travel") {
     s.travel_weight = FLAGS_secondary_weight;
   } else if (FLAGS_secondary != "none") {
-    throw UsageError("--secondary: '" + FLAGS_secondary + "' is not none, spread, sigma or travel");
+    throw UsageError("--secondary: " + Quote(FLAGS_secondary) + " is not none, spread, sigma or travel");
   }
 }
 

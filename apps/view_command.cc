@@ -140,8 +140,7 @@ std::vector<std::string> MeshRoots() {
 double DeflectionScaleFlag() {
   const Eigen::VectorXd v = ParseNumberList(FLAGS_deflection, "deflection");
   if (v.size() != 1 || !(v[0] > 0 && v[0] <= viewer::kMaxDeflectionScale)) {
-    throw UsageError("ccma view: --deflection: SCALE must be one number in (0, 1e6], not '" + FLAGS_deflection +
-                     "'");
+    throw UsageError("ccma view: --deflection: SCALE must be one number in (0, 1e6], not " + Quote(FLAGS_deflection));
   }
   return v[0];
 }
@@ -181,7 +180,7 @@ void WarnAboutDeflection(const viewer::SceneSummary& summary) {
 viewer::ColorBy ColorByFlag() {
   if (FLAGS_color_by == "body") return viewer::ColorBy::kBody;
   if (FLAGS_color_by == "load") return viewer::ColorBy::kLoad;
-  throw UsageError("ccma view: --color_by must be body or load, not '" + FLAGS_color_by + "'");
+  throw UsageError("ccma view: --color_by must be body or load, not " + Quote(FLAGS_color_by));
 }
 
 // The frames to draw: a trajectory's, a replay's, or the one at --controls

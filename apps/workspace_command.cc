@@ -51,11 +51,11 @@ WorkspaceRange ParseRange(const std::string& text, int component) {
   const std::string flag = kEndEffectorComponentNames[static_cast<size_t>(component)];
   const size_t colon = text.find(':');
   if (colon == std::string::npos || text.find(':', colon + 1) != std::string::npos) {
-    throw UsageError("--" + flag + ": expected lo:hi (two numbers and one colon), got '" + text + "'");
+    throw UsageError("--" + flag + ": expected lo:hi (two numbers and one colon), got " + Quote(text));
   }
   auto number = [&](const std::string& part) {
     const Eigen::VectorXd v = ParseNumberList(part, flag);
-    if (v.size() != 1) throw UsageError("--" + flag + ": expected lo:hi, got '" + text + "'");
+    if (v.size() != 1) throw UsageError("--" + flag + ": expected lo:hi, got " + Quote(text));
     return v[0];
   };
   WorkspaceRange range{component, number(text.substr(0, colon)), number(text.substr(colon + 1))};
@@ -63,7 +63,7 @@ WorkspaceRange ParseRange(const std::string& text, int component) {
     throw UsageError("--" + flag + ": bounds must be finite numbers in [-" + FormatG(kMaxMagnitude) + ", " +
                      FormatG(kMaxMagnitude) + "]");
   }
-  if (!(range.lo <= range.hi)) throw UsageError("--" + flag + ": needs lo <= hi, got '" + text + "'");
+  if (!(range.lo <= range.hi)) throw UsageError("--" + flag + ": needs lo <= hi, got " + Quote(text));
   return range;
 }
 

@@ -66,7 +66,7 @@ void CheckManifestFile(const std::string& dir, const std::string& path, const st
 
 WorkspaceStore::WorkspaceStore(const std::string& dir, const Model& model, const std::string& key_text,
                                const std::vector<WorkspaceTile>& tiles)
-    : dir_(dir), model_(model), tiles_(tiles) {
+    : dir_(dir), model_(model), tiles_(tiles), map_(WorkspaceMapFingerprint(key_text)) {
   namespace fs = std::filesystem;
   std::error_code ec;
   fs::create_directories(dir_, ec);
@@ -95,16 +95,17 @@ void WorkspaceStore::Warn(const std::string& line) {
 bool WorkspaceStore::Load(int tile, WorkspaceTileResult* out) {
   if (tile < 0 || tile >= static_cast<int>(tiles_.size())) return false;
   const std::string path = TilePath(tile);
-  const WorkspaceTileLimits limits = WorkspaceTileLimitsFor(model_, tiles_, tile);
+  const WorkspaceTileLimits limits = WorkspaceTileLimitsFor(model_, tiles_, tile, map_);
   bool absent = false;
   std::string why = NotAStoreFile(path, limits.max_bytes, &absent), bytes;
   if (absent) return false;  // not computed yet
   std::optional<WorkspaceTileResult> kept;
+  bool other_map = false;
   if (why.empty() && internal::ReadRegularFile(path, limits.max_bytes, "tile file", &bytes, &why)) {
-    kept = DecodeWorkspaceTile(bytes, model_, limits, &why);
+    kept = DecodeWorkspaceTile(bytes, model_, limits, &why, &other_map);
   }
   if (!kept) {
-    Warn("'" + path + "' is damaged (" + why + "); computing the tile again");
+    Warn("'" + path + (other_map ? "' is " + why : "' is damaged (" + why + ")") + "; computing the tile again");
     std::lock_guard<std::mutex> lock(mutex_);
     damaged_.insert(tile);
     return false;
@@ -117,7 +118,7 @@ bool WorkspaceStore::Load(int tile, WorkspaceTileResult* out) {
 
 void WorkspaceStore::Save(int tile, const WorkspaceTileResult& result) {
   const std::string path = TilePath(tile);
-  const std::string bytes = EncodeWorkspaceTile(result);
+  const std::string bytes = EncodeWorkspaceTile(result, map_);
   std::lock_guard<std::mutex> lock(save_mutex_);
   if (frozen_) return;
   try {

@@ -8,7 +8,8 @@
 //                  that is not a regular file, is larger than
 //                  kMaxStoreManifestBytes or is not a manifest (UsageError
 //                  naming the file and what is wrong).
-// DIR/tile_<k>.bin one finished tile (apps/workspace_tile_file.h).
+// DIR/tile_<k>.bin one finished tile (apps/workspace_tile_file.h), bound to
+//                  its map by the map's fingerprint inside it.
 // Files are written as OutputFile writes (a fresh temporary name beside
 // them made with O_EXCL | O_NOFOLLOW, fsync, rename), replacing whatever
 // entry has the name, never writing through a link: a file is whole or
@@ -16,10 +17,13 @@
 // A tile is read only when it is a regular file (not a link, FIFO, device
 // or folder) of at most the size a tile of this map can take, through the
 // bounded reader, and every value is checked (DecodeWorkspaceTile); any
-// other tile file is computed again, with one line on stderr naming it.
+// other tile file -- a tile of another map among them, even when store.json
+// is missing or was copied along -- is computed again, with one line on
+// stderr naming it.
 #ifndef CCMA_APPS_WORKSPACE_STORE_H_
 #define CCMA_APPS_WORKSPACE_STORE_H_
 
+#include <cstdint>
 #include <mutex>
 #include <set>
 #include <string>
@@ -57,6 +61,7 @@ class WorkspaceStore final : public WorkspaceTileCache {
   const std::string dir_;
   const Model& model_;
   const std::vector<WorkspaceTile> tiles_;
+  const std::uint64_t map_;  // the map's fingerprint, in every tile it writes and reads
   int loaded_ = 0;
   std::set<int> damaged_;  // tiles found damaged and not written since (under mutex_)
   bool frozen_ = false;    // under save_mutex_

@@ -19,7 +19,7 @@ std::string StoreManifestText(const std::string& key_text, int tiles);
 enum class ManifestMatch {
   kSame,       // the same map: its tiles may be read back
   kOtherMap,   // a manifest of another map
-  kMalformed,  // not a manifest: not JSON, other keys or types, another version
+  kMalformed,  // not a manifest: not JSON, a key given twice, other keys or types, another version
 };
 
 // Compares `text` (a store.json read back) with `want` (StoreManifestText).

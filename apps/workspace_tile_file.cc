@@ -3,13 +3,14 @@
 #include <algorithm>
 #include <climits>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <utility>
 
 namespace ccma::cli {
 namespace {
 
-constexpr char kMagic[8] = {'C', 'C', 'M', 'A', 'W', 'T', '0', '1'};
+constexpr char kMagic[8] = {'C', 'C', 'M', 'A', 'W', 'T', '0', '2'};
 constexpr std::uint64_t kWord = 8;  // bytes of a count, a double or an i64
 
 // Encoded bytes of a sample of a model with `controls` controls and `bodies`
@@ -23,6 +24,12 @@ std::uint64_t SampleBytes(const Model& model) {
   return SampleBytes(static_cast<std::uint64_t>(model.num_controls()), static_cast<std::uint64_t>(model.num_bodies()));
 }
 
+std::string Hex(std::uint64_t x) {
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(x));
+  return text;
+}
+
 bool AllFinite(const double* x, std::size_t n) {
   return std::all_of(x, x + n, [](double v) { return std::isfinite(v); });
 }
@@ -30,6 +37,7 @@ bool AllFinite(const double* x, std::size_t n) {
 // ---- writing -------------------------------------------------------------
 class Writer {
  public:
+  explicit Writer(std::uint64_t map) { Raw(map); }
   template <class T>
   void Raw(const T& x) { bytes_.append(reinterpret_cast<const char*>(&x), sizeof x); }
   void Text(const std::string& s) {
@@ -76,6 +84,15 @@ class Reader {
  public:
   Reader(const std::string& bytes, const Model& model, const WorkspaceTileLimits& limits)
       : bytes_(bytes), model_(model), limits_(limits), sample_bytes_(SampleBytes(model)) {}
+
+  // The header's map fingerprint is this map's (set when it is another's).
+  bool OwnMap(bool* other_map) {
+    std::uint64_t map = 0;
+    if (!Raw(&map)) return false;
+    if (map == limits_.map) return true;
+    if (other_map != nullptr) *other_map = true;
+    return Fail("a tile of another map (map " + Hex(map) + ", not this map's " + Hex(limits_.map) + ")");
+  }
 
   bool Fail(const std::string& why) {
     if (why_.empty()) why_ = why;
@@ -222,21 +239,24 @@ bool Reader::CarriedRows(std::vector<long long>* rows) {
 
 }  // namespace
 
-WorkspaceTileLimits WorkspaceTileLimitsFor(const Model& model, const std::vector<WorkspaceTile>& tiles, int tile) {
+WorkspaceTileLimits WorkspaceTileLimitsFor(const Model& model, const std::vector<WorkspaceTile>& tiles, int tile,
+                                           std::uint64_t map) {
   WorkspaceTileLimits limits;
   limits.tile = tile;
+  limits.map = map;
   limits.samples = static_cast<long long>(tiles.at(static_cast<std::size_t>(tile)).rows.size());
   for (const WorkspaceTile& t : tiles) limits.map_samples += static_cast<long long>(t.rows.size());
   limits.tiles = static_cast<int>(tiles.size());
-  // Samples and as many carried ones (each with its row), framing and checksum.
+  // Samples and as many carried ones (each with its row), framing (the
+  // fingerprint, three counts) and checksum.
   const auto s = static_cast<std::uint64_t>(limits.samples);
   const std::uint64_t per_sample = SampleBytes(model) + kTileTextBytesPerSample;
-  limits.max_bytes = static_cast<std::size_t>(sizeof kMagic + 4 * kWord + s * (2 * per_sample + kWord));
+  limits.max_bytes = static_cast<std::size_t>(sizeof kMagic + 5 * kWord + s * (2 * per_sample + kWord));
   return limits;
 }
 
-std::string EncodeWorkspaceTile(const WorkspaceTileResult& result) {
-  Writer w;
+std::string EncodeWorkspaceTile(const WorkspaceTileResult& result, std::uint64_t map) {
+  Writer w(map);
   w.Samples(result.samples);
   w.Raw<std::uint64_t>(result.carried_rows.size());
   for (long long row : result.carried_rows) w.Raw<std::int64_t>(row);
@@ -245,9 +265,11 @@ std::string EncodeWorkspaceTile(const WorkspaceTileResult& result) {
 }
 
 std::optional<WorkspaceTileResult> DecodeWorkspaceTile(const std::string& bytes, const Model& model,
-                                                       const WorkspaceTileLimits& limits, std::string* why) {
+                                                       const WorkspaceTileLimits& limits, std::string* why,
+                                                       bool* other_map) {
+  if (other_map != nullptr) *other_map = false;
   if (bytes.size() < sizeof kMagic + kWord || bytes.compare(0, sizeof kMagic, kMagic, sizeof kMagic) != 0) {
-    *why = "not a tile file (no CCMAWT01 header)";
+    *why = "not a tile file (no CCMAWT02 header)";
     return std::nullopt;
   }
   if (bytes.size() > limits.max_bytes) {
@@ -264,7 +286,7 @@ std::optional<WorkspaceTileResult> DecodeWorkspaceTile(const std::string& bytes,
   }
   Reader in(body, model, limits);
   WorkspaceTileResult out;
-  const bool ok = in.Samples(&out.samples, true) && in.CarriedRows(&out.carried_rows) &&
+  const bool ok = in.OwnMap(other_map) && in.Samples(&out.samples, true) && in.CarriedRows(&out.carried_rows) &&
                   in.Samples(&out.carried, false);
   if (ok && out.carried.size() != out.carried_rows.size()) in.Fail("carried samples without their rows");
   if (ok && !in.done()) in.Fail("bytes after the last sample");

@@ -13,7 +13,6 @@
 #include <vector>
 
 #include <tinyxml.h>
-#include <sdf/Console.hh>
 #include <sdf/Element.hh>
 #include <sdf/Error.hh>
 #include <sdf/Geometry.hh>
@@ -31,6 +30,8 @@
 #include "formats/internal/legged_extension.h"
 #include "formats/internal/mesh_paths.h"
 #include "formats/internal/robot_xml.h"
+#include "formats/internal/sdf_extension_elements.h"
+#include "formats/internal/sdformat_console.h"
 #include "formats/internal/sdformat_cost.h"
 #include "formats/model_loader.h"
 
@@ -227,29 +228,26 @@ RobotJointType JointTypeOf(const sdf::Joint& joint, const std::string& where) {
 }
 
 // A floating joint from world is a legged base when it holds ccma's
-// <ccma:legged .../> (formats/internal/legged_extension.h); no other joint
-// may hold one.
+// <ccma:legged .../> (formats/internal/legged_extension.h: an element of
+// ccma's namespace, internal/sdf_extension_elements.h); no other joint may.
 void ReadSdfLegged(const sdf::Joint& joint, const Context& context, const std::string& where, RobotJoint* out) {
   const sdf::ElementPtr element = joint.Element();
   const std::string name = std::string("<") + internal::kSdfLeggedElement + ">";
   const bool floating = out->type == RobotJointType::kFloating;
-  if (!element || !element->HasElement(internal::kSdfLeggedElement)) {
+  const std::vector<sdf::ElementPtr> found = internal::CcmaSdfChildren(element, "legged");
+  if (found.empty()) {
     if (!floating) return;
     throw ModelError(where + ": a floating joint from world is a legged base and needs ccma's " + name +
-                     " element (body_height=\"m\", docs/import.md); ccma has no free-flying body");
+                     " element (body_height=\"m\", docs/import.md)" + internal::NotCcmaHint(element, "legged") +
+                     "; ccma has no free-flying body");
   }
-  const sdf::ElementPtr legged = element->GetElement(internal::kSdfLeggedElement);
+  const sdf::ElementPtr legged = found.front();
   // libsdformat keeps no line for elements of other namespaces: the joint's then.
   const std::string at = Where(context, legged->LineNumber() ? legged : element) + ": joint " + Quote(joint.Name()) +
                          ": " + name;
-  if (legged->GetNextElement(internal::kSdfLeggedElement)) throw ModelError(at + ": more than one");
+  if (found.size() > 1) throw ModelError(at + ": more than one");
   if (!floating) throw ModelError(at + " belongs in a floating joint from world");
-  std::vector<std::pair<std::string, std::string>> attributes;
-  for (std::size_t i = 0; i < legged->GetAttributeCount(); ++i) {
-    const sdf::ParamPtr attribute = legged->GetAttribute(static_cast<unsigned>(i));
-    attributes.emplace_back(attribute->GetKey(), attribute->GetAsString());
-  }
-  out->legged = internal::ParseLeggedAttributes(attributes, at);
+  out->legged = internal::ParseLeggedAttributes(internal::CcmaSdfAttributes(legged, at), at);
 }
 
 // The unit axis `index` of a joint, in W.
@@ -369,9 +367,9 @@ std::vector<double> Numbers(const std::string& text, const std::string& where, s
 // for --actuated. Names are checked by the importer.
 std::vector<std::string> StoredActuated(const sdf::Model& model) {
   std::vector<std::string> names;
-  const sdf::ElementPtr root = model.Element();
-  if (!root || !root->HasElement("ccma:actuated")) return names;
-  const sdf::ElementPtr element = root->GetElement("ccma:actuated");
+  const std::vector<sdf::ElementPtr> found = internal::CcmaSdfChildren(model.Element(), "actuated");
+  if (found.empty()) return names;
+  const sdf::ElementPtr& element = found.front();
   if (!element->HasAttribute("joints")) return names;
   std::istringstream joints(element->GetAttribute("joints")->GetAsString());
   for (std::string name; joints >> name && names.size() < 100000;) names.push_back(name);
@@ -381,8 +379,9 @@ std::vector<std::string> StoredActuated(const sdf::Model& model) {
 // <ccma:end_effector link=".." point="x y z" controlled="x y z yaw"/>.
 void ReadEndEffector(const sdf::Model& model, const Context& context, RobotDescription* out) {
   const sdf::ElementPtr root = model.Element();
-  if (!root || !root->HasElement("ccma:end_effector")) return;
-  const sdf::ElementPtr element = root->GetElement("ccma:end_effector");
+  const std::vector<sdf::ElementPtr> found = internal::CcmaSdfChildren(root, "end_effector");
+  if (found.empty()) return;
+  const sdf::ElementPtr& element = found.front();
   const std::string where = Where(context, root) + ": <ccma:end_effector>";
   const auto attribute = [&](const char* name) {
     return element->HasAttribute(name) ? element->GetAttribute(name)->GetAsString() : std::string();
@@ -448,8 +447,8 @@ RobotDescription ReadSdformatFromString(const std::string& text, const std::stri
   if (text.size() > kMaxSdformatFileBytes) {
     throw ModelError(path + ": larger than " + std::to_string(kMaxSdformatFileBytes) + " bytes");
   }
+  internal::QuietSdformatConsole();  // before anything of libsdformat: no log file, nothing printed
   CheckXml(text, path);
-  sdf::Console::Instance()->SetQuiet(true);  // the library prints nothing
   sdf::Root root;
   const sdf::Errors errors = Unforgiven(root.LoadSdfString(text));
   if (!errors.empty()) ThrowSdfErrors(errors, path);

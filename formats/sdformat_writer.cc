@@ -161,7 +161,7 @@ std::string SdfBuilder::Text() const {
   os << "<?xml version=\"1.0\"?>\n"
      << "<!-- " << model_.name << ", written by `ccma export`: links posed at home; ccma:actuated lists the\n"
      << "     actuated joints (their controls follow the bases'); ccma:end_effector the end-effector. -->\n"
-     << "<sdf version=\"1.7\" xmlns:ccma=\"https://ccma.dev/sdf\">\n"
+     << "<sdf version=\"1.7\" xmlns:ccma=\"" << internal::kCcmaSdfNamespace << "\">\n"
      << "  <model name=\"" << model_.name << "\">\n";
   for (const SdfLink& link : links_) {
     os << "    <link name=\"" << link.name << "\">\n      <pose>" << PoseText(link.X_W) << "</pose>\n    </link>\n";

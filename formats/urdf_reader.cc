@@ -31,7 +31,8 @@ struct UrdfLeggedElement {
   int line = 0;
 };
 
-// The <ccma_legged> of a joint element, if any (at most one).
+// The <ccma_legged> of a joint element, if any (at most one, with
+// attributes only: no child element, no text).
 void IndexUrdfLegged(const TiXmlElement& joint, const std::string& name, const std::string& source,
                  std::map<std::string, UrdfLeggedElement>* legged) {
   const TiXmlElement* e = joint.FirstChildElement(internal::kUrdfLeggedElement);
@@ -39,6 +40,18 @@ void IndexUrdfLegged(const TiXmlElement& joint, const std::string& name, const s
   if (e->NextSiblingElement(internal::kUrdfLeggedElement) != nullptr) {
     throw ModelError(source + ":" + std::to_string(e->Row()) + ": joint " + Quote(name) + ": more than one <" +
                      internal::kUrdfLeggedElement + ">");
+  }
+  const std::string at = source + ":" + std::to_string(e->Row()) + ": joint " + Quote(name) + ": <" +
+                         internal::kUrdfLeggedElement + ">";
+  for (const TiXmlNode* inside = e->FirstChild(); inside != nullptr; inside = inside->NextSibling()) {
+    const TiXmlText* text = inside->ToText();
+    if (inside->ToElement() != nullptr) {
+      throw ModelError(at + ": a child element " + Quote("<" + inside->ValueStr() + ">") + " (line " +
+                       std::to_string(inside->Row()) + "): the element takes attributes only");
+    }
+    if (text != nullptr && text->ValueStr().find_first_not_of(" \t\r\n") != std::string::npos) {
+      throw ModelError(at + ": text " + Quote(text->ValueStr()) + " inside: the element takes attributes only");
+    }
   }
   UrdfLeggedElement& out = (*legged)[name];
   out.line = e->Row();

@@ -9,7 +9,10 @@
 // same bytes; anything else (an exception, a crash, a sanitizer report, an
 // allocation beyond the input's size) aborts. Each input is also tried with
 // its FNV-1a checksum appended, so that mutations reach the checks behind
-// the checksum (the unsealed_* seeds are tiles without their checksum).
+// the checksum (the unsealed_* seeds are tiles without their checksum), and
+// as a tile of the map whose fingerprint its header holds as well as of the
+// seeds' map (Fnv1a("fuzz map")), so that a mutated fingerprint does not
+// stop every mutation at the first check.
 // The model is found at $CCMA_FUZZ_MODEL, else CCMA_SOURCE_DIR/models/...,
 // else models/4dof_reduced.yaml under the working directory.
 #include <cmath>
@@ -17,6 +20,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <string>
 #include <vector>
@@ -65,17 +69,19 @@ void CheckAccepted(const std::string& bytes, const ccma::WorkspaceTileResult& ti
       if (s.tile < 0 || s.tile >= limits.tiles || s.start < -1 || s.start >= limits.map_samples) Fail("index out of range");
     }
   }
-  if (ccma::cli::EncodeWorkspaceTile(tile) != bytes) Fail("an accepted tile does not encode back to its bytes");
+  if (ccma::cli::EncodeWorkspaceTile(tile, limits.map) != bytes) Fail("an accepted tile does not encode back to its bytes");
 }
 
-// Decodes `bytes` as each tile of the map.
-void DecodeAsEveryTile(const std::string& bytes) {
+// Decodes `bytes` as each tile of the map whose fingerprint is `map`.
+void DecodeAsEveryTile(const std::string& bytes, std::uint64_t map) {
   static const std::vector<ccma::WorkspaceTile> tiles = FuzzTiles();
   for (int t = 0; t < static_cast<int>(tiles.size()); ++t) {
-    const ccma::cli::WorkspaceTileLimits limits = ccma::cli::WorkspaceTileLimitsFor(FuzzModel(), tiles, t);
+    const ccma::cli::WorkspaceTileLimits limits = ccma::cli::WorkspaceTileLimitsFor(FuzzModel(), tiles, t, map);
     std::string why;
-    const auto tile = ccma::cli::DecodeWorkspaceTile(bytes, FuzzModel(), limits, &why);
+    bool other_map = false;
+    const auto tile = ccma::cli::DecodeWorkspaceTile(bytes, FuzzModel(), limits, &why, &other_map);
     if (tile) {
+      if (other_map) Fail("accepted a tile of another map");
       CheckAccepted(bytes, *tile, limits);
     } else if (why.empty()) {
       Fail("refused without a reason");
@@ -83,18 +89,27 @@ void DecodeAsEveryTile(const std::string& bytes) {
   }
 }
 
+// Decodes `bytes` as a tile of the seeds' map and of the map in its header.
+void DecodeAsEveryMap(const std::string& bytes) {
+  static const std::uint64_t seeds_map = ccma::cli::WorkspaceMapFingerprint("fuzz map");
+  DecodeAsEveryTile(bytes, seeds_map);
+  std::uint64_t header_map = 0;
+  if (bytes.size() >= 16) std::memcpy(&header_map, bytes.data() + 8, sizeof header_map);
+  if (header_map != seeds_map) DecodeAsEveryTile(bytes, header_map);
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string bytes(reinterpret_cast<const char*>(data), size);
   try {
-    DecodeAsEveryTile(bytes);
+    DecodeAsEveryMap(bytes);
     // The same bytes with their checksum appended: a mutation gets past the
     // checksum to the checks behind it (a forger can compute FNV-1a too).
     std::string sealed = bytes;
     const std::uint64_t sum = ccma::cli::Fnv1a(bytes);
     sealed.append(reinterpret_cast<const char*>(&sum), sizeof sum);
-    DecodeAsEveryTile(sealed);
+    DecodeAsEveryMap(sealed);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "workspace_tile_fuzzer: unexpected exception: %s\n", e.what());
     std::abort();

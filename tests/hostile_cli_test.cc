@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -143,6 +144,39 @@ TEST(HostileFiles, AMisspeltKeyIsRefusedWithASuggestion) {
   std::ofstream(model) << text;
   const ToolRun r = Ccma({"check", "--model=" + model});
   ExpectRefused(r, model + ":23: joints[4]: unknown key 'betwen' (did you mean 'between'?)");
+}
+
+// issue 49: yaml-cpp reads a file's first YAML document and ignores the
+// rest, malformed or not. A model (or obstacles) file holds one document: a
+// second is refused naming the line that starts it, and a malformed one
+// naming its own line.
+TEST(HostileFiles, YamlDocumentsAfterTheModelAreRefused) {
+  const std::string text = Slurp(std::string(CCMA_MODELS_DIR) + "/4dof_reduced.yaml");
+  const int lines = static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+  struct Case {
+    std::string tail, needle;
+  };
+  const std::vector<Case> cases = {
+      {"---\nname: other\n", ":" + std::to_string(lines + 1) + ": a second YAML document: the file must hold exactly one"},
+      {"\n# a comment\n--- \n", ":" + std::to_string(lines + 3) + ": a second YAML document"},
+      {"...\nname: other\n", ":" + std::to_string(lines + 2) + ": a second YAML document"},
+      {"---\n[unclosed\n", ":" + std::to_string(lines + 3) + ": not valid YAML"},
+      {"...\n{a: [\n", ":" + std::to_string(lines + 3) + ": not valid YAML"},
+  };
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const std::string model = Scratch("two_documents_" + std::to_string(i) + ".yaml");
+    std::ofstream(model) << text << cases[i].tail;
+    ExpectRefused(Ccma({"check", "--model=" + model}), model + cases[i].needle);
+  }
+  // One document between markers is one document.
+  const std::string framed = Scratch("framed.yaml");
+  std::ofstream(framed) << "---\n" << text << "...\n";
+  const ToolRun ok = Ccma({"check", "--model=" + framed});
+  EXPECT_EQ(ok.status, 0) << ok.err;
+  const std::string obstacles = Scratch("obstacles.yaml");
+  std::ofstream(obstacles) << "obstacles: []\n---\nobstacles: []\n";
+  ExpectRefused(Ccma({"check", ModelFlag("4dof_reduced"), "--obstacles=" + obstacles}),
+                obstacles + ":2: a second YAML document");
 }
 
 // Millimetres and degrees load, with one warning line per kind on stderr;
@@ -328,6 +362,61 @@ TEST(HostileFiles, AFromModelNameIsQuotedShort) {
   const std::string expected = "printed for model \"evil\\x1b[2J" + std::string(32, 'x') + "...\", not '4dof_reduced'";
   EXPECT_NE(r.err.find(expected), std::string::npos) << r.err.substr(0, 300);
   EXPECT_LT(r.err.size(), 300u);
+}
+
+// issue 49: a flag value holding a terminal escape sequence (ESC ] 0 ; ...
+// BEL retitles the terminal) is echoed escaped, in a message that names the
+// command like every other: ccma COMMAND: --flag: ...
+TEST(HostileFlags, ControlBytesInFlagValuesAreEscapedAndTheCommandNamed) {
+  const std::string esc = "\x1b]0;pwned\x07";
+  struct Case {
+    std::vector<std::string> args;
+    std::string starts, shows;
+  };
+  const std::vector<Case> cases = {
+      {{"statics", ModelFlag("4dof_reduced"), "--wrench=1," + esc + ",3,0,0,0"}, "ccma statics: --wrench: ",
+       "'\\x1b]0;pwned\\x07' is not a finite number"},
+      {{"control", ModelFlag("4dof_reduced"), "--target=0,0," + esc}, "ccma control: --target: ",
+       "'\\x1b]0;pwned\\x07' is not a finite number"},
+      {{"control", ModelFlag("4dof_reduced"), "--target=0,0,0.6,0,0,0", "--method=" + esc}, "ccma control: --method: ",
+       "'\\x1b]0;pwned\\x07' is not lm or bfgs"},
+      {{"workspace", ModelFlag("4dof_reduced"), "--out=" + Scratch("w.csv"), "--z=" + esc}, "ccma workspace: --z: ",
+       "got '\\x1b]0;pwned\\x07'"},
+      {{"generate", "--agents=" + esc, "--out=" + Scratch("g.yaml")}, "ccma generate: bad value ",
+       "'\\x1b]0;pwned\\x07'"},
+      {{"simulate", ModelFlag("4dof_reduced"), "--" + esc + "=1"}, "ccma simulate: unknown flag ",
+       "'--\\x1b]0;pwned\\x07'"},
+      {{"simulate", ModelFlag("4dof_reduced"), esc}, "ccma simulate: unexpected argument ", "'\\x1b]0;pwned\\x07'"},
+  };
+  for (const Case& c : cases) {
+    const ToolRun r = Ccma(c.args);
+    ExpectRefused(r, c.shows);
+    EXPECT_EQ(r.err.rfind(c.starts, 0), 0u) << r.err;
+    for (char ch : r.err.substr(0, r.err.size() - 1)) {
+      EXPECT_TRUE(static_cast<unsigned char>(ch) >= 0x20 && ch != 0x7f) << "a raw control byte in: " << r.err;
+    }
+  }
+}
+
+// issue 49: integer flags take plain decimal only; gflags alone read 0x10
+// as 16 (and let strtol skip leading spaces).
+TEST(HostileFlags, IntegerFlagsTakeDecimalDigitsOnly) {
+  for (const std::string value : {"0x10", "0X10", " 16", "16 ", "1e1", "+", ""}) {
+    const ToolRun r = Ccma({"generate", "--agents=" + value, "--out=" + Scratch("hex.yaml")});
+    EXPECT_EQ(r.status, 2) << value << ": " << r.err;
+    EXPECT_EQ(r.out, "") << value;
+    EXPECT_NE(r.err.find("--agents"), std::string::npos) << r.err;
+  }
+  ExpectRefused(Ccma({"workspace", ModelFlag("4dof_reduced"), "--out=" + Scratch("w.csv"), "--z=0.5:0.7",
+                      "--resolution=0x3"}),
+                "bad value '0x3' for --resolution (a decimal integer");
+  ExpectRefused(Ccma({"workspace", ModelFlag("4dof_reduced"), "--out=" + Scratch("w.csv"), "--z=0.5:0.7",
+                      "--samples=5", "--seed=0x1f"}),
+                "bad value '0x1f' for --seed");
+  // Leading zeros are decimal, as gflags reads them: 010 agents are 10.
+  const ToolRun ten = Ccma({"generate", "--agents=010", "--out=" + Scratch("ten.yaml")});
+  ASSERT_EQ(ten.status, 0) << ten.err;
+  EXPECT_EQ(nlohmann::json::parse(ten.out)["agents"], 10);
 }
 
 }  // namespace

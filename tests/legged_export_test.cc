@@ -266,6 +266,72 @@ TEST(LeggedImport, AFloatingJointNeedsTheExtensionAndTheGround) {
   ExpectRefused(false, between, "dog.urdf:11: joint 'weld': joint type not supported");
 }
 
+// issue 49: ccma's SDFormat elements are those of its namespace URI, not of
+// the prefix `ccma`. Another prefix bound to https://ccma.dev/sdf (on <sdf>,
+// on the joint, on the element itself) is ccma's; `ccma:` bound to another
+// URI, rebound below <sdf>, or never declared is another vocabulary's.
+TEST(LeggedImport, TheExtensionIsMatchedByItsNamespaceUriNotItsPrefix) {
+  const std::string ccma_ns = "xmlns:ccma=\"https://ccma.dev/sdf\"";
+  auto with = [&](const std::string& root_ns, const std::string& element) {
+    std::string text = WithExtension(kDogSdf, element);
+    return text.replace(text.find(ccma_ns), ccma_ns.size(), root_ns);
+  };
+  const std::string ext = std::string(" ") + kDogExtension + "/>";
+  ExpectMastClosedForm(ImportSdfText("c", with("xmlns:c=\"https://ccma.dev/sdf\"", "<c:legged" + ext), MastTip()),
+                       "another prefix on <sdf>");
+  ExpectMastClosedForm(ImportSdfText("own", with("", "<k:legged xmlns:k=\"https://ccma.dev/sdf\"" + ext), MastTip()),
+                       "declared on the element");
+  std::string on_joint = with("", "<j:legged" + ext);
+  on_joint.replace(on_joint.find("type=\"floating\""), 0, "xmlns:j=\"https://ccma.dev/sdf\" ");
+  ExpectMastClosedForm(ImportSdfText("joint", on_joint, MastTip()), "declared on the joint");
+  const std::string needs = "dog.sdf:6: joint 'stand': a floating joint from world is a legged base and needs "
+                            "ccma's <ccma:legged> element (body_height=\"m\", docs/import.md) ('<ccma:legged>' here ";
+  ExpectRefused(true, with("xmlns:ccma=\"https://elsewhere.example/robots\"", "<ccma:legged" + ext),
+                needs + "is bound to 'https://elsewhere.example/robots', not https://ccma.dev/sdf)");
+  ExpectRefused(true, with("", "<ccma:legged" + ext),
+                needs + "has an undeclared prefix: declare xmlns:ccma=\"https://ccma.dev/sdf\")");
+  std::string rebound = WithExtension(kDogSdf, "<ccma:legged" + ext);
+  rebound.replace(rebound.find("<model name"), 6, "<model xmlns:ccma=\"https://elsewhere.example/robots\"");
+  ExpectRefused(true, rebound, needs + "is bound to 'https://elsewhere.example/robots'");
+  // Another vocabulary's <x:legged> on a fixed joint is ignored, as libsdformat ignores it.
+  std::string foreign = WithExtension(kDogSdf, "<ccma:legged" + ext);
+  foreign.replace(foreign.find("<parent>dog</parent>"), 0, "<o:legged xmlns:o=\"https://other.example\" a=\"1\"/>");
+  ExpectMastClosedForm(ImportSdfText("foreign", foreign, MastTip()), "another vocabulary's element elsewhere");
+}
+
+// issue 49: the extension's numbers are decimal (strtod would read the hex
+// float 0x1.cccccccccccccp-2 as 0.45), and the element takes attributes
+// only: a child element or text inside is refused, naming file, line, joint
+// and element.
+TEST(LeggedImport, HexFloatsAndContentInsideTheExtensionAreRefused) {
+  for (const std::string hex : {"0x1.cccccccccccccp-2", "0X1P-1", "0x0.7333333333333p0"}) {
+    ExpectRefused(false, WithExtension(kDogUrdf, "<ccma_legged body_height=\"" + hex + "\"/>"),
+                  "dog.urdf:9: joint 'stand': <ccma_legged>: body_height: expected 1 finite number within 1e4, got '" +
+                      hex + "'");
+    ExpectRefused(true, WithExtension(kDogSdf, "<ccma:legged body_height=\"0.45\" footprint=\"" + hex + " 0.3\"/>"),
+                  "dog.sdf:6: joint 'stand': <ccma:legged>: footprint: expected 2 finite numbers within 1e4, got '" +
+                      hex + " 0.3'");
+  }
+  const std::string open = std::string("<ccma_legged ") + kDogExtension + ">";
+  ExpectRefused(false, WithExtension(kDogUrdf, open + "\n<leg name=\"front\"/></ccma_legged>"),
+                "dog.urdf:9: joint 'stand': <ccma_legged>: a child element '<leg>' (line 10): the element takes "
+                "attributes only");
+  ExpectRefused(false, WithExtension(kDogUrdf, open + "0.5</ccma_legged>"),
+                "dog.urdf:9: joint 'stand': <ccma_legged>: text '0.5' inside: the element takes attributes only");
+  const std::string sdf_open = std::string("<ccma:legged ") + kDogExtension + ">";
+  ExpectRefused(true, WithExtension(kDogSdf, sdf_open + "<leg name=\"front\"/></ccma:legged>"),
+                "dog.sdf:6: joint 'stand': <ccma:legged>: a child element '<leg>': the element takes attributes only");
+  ExpectRefused(true, WithExtension(kDogSdf, sdf_open + "0.5</ccma:legged>"),
+                "dog.sdf:6: joint 'stand': <ccma:legged>: text '0.5' inside: the element takes attributes only");
+  // Comments and white space inside are no content.
+  ExpectMastClosedForm(
+      ImportRobot(ReadUrdfFromString(WithExtension(kDogUrdf, open + "\n  <!-- a note -->\n</ccma_legged>"),
+                                     Scratch("commented.urdf", "")),
+                  MastTip())
+          .model,
+      "a comment inside");
+}
+
 // The command line: a legged model exports (both formats) and imports
 // back; a floating joint without the extension exits 2 with one line.
 TEST(LeggedExportCommand, ExportsLeggedModelsAndRefusesAFloatingJointWithoutTheExtension) {

@@ -3,6 +3,7 @@
 // folder or in the --out folder of bench and replay): the writer of
 // apps/output_file.h seen through the `ccma` tool.
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <sys/time.h>
 #include <sys/wait.h>
@@ -236,6 +237,56 @@ TEST(OutputFileWriter, ReplayIntoAnUnwritableFolderIsRefused) {
   chmod(dir.c_str(), 0700);
   EXPECT_EQ(r.status, 2);
   EXPECT_TRUE(r.out.empty());
+}
+
+// issue 49: Ctrl-C or SIGTERM in the middle of a long map left the hidden
+// temporary output (`.map.csv.ccma-tmp-<pid>-XXXXXX`, 245 MB seen) behind.
+// The run still dies by the signal (a shell: 130 or 143), with nothing left
+// in the folder: no CSV, no temporary; with a store, no temporary tile.
+TEST(OutputFileWriter, ASignalLeavesNoTemporaryBehind) {
+  int round = 0;
+  for (const int sig : {SIGTERM, SIGINT}) {
+    for (const bool store : {false, true}) {
+      SCOPED_TRACE(std::string(sig == SIGTERM ? "SIGTERM" : "SIGINT") + (store ? " with a store" : ""));
+      const std::string dir = Folder("signal_" + std::to_string(round++));
+      // 200 x 200 samples: minutes of work, stopped as soon as its output exists.
+      std::vector<std::string> args = {"workspace", "--model=" + testing::ModelPath("4dof_reduced"),
+                                       "--out=" + dir + "/map.csv", "--x=-0.35:0.35", "--z=0.35:1.0",
+                                       "--resolution=200"};
+      if (store) args.push_back("--store=" + dir + "/store");
+      const pid_t pid = testing::SpawnTool(args, 300);
+      auto temporaries = [&dir] {
+        int n = 0;
+        for (const std::string& name : Entries(dir)) n += name.find(".ccma-tmp-") != std::string::npos;
+        return n;
+      };
+      // With a store, the map has started (a finished tile): the watch that
+      // reports what the store keeps takes the signal then.
+      auto started = [&dir, store, &temporaries] {
+        if (temporaries() != 1) return false;
+        if (!store || !fs::is_directory(dir + "/store")) return !store;
+        for (const std::string& name : Entries(dir + "/store")) {
+          if (name.rfind("tile_", 0) == 0) return true;
+        }
+        return false;
+      };
+      // Until then (a bound on the wait, not a timing assertion).
+      for (int polls = 0; polls < 12000 && !started() && waitpid(pid, nullptr, WNOHANG) == 0; ++polls) usleep(5000);
+      ASSERT_EQ(temporaries(), 1) << "the run wrote no temporary output";
+      ASSERT_EQ(kill(pid, sig), 0);
+      int raw = 0;
+      ASSERT_EQ(waitpid(pid, &raw, 0), pid);
+      ASSERT_TRUE(WIFSIGNALED(raw)) << "exit status " << WEXITSTATUS(raw);
+      EXPECT_EQ(WTERMSIG(raw), sig);
+      EXPECT_EQ(temporaries(), 0) << "a temporary left in " << dir;
+      EXPECT_FALSE(fs::exists(dir + "/map.csv"));
+      if (store) {
+        for (const std::string& name : Entries(dir + "/store")) {
+          EXPECT_EQ(name.find("ccma-tmp"), std::string::npos) << name;
+        }
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -32,13 +32,15 @@ inline std::string Slurp(const std::string& path) {
   return ss.str();
 }
 
-inline ToolRun RunTool(const std::vector<std::string>& args, int timeout_s = 120) {
-  const std::string dir = ::testing::TempDir();
-  const std::string tag = std::to_string(getpid());
-  const std::string out = dir + "/tool_out_" + tag, err = dir + "/tool_err_" + tag;
-  const auto start = std::chrono::steady_clock::now();
+// Starts the tool with `args` and returns at once with its pid: stdout and
+// stderr to the files `out` and `err` (created, truncated), killed by
+// SIGALRM after `timeout_s` (a hang ends), `in_child` run in the child just
+// before the tool starts (a resource limit, say). The caller waits for it.
+inline pid_t SpawnTool(const std::vector<std::string>& args, int timeout_s, const std::string& out = "/dev/null",
+                       const std::string& err = "/dev/null", void (*in_child)() = nullptr) {
   const pid_t pid = fork();
   if (pid == 0) {
+    if (in_child != nullptr) in_child();
     const int o = open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
     const int e = open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
     dup2(o, 1);
@@ -50,6 +52,15 @@ inline ToolRun RunTool(const std::vector<std::string>& args, int timeout_s = 120
     execv(CCMA_TOOL_PATH, argv.data());
     _exit(127);
   }
+  return pid;
+}
+
+inline ToolRun RunTool(const std::vector<std::string>& args, int timeout_s = 120) {
+  const std::string dir = ::testing::TempDir();
+  const std::string tag = std::to_string(getpid());
+  const std::string out = dir + "/tool_out_" + tag, err = dir + "/tool_err_" + tag;
+  const auto start = std::chrono::steady_clock::now();
+  const pid_t pid = SpawnTool(args, timeout_s, out, err);
   int raw = 0;
   waitpid(pid, &raw, 0);
   ToolRun r;

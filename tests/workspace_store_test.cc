@@ -72,23 +72,12 @@ void WriteBytes(const std::string& path, const std::string& bytes) {
 // taking the machine's memory, and an alarm that ends a hang.
 testing::ToolRun RunBounded(const std::vector<std::string>& args, int timeout_s = 120) {
   const std::string out = testing::ScratchPath("store", "bounded_out"), err = testing::ScratchPath("store", "bounded_err");
-  const pid_t pid = fork();
-  if (pid == 0) {
+  const pid_t pid = testing::SpawnTool(args, timeout_s, out, err, [] {
 #ifndef __SANITIZE_ADDRESS__  // AddressSanitizer's shadow memory alone needs terabytes of address space
     const rlimit limit{std::uint64_t{2} << 30, std::uint64_t{2} << 30};
     setrlimit(RLIMIT_AS, &limit);
 #endif
-    const int o = open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-    const int e = open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-    dup2(o, 1);
-    dup2(e, 2);
-    alarm(static_cast<unsigned>(timeout_s));
-    std::vector<char*> argv = {const_cast<char*>(CCMA_TOOL_PATH)};
-    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    execv(CCMA_TOOL_PATH, argv.data());
-    _exit(127);
-  }
+  });
   int raw = 0;
   waitpid(pid, &raw, 0);
   testing::ToolRun r;
@@ -114,6 +103,13 @@ const std::string& ReferenceCsv() {
     return testing::Slurp(out);
   }();
   return csv;
+}
+
+// The map fingerprint a tile file's header holds (after the 8-byte magic).
+std::uint64_t MapOf(const std::string& bytes) {
+  std::uint64_t map = 0;
+  if (bytes.size() >= 16) std::memcpy(&map, bytes.data() + 8, sizeof map);
+  return map;
 }
 
 // A store of the map with all its tiles, in a fresh folder.
@@ -178,6 +174,7 @@ TEST(WorkspaceStoreWrites, ConcurrentWritersOfOneTileWarnNothing) {
   const WorkspaceTileResult tile = EvaluateWorkspaceTile(model, MapOptions(model), home, {});
   const std::string dir = FreshDir("concurrent") + "/store";
   cli::WorkspaceStore a(dir, model, "key", tiles), b(dir, model, "key", tiles);
+  const std::uint64_t map = cli::WorkspaceMapFingerprint("key");
   ::testing::internal::CaptureStderr();
   auto writer = [&tile, home](cli::WorkspaceStore* store) {
     for (int i = 0; i < 200; ++i) store->Save(home, tile);
@@ -188,7 +185,7 @@ TEST(WorkspaceStoreWrites, ConcurrentWritersOfOneTileWarnNothing) {
   EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
   WorkspaceTileResult back;
   EXPECT_TRUE(a.Load(home, &back));
-  EXPECT_EQ(EncodeWorkspaceTile(back), EncodeWorkspaceTile(tile));
+  EXPECT_EQ(EncodeWorkspaceTile(back, map), EncodeWorkspaceTile(tile, map));
   for (const fs::directory_entry& e : fs::directory_iterator(dir)) {  // no temporaries left
     const std::string name = e.path().filename().string();
     EXPECT_TRUE(name == "store.json" || name == "tile_" + std::to_string(home) + ".bin") << name;
@@ -273,12 +270,12 @@ TEST(WorkspaceStoreInterrupt, CtrlCSaysWhatIsKeptAndHowToResume) {
 // (24 bytes) would have allocated about 22 GB.
 TEST(WorkspaceStoreTiles, AHundredMillionSampleClaimIsComputedAgain) {
   const std::string dir = FilledStore("claim");
-  std::string bytes = "CCMAWT01";
+  std::string bytes = testing::Slurp(dir + "/store/tile_1.bin").substr(0, 16);  // magic and map fingerprint
   const std::uint64_t count = 100000000;
   bytes.append(reinterpret_cast<const char*>(&count), sizeof count);
   const std::uint64_t sum = cli::Fnv1a(bytes);
   bytes.append(reinterpret_cast<const char*>(&sum), sizeof sum);
-  ASSERT_EQ(bytes.size(), 24u);
+  ASSERT_EQ(bytes.size(), 32u);
   WriteBytes(dir + "/store/tile_1.bin", bytes);
   ExpectRecomputed(dir, 1, true);
 }
@@ -310,15 +307,16 @@ TEST(WorkspaceStoreTiles, AReachableSampleWithNanControlsIsComputedAgain) {
   const Model& model = TheModel();
   const std::vector<WorkspaceTile> tiles = WorkspaceTiles(model, MapOptions(model));
   for (int k = 0; k < 4; ++k) {
-    const std::string path = dir + "/store/tile_" + std::to_string(k) + ".bin";
+    const std::string path = dir + "/store/tile_" + std::to_string(k) + ".bin", bytes = testing::Slurp(path);
+    const std::uint64_t map = MapOf(bytes);
     std::string why;
     std::optional<WorkspaceTileResult> tile =
-        DecodeWorkspaceTile(testing::Slurp(path), model, cli::WorkspaceTileLimitsFor(model, tiles, k), &why);
+        DecodeWorkspaceTile(bytes, model, cli::WorkspaceTileLimitsFor(model, tiles, k, map), &why);
     ASSERT_TRUE(tile) << why;
     for (WorkspaceSample& s : tile->samples) {
       if (!s.reachable) continue;
       s.controls[0] = std::nan("");
-      WriteBytes(path, EncodeWorkspaceTile(*tile));  // a valid checksum
+      WriteBytes(path, EncodeWorkspaceTile(*tile, map));  // a valid checksum
       ExpectRecomputed(dir, k);
       return;
     }
@@ -332,6 +330,70 @@ TEST(WorkspaceStoreTiles, ATruncatedTileIsComputedAgain) {
   const std::string bytes = testing::Slurp(path);
   WriteBytes(path, bytes.substr(0, bytes.size() / 2));
   ExpectRecomputed(dir, 0);
+}
+
+// issue 49: the tiles of another map -- the same command over z 0.55:0.95
+// instead of 0.5:0.9, so the same tile count and sizes, each tile valid with
+// its checksum -- copied into this map's store, with its store.json kept and
+// without one (a store.json deleted, or tiles copied into a fresh folder):
+// every tile is computed again, with one line naming it, and the map is this
+// map's, not the other one's.
+void ExpectOtherMapsTilesRecomputed(const std::string& name, bool keep_manifest) {
+  const std::string dir = FilledStore(name), other = FreshDir(name + "_other");
+  std::vector<std::string> args = MapArgs(other + "/map.csv", other + "/store");
+  std::replace(args.begin(), args.end(), std::string("--z=0.5:0.9"), std::string("--z=0.55:0.95"));
+  ASSERT_EQ(testing::RunTool(args).status, 0);
+  ASSERT_NE(testing::Slurp(other + "/map.csv"), ReferenceCsv());
+  if (!keep_manifest) fs::remove(dir + "/store/store.json");
+  for (int k = 0; k < 4; ++k) {
+    const std::string tile = "/store/tile_" + std::to_string(k) + ".bin";
+    fs::copy_file(other + tile, dir + tile, fs::copy_options::overwrite_existing);
+  }
+  const testing::ToolRun run = testing::RunTool(MapArgs(dir + "/again.csv", dir + "/store"), 60);
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_EQ(nlohmann::json::parse(run.out)["tiles_from_store"], 0);
+  EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 4) << run.err;
+  for (int k = 0; k < 4; ++k) {
+    const std::string line = "ccma workspace: --store: '" + dir + "/store/tile_" + std::to_string(k) +
+                             ".bin' is a tile of another map (map ";
+    EXPECT_NE(run.err.find(line), std::string::npos) << run.err;
+  }
+  EXPECT_EQ(testing::Slurp(dir + "/again.csv"), ReferenceCsv());
+  // Written again as this map's: the next run reads all four back.
+  const testing::ToolRun again = testing::RunTool(MapArgs(dir + "/third.csv", dir + "/store"), 60);
+  ASSERT_EQ(again.status, 0) << again.err;
+  EXPECT_EQ(nlohmann::json::parse(again.out)["tiles_from_store"], 4);
+  EXPECT_TRUE(again.err.empty()) << again.err;
+}
+
+TEST(WorkspaceStoreTiles, AnotherMapsTilesAreComputedAgain) { ExpectOtherMapsTilesRecomputed("other_map", true); }
+
+TEST(WorkspaceStoreTiles, AnotherMapsTilesWithoutStoreJsonAreComputedAgain) {
+  ExpectOtherMapsTilesRecomputed("other_map_no_manifest", false);
+}
+
+// The fingerprint is inside the checksum: a tile whose fingerprint alone was
+// changed is damaged; one encoded for another map is another map's.
+TEST(WorkspaceStoreTiles, TheFingerprintIsCoveredByTheChecksum) {
+  const Model& model = TheModel();
+  const std::vector<WorkspaceTile> tiles = WorkspaceTiles(model, MapOptions(model));
+  int home = 0;
+  while (!tiles[static_cast<size_t>(home)].depends_on.empty()) ++home;
+  const WorkspaceTileResult tile = EvaluateWorkspaceTile(model, MapOptions(model), home, {});
+  const std::uint64_t mine = cli::WorkspaceMapFingerprint("mine"), theirs = cli::WorkspaceMapFingerprint("theirs");
+  const cli::WorkspaceTileLimits limits = cli::WorkspaceTileLimitsFor(model, tiles, home, mine);
+  std::string why;
+  bool other_map = true;
+  ASSERT_TRUE(DecodeWorkspaceTile(EncodeWorkspaceTile(tile, mine), model, limits, &why, &other_map)) << why;
+  EXPECT_FALSE(other_map);
+  EXPECT_FALSE(DecodeWorkspaceTile(EncodeWorkspaceTile(tile, theirs), model, limits, &why, &other_map));
+  EXPECT_TRUE(other_map);
+  EXPECT_EQ(why.rfind("a tile of another map (map ", 0), 0u) << why;
+  std::string forged = EncodeWorkspaceTile(tile, theirs);
+  std::memcpy(&forged[8], &mine, sizeof mine);  // the fingerprint swapped, the checksum left
+  EXPECT_FALSE(DecodeWorkspaceTile(forged, model, limits, &why, &other_map));
+  EXPECT_FALSE(other_map);
+  EXPECT_EQ(why, "checksum mismatch");
 }
 
 // --------------------------------------------------------------- manifest ---
@@ -369,6 +431,22 @@ TEST(WorkspaceStoreManifest, ALinkOrFifoIsRefused) {
   ASSERT_EQ(mkfifo((dir + "/store/store.json").c_str(), 0600), 0);
   ExpectManifestRefused(dir, "not a regular file");
   EXPECT_EQ(testing::Slurp(victim), text);
+}
+
+// issue 49: a key given twice (nlohmann keeps the last value, so a manifest
+// naming two maps read as the second) is refused, naming the line.
+TEST(WorkspaceStoreManifest, AKeyGivenTwiceIsRefused) {
+  const std::string dir = FilledStore("duplicate");
+  const nlohmann::json own = nlohmann::json::parse(testing::Slurp(dir + "/store/store.json"));
+  const std::string key = own["key"];
+  WriteBytes(dir + "/store/store.json", "{\"ccma_workspace_store\": 1,\n \"key\": \"0123\",\n \"key\": \"" + key +
+                                            "\",\n \"tiles\": 4}\n");
+  ExpectManifestRefused(dir, "(line 3: the key 'key' given twice)");
+  const std::string want = cli::StoreManifestText("fuzz", 16);
+  std::string why;
+  const std::string twice = R"({"ccma_workspace_store": 1, "key": "1", "tiles": 16, "tiles": 16})";
+  EXPECT_EQ(cli::CheckStoreManifest(twice, want, &why), cli::ManifestMatch::kMalformed);
+  EXPECT_EQ(why, "line 1: the key 'tiles' given twice");
 }
 
 TEST(WorkspaceStoreManifest, OtherKeysTypesAndVersionsAreMalformed) {

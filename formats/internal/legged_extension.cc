@@ -19,8 +19,8 @@ namespace {
 // "lo hi" for a limited range.
 std::string LeggedRangeText(const ControlRange& range) { return Number(range.lower) + " " + Number(range.upper); }
 
-// Exactly `count` numbers separated by white space, each finite and within
-// kMaxMagnitude; at most count + 1 words are looked at.
+// Exactly `count` decimal numbers separated by white space, each finite and
+// within kMaxMagnitude; at most count + 1 words are looked at.
 std::vector<double> LeggedNumbers(const std::string& text, std::size_t count, const std::string& where) {
   std::istringstream words(text);
   std::vector<double> values;
@@ -29,7 +29,9 @@ std::vector<double> LeggedNumbers(const std::string& text, std::size_t count, co
     errno = 0;
     char* end = nullptr;
     const double value = std::strtod(word.c_str(), &end);
-    clean = end != word.c_str() && *end == '\0' && errno != ERANGE && std::isfinite(value) &&
+    // Decimal only: strtod also reads hex floats (0x1p-1), inf and nan.
+    const bool decimal = word.find_first_not_of("0123456789+-.eE") == std::string::npos;
+    clean = decimal && end != word.c_str() && *end == '\0' && errno != ERANGE && std::isfinite(value) &&
             std::abs(value) <= kMaxMagnitude;
     values.push_back(value);
   }

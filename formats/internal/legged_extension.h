@@ -22,6 +22,10 @@ namespace internal {
 
 constexpr const char* kUrdfLeggedElement = "ccma_legged";
 constexpr const char* kSdfLeggedElement = "ccma:legged";
+// The XML namespace of ccma's SDFormat elements, which the writer binds to
+// the prefix ccma on <sdf>; the reader goes by it, not by the prefix
+// (formats/internal/sdf_extension_elements.h).
+constexpr const char* kCcmaSdfNamespace = "https://ccma.dev/sdf";
 
 // ` body_height="h" ...` (a leading space; limits and footprint only when
 // given), numbers with 17 significant digits so that they read back exactly.

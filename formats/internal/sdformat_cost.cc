@@ -7,6 +7,8 @@
 #include <sdf/SDFImpl.hh>
 #include <sdf/parser.hh>
 
+#include "formats/internal/sdformat_console.h"
+
 namespace ccma {
 namespace internal {
 namespace {
@@ -33,6 +35,7 @@ std::size_t CountNodes(const sdf::ElementPtr& element, int depth, std::map<std::
 const std::map<std::string, std::size_t>& DescriptionNodes() {
   static const std::map<std::string, std::size_t> nodes = [] {
     std::map<std::string, std::size_t> out;
+    QuietSdformatConsole();  // libsdformat may log from here on: never to a file
     sdf::SDFPtr specification(new sdf::SDF());
     sdf::init(specification);
     if (specification->Root()) CountNodes(specification->Root(), 0, &out);

@@ -1,6 +1,7 @@
 // ParseYamlText: nesting guard, then yaml-cpp (yaml_document.h).
 #include "formats/internal/yaml_document.h"
 
+#include <algorithm>
 #include <set>
 #include <string>
 #include <unordered_map>
@@ -83,6 +84,33 @@ void CheckDuplicateKeys(const YAML::Node& root, const std::string& source) {
   }
 }
 
+// The 1-based line of the `---` that starts the document whose content
+// begins at `content` (its mark), looked for after `after` (where the
+// document before it began); the content's own line when there is none
+// (a document after `...` needs no `---`).
+int DocumentStartLine(const std::string& text, const YAML::Mark& content, std::size_t after) {
+  int line = 1, found = content.line + 1;
+  for (std::size_t at = 0; at < text.size() && at < static_cast<std::size_t>(content.pos); ++at) {
+    const bool line_start = at == 0 || text[at - 1] == '\n';
+    const bool marker = text.compare(at, 3, "---") == 0 &&
+                        (at + 3 == text.size() || std::string(" \t\r\n").find(text[at + 3]) != std::string::npos);
+    if (line_start && at > after && marker) found = line;
+    if (text[at] == '\n') ++line;
+  }
+  return found;
+}
+
+// Throws when `text` holds more than one YAML document: yaml-cpp's Load
+// reads the first and ignores the rest silently, malformed or not (issue 49).
+// A later document that is not valid YAML is refused by LoadAll itself.
+void CheckOneDocument(const std::vector<YAML::Node>& documents, const std::string& text, const std::string& source) {
+  if (documents.size() < 2) return;
+  const auto first = static_cast<std::size_t>(std::max(0, documents[0].Mark().pos));
+  const int line = DocumentStartLine(text, documents[1].Mark(), first);
+  throw ModelError(source + ":" + std::to_string(line) + ": a second YAML document: the file must hold exactly one " +
+                   "(remove everything from this line on)");
+}
+
 }  // namespace
 
 std::string WithLine(const std::string& source, const YAML::Mark& mark) {
@@ -92,7 +120,9 @@ std::string WithLine(const std::string& source, const YAML::Mark& mark) {
 YAML::Node ParseYamlText(const std::string& text, const std::string& source) {
   CheckFlowNesting(text, source);
   try {
-    const YAML::Node root = YAML::Load(text);
+    const std::vector<YAML::Node> documents = YAML::LoadAll(text);  // every document, so later ones are seen
+    CheckOneDocument(documents, text, source);
+    const YAML::Node root = documents.empty() ? YAML::Node() : documents.front();
     CheckDuplicateKeys(root, source);
     return root;
   } catch (const YAML::DeepRecursion& e) {

@@ -11,7 +11,9 @@
 namespace ccma {
 namespace internal {
 
-// The YAML document in `text`; `source` names it in messages.
+// The YAML document in `text`; `source` names it in messages. A file holds
+// one document: a second one (after `---` or `...`) is a ModelError
+// naming its line, and so is a later document that is not valid YAML.
 YAML::Node ParseYamlText(const std::string& text, const std::string& source);
 
 // "source:line" (1-based) when the mark has a line, else "source".

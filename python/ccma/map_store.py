@@ -10,13 +10,16 @@ client, Ctrl-C, a lost laptop connection) resumes where it stopped.
 Layout (Debian's python3-zarr, format 2):
     <path>/.zattrs           {"ccma_store": 1, "key": sha256 of the arguments, "num_chunks": n}
     <path>/chunks/<i>/       one array per numeric field, string lists in attrs
-    <path>/chunks/<i>/.zattrs  {"fields": ..., "strings": ..., "sha256": ..., "complete": true}
+    <path>/chunks/<i>/.zattrs  {"fields": ..., "strings": ..., "key": ..., "sha256": ..., "complete": true}
 
 A chunk counts as done only when its `complete` marker is set, which is
 written last, and when its arrays still hash to the recorded sha256: a chunk
 half-written by a killed process has no marker, a corrupted one fails the
 hash, and both are computed again. A store made for other arguments is
-refused (ValueError), never mixed.
+refused (ValueError), never mixed. Every chunk carries the key of the batch
+it belongs to, inside its sha256 too: a chunk copied from another store (or
+left in a store whose root .zattrs was deleted) is computed again, with a
+UserWarning naming it.
 
 A store may come from someone else (a shared cluster folder), so it is read
 as data, never through zarr's decoding (python/ccma/_store_files.py): every
@@ -31,6 +34,7 @@ import hashlib
 import json
 import os
 import shutil
+import warnings
 
 import numpy as _np
 
@@ -45,8 +49,10 @@ def arguments_key(arguments):
     return hashlib.sha256(text.encode("utf-8")).hexdigest()
 
 
-def _digest(arrays, strings):
+def _digest(arrays, strings, key):
+    """sha256 of a chunk's arrays and strings and of `key`, its batch's key."""
     h = hashlib.sha256()
+    h.update(key.encode("utf-8"))
     for name in sorted(arrays):
         a = _np.ascontiguousarray(arrays[name])
         h.update(name.encode())
@@ -65,7 +71,7 @@ class MapStore:
 
         self.path = os.fspath(path)
         self.num_chunks = int(num_chunks)
-        digest = arguments_key(key)
+        digest = self._key = arguments_key(key)
         attrs = self._existing_attrs()  # checked before zarr opens anything
         self._root = zarr.open_group(self.path, mode="a")
         if attrs:
@@ -106,6 +112,7 @@ class MapStore:
         them; HostileStore otherwise (a field name could name another folder)."""
         fields, strings, digest = attrs.get("fields"), attrs.get("strings"), attrs.get("sha256")
         ok = isinstance(fields, list) and len(fields) <= _files.MAX_FIELDS and isinstance(digest, str) and \
+            isinstance(attrs.get("key", ""), str) and \
             all(isinstance(f, str) and _files.plain_name(f) for f in fields) and len(set(fields)) == len(fields) and \
             isinstance(strings, dict) and len(strings) <= _files.MAX_FIELDS and \
             all(isinstance(v, list) and all(isinstance(x, str) for x in v) for v in strings.values())
@@ -129,9 +136,10 @@ class MapStore:
         return out
 
     def read(self, index):
-        """Chunk `index` as written, or None when it is missing, incomplete or
-        corrupted; ValueError (naming the store and the array) when it holds
-        what ccma never writes (see the module)."""
+        """Chunk `index` as written, or None when it is missing, incomplete,
+        corrupted or of another batch (that one with a UserWarning naming it);
+        ValueError (naming the store and the array) when it holds what ccma
+        never writes (see the module)."""
         name = str(int(index))
         attrs = self._chunk_attrs(name)
         if attrs is None or attrs.get("complete") is not True:
@@ -148,13 +156,17 @@ class MapStore:
             if meta is None:
                 return None
             metas[field] = _files.check_array_meta(meta, self.path, what)
+        if attrs.get("key") != self._key:  # checked after what would make the store hostile
+            warnings.warn(f"store {self.path!r}: chunks/{name} belongs to another batch (another map or sweep, or "
+                          "an older ccma: its key is not this store's); computing it again", stacklevel=2)
+            return None
         arrays = {}
         for field, (dtype, shape, compressed) in metas.items():
             arrays[field] = _files.read_array(os.path.join(folder, field), dtype, shape, compressed, self.path,
                                               f"chunks/{name}/{field}")
             if arrays[field] is None:
                 return None
-        if _digest(arrays, strings) != attrs["sha256"]:
+        if _digest(arrays, strings, self._key) != attrs["sha256"]:
             return None
         out = dict(arrays)
         out.update(strings)
@@ -183,6 +195,6 @@ class MapStore:
         for field, a in arrays.items():
             # One Zarr chunk per array (a chunk of the batch is small); at least 1 per axis.
             group.array(field, a, chunks=tuple(max(1, n) for n in a.shape) or None)
-        group.attrs.update({"fields": sorted(arrays), "strings": strings,
-                            "sha256": _digest(arrays, strings)})
+        group.attrs.update({"fields": sorted(arrays), "strings": strings, "key": self._key,
+                            "sha256": _digest(arrays, strings, self._key)})
         group.attrs["complete"] = True

@@ -12,6 +12,7 @@
 #include "analyses/robot_import.h"
 #include "apps/json_output.h"
 #include "ccma/internal/format.h"
+#include "formats/internal/sdformat_console.h"
 #include "formats/sdformat_reader.h"
 #include "formats/sdformat_writer.h"
 #include "formats/urdf_reader.h"
@@ -123,6 +124,11 @@ py::dict ExportModel(const Model& model, const std::string& format, const std::s
 }  // namespace
 
 void BindImport(py::module_& m) {
+  // libsdformat's console made now, without its $HOME/.sdformat/sdformat.log
+  // (formats/internal/sdformat_console.h): at import, not at the first
+  // SDFormat file, while the host program is least likely to read its
+  // environment from another thread.
+  internal::QuietSdformatConsole();
   m.def("_export", &ExportModel, py::arg("model"), py::arg("format"), py::arg("out"),
         "Internal: ccma.export (python/ccma/robots.py): `ccma export`'s JSON without out, and the files to "
         "write as (path, text) pairs.");

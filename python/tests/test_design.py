@@ -121,12 +121,14 @@ def test_design_sweep_refuses_a_store_with_a_pickled_array(tmp_path):
     with pytest.raises(ValueError, match=r"sweep\.zarr': array chunks/1/reached: dtype '\|O'"):
         ccma.design_sweep(str(MODEL_PATH), grid, high_targets()[:1], chunk_size=1, store=str(store))
     assert not marker.exists()
-    # A chunk of plain arrays whose sha256 matches but whose shape is not the
-    # sweep's (1 candidate x 1 target): written on purpose, refused.
+    # A chunk of plain arrays whose sha256 and store key match but whose shape is
+    # not the sweep's (1 candidate x 1 target): written on purpose, refused.
+    import json
     import zarr
     from ccma.map_store import MapStore
     forged = MapStore.__new__(MapStore)
     forged.path, forged.num_chunks = str(store), 2
+    forged._key = json.loads((store / ".zattrs").read_text())["key"]  # the store's own, as a forger reads it
     forged._chunks = zarr.open_group(str(store / "chunks"), mode="a")
     forged.write(1, {k: np.zeros((1, 3)) for k in ("reached", "error", "min_singular_value", "within_limits")})
     with pytest.raises(ValueError, match=r"sweep\.zarr': chunk 1 does not hold 1 candidates x 1 targets"):

@@ -148,3 +148,31 @@ def test_a_long_name_is_quoted_short_with_control_bytes_escaped():
     assert len(message) < 1000
     assert "'\\x1b[31m\\x0afake line" in message and f"({len(name)} bytes)" in message
     assert "\x1b" not in message and "\n" not in message
+
+
+@pytest.mark.parametrize("planted", [True, False], ids=["planted-link", "fresh-home"])
+def test_an_sdformat_import_writes_nothing_under_home(tmp_path, planted):
+    """issue 49: libsdformat's console opened $HOME/.sdformat/sdformat.log with
+    O_TRUNC, through a link planted there. The import runs in a fresh
+    interpreter (the console is made once per process) with HOME in tmp_path:
+    the link's target is intact, and a home without .sdformat stays empty."""
+    import subprocess
+    import sys
+    home, victim = tmp_path / "home", tmp_path / "victim.txt"
+    home.mkdir()
+    if planted:
+        (home / ".sdformat").mkdir()
+        victim.write_text("precious\n")
+        (home / ".sdformat" / "sdformat.log").symlink_to(victim)
+    robot = os.path.join(os.path.dirname(__file__), "..", "..", "tests", "data", "four_bar_loop.sdf")
+    script = (f"import ccma; ccma.import_robot({robot!r}, actuated=['crank'], end_effector='coupler', "
+              f"out={str(tmp_path / 'robot.yaml')!r})")
+    run = subprocess.run([sys.executable, "-c", script], env=dict(os.environ, HOME=str(home)), capture_output=True,
+                         text=True, timeout=120)
+    assert run.returncode == 0, run.stderr
+    assert (tmp_path / "robot.yaml").exists()
+    if planted:
+        assert victim.read_text() == "precious\n" and (home / ".sdformat" / "sdformat.log").is_symlink()
+    else:
+        assert list(home.iterdir()) == []
+    assert "HOME" not in run.stderr

@@ -76,6 +76,31 @@ def test_a_store_of_other_arguments_is_refused(tmp_path):
         MapStore(tmp_path / "s.zarr", {"resolution": 11}, num_chunks=5)
 
 
+def test_a_chunk_of_another_store_is_computed_again_with_a_warning(tmp_path):
+    """issue 49: a chunk is bound to its batch's key (inside its sha256): one
+    copied from a store of other arguments reads as missing, with a warning,
+    also when the store's own .zattrs was deleted; a chunk whose key alone was
+    rewritten fails its sha256."""
+    import shutil
+    theirs = MapStore(tmp_path / "theirs.zarr", {"k": 2}, num_chunks=2)
+    theirs.write(0, chunk(7))
+    for keep in (True, False):
+        path = tmp_path / f"mine_{keep}.zarr"
+        MapStore(path, {"k": 1}, num_chunks=2).write(1, chunk(8))
+        if not keep:
+            (path / ".zattrs").unlink()
+        shutil.copytree(tmp_path / "theirs.zarr" / "chunks" / "0", path / "chunks" / "0")
+        store = MapStore(path, {"k": 1}, num_chunks=2)
+        assert store.done() == {0, 1}
+        with pytest.warns(UserWarning, match=r"chunks/0 belongs to another batch .*computing it again"):
+            assert store.read(0) is None
+        assert np.array_equal(store.read(1)["poses"], chunk(8)["poses"])  # its own chunk still reads back
+        attrs = json.loads((path / "chunks" / "0" / ".zattrs").read_text())
+        attrs["key"] = store._key  # the key forged, the sha256 left
+        (path / "chunks" / "0" / ".zattrs").write_text(json.dumps(attrs))
+        assert store.read(0) is None
+
+
 # A store is data that may come from someone else (a shared cluster folder):
 # read() checks every array's metadata before decoding a byte, and a store
 # holding what ccma never writes is refused (ValueError naming the store and

@@ -97,6 +97,36 @@ def test_a_store_of_another_map_is_refused(tmp_path):
         ccma.workspace(ccma.load_model(MODEL), store=store, **MAP)
 
 
+@pytest.mark.parametrize("keep_root_attrs", [True, False], ids=["with-zattrs", "zattrs-deleted"])
+def test_chunks_of_another_map_are_computed_again(tmp_path, keep_root_attrs):
+    """issue 49: every chunk of a map made over z 0.4:1.05 instead of 0.35:1.0
+    (the same tiles and sizes, each chunk whole with its sha256) copied into
+    this map's store, with the store's root .zattrs kept or deleted: each is
+    computed again with a warning naming it, and the map is this map's."""
+    import shutil
+    small = dict(MAP, resolution=12)  # 4 tiles of 6 x 6
+    other_map = dict(small, ranges={"x": (-0.35, 0.35), "z": (0.4, 1.05)})
+    mine, theirs = tmp_path / "mine.zarr", tmp_path / "theirs.zarr"
+    want = ccma.workspace(MODEL, threads=1, store=str(mine), **small)
+    other = ccma.workspace(MODEL, threads=1, store=str(theirs), **other_map)
+    assert want.tiles == other.tiles == 4 and want.table != other.table
+    for k in range(4):
+        shutil.rmtree(mine / "chunks" / str(k))
+        shutil.copytree(theirs / "chunks" / str(k), mine / "chunks" / str(k))
+    if not keep_root_attrs:
+        (mine / ".zattrs").unlink()
+    with pytest.warns(UserWarning) as said:
+        resumed = ccma.workspace(MODEL, threads=1, store=str(mine), **small)
+    lines = sorted(str(w.message) for w in said)
+    assert lines == [f"store {str(mine)!r}: chunks/{k} belongs to another batch (another map or sweep, or an older "
+                     "ccma: its key is not this store's); computing it again" for k in range(4)]
+    assert resumed.tiles_from_store == 0
+    assert_same_map(want, resumed)
+    again = ccma.workspace(MODEL, threads=1, store=str(mine), **small)  # written again as this map's
+    assert again.tiles_from_store == 4
+    assert_same_map(want, again)
+
+
 def test_a_worker_killed_mid_run_is_survived(tmp_path, reference):
     distributed = pytest.importorskip("distributed")
     with distributed.LocalCluster(n_workers=2, processes=True, threads_per_worker=1,
