@@ -9,6 +9,7 @@
 
 #include "ccma/end_effector.h"
 #include "ccma/internal/constraint_set.h"
+#include "ccma/internal/format.h"
 #include "problems/internal/compliant_equilibrium.h"
 
 namespace ccma {
@@ -51,29 +52,41 @@ void MostCompliant(const Eigen::Matrix<double, 6, 6>& C, ComplianceReport* out) 
 }
 
 // C^-1 when C is regular: no direction rigid (a diagonal entry negligible
-// against the largest) and its correlation matrix (unit-free) regular.
-void StiffnessFromCompliance(const Eigen::Matrix<double, 6, 6>& C, ComplianceReport* out) {
+// against the largest) and its correlation matrix (unit-free) regular. Where
+// it is not, the note says why: the mechanism holds some combination of
+// directions rigidly (`moved` < 6: decided on the geometry), or the
+// springs' stiffness spans so many orders of magnitude that C cannot be
+// inverted to rounding (every direction yields, some 1e10 times less).
+void StiffnessFromCompliance(const Eigen::Matrix<double, 6, 6>& C, int moved, ComplianceReport* out) {
   if (!out->held) {
     out->stiffness_note = "the mechanism is not held: some motion no spring resists moves the end-effector";
     return;
   }
   const Eigen::Matrix<double, 6, 1> d = C.diagonal();
   const double largest = d.maxCoeff();
+  if (moved < 6) {
+    out->stiffness_note = "the compliance is singular: the mechanism holds some combination of directions rigidly "
+                          "(compliance 0 along it)";
+    return;
+  }
+  const char* const kIllConditioned =
+      "the compliance is too ill-conditioned to invert: every direction yields, but the softest more than 1e10 "
+      "times as much as the stiffest (the springs' stiffness values span too many orders of magnitude)";
   if (!(largest > 0) || d.minCoeff() <= kComplianceRigid * largest) {
-    out->stiffness_note = "the compliance is singular: the mechanism holds some direction rigidly (compliance 0)";
+    out->stiffness_note = kIllConditioned;
     return;
   }
   const Eigen::Matrix<double, 6, 1> scale = d.cwiseSqrt().cwiseInverse();
   const Eigen::Matrix<double, 6, 6> correlation = scale.asDiagonal() * C * scale.asDiagonal();
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig(correlation);
   if (eig.eigenvalues()[0] <= kComplianceSingular * eig.eigenvalues()[5]) {
-    out->stiffness_note = "the compliance is singular: some combination of directions is held rigidly";
+    out->stiffness_note = kIllConditioned;
     return;
   }
   const Eigen::Matrix<double, 6, 6> K = C.ldlt().solve(Eigen::Matrix<double, 6, 6>::Identity());
   out->ee_stiffness = 0.5 * (K + K.transpose());
   out->stiffness_defined = out->ee_stiffness.allFinite();
-  if (!out->stiffness_defined) out->stiffness_note = "the compliance is singular";
+  if (!out->stiffness_defined) out->stiffness_note = kIllConditioned;
 }
 
 }  // namespace
@@ -94,7 +107,16 @@ ComplianceReport ComputeCompliance(const Model& model, const State& s, const Com
   out.ee_compliance = system.Compliance(G);
   out.held = system.UnheldMotion(G) <= kComplianceUnheld;
   MostCompliant(out.ee_compliance, &out);
-  StiffnessFromCompliance(out.ee_compliance, &out);
+  StiffnessFromCompliance(out.ee_compliance, system.MovedDirections(G), &out);
+  double size = 0;
+  for (int b = 0; b < model.num_bodies(); ++b) size = std::max(size, s.p_WB(b).norm());
+  const double turn = out.deflection.tail<3>().norm();
+  if (out.held && (out.max_body_m > 0.05 * (1 + size) || turn > 0.05)) {
+    out.range_note = "the linear deflection (" + FormatG(out.max_body_m, 3) + " m at the farthest body, " +
+                     FormatG(turn, 3) + " rad at the end-effector) is not small against the mechanism (" +
+                     FormatG(1 + size, 3) + " m): linear statics holds for small deflections; ccma simulate --loaded "
+                     "gives the nonlinear equilibrium";
+  }
   return out;
 }
 

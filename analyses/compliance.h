@@ -47,6 +47,11 @@ struct ComplianceReport {
   // when false, the loaded mechanism is not held (C is then over the motions
   // springs resist only, and ee_stiffness is not given).
   bool held = true;
+  // Non-empty when the deflection is not small against the mechanism (a
+  // body moves by more than 5 % of its size, 1 + the farthest body origin
+  // from the world's, or the end-effector turns by more than 0.05 rad): the
+  // linear answer is then outside its range, and says so.
+  std::string range_note;
 };
 
 // The end-effector's small motion over y = [ds; delta] (6 x system size):

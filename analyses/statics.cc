@@ -124,7 +124,15 @@ Eigen::VectorXd CompliantStatics(const Model& model, const State& s, const Eigen
   out->compliant = true;
   out->determinate = system.determinate();
   out->residual = unbalanced.size() > 0 ? unbalanced.lpNorm<Eigen::Infinity>() : 0.0;
-  out->balanced = out->residual <= 1e-8 * (1.0 + (Q.size() > 0 ? Q.lpNorm<Eigen::Infinity>() : 0.0));
+  // Balanced to the rounding of the sums the residual is made of: a very
+  // soft spring (1e-6 N/m) deflects by kilometres, and a stiff one's force
+  // over such positions carries rounding far above the loads.
+  const Eigen::MatrixXd S_abs = system.S().cwiseAbs();
+  Eigen::VectorXd terms = f.cwiseAbs() + S_abs.transpose() * (system.k().asDiagonal() * (S_abs * y.cwiseAbs()));
+  if (lambda.size() > 0) terms += system.A().cwiseAbs().transpose() * lambda.cwiseAbs();
+  const double scale = std::max(Q.size() > 0 ? Q.lpNorm<Eigen::Infinity>() : 0.0,
+                                terms.size() > 0 ? terms.lpNorm<Eigen::Infinity>() : 0.0);
+  out->balanced = out->residual <= 1e-8 * (1.0 + scale);
   for (size_t j = 0; j < model.joints.size(); ++j) {
     const CompliantJointRows& r = system.joint_rows()[j];
     out->joints.push_back(Reaction(s, model.joints[j], [&](int body) {

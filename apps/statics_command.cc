@@ -75,6 +75,7 @@ std::string Warnings(const StaticsReport& r, const ForwardResult& assembly) {
   }
   if (!r.determinate) add("statically indeterminate: the minimum-norm reactions are reported");
   if (r.compliant && !r.compliance.held) add(kNotHeld);
+  if (r.compliant && !r.compliance.range_note.empty()) add(r.compliance.range_note);
   if (!r.within_limits) {
     std::string names;
     for (const std::string& n : r.limiting) names += (names.empty() ? "'" : ", '") + n + "'";

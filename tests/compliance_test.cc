@@ -107,6 +107,38 @@ TEST(Compliance, PlanarThreeRprIsGosselinsMappingAndRigidOutOfPlane) {
   EXPECT_NEAR(r.compliance.most_compliant_direction.z(), 0.0, 1e-9);  // the softest push is in the plane
 }
 
+// The lowest stiffness allowed on one leg of the compliant Stewart-Gough
+// example (1e-6 N/m against 5e7 N/m of bearing play): the linear answer is
+// balanced and held (a deflection of kilometres, which the report calls
+// outside the linear range), and the stiffness that cannot be inverted is
+// said to be ill-conditioned, not held rigidly. A planar robot's
+// out-of-plane directions are still held rigidly.
+TEST(Compliance, OneVerdictAtTheLowestStiffness) {
+  const std::string text = testing::Slurp(std::string(CCMA_SOURCE_DIR) + "/examples/statics/stewart_gough_compliant.yaml");
+  for (const char* k : {"1.0e-6", "1.0e-2", "1.0"}) {
+    std::string soft = text;
+    const std::string leg = "actuated: true, stiffness: 2.0e5, limits: [-0.1, 0.1], between: [leg0_lower";
+    ASSERT_NE(soft.find(leg), std::string::npos);
+    soft.replace(soft.find(leg), leg.size(),
+                 std::string("actuated: true, stiffness: ") + k + ", limits: [-0.1, 0.1], between: [leg0_lower");
+    const StaticsReport r = StaticsAtHome(LoadModelFromString(soft, "soft.yaml"));
+    EXPECT_TRUE(r.balanced) << k << ": " << r.residual;
+    EXPECT_TRUE(r.compliance.held) << k;
+    EXPECT_GT(r.compliance.max_body_m, 1.0) << k;
+    EXPECT_NE(r.compliance.range_note.find("not small"), std::string::npos) << k;
+    if (!r.compliance.stiffness_defined) {
+      EXPECT_EQ(r.compliance.stiffness_note.find("rigidly"), std::string::npos) << r.compliance.stiffness_note;
+      EXPECT_NE(r.compliance.stiffness_note.find("ill-conditioned"), std::string::npos) << r.compliance.stiffness_note;
+    }
+  }
+  const StaticsReport stiff = StaticsAtHome(LoadModel(std::string(CCMA_SOURCE_DIR) + "/examples/statics/stewart_gough_compliant.yaml"));
+  EXPECT_TRUE(stiff.compliance.range_note.empty());
+  const Model planar = LoadModelFromString(
+      InsertAfterEach(ReadModel("planar_3rpr"), "type: prismatic, actuated: true,", {" stiffness: 1e-6,", " stiffness: 1e5,", " stiffness: 1e5,"}),
+      "rpr.yaml");
+  EXPECT_NE(StaticsAtHome(planar).compliance.stiffness_note.find("rigidly"), std::string::npos);
+}
+
 using testing::Cantilever;
 
 TEST(Compliance, SpringsInSeriesOnACantileverAddTheirCompliances) {

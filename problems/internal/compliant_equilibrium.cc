@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <Eigen/SVD>
+
 #include "ccma/internal/joint_spring_directions.h"
 #include "ccma/limits.h"
 
@@ -243,6 +245,15 @@ Eigen::MatrixXd CompliantEquilibrium::Compliance(const Eigen::MatrixXd& G) const
   const Eigen::MatrixXd GZ = G * Z1_;
   const Eigen::MatrixXd C = GZ * K1_.solve(GZ.transpose());
   return 0.5 * (C + C.transpose());
+}
+
+int CompliantEquilibrium::MovedDirections(const Eigen::MatrixXd& G) const {
+  if (Z1_.cols() == 0 || G.rows() == 0) return 0;
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd((G * Z1_).transpose());
+  const Eigen::VectorXd& sigma = svd.singularValues();
+  int rank = 0;
+  while (rank < sigma.size() && sigma[rank] > kCompliantRankThreshold * sigma[0]) ++rank;
+  return rank;
 }
 
 double CompliantEquilibrium::IdleForce(const Eigen::VectorXd& f) const {

@@ -106,6 +106,11 @@ class CompliantEquilibrium {
   Eigen::MatrixXd Compliance(const Eigen::MatrixXd& G) const;
   // max |G Z0| relative to max |G|: 0 when no idle motion moves G y.
   double UnheldMotion(const Eigen::MatrixXd& G) const;
+  // The rank of G Z1 (relative threshold 1e-10): how many independent
+  // directions of the measure G (rows x size()) the sprung motions move,
+  // decided on the geometry alone (Z1 is orthonormal), whatever the
+  // stiffness values. Fewer than G's rows: some combination is held rigidly.
+  int MovedDirections(const Eigen::MatrixXd& G) const;
   // max |Z0^T f|: the generalized force f (size()) along the motions no
   // spring resists, which no displacement can balance [N or N*m].
   double IdleForce(const Eigen::VectorXd& f) const;

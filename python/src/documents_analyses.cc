@@ -57,6 +57,7 @@ std::string StaticsWarning(const StaticsReport& r, bool assembled, double residu
   if (r.compliant && !r.compliance.held) {
     JoinWarning("the loaded mechanism is not held: a motion that no spring resists moves the end-effector", &w);
   }
+  if (r.compliant && !r.compliance.range_note.empty()) JoinWarning(r.compliance.range_note, &w);
   if (!r.within_limits) {
     std::string names;
     for (const std::string& n : r.limiting) names += (names.empty() ? "'" : ", '") + n + "'";
