@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 #include <memory>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -14,13 +15,12 @@
 #include "ccma/rotation.h"
 #include "problems/internal/compliant_equilibrium.h"
 #include "problems/internal/loaded_newton.h"
+#include "problems/internal/loaded_sparse_path.h"
 
 namespace ccma {
 namespace {
 
 constexpr int kMaxNewtonIterations = 25;  // per load step
-constexpr int kMaxSparseIterations = 15;  // the sparse path's, per start
-constexpr double kMinLoadStep = 1e-4;     // the smallest fraction of the loads a step may add
 constexpr int kMaxRestoreSteps = 20;   // minimum-norm corrections onto the rigid rows
 constexpr double kRigidRowTolerance = 1e-13;  // m (or rad-like): a rigid row that holds
 constexpr double kUnheldTolerance = 1e-8;     // as analyses/compliance.cc
@@ -195,33 +195,16 @@ bool Held(const Model& model, const ConstraintSet& set, const Eigen::VectorXd& u
   return system.UnheldMotion(G) <= kUnheldTolerance;
 }
 
-// The sparse Newton iteration (problems/internal/loaded_newton.h) from the
-// warm start when given, then from the rigid assembly; true when it converged.
-bool SolveLoadedSparse(const Model& model, const ConstraintSet& set, const State& rigid, const Eigen::VectorXd& u,
-                       const ExternalWrench& wrench, const LoadedTolerances& tolerances, const LoadedOptions& options,
-                       Point* x, LoadedEquilibrium* out) {
-  const std::vector<int> compliant = CompliantEquilibrium::CompliantControls(model);
-  std::vector<Point> starts;
-  if (options.start_state && options.start_state->num_bodies() == rigid.num_bodies() &&
-      options.start_yields.size() == model.num_controls()) {
-    Point warm{*options.start_state, Eigen::VectorXd(static_cast<Eigen::Index>(compliant.size()))};
-    for (size_t i = 0; i < compliant.size(); ++i) warm.delta[static_cast<Eigen::Index>(i)] = options.start_yields[compliant[i]];
-    starts.push_back(std::move(warm));
+// Why the sparse path's equilibrium was not found.
+std::string NotConvergedMessage(const SparsePathResult& r, const LoadedEquilibrium& out) {
+  if (!out.held) return "the loaded mechanism is not held: a motion that no spring resists moves the end-effector";
+  const std::string held = "the springs held " + FormatG(100 * r.load_fraction, 3) + "% of the loads";
+  if (r.stalled) {
+    return "no equilibrium found: " + held + " and no more (a load step of " + FormatG(100 * kMinLoadStep) +
+           "% failed beyond it: past a limit load the mechanism gives way)";
   }
-  starts.push_back(Point{rigid, Eigen::VectorXd::Zero(static_cast<Eigen::Index>(compliant.size()))});
-  const std::shared_ptr<LoadedWorkspace> workspace = options.workspace ? options.workspace : NewLoadedWorkspace();
-  for (Point& start : starts) {
-    const LoadedNewtonResult r = SolveLoadedNewton(model, set, u, wrench, tolerances,
-                                                   std::min(kMaxSparseIterations, options.max_iterations), workspace.get(), &start);
-    out->iterations += r.iterations;
-    if (!r.converged) continue;
-    *x = std::move(start);
-    out->converged = true;
-    out->unbalanced = r.unbalanced;
-    out->load_fraction = 1;
-    return true;
-  }
-  return false;
+  return "no equilibrium found within " + std::to_string(r.iterations) + " Newton iterations: " + held +
+         ", and the load steps were still advancing (a soft mechanism under large loads; LoadedOptions::max_iterations)";
 }
 
 // A model without stiffness: its rigid assembly, converged.
@@ -262,15 +245,22 @@ LoadedEquilibrium SolveLoadedEquilibrium(const Model& model, const ConstraintSet
                                          const LoadedOptions& options) {
   if (!model.compliant()) return RigidEquilibrium(model, rigid);
   LoadedEquilibrium out;
-  const LoadedTolerances tolerances = LoadedTolerancesFor(model, rigid, wrench, options.force_tolerance);
   Point x;
-  const bool sparse = options.sparse && SolveLoadedSparse(model, set, rigid, u, wrench, tolerances, options, &x, &out);
-  if (sparse && options.check_held) out.held = Held(model, set, u, x);
-  // Not converged, or a motion no spring resists moves the end-effector: the
-  // dense path says which, and how much of the loads the springs hold.
-  if (!sparse || !out.held) {
-    out = LoadedEquilibrium{};
-    SolveLoadedDense(model, set, rigid, u, wrench, tolerances, options, &x, &out);
+  if (!options.sparse) {
+    SolveLoadedDense(model, set, rigid, u, wrench, LoadedTolerancesFor(model, rigid, wrench, options.force_tolerance),
+                     options, &x, &out);
+  } else {
+    const std::shared_ptr<LoadedWorkspace> workspace = options.workspace ? options.workspace : NewLoadedWorkspace();
+    SparsePathResult r = SolveLoadedSparsePath(model, set, rigid, u, wrench, options, workspace.get());
+    x = std::move(r.x);
+    out.converged = r.converged;
+    out.iterations = r.iterations;
+    out.unbalanced = r.unbalanced;
+    out.load_fraction = r.load_fraction;
+    // Not converged, or a motion no spring resists moves the end-effector.
+    if (!r.converged || options.check_held) out.held = Held(model, set, u, x);
+    if (!out.held) out.converged = false;
+    if (!out.converged) out.message = NotConvergedMessage(r, out);
   }
   DescribeLoadedPoint(model, rigid, x, CompliantEquilibrium::CompliantControls(model), &out);
   return out;

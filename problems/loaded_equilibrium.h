@@ -12,19 +12,21 @@
 // configuration) plus the springs' forces -S^T k e do no work along any
 // motion the rigid rows allow.
 //
-// Method: first Newton's method on the sparse KKT system at the full loads
-// (problems/internal/loaded_newton.h), from LoadedOptions::start_state when
-// given and then from the rigid assembly; where it does not converge (large
-// loads, a limit load), the dense path: Newton's method from the rigid assembly, each step that of the
-// linear compliant system plus the preload's geometric stiffness (the
-// rigid rows' exact second derivatives weighted by their multipliers, and
-// the loads' moments turning with the bodies), restored onto the rigid rows
-// by minimum-norm corrections; the loads applied in steps (all at once
-// first; a step whose Newton iterations fail is quartered). The loads are
-// re-evaluated in the deflected configuration. Small loads give the linear
-// answer; large ones the exact equilibrium, or, past a limit load where the
-// mechanism gives way, converged = false with the fraction of the loads it
-// held.
+// Method (problems/internal/loaded_sparse_path.h): Newton's method on the
+// sparse KKT system at the full loads (problems/internal/loaded_newton.h,
+// each full step followed by chord steps on its factorisation), from
+// LoadedOptions::start_state when given and then from the rigid assembly;
+// where neither converges (a soft mechanism whose linear first step
+// overshoots, a load near what the springs can carry), in load steps from
+// the rigid assembly. Past a limit load where the mechanism gives way, or
+// when the iterations run out, converged = false with the fraction of the
+// loads held and a message saying which. `held` is decided at the point
+// reached (one dense decomposition of the idle motions). The dense path
+// (LoadedOptions::sparse = false: Newton's method on the linear compliant
+// system plus the preload's geometric stiffness, restored onto the rigid
+// rows by minimum-norm corrections, in load steps) is kept for comparison.
+// The loads are re-evaluated in the deflected configuration. Small loads
+// give the linear answer; large ones the exact equilibrium.
 // Units: m, rad, N, N*m.
 #ifndef CCMA_PROBLEMS_LOADED_EQUILIBRIUM_H_
 #define CCMA_PROBLEMS_LOADED_EQUILIBRIUM_H_
@@ -51,7 +53,7 @@ class LoadedWorkspace;
 std::shared_ptr<LoadedWorkspace> NewLoadedWorkspace();
 
 struct LoadedOptions {
-  int max_iterations = 100;
+  int max_iterations = 200;  // KKT factorisations (the dense path: Newton iterations)
   // Converged when the rigid rows hold and the unbalanced force along the
   // allowed motions is below force_tolerance * (1 + the largest load)
   // [N or N*m], or the Newton step there is below 1e-13 m (or rad) per metre
@@ -67,7 +69,8 @@ struct LoadedOptions {
   // dense path ran (a control round's loaded equilibrium, whose report does
   // not need it).
   bool check_held = true;
-  // false: the dense path alone (the tests compare the two paths).
+  // false: the dense path alone (the tests compare the two paths; O(N^3) a
+  // Newton iteration).
   bool sparse = true;
   // Shared between calls when given (NewLoadedWorkspace); else each call
   // makes its own. Results do not depend on it.

@@ -54,25 +54,6 @@ JointStep StepFrom(const LoadedKkt& system, const KktFactorization& kkt, const E
   return out;
 }
 
-// [y0; mu] at the point `system` was last evaluated at: a full step
-// factorises K there; a chord step solves with the last factorisation for
-// the residuals [force - A^T mu_last; -g] and adds the multipliers' change
-// to mu_last. False when the solve fails.
-bool SolveAt(const LoadedKkt& system, bool full, const Eigen::VectorXd& mu_last, KktFactorization* kkt,
-             Eigen::VectorXd* z) {
-  const KktNewtonStep step(system);
-  if (full) {
-    if (!step.Solve(kkt, z)) return false;
-  } else {
-    Eigen::VectorXd rhs = step.rhs();
-    rhs.head(system.size()) -= system.reaction();
-    if (!step.SolveAgain(*kkt, rhs, z)) return false;
-    z->tail(system.rigid_rows()) += mu_last;
-  }
-  step.RemoveIdleBias(*kkt, z);
-  return true;
-}
-
 // What the tests measure at a point: the unbalanced force with the
 // current rows and the multipliers mu (a full step's own; a chord step's
 // the last ones, the certificate its residual was taken with), the rigid
@@ -82,7 +63,7 @@ struct Residuals {
 };
 Residuals ResidualsAt(const LoadedKkt& system, bool chord, const Eigen::VectorXd& mu, const Eigen::VectorXd& e) {
   Residuals r;
-  r.unbalanced = chord ? (system.force() - system.reaction()).lpNorm<Eigen::Infinity>() : KktNewtonStep(system).Unbalanced(mu);
+  r.unbalanced = UnbalancedAt(system, chord, mu);
   r.rows = system.g().size() > 0 ? system.g().lpNorm<Eigen::Infinity>() : 0.0;
   r.miss = e.size() > 0 ? e.lpNorm<Eigen::Infinity>() : 0.0;
   return r;
@@ -115,7 +96,7 @@ CompensatedNewtonResult SolveCompensatedNewton(const Model& model, const Constra
     } else {
       system.AssembleResiduals(model, set, trial, u_trial, wrench, mu_last);
     }
-    if (!SolveAt(system, !chord, mu_last, &workspace->kkt, &z)) return out;
+    if (!SolveKktAt(system, !chord, mu_last, &workspace->kkt, &z)) return out;
     error.Evaluate(trial.s, target, &e, &de_ds);
     const Eigen::VectorXd mu = chord ? mu_last : Eigen::VectorXd(z.tail(system.rigid_rows()));
     const Residuals r = ResidualsAt(system, chord, mu, e);

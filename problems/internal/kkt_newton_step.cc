@@ -81,4 +81,25 @@ double KktNewtonStep::ComponentwiseScale(const Eigen::VectorXd& z) const {
   return products.size() > 0 ? products.lpNorm<Eigen::Infinity>() : 0.0;
 }
 
+bool SolveKktAt(const LoadedKkt& system, bool full, const Eigen::VectorXd& mu_last, KktFactorization* kkt,
+                Eigen::VectorXd* z) {
+  const KktNewtonStep step(system);
+  if (full) {
+    if (!step.Solve(kkt, z)) return false;
+  } else {
+    Eigen::VectorXd rhs = step.rhs();
+    rhs.head(system.size()) -= system.reaction();
+    if (!step.SolveAgain(*kkt, rhs, z)) return false;
+    z->tail(system.rigid_rows()) += mu_last;
+  }
+  step.RemoveIdleBias(*kkt, z);
+  return true;
+}
+
+double UnbalancedAt(const LoadedKkt& system, bool chord, const Eigen::VectorXd& mu) {
+  if (!chord) return KktNewtonStep(system).Unbalanced(mu);
+  const Eigen::VectorXd r = system.force() - system.reaction();
+  return r.size() > 0 ? r.lpNorm<Eigen::Infinity>() : 0.0;
+}
+
 }  // namespace ccma

@@ -61,6 +61,18 @@ class KktNewtonStep {
   Eigen::VectorXd rhs_;
 };
 
+// [y; mu] at the point `system` was last evaluated at: a full step (after
+// LoadedKkt::Assemble) factorises K there; a chord step (after
+// AssembleResiduals with mu_last) solves with the last factorisation for
+// the residuals [force - A^T mu_last; -g] and adds the multipliers' change
+// to mu_last. The idle regulariser's bias removed. False when the solve fails.
+bool SolveKktAt(const LoadedKkt& system, bool full, const Eigen::VectorXd& mu_last, KktFactorization* kkt,
+                Eigen::VectorXd* z);
+
+// max |force - A^T mu| at that point: a full step's own multipliers mu, or a
+// chord step's last ones (the reaction AssembleResiduals took).
+double UnbalancedAt(const LoadedKkt& system, bool chord, const Eigen::VectorXd& mu);
+
 }  // namespace ccma
 
 #endif  // CCMA_PROBLEMS_INTERNAL_KKT_NEWTON_STEP_H_

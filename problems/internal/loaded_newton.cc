@@ -12,6 +12,12 @@
 #include "problems/internal/loaded_kkt.h"
 
 namespace ccma {
+namespace {
+
+constexpr int kMaxChords = 8;  // chord steps in a row before a full one
+
+}  // namespace
+
 Eigen::VectorXd CommandedControls(const Eigen::VectorXd& u, const std::vector<int>& compliant,
                                   const Eigen::VectorXd& delta) {
   Eigen::VectorXd u_eff = u;
@@ -68,39 +74,57 @@ LoadedNewtonResult SolveLoadedNewton(const Model& model, const ConstraintSet& se
   // preload, so the first step is nearly Newton's), else none.
   Eigen::VectorXd w = workspace->w.size() == set.num_rows() ? workspace->w : Eigen::VectorXd::Zero(set.num_rows());
   Eigen::VectorXd mu_last = workspace->mu.size() == system.rigid_rows() ? workspace->mu : Eigen::VectorXd();
-  const int n = system.state_size();
-  double last = std::numeric_limits<double>::infinity();
+  const int n = system.state_size(), N = system.size(), m = system.rigid_rows();
+  double last_merit = std::numeric_limits<double>::infinity(), last_size = last_merit, last_unbalanced = last_merit;
+  int full_steps = 0, chords = 0;
+  bool full = true;
   for (int i = 0; i <= max_iterations; ++i) {
-    system.Assemble(model, set, trial, u, wrench, w, mu_last, kKktIdleStiffness * system.stiffest(), kKktRowRegularization);
-    const KktNewtonStep step(system);
+    const bool chord = !full && mu_last.size() == m;
+    if (chord) {
+      system.AssembleResiduals(model, set, trial, u, wrench, mu_last);
+    } else {
+      system.Assemble(model, set, trial, u, wrench, w, mu_last, kKktIdleStiffness * system.stiffest(),
+                      kKktRowRegularization);
+    }
     Eigen::VectorXd z;
-    if (!step.Solve(&workspace->kkt, &z)) return out;
-    step.RemoveIdleBias(workspace->kkt, &z);
-    const Eigen::VectorXd mu = z.tail(system.rigid_rows());
-    const double unbalanced = step.Unbalanced(mu);
+    if (!SolveKktAt(system, !chord, mu_last, &workspace->kkt, &z)) return out;
+    const Eigen::VectorXd mu = z.tail(m);
+    const double unbalanced = UnbalancedAt(system, chord, chord ? mu_last : mu);
     const double row_size = system.g().size() > 0 ? system.g().lpNorm<Eigen::Infinity>() : 0.0;
-    const double step_size = z.head(system.size()).lpNorm<Eigen::Infinity>();
+    const double step_size = z.head(N).lpNorm<Eigen::Infinity>();
     out.unbalanced = unbalanced;
     if (row_size <= kKktRowTolerance && tolerances.Converged(unbalanced, step_size)) {
       out.converged = true;
       *x = std::move(trial);
-      workspace->mu = mu;
-      workspace->w = system.SetOrder(mu);
+      workspace->mu = chord ? mu_last : mu;
+      workspace->w = system.SetOrder(workspace->mu);
       return out;
     }
-    // Newton converges fast or not at all: a growing imbalance hands over to the dense path.
-    const double merit = unbalanced / tolerances.force + row_size / kKktRowTolerance;
-    if (i >= 2 && !(merit < 2 * last)) return out;
-    last = merit;
+    if (!chord) {
+      // Newton converges fast or not at all: a growing imbalance hands over
+      // (to load steps, then to the dense path).
+      const double merit = unbalanced / tolerances.force + row_size / kKktRowTolerance;
+      if (full_steps++ >= 2 && !(merit < 2 * last_merit)) return out;
+      last_merit = merit;
+      chords = 0;
+      ++out.iterations;
+    }
     if (i == max_iterations) break;
     // A step this long crosses a motion nothing resists (eps_H alone holds
     // it: the mechanism is not held) or a limit load: the dense path decides.
     if (!(step_size <= kKktMaxStep)) return out;
-    ++out.iterations;
     trial.s.Plus(z.head(n));
-    trial.delta += z.segment(n, system.size() - n);
+    trial.delta += z.segment(n, N - n);
     mu_last = mu;
-    w = system.SetOrder(mu);
+    if (!chord) w = system.SetOrder(mu);
+    // Chord steps (the last factorisation against the residuals at the new
+    // point) while they and the unbalanced force shrink tenfold: they correct what a soft motion
+    // stretches of the stiff springs to second order, which limits a full
+    // step's reach on a mechanism whose springs span many orders of
+    // magnitude; a full step where they stall.
+    full = ++chords > kMaxChords || !(step_size < 0.1 * last_size) || !(unbalanced < 0.1 * last_unbalanced);
+    last_size = step_size;
+    last_unbalanced = unbalanced;
   }
   return out;
 }
