@@ -11,6 +11,7 @@
 #include <Eigen/Dense>
 
 #include "analyses/design_objective.h"
+#include "analyses/work_estimate.h"
 #include "problems/internal/end_effector_error.h"
 
 namespace ccma {
@@ -325,12 +326,19 @@ std::string ObjectiveStep(DesignLoop* loop, double* length, ObjectiveAtTarget* c
 
 // Phase 3: the objective, while every target stays reached with margin.
 void ImproveObjective(DesignLoop* loop, DesignResult* result) {
+  WorkEstimate* estimate = loop->options.estimate;
+  if (estimate != nullptr) {
+    estimate->BeginStage("design iterations of the " + std::string(DesignObjectiveName(loop->options.objective)) +
+                             " objective",
+                         loop->options.max_iterations, 0, true);
+  }
   result->objective_before = WorstObjective(*loop, loop->solved, loop->p, nullptr);
   result->objective_after = result->objective_before;
   double length = 0.02;
   for (int it = 0; it < loop->options.max_iterations; ++it) {
     ObjectiveAtTarget current;
     result->objective_message = ObjectiveStep(loop, &length, &current);
+    if (estimate != nullptr) estimate->Update(it + 1);
     if (!result->objective_message.empty()) break;
     result->objective_after = current;
     result->objective_iterations = it + 1;
@@ -338,6 +346,10 @@ void ImproveObjective(DesignLoop* loop, DesignResult* result) {
 }
 
 }  // namespace
+
+int MaxDesignIterations(const DesignOptions& options) {
+  return options.objective == DesignObjective::kReach ? options.max_iterations : 2 * options.max_iterations;
+}
 
 DesignResult Design(const Model& model, const DesignParameters& params, const std::vector<PoseTarget>& targets,
                     const DesignOptions& options) {
@@ -354,14 +366,19 @@ DesignResult Design(const Model& model, const DesignParameters& params, const st
   result.p0 = loop.p0;
   result.initial = Results(loop.solved);
   int it = 0;
+  const auto counted = [&options](int done) {
+    if (options.estimate != nullptr) options.estimate->Update(done);
+  };
   for (; it < options.max_iterations && !AllReached(loop.solved); ++it) {  // phase 1: reach every target
     result.message = ReachStep(&loop);
+    counted(it + 1);
     if (!result.message.empty()) break;
   }
   for (; it < options.max_iterations && AllReached(loop.solved) &&  // phase 2: margin
          MinSigma(loop.solved) < options.min_singular_value;
        ++it) {
     result.message = MarginStep(&loop);
+    counted(it + 1);
     if (!result.message.empty()) break;
   }
   result.converged = AllReached(loop.solved) && MinSigma(loop.solved) >= options.min_singular_value;

@@ -39,6 +39,7 @@
 namespace ccma {
 
 class ConstraintSet;
+class WorkEstimate;
 
 enum class DesignParameterKind { kJointCoordinate, kLinkLength };
 
@@ -130,8 +131,17 @@ struct DesignOptions {
   int max_iterations = 30;          // outer iterations per phase, in [1, 1000]
   DesignObjective objective = DesignObjective::kReach;
   BasePoseNoise noise;              // ee_std: the bases' pose noise, each sigma in [0, 1]
+  // When not null (not owned): told of every outer iteration, the objective's
+  // as a stage of their own (analyses/work_estimate.h); made with
+  // MaxDesignIterations() units. It may throw WorkBoundError, which ends
+  // the design.
+  WorkEstimate* estimate = nullptr;
   bool IsValid(std::string* why) const;
 };
+
+// The most outer iterations Design may take with `options`: max_iterations
+// for reach and margin, as many again for an objective.
+int MaxDesignIterations(const DesignOptions& options);
 
 // One target on one design.
 struct DesignTargetResult {

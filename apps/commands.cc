@@ -263,7 +263,7 @@ Command WorkspaceCommand() {
   return {"workspace", "map the reachable end-effector poses and their conditioning",
           "ccma workspace --model=FILE --out=FILE.csv [--x=lo:hi] [--y=lo:hi] [--z=lo:hi] [--roll=lo:hi]\n"
           "               [--pitch=lo:hi] [--yaw=lo:hi] [--resolution=11 | --samples=N --seed=1] [--threads=1]\n"
-          "               [--tile_size=0] [--plot=DIR] [--store=DIR] [--obstacles=FILE]\n"
+          "               [--tile_size=0] [--plot=DIR] [--store=DIR] [--obstacles=FILE] [--max_minutes=10]\n"
           "               [--method=lm|bfgs] [--max_step_m=0.01] [--max_step_rad=0.005] [--lambda=0.5]",
           "Workspace map: samples end-effector poses over the given ranges of controlled components (a grid\n"
           "with --resolution points per range, or --samples seeded uniform draws; components not sampled keep\n"
@@ -278,9 +278,12 @@ Command WorkspaceCommand() {
           "run again (after Ctrl-C, say) reads them back and computes only the rest; the map is the same.\n"
           "A tile file that is not one ccma wrote (a link, FIFO or folder, too large, a bad value) is computed\n"
           "again; a store.json that is not this map's manifest is refused (status 2).\n"
-          "Prints {samples, reachable, tiles, seconds, ...}; a percentage bar on stderr at a terminal.",
+          "Prints {samples, reachable, tiles, seconds, ...}; a percentage bar on stderr at a terminal.\n"
+          "The run is timed on its first samples (and the CSV's computed columns once at home): a run estimated\n"
+          "over 5 s says how long on stderr, then a progress line every 10 s; one estimated over --max_minutes\n"
+          "is refused (status 2, naming the estimate and the --max_minutes that would allow it).",
           Concat({"model", "out", "x", "y", "z", "roll", "pitch", "yaw", "resolution", "samples", "seed", "threads",
-                  "tile_size", "plot", "obstacles", "store"},
+                  "tile_size", "plot", "obstacles", "store", "max_minutes"},
                  kControlFlags),
           RunWorkspace, {{"out", "the CSV to write, one row per sample [path]"}}};
 }
@@ -291,7 +294,7 @@ Command DesignCommand() {
           "            [--vary_length=ANCHOR:JOINT,...] [--max_change=0.5] [--min_length=0.02]\n"
           "            [--min_singular_value=0.02] [--target_tolerance=1e-6] [--design_iterations=30]\n"
           "            [--objective=reach|payload|peak_push|ee_std|stiffness|deflection] [--mocap_noise_m=0.001]\n"
-          "            [--mocap_noise_rad=0.003]\n"
+          "            [--mocap_noise_rad=0.003] [--max_minutes=10]\n"
           "            [--method=lm|bfgs] [--max_step_m=0.01] [--max_step_rad=0.005] [--lambda=0.5]",
           "Adjusts the named geometry (joint points in world home coordinates [m], link lengths [m]) so that\n"
           "every target pose of the waypoint CSV (docs/waypoints.md; times ignored) is reachable with margin:\n"
@@ -305,9 +308,13 @@ Command DesignCommand() {
           "end-effector's standard deviation, or (a compliant model: stiffness keys) the largest eigenvalue\n"
           "of the translational block of ee_compliance [m/N] (stiffness) or the end-effector's deflection\n"
           "under gravity and the payload [m] (deflection), at the worst target; JSON objective {name, unit,\n"
-          "before, after, iterations, stopped} (docs/statics.md).",
+          "before, after, iterations, stopped} (docs/statics.md). The iterations are timed as they go (the\n"
+          "objective's on their own): a design estimated over 5 s says how long on stderr, then a progress\n"
+          "line every 10 s; one estimated over --max_minutes is refused (status 2, naming the estimate and the\n"
+          "--max_minutes that would allow it), nothing written.",
           Concat({"model", "targets", "out", "vary", "vary_length", "max_change", "min_length", "min_singular_value",
-                  "target_tolerance", "design_iterations", "objective", "mocap_noise_m", "mocap_noise_rad"},
+                  "target_tolerance", "design_iterations", "objective", "mocap_noise_m", "mocap_noise_rad",
+                  "max_minutes"},
                  kControlFlags),
           RunDesign, WithPoseNoiseHelp({{"out", "the model file to write: the input with the varied points changed [path]"}})};
 }

@@ -12,6 +12,7 @@
 #include "apps/flags.h"
 #include "apps/json_output.h"
 #include "apps/output_file.h"
+#include "apps/work_bound.h"
 #include "ccma/limits.h"
 #include "formats/model_loader.h"
 #include "formats/waypoints.h"
@@ -174,37 +175,11 @@ nlohmann::json ObjectiveJson(const DesignOptions& options, const DesignResult& r
   return out;
 }
 
-}  // namespace
-
-int RunDesign(const std::vector<std::string>& args) {
-  ParseCommandFlags(args, "design");
-  const std::string model_path = RequireFlag(FLAGS_model, "model", "design");
-  std::string model_text;
-  const Model model = LoadModelKeepingText(model_path, &model_text);
-  const std::vector<PoseTarget> targets = TargetsFlag();
-  const std::string out_path = RequireFlag(FLAGS_out, "out", "design");
-  const DesignParameters params = ParametersFromFlags(model);
-  const DesignOptions options = DesignOptionsFromFlags();
-  const bool needs_springs =
-      options.objective == DesignObjective::kStiffness || options.objective == DesignObjective::kDeflection;
-  if (needs_springs && !model.compliant()) {
-    throw UsageError("ccma design: --objective=" + FLAGS_objective + ": model " + Quote(model.name) +
-                     " has no stiffness keys: a rigid mechanism has no compliance to lower (model_format.md, "
-                     "\"Compliance\")");
-  }
-  OutputFile file(out_path, "out");  // checked before the long run
-
-  const DesignResult result = Design(model, params, targets, options);
-  const Model designed = ApplyParameters(model, params, result.p);
-  const std::string text = PatchModelText(model_text, model, designed, params);
-  // Reachability in the model as written (loaded back from the new text).
-  const Model written = LoadModelFromString(text, out_path);
-  const std::vector<DesignTargetResult> final_check = EvaluateTargets(written, targets, options);
+// The JSON on stdout (docs/cli.md, "ccma design"); warnings also on stderr.
+nlohmann::json DesignJson(const Model& model, const Model& designed, const DesignParameters& params,
+                          const DesignOptions& options, const DesignResult& result,
+                          const std::vector<DesignTargetResult>& final_check, const std::string& out_path) {
   const bool converged = ConvergedIn(final_check, options);
-
-  file.stream() << text;
-  file.Commit();
-
   nlohmann::json out;
   out["model"] = model.name;
   out["out"] = out_path;
@@ -227,7 +202,45 @@ int RunDesign(const std::vector<std::string>& args) {
     out["warning"] = message;
     std::cerr << "ccma design: warning: not converged: " << message << "\n";
   }
-  PrintJson(out);
+  return out;
+}
+
+}  // namespace
+
+int RunDesign(const std::vector<std::string>& args) {
+  ParseCommandFlags(args, "design");
+  const std::string model_path = RequireFlag(FLAGS_model, "model", "design");
+  std::string model_text;
+  const Model model = LoadModelKeepingText(model_path, &model_text);
+  const std::vector<PoseTarget> targets = TargetsFlag();
+  const std::string out_path = RequireFlag(FLAGS_out, "out", "design");
+  const DesignParameters params = ParametersFromFlags(model);
+  DesignOptions options = DesignOptionsFromFlags();
+  const bool needs_springs =
+      options.objective == DesignObjective::kStiffness || options.objective == DesignObjective::kDeflection;
+  if (needs_springs && !model.compliant()) {
+    throw UsageError("ccma design: --objective=" + FLAGS_objective + ": model " + Quote(model.name) +
+                     " has no stiffness keys: a rigid mechanism has no compliance to lower (model_format.md, "
+                     "\"Compliance\")");
+  }
+  OutputFile file(out_path, "out");  // checked before the long run
+  // Work bounded by its cost (--max_minutes): the iterations timed as they go.
+  WorkEstimateOptions bound = CommandWorkEstimate("design", "design iterations", false);
+  bound.up_to = true;
+  WorkEstimate estimate(bound, MaxDesignIterations(options));
+  options.estimate = &estimate;
+
+  const DesignResult result = Design(model, params, targets, options);
+  const Model designed = ApplyParameters(model, params, result.p);
+  const std::string text = PatchModelText(model_text, model, designed, params);
+  // Reachability in the model as written (loaded back from the new text).
+  const Model written = LoadModelFromString(text, out_path);
+  const std::vector<DesignTargetResult> final_check = EvaluateTargets(written, targets, options);
+
+  file.stream() << text;
+  file.Commit();
+
+  PrintJson(DesignJson(model, designed, params, options, result, final_check, out_path));
   return 0;
 }
 

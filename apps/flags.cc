@@ -20,4 +20,7 @@ DEFINE_int32(seed, 1, "seed of every random draw [integer >= 0]");
 DEFINE_string(method, "lm", "control outer loop: lm (Levenberg-Marquardt) or bfgs (the paper's) [lm|bfgs]");
 DEFINE_double(max_step_m, 0.010, "path step: end-effector translation per control step, 1e-6..1000 [m]");
 DEFINE_double(max_step_rad, 0.005, "path step: end-effector rotation per control step, 1e-6..10 [rad]");
+DEFINE_double(max_minutes, 10,
+              "refuse (status 2) a run whose estimated time, measured on its first seconds, exceeds this; give more "
+              "to allow a longer run, (0, 10080] [minutes]");
 DEFINE_double(lambda, 0.5, "weight of the residual energy in the control objective, 0 < lambda < 1 [1]");

@@ -23,5 +23,6 @@ DECLARE_string(method);      // control trajectory replay
 DECLARE_double(max_step_m);  // control trajectory replay
 DECLARE_double(max_step_rad);
 DECLARE_double(lambda);
+DECLARE_double(max_minutes);  // workspace design
 
 #endif  // CCMA_APPS_FLAGS_H_

@@ -9,6 +9,7 @@
 #include <gflags/gflags.h>
 
 #include "apps/cli.h"
+#include "analyses/work_estimate.h"
 #include "apps/commands.h"
 #include "apps/library_logging.h"
 #include "apps/temporary_files.h"
@@ -29,6 +30,8 @@ int Dispatch(const ccma::cli::Command& command, const std::vector<std::string>& 
     std::cerr << "ccma " << command.name << ": " << e.what() << "\n";
   } catch (const std::invalid_argument& e) {  // input out of its documented range
     std::cerr << "ccma " << command.name << ": " << e.what() << "\n";
+  } catch (const ccma::WorkBoundError& e) {  // more work than --max_minutes allows; says how long
+    std::cerr << e.what() << "\n";
   } catch (const std::exception& e) {
     std::cerr << "ccma " << command.name << ": error: " << e.what() << "\n";
     return 1;

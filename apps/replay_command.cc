@@ -36,7 +36,9 @@ DEFINE_double(kp, 4.0, "PI proportional gain, position and heading [1/s]");
 DEFINE_double(ki, 4.0, "PI integral gain, position and heading [1/s^2]");
 DEFINE_double(controller_hz, 100.0, "PI controller rate, 1..10000 [Hz]");
 DEFINE_double(max_wheel_speed, 30.0, "wheel-speed saturation [rad/s]");
-DEFINE_double(gait_hz, 2.0, "legged bases: trotting gait frequency, (0, 100] [Hz]");
+DEFINE_double(gait_hz, 2.0,
+              "legged bases: trotting gait frequency, (0, 100] and at most a quarter of --controller_hz (the gait is "
+              "evaluated at every controller tick) [Hz]");
 DEFINE_double(gait_bob_m, 0.01, "legged bases: amplitude of the body's bob while walking, [0, 1] [m]");
 DEFINE_double(gait_sway_rad, 0.02, "legged bases: amplitude of the body's sway (roll) while walking, [0, 0.5] [rad]");
 
@@ -152,7 +154,7 @@ int RunReplay(const std::vector<std::string>& args) {
   const std::string dir = RequireFlag(FLAGS_out, "out", "replay");
   const ReplayOptions options = ReplayOptionsFromFlags();
   std::string why;
-  if (!IsValidReplay(waypoints, options, &why)) throw UsageError("ccma replay: " + why);
+  if (!IsValidReplay(model, waypoints, options, &why)) throw UsageError("ccma replay: " + why);
   CreateOutputDirectory(dir);
   // Written in a private scratch folder, moved into --out at the end
   // (apps/output_file.h): a link planted in --out is replaced, never

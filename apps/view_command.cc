@@ -11,6 +11,7 @@
 // loaded shape exaggerated SCALE times over the rigid one, coloured by each
 // body's deflection. Prints {"out", "bytes", "frames", ...} on stdout.
 #include <iostream>
+#include <new>
 #include <optional>
 #include <stdexcept>
 
@@ -199,11 +200,34 @@ std::vector<viewer::ViewFrame> ViewFramesFromFlags(const Model& model, std::stri
   return {{0.0, ControlsFlagOrHome(model), std::nullopt, std::nullopt, false}};
 }
 
+// The file a page is drawn from: the one a message about memory names.
+std::string InputPath(const std::string& model_path) {
+  for (const std::string* flag : {&FLAGS_workspace, &FLAGS_trajectory, &FLAGS_replay}) {
+    if (!flag->empty()) return *flag;
+  }
+  return model_path;
+}
+
+int WriteView(const std::string& model_path);
+
 }  // namespace
 
 int RunView(const std::vector<std::string>& args) {
   ParseCommandFlags(args, "view");
   const std::string model_path = RequireFlag(FLAGS_model, "model", "view");
+  // Within the bounds a page takes well under 1 GB (docs/security.md); a
+  // machine with less to give ends here, naming the file, not in bad_alloc.
+  try {
+    return WriteView(model_path);
+  } catch (const std::bad_alloc&) {
+    throw UsageError("ccma view: " + InputPath(model_path) +
+                     ": not enough memory to read it and write the page (docs/security.md, \"Bounds\")");
+  }
+}
+
+namespace {
+
+int WriteView(const std::string& model_path) {
   const std::string out_path = RequireFlag(FLAGS_out, "out", "view");
   if (!FLAGS_trajectory.empty() && !FLAGS_replay.empty()) {
     throw UsageError("ccma view: give --trajectory or --replay, not both");
@@ -257,5 +281,7 @@ int RunView(const std::vector<std::string>& args) {
                    model.collision.enabled, color_by == viewer::ColorBy::kLoad));
   return 0;
 }
+
+}  // namespace
 
 }  // namespace ccma::cli

@@ -22,6 +22,7 @@
 #include "apps/json_output.h"
 #include "apps/output_file.h"
 #include "apps/plots.h"
+#include "apps/work_bound.h"
 #include "apps/workspace_store.h"
 #include "formats/model_loader.h"
 #include "ccma/internal/format.h"
@@ -96,17 +97,25 @@ std::string StiffnessCell(const Model& model, const WorkspaceSample& s) {
 }
 
 // A compliant model's stiffness column is within the statics' bound
-// (kMaxStaticsEntries): checked once at home, before the long run.
-void CheckStiffnessColumn(const Model& model) {
-  if (!model.compliant()) return;
+// (kMaxStaticsEntries): checked once at home, before the long run. Returns
+// what a row's computed columns (ee_std_m, stiffness_min_N_per_m) take
+// there [s]: part of the run's estimate.
+double CheckedRowSeconds(const Model& model) {
+  WorkspaceSample at_home;
+  at_home.reachable = true;
+  at_home.state = State::Home(model);
+  at_home.controls = model.home_controls();
   try {
-    SmallestTranslationalStiffness(model, State::Home(model), model.home_controls());
+    return LeastSecondsOf([&] {
+      PositionStd(model, at_home);
+      if (model.compliant()) SmallestTranslationalStiffness(model, at_home.state, at_home.controls);
+    });
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("ccma workspace: stiffness_min_N_per_m: ") + e.what());
   }
 }
 
-void WriteCsv(const Model& model, const WorkspaceResult& result, std::ostream& csv) {
+void WriteCsv(const Model& model, const WorkspaceResult& result, std::ostream& csv, WorkEstimate* estimate) {
   for (int c = 0; c < 6; ++c) {
     if (model.end_effector.controlled[static_cast<size_t>(c)]) csv << kEndEffectorComponentNames[static_cast<size_t>(c)] << ",";
   }
@@ -115,7 +124,9 @@ void WriteCsv(const Model& model, const WorkspaceResult& result, std::ostream& c
   if (compliant) csv << ",stiffness_min_N_per_m";
   for (int k = 0; k < model.num_controls(); ++k) csv << ",u" << k;
   csv << "\n";
+  long long row = 0;
   for (const WorkspaceSample& s : result.samples) {
+    estimate->Update(row++);
     for (int c = 0; c < 6; ++c) {
       if (!model.end_effector.controlled[static_cast<size_t>(c)]) continue;
       csv << Cell(c < 3 ? s.pose.position[c] : s.pose.rpy[c - 3]) << ",";
@@ -176,10 +187,12 @@ WorkspaceOptions OptionsFromFlags(const Model& model) {
   return options;
 }
 
-// A percentage bar on stderr, only for a person watching (a terminal).
-WorkspaceProgress TerminalProgress() {
+// A percentage bar on stderr, only for a person watching (a terminal), and
+// the samples done told to `estimate` (which may end the run: WorkBoundError).
+WorkspaceProgress TerminalProgress(WorkEstimate* estimate) {
   const bool show = isatty(STDERR_FILENO) != 0;
-  return [show, last_percent = -1](long long done, long long total) mutable {
+  return [show, estimate, last_percent = -1](long long done, long long total) mutable {
+    estimate->Update(done);
     if (!show) return;
     const int percent = static_cast<int>(100 * done / std::max<long long>(total, 1));
     if (percent == last_percent) return;
@@ -231,8 +244,9 @@ nlohmann::json SummaryJson(const Model& model, const WorkspaceOptions& options, 
 
 // The map; with a store, Ctrl-C (or SIGTERM) first says on stderr what the
 // store keeps and how to resume, then ends the run as the signal would.
-WorkspaceResult ComputeWithStore(const Model& model, const WorkspaceOptions& options, WorkspaceStore* store) {
-  if (store == nullptr) return ComputeWorkspace(model, options, TerminalProgress(), nullptr);
+WorkspaceResult ComputeWithStore(const Model& model, const WorkspaceOptions& options, WorkspaceStore* store,
+                                 WorkEstimate* estimate) {
+  if (store == nullptr) return ComputeWorkspace(model, options, TerminalProgress(estimate), nullptr);
   const InterruptWatch watch([store](int signal_number) {
     const int kept = store->Freeze();
     std::cerr << (isatty(STDERR_FILENO) != 0 ? "\n" : "") << "ccma workspace: "
@@ -240,7 +254,7 @@ WorkspaceResult ComputeWithStore(const Model& model, const WorkspaceOptions& opt
               << " tiles of the map are finished and kept in the store " << Quote(FLAGS_store)
               << "; the same command again resumes from them:\n  " << CommandLineForShell() << std::endl;
   });
-  return ComputeWorkspace(model, options, TerminalProgress(), store);
+  return ComputeWorkspace(model, options, TerminalProgress(estimate), store);
 }
 
 }  // namespace
@@ -251,7 +265,11 @@ int RunWorkspace(const std::vector<std::string>& args) {
   const std::string out_path = RequireFlag(FLAGS_out, "out", "workspace");
   const Model model = LoadModelOrThrow(model_path);
   const WorkspaceOptions options = OptionsFromFlags(model);
-  CheckStiffnessColumn(model);
+  // Work bounded by its cost (--max_minutes): the samples timed as they are
+  // solved, the CSV's computed columns once at home.
+  const long long n = options.SampleCount();
+  WorkEstimate estimate(CommandWorkEstimate("workspace", "samples", true), n);
+  estimate.AddLaterSeconds(CheckedRowSeconds(model) * static_cast<double>(n), "the CSV's computed columns");
   if (!FLAGS_plot.empty()) {
     std::error_code ec;
     std::filesystem::create_directories(FLAGS_plot, ec);
@@ -263,8 +281,9 @@ int RunWorkspace(const std::vector<std::string>& args) {
     store = std::make_unique<WorkspaceStore>(FLAGS_store, model, StoreKey(model_path, options),
                                              WorkspaceTiles(model, options));
   }
-  const WorkspaceResult result = ComputeWithStore(model, options, store.get());
-  WriteCsv(model, result, file.stream());
+  const WorkspaceResult result = ComputeWithStore(model, options, store.get(), &estimate);
+  estimate.BeginStage("rows of the CSV", n, 0, false);
+  WriteCsv(model, result, file.stream(), &estimate);
   file.Commit();
 
   nlohmann::json out = SummaryJson(model, options, result, out_path);

@@ -164,8 +164,69 @@ Plan MakePlan(const Model& model, const std::vector<Waypoint>& waypoints, const 
   return plan;
 }
 
-// Runs the bases and the chain along the plan; appends the samples.
-void Simulate(const Model& model, const Plan& plan, const ReplayOptions& options, ReplayResult* result) {
+// Sums of squared errors per component (angles wrapped), for RMSEs taken
+// over every controller tick rather than over the output samples.
+struct ErrorSums {
+  std::array<double, 6> tracked{}, gait{}, tracking{};  // tracked-commanded, tracked-without gait, without-commanded
+  long count = 0;
+
+  void Add(const ReplaySample& s) {
+    for (int c = 0; c < 6; ++c) {
+      const auto d = [c](const Eigen::Matrix<double, 6, 1>& x, const Eigen::Matrix<double, 6, 1>& y) {
+        const double e = c < 3 ? x[c] - y[c] : WrapAngle(x[c] - y[c]);
+        return e * e;
+      };
+      tracked[c] += d(s.tracked, s.commanded);
+      gait[c] += d(s.tracked, s.tracked_without_gait);
+      tracking[c] += d(s.tracked_without_gait, s.commanded);
+    }
+    ++count;
+  }
+};
+
+// The chain at the bases' true poses: a sample at time t (with legged
+// bases also the chain without the gait, solved first).
+class ChainAtBases {
+ public:
+  ChainAtBases(const Model& model, const ReplayOptions& options)
+      : model_(model), options_(options), chain_(model, options.control.forward),
+        without_gait_(model, options.control.forward), gait_(HasLeggedBases(model)) {}
+  bool gait() const { return gait_; }
+
+  ReplaySample At(double t, const Plan& plan, const SimulatedBases& bases) {
+    ReplaySample sample;
+    sample.time = t;
+    sample.commanded = plan.Interpolate(plan.end_effector, t);
+    sample.set_controls = plan.SetControls(t);
+    // Actuated joints' motors (after the bases' controls) hold their set-points.
+    sample.true_controls = sample.set_controls;
+    for (int k = 0; k < model_.num_bases(); ++k) sample.true_controls.segment<3>(plan.first[k]) = bases.TruePose(k);
+    if (gait_) {
+      without_gait_.Solve(sample.true_controls);
+      sample.tracked_without_gait = Pose6(without_gait_.end_effector());
+      ApplyGait(model_, options_.gait, t, plan.Velocity(t), &sample.true_controls);
+    }
+    sample.residual_energy = chain_.Solve(sample.true_controls).residual_energy;
+    sample.assembled = sample.residual_energy <= options_.control.forward.assembly_tolerance;
+    sample.torn = !(sample.residual_energy <= options_.torn_residual_energy);
+    sample.tracked = Pose6(chain_.end_effector());
+    return sample;
+  }
+
+ private:
+  const Model& model_;
+  const ReplayOptions& options_;
+  ForwardProblem chain_, without_gait_;
+  bool gait_;
+};
+
+// Runs the bases and the chain along the plan; appends the samples. With
+// legged bases the chain is solved at every controller tick, not only at the
+// output samples, and `sums` collects the errors of every tick: a gait
+// sampled only at the output rate aliases (at 20 Hz, a 10 Hz gait is
+// sampled at the same phase every time and shows no bob).
+void Simulate(const Model& model, const Plan& plan, const ReplayOptions& options, ReplayResult* result,
+              ErrorSums* sums) {
   std::vector<BaseDrive> drives;
   std::vector<BaseController> controllers;
   std::vector<Eigen::Vector3d> start;
@@ -175,11 +236,8 @@ void Simulate(const Model& model, const Plan& plan, const ReplayOptions& options
     start.push_back(plan.controls.front().segment<3>(plan.first[k]));
   }
   SimulatedBases bases(drives, start, options.noise);
-  ForwardProblem chain(model, options.control.forward);
-  // With legged bases, a second chain at the same controls without the gait.
-  const bool gait = HasLeggedBases(model);
-  ForwardProblem chain_without_gait(model, options.control.forward);
-  result->gait = gait;
+  ChainAtBases chain(model, options);
+  result->gait = chain.gait();
   result->torn_residual_energy = options.torn_residual_energy;
 
   const double t0 = plan.times.front();
@@ -190,25 +248,14 @@ void Simulate(const Model& model, const Plan& plan, const ReplayOptions& options
   double next_output = t0;
   for (long tick = 0; tick <= ticks; ++tick) {
     const double t = t0 + static_cast<double>(tick) * dt;
-    if (t + 1e-9 >= next_output) {
-      ReplaySample sample;
-      sample.time = t;
-      sample.commanded = plan.Interpolate(plan.end_effector, t);
-      sample.set_controls = plan.SetControls(t);
-      // Actuated joints' motors (after the bases' controls) hold their set-points.
-      sample.true_controls = sample.set_controls;
-      for (int k = 0; k < model.num_bases(); ++k) sample.true_controls.segment<3>(plan.first[k]) = bases.TruePose(k);
-      if (gait) {
-        chain_without_gait.Solve(sample.true_controls);
-        sample.tracked_without_gait = Pose6(chain_without_gait.end_effector());
-        ApplyGait(model, options.gait, t, plan.Velocity(t), &sample.true_controls);
+    const bool output = t + 1e-9 >= next_output;
+    if (output || chain.gait()) {
+      const ReplaySample sample = chain.At(t, plan, bases);
+      if (chain.gait()) sums->Add(sample);
+      if (output) {
+        result->samples.push_back(sample);
+        next_output += 1.0 / options.output_hz;
       }
-      sample.residual_energy = chain.Solve(sample.true_controls).residual_energy;
-      sample.assembled = sample.residual_energy <= options.control.forward.assembly_tolerance;
-      sample.torn = !(sample.residual_energy <= options.torn_residual_energy);
-      sample.tracked = Pose6(chain.end_effector());
-      result->samples.push_back(sample);
-      next_output += 1.0 / options.output_hz;
     }
     const Eigen::VectorXd set = plan.SetControls(t);
     const Eigen::VectorXd set_velocity = plan.Velocity(t);
@@ -223,8 +270,9 @@ void Simulate(const Model& model, const Plan& plan, const ReplayOptions& options
 }
 
 // Torn samples, the worst E, and the RMSE of tracked against commanded per
-// component (angles wrapped).
-void Summarize(ReplayResult* result) {
+// component (angles wrapped): over the output samples, or with legged bases
+// over every controller tick (`sums`), as the gait's shares are.
+void Summarize(const ErrorSums& sums, ReplayResult* result) {
   for (const ReplaySample& s : result->samples) {
     result->max_residual_energy = std::max(result->max_residual_energy, s.residual_energy);
     if (std::isnan(s.residual_energy)) result->max_residual_energy = s.residual_energy;
@@ -232,25 +280,15 @@ void Summarize(ReplayResult* result) {
     if (result->torn_samples++ == 0) result->first_torn_time = s.time;
     result->torn = true;
   }
-  using Pose = Eigen::Matrix<double, 6, 1>;
-  const auto rms = [&](int c, const auto& a, const auto& b) {
-    double sum = 0;
-    for (const ReplaySample& s : result->samples) {
-      const Pose& x = a(s);
-      const Pose& y = b(s);
-      const double d = c < 3 ? x[c] - y[c] : WrapAngle(x[c] - y[c]);
-      sum += d * d;
-    }
-    return result->samples.empty() ? 0 : std::sqrt(sum / static_cast<double>(result->samples.size()));
-  };
-  const auto tracked = [](const ReplaySample& s) -> const Pose& { return s.tracked; };
-  const auto commanded = [](const ReplaySample& s) -> const Pose& { return s.commanded; };
-  const auto without_gait = [](const ReplaySample& s) -> const Pose& { return s.tracked_without_gait; };
+  ErrorSums over_samples;
+  for (const ReplaySample& s : result->samples) over_samples.Add(s);
+  const ErrorSums& e = result->gait ? sums : over_samples;
+  const auto rms = [&e](double sum) { return e.count == 0 ? 0 : std::sqrt(sum / static_cast<double>(e.count)); };
   for (int c = 0; c < 6; ++c) {
-    result->rmse[c] = rms(c, tracked, commanded);
+    result->rmse[c] = rms(e.tracked[c]);
     if (!result->gait) continue;
-    result->gait_rmse[c] = rms(c, tracked, without_gait);
-    result->tracking_rmse[c] = rms(c, without_gait, commanded);
+    result->gait_rmse[c] = rms(e.gait[c]);
+    result->tracking_rmse[c] = rms(e.tracking[c]);
   }
 }
 
@@ -321,14 +359,40 @@ bool IsValidReplay(const std::vector<Waypoint>& waypoints, const ReplayOptions& 
   return true;
 }
 
+bool IsValidReplay(const Model& model, const std::vector<Waypoint>& waypoints, const ReplayOptions& options,
+                   std::string* why) {
+  if (!IsValidReplay(waypoints, options, why)) return false;
+  if (!HasLeggedBases(model)) return true;
+  const double rate = options.gains.rate_hz;
+  const double per_period = ReplayOptions::kMinTicksPerGaitPeriod;
+  if (!(options.gait.hz * per_period <= rate)) {
+    return Fail(Format("a gait of %g Hz (gait_hz) needs a controller rate (controller_hz) of at least %g Hz: the gait "
+                       "is evaluated at every controller tick, at least 4 a gait period (fewer cannot show its bob); "
+                       "it is %g Hz",
+                       options.gait.hz, per_period * options.gait.hz, rate),
+                why);
+  }
+  // Two chain solves a tick: bounded as the output samples are.
+  const double duration = waypoints.back().time - waypoints.front().time + options.settle_s;
+  const double ticks = std::ceil(duration * rate) + 1;
+  if (!(ticks <= static_cast<double>(kMaxReplaySamples))) {
+    return Fail(Format("with legged bases the chain is solved at every controller tick: %g s at %g Hz make %g ticks;",
+                       duration, rate, ticks) +
+                    Format(" at most %g are allowed", static_cast<double>(kMaxReplaySamples)),
+                why);
+  }
+  return true;
+}
+
 ReplayResult Replay(const Model& model, const std::vector<Waypoint>& waypoints,
                     const ReplayOptions& options) {
   std::string why;
-  if (!IsValidReplay(waypoints, options, &why)) throw std::invalid_argument(why);
+  if (!IsValidReplay(model, waypoints, options, &why)) throw std::invalid_argument(why);
   ReplayResult result;
   const Plan plan = MakePlan(model, waypoints, options, &result);
-  Simulate(model, plan, options, &result);
-  Summarize(&result);
+  ErrorSums sums;
+  Simulate(model, plan, options, &result, &sums);
+  Summarize(sums, &result);
   return result;
 }
 

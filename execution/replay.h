@@ -59,6 +59,9 @@ struct ReplayOptions {
   // Otherwise false, with `why` (if not null) naming the field and its unit.
   bool IsValid(std::string* why) const;
   static constexpr double kMinOutputHz = 0.1;
+  // With legged bases the gait is evaluated at every controller tick, at
+  // least this many a gait period: gait.hz * 4 <= gains.rate_hz (Replay).
+  static constexpr int kMinTicksPerGaitPeriod = 4;
   static constexpr double kMaxOutputHz = 1000.0;
 };
 
@@ -95,7 +98,9 @@ struct ReplayResult {
   std::array<double, 6> rmse{};  // tracked vs commanded, per component (m, rad)
   // Models with legged bases (`gait` true): the RMSE of tracked against
   // tracked_without_gait (the gait's share) and of tracked_without_gait
-  // against commanded (tracking's share), per component (m, rad).
+  // against commanded (tracking's share), per component (m, rad). These and
+  // `rmse` are then taken over every controller tick, the chain solved at
+  // each (the output samples alone would alias the gait).
   bool gait = false;
   std::array<double, 6> gait_rmse{}, tracking_rmse{};
   double duration_s = 0;
@@ -111,8 +116,14 @@ struct ReplayResult {
 // samples (ccma/limits.h). Otherwise false, with `why` (if not null).
 bool IsValidReplay(const std::vector<Waypoint>& waypoints, const ReplayOptions& options, std::string* why);
 
-// Throws std::invalid_argument (the message of IsValidReplay) when the input
-// is not valid; everything else is reported in the result.
+// The same for a replay of `model`: with legged bases also a controller rate
+// of at least kMinTicksPerGaitPeriod times the gait's, and at most
+// kMaxReplaySamples controller ticks (the chain is solved at each).
+bool IsValidReplay(const Model& model, const std::vector<Waypoint>& waypoints, const ReplayOptions& options,
+                   std::string* why);
+
+// Throws std::invalid_argument (the message of IsValidReplay(model, ...))
+// when the input is not valid; everything else is reported in the result.
 ReplayResult Replay(const Model& model, const std::vector<Waypoint>& waypoints,
                     const ReplayOptions& options);
 

@@ -56,6 +56,13 @@ namespace internal {
 bool ReadRegularFile(const std::string& path, std::size_t max_bytes, const char* noun,
                      std::string* text, std::string* error);
 
+// The same checks, for a file read in pieces (ccma view's CSVs): returns an
+// open descriptor (O_RDONLY | O_CLOEXEC | O_NONBLOCK; the caller closes it)
+// of a regular file whose size is at most `max_bytes` when opened, or -1
+// with `error` set as above. The reader must still stop past `max_bytes`
+// (the file may grow).
+int OpenRegularFile(const std::string& path, std::size_t max_bytes, const char* noun, std::string* error);
+
 }  // namespace internal
 }  // namespace ccma
 

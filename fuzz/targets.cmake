@@ -5,7 +5,7 @@
 ccma_fuzz_target(NAME loader SOURCE loader_fuzzer.cc CORPUS corpus_loader DICT loader.dict LAYERS core formats)
 ccma_fuzz_target(NAME obstacles SOURCE obstacles_fuzzer.cc CORPUS corpus_obstacles DICT obstacles.dict LAYERS core formats)
 ccma_fuzz_target(NAME waypoints SOURCE waypoints_fuzzer.cc CORPUS corpus_waypoints DICT waypoints.dict LAYERS core formats)
-ccma_fuzz_target(NAME trajectory_csv SOURCE trajectory_csv_fuzzer.cc CORPUS corpus_trajectory_csv DICT trajectory_csv.dict MAX_LEN 32768 LAYERS core formats SOURCES viewer/csv_table.cc viewer/view_frames.cc)
+ccma_fuzz_target(NAME trajectory_csv SOURCE trajectory_csv_fuzzer.cc CORPUS corpus_trajectory_csv DICT trajectory_csv.dict MAX_LEN 32768 LAYERS core formats SOURCES viewer/csv_reader.cc viewer/view_frames.cc)
 ccma_fuzz_target(NAME urdf SOURCE urdf_fuzzer.cc CORPUS corpus_urdf LAYERS analyses robot_files)
 ccma_fuzz_target(NAME sdformat SOURCE sdformat_fuzzer.cc CORPUS corpus_sdformat LAYERS analyses robot_files)
 ccma_fuzz_target(NAME stl SOURCE stl_fuzzer.cc CORPUS corpus_stl LAYERS core formats SOURCES viewer/stl.cc)

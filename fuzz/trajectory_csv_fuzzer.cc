@@ -1,5 +1,5 @@
 // libFuzzer target for trajectory CSVs as `ccma view --trajectory=FILE.csv`
-// reads them (viewer/view_frames.h on viewer/csv_table.h; the CSV that
+// reads them (viewer/view_frames.h on viewer/csv_reader.h; the CSV that
 // `ccma trajectory --out` and `ccma plan --out` write), read against
 // models/4dof_reduced.yaml.
 //

@@ -392,10 +392,11 @@ TEST(Cli, EachCommandHasItsOwnHelpWithUnits) {
       {"view", {"model", "trajectory", "replay", "workspace", "controls", "meshes", "mesh_root", "color_by", "deflection",
                 "wrench", "out", "obstacles"}},
       {"workspace", {"model", "out", "x", "y", "z", "roll", "pitch", "yaw", "resolution", "samples", "seed",
-                     "threads", "tile_size", "plot", "obstacles", "store", "method", "max_step_m", "max_step_rad", "lambda"}},
+                     "threads", "tile_size", "plot", "obstacles", "store", "max_minutes", "method", "max_step_m",
+                     "max_step_rad", "lambda"}},
       {"design", {"model", "targets", "out", "vary", "vary_length", "max_change", "min_length", "min_singular_value",
-                  "target_tolerance", "design_iterations", "objective", "mocap_noise_m", "mocap_noise_rad", "method",
-                  "max_step_m", "max_step_rad", "lambda"}},
+                  "target_tolerance", "design_iterations", "objective", "mocap_noise_m", "mocap_noise_rad",
+                  "max_minutes", "method", "max_step_m", "max_step_rad", "lambda"}},
       {"export", {"model", "format", "out"}}};
   for (const auto& [command, expected] : flags) {
     const ToolRun r = Ccma(command + " --help");

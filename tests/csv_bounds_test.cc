@@ -1,4 +1,4 @@
-// The CSV tables `ccma view` reads (viewer/csv_table.h) are bounded by their
+// The CSV tables `ccma view` reads (viewer/csv_reader.h) are bounded by their
 // file: a line may have at most kMaxCsvColumns cells, counted before the line
 // is split, so a header of commas is refused at once (exit 2, file and line
 // named) instead of becoming one string per cell.
@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "tests/tool_run.h"
-#include "viewer/csv_table.h"
+#include "viewer/csv_reader.h"
 
 namespace ccma {
 namespace csv_bounds_test {

@@ -271,6 +271,38 @@ TEST(LeggedBase, ReplaySeparatesTheGaitsErrorFromTracking) {
   EXPECT_NEAR(double(still["rmse"]["z_mm"]), double(still["gait"]["rmse_from_tracking"]["z_mm"]), 1e-9);
 }
 
+// The gait is evaluated at every controller tick (issue 49 item 4): sampled
+// only at the 20 Hz output, a 10 Hz gait was seen at the same phase every
+// time (sin = 0: no bob, 0.28 mm against 5.3 mm at 9.7 Hz), and 100 Hz
+// equalled 1e-300 Hz. The three bodies bob in phase, lifting the platform by
+// 10 mm sin(2 pi f t) while they walk (200 of the 301 ticks of the 2 s walk
+// and 1 s of settling): rmse_from_gait.z = 10 / sqrt(2) * sqrt(200 / 301) =
+// 5.76 mm at any frequency the controller rate shows (4 ticks a period).
+TEST(LeggedBase, TheGaitIsEvaluatedAtTheControllerRate) {
+  const auto z_mm = [](const std::vector<std::string>& flags) {
+    const nlohmann::json walk = ReplayWalk(flags);
+    return walk.contains("gait") ? double(walk["gait"]["rmse_from_gait"]["z_mm"]) : -1.0;
+  };
+  const double expected = 10 / std::sqrt(2.0) * std::sqrt(200.0 / 301.0);
+  for (const std::string hz : {"2", "9.7", "10", "20", "25"}) {
+    EXPECT_NEAR(z_mm({"--gait_hz=" + hz}), expected, 0.03 * expected) << hz << " Hz";
+  }
+  EXPECT_NEAR(z_mm({"--gait_hz=100", "--controller_hz=400"}), expected, 0.03 * expected);
+  // A gait of 1e-300 Hz does not bob (sin 0 = 0): only its sway's 0.02 rad
+  // of roll moves the platform's centre, by a fraction of a millimetre.
+  EXPECT_LT(z_mm({"--gait_hz=1e-300"}), 0.1 * expected);
+  // A gait faster than a quarter of the controller rate is refused, naming both.
+  const std::string path = testing::ScratchPath("legged", "walk.csv");
+  const testing::ToolRun fast = testing::RunTool({"replay", "--model=" + testing::ModelPath("6dof_three_legged"),
+                                                  "--waypoints=" + path, "--out=" + testing::ScratchPath("legged", "fast"),
+                                                  "--noise=none", "--gait_hz=26"});
+  EXPECT_EQ(fast.status, 2) << fast.err;
+  EXPECT_TRUE(fast.out.empty());
+  EXPECT_NE(fast.err.find("a gait of 26 Hz (gait_hz) needs a controller rate (controller_hz) of at least 104 Hz"),
+            std::string::npos)
+      << fast.err;
+}
+
 TEST(LeggedBase, WorkspaceMapsAndPlansHoldTheBodyLimits) {
   // Heights from 0.85 to 1.75 m: the lower ones within reach, the top one
   // beyond what the bodies (at most 0.55 m) and arms can lift.

@@ -5,6 +5,7 @@
 #define CCMA_TESTS_TOOL_RUN_H_
 
 #include <fcntl.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -23,6 +24,7 @@ struct ToolRun {
   int status = -1;  // exit status, or -1 if killed
   std::string out, err;
   double seconds = 0;
+  long peak_rss_kb = 0;  // the child's largest resident set [KiB] (wait4's ru_maxrss)
 };
 
 inline std::string Slurp(const std::string& path) {
@@ -55,15 +57,19 @@ inline pid_t SpawnTool(const std::vector<std::string>& args, int timeout_s, cons
   return pid;
 }
 
-inline ToolRun RunTool(const std::vector<std::string>& args, int timeout_s = 120) {
+// `in_child` as for SpawnTool (e.g. an RLIMIT_AS, so that a run which would
+// allocate more fails with bad_alloc instead of taking the machine's memory).
+inline ToolRun RunTool(const std::vector<std::string>& args, int timeout_s = 120, void (*in_child)() = nullptr) {
   const std::string dir = ::testing::TempDir();
   const std::string tag = std::to_string(getpid());
   const std::string out = dir + "/tool_out_" + tag, err = dir + "/tool_err_" + tag;
   const auto start = std::chrono::steady_clock::now();
-  const pid_t pid = SpawnTool(args, timeout_s, out, err);
+  const pid_t pid = SpawnTool(args, timeout_s, out, err, in_child);
   int raw = 0;
-  waitpid(pid, &raw, 0);
+  struct rusage usage {};
+  wait4(pid, &raw, 0, &usage);
   ToolRun r;
+  r.peak_rss_kb = usage.ru_maxrss;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
   r.out = Slurp(out);

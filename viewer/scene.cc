@@ -167,18 +167,26 @@ json Joints(const Model& model) {
   return joints;
 }
 
-// The "workspace" object (scene_format.md): the cloud's points, flags and
-// sigma_min in row order. Its values are finite by construction
-// (CloudFromWorkspaceCsv), so no null can appear.
-json Workspace(const WorkspaceCloud& cloud) {
-  json points = json::array(), reachable = json::array(), sigma = json::array();
+// The "workspace" object (scene_format.md) as JSON text: the cloud's
+// points, flags and sigma_min in row order, each number as nlohmann::json
+// writes it. Written straight to text: a tree of a million points would take
+// ~150 MB, and nlohmann::json allocates while it destroys one (a failed
+// allocation there ends the process instead of throwing). Its values are
+// finite by construction (CloudFromWorkspaceCsv), so no null can appear.
+std::string WorkspaceText(const WorkspaceCloud& cloud) {
+  const auto number = [](double v) { return json(Round(v)).dump(); };
+  std::string points, reachable, sigma;
   for (size_t i = 0; i < cloud.points.size(); ++i) {
-    points.push_back(Vec(cloud.points[i]));
-    reachable.push_back(cloud.reachable[i] ? 1 : 0);
-    sigma.push_back(Round(cloud.sigma_min[i]));
+    const char* comma = i == 0 ? "" : ",";
+    const Eigen::Vector3d& p = cloud.points[i];
+    points += comma + ("[" + number(p.x()) + "," + number(p.y()) + "," + number(p.z()) + "]");
+    reachable += comma + std::string(cloud.reachable[i] ? "1" : "0");
+    sigma += comma + number(cloud.sigma_min[i]);
   }
-  return {{"points", std::move(points)},   {"reachable", std::move(reachable)}, {"sigma_min", std::move(sigma)},
-          {"components", cloud.components}, {"source", cloud.source}};
+  const json names = {{"components", cloud.components}, {"source", cloud.source}};
+  return "{\"components\":" + names["components"].dump(-1, ' ', false, json::error_handler_t::replace) +
+         ",\"points\":[" + points + "],\"reachable\":[" + reachable + "],\"sigma_min\":[" + sigma +
+         "],\"source\":" + names["source"].dump(-1, ' ', false, json::error_handler_t::replace) + "}";
 }
 
 // The "collision" object (scene_format.md): the shapes as the model gives
@@ -254,10 +262,9 @@ json Poses(const State& s) {
   return poses;
 }
 
-// The scene as JSON text safe inside <script>: no "</script>", "<!--" or
-// entity can form (<, > and & written as JSON unicode escapes, read back unchanged).
-std::string ScriptSafeJson(const json& scene) {
-  const std::string text = scene.dump(-1, ' ', false, json::error_handler_t::replace);
+// JSON text made safe inside <script>: no "</script>", "<!--" or entity can
+// form (<, > and & written as JSON unicode escapes, read back unchanged).
+std::string ScriptSafe(const std::string& text) {
   std::string out;
   out.reserve(text.size());
   for (char c : text) {
@@ -441,15 +448,17 @@ std::string BuildScene(const Model& model, const std::vector<ViewFrame>& frames,
     s.deflected = ComputeDeflectedShape(model, forward.state(), forward.controls(), *deflection);
     scene["deflection"] = SceneDeflection(model, *s.deflected);
   }
-  if (workspace != nullptr) {
-    scene["workspace"] = Workspace(*workspace);
+  // No key without meshes: --meshes on a model that names none changes nothing.
+  if (meshes != nullptr && !meshes->files.empty()) scene["meshes"] = MeshList(*meshes);
+  std::string text = scene.dump(-1, ' ', false, json::error_handler_t::replace);
+  if (workspace != nullptr) {  // the last key in nlohmann's (sorted) order
+    text.pop_back();
+    text += ",\"workspace\":" + WorkspaceText(*workspace) + "}";
     s.workspace_points = static_cast<long>(workspace->points.size());
     s.workspace_reachable = workspace->reachable_count;
   }
-  // No key without meshes: --meshes on a model that names none changes nothing.
-  if (meshes != nullptr && !meshes->files.empty()) scene["meshes"] = MeshList(*meshes);
   if (summary != nullptr) *summary = s;
-  return ScriptSafeJson(scene);
+  return ScriptSafe(text);
 }
 
 }  // namespace ccma::viewer

@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "analyses/workspace.h"
-#include "viewer/csv_table.h"
+#include "viewer/csv_reader.h"
 #include "viewer/view_frames.h"
 
 namespace ccma::viewer {
@@ -13,8 +13,12 @@ namespace ccma::viewer {
 static_assert(kMaxWorkspaceRows == WorkspaceOptions::kMaxSamples, "a view must accept every map ccma writes");
 
 WorkspaceCloud CloudFromWorkspaceCsv(const Model& model, const std::string& csv_path) {
-  // limited_by holds joint names, the one text column of the map.
-  const CsvTable t = ReadCsvTable(csv_path, CsvLimits{kMaxWorkspaceFileBytes, kMaxWorkspaceRows, {"limited_by"}});
+  // limited_by holds joint names, the one text column of the map. Only the
+  // columns drawn are kept: a map's controls (u0, u1, ...) are checked and
+  // dropped row by row.
+  std::vector<std::string> columns = {"reachable", "sigma_min"};
+  for (const char* name : kEndEffectorComponentNames) columns.emplace_back(name);
+  CsvReader t(csv_path, CsvLimits{kMaxWorkspaceFileBytes, kMaxWorkspaceRows, {"limited_by"}}, columns);
   const int reachable = t.Find("reachable", true);
   const int sigma_min = t.Find("sigma_min", true);
   // The pose columns are the model's controlled components: another set
@@ -39,28 +43,23 @@ WorkspaceCloud CloudFromWorkspaceCsv(const Model& model, const std::string& csv_
   }
   cloud.source = std::filesystem::path(csv_path).filename().string();
   const Eigen::Vector3d home = model.end_effector.p_W_home;
-  const size_t n = t.rows.size();
-  cloud.points.reserve(n);
-  cloud.reachable.reserve(n);
-  cloud.sigma_min.reserve(n);
-  for (size_t r = 0; r < n; ++r) {
-    const std::vector<double>& row = t.rows[r];
+  while (t.Next()) {
     Eigen::Vector3d p = home;
     for (int i = 0; i < 3; ++i) {
       const int col = position[static_cast<size_t>(i)];
       if (col < 0) continue;
-      if (std::isnan(row[col])) throw ViewInputError(t.Where(r, col) + ": empty");
-      p[i] = row[col];
+      if (std::isnan(t.Cell(col))) throw ViewInputError(t.Where(col) + ": empty");
+      p[i] = t.Cell(col);
     }
-    const double flag = row[reachable];
-    if (!(flag == 0.0 || flag == 1.0)) throw ViewInputError(t.Where(r, reachable) + ": not 0 or 1");
+    const double flag = t.Cell(reachable);
+    if (!(flag == 0.0 || flag == 1.0)) throw ViewInputError(t.Where(reachable) + ": not 0 or 1");
     const bool reached = flag == 1.0;
     // An unreachable row's sigma_min means nothing (ccma writes 0); the
     // reachable flag says what it is.
     double sigma = 0;
     if (reached) {
-      sigma = row[sigma_min];
-      if (!(sigma >= 0)) throw ViewInputError(t.Where(r, sigma_min) + ": a reachable row needs a number >= 0");
+      sigma = t.Cell(sigma_min);
+      if (!(sigma >= 0)) throw ViewInputError(t.Where(sigma_min) + ": a reachable row needs a number >= 0");
     }
     cloud.points.push_back(p);
     cloud.reachable.push_back(reached ? 1 : 0);

@@ -28,51 +28,65 @@ class FileDescriptor {
   FileDescriptor(const FileDescriptor&) = delete;
   FileDescriptor& operator=(const FileDescriptor&) = delete;
   int get() const { return fd_; }
+  int release() {
+    const int fd = fd_;
+    fd_ = -1;
+    return fd;
+  }
 
  private:
   int fd_;
 };
 
+std::string TooLarge(const std::string& path, std::size_t max_bytes, const char* noun) {
+  return path + ": larger than " + FormatMiB(max_bytes) + " (the limit for a " + noun + ")";
+}
+
 }  // namespace
 
 namespace internal {
 
-bool ReadRegularFile(const std::string& path, std::size_t max_bytes, const char* noun,
-                     std::string* text, std::string* error) {
+int OpenRegularFile(const std::string& path, std::size_t max_bytes, const char* noun, std::string* error) {
   const std::string cannot_open = path + ": cannot open the " + noun;
   // Look before opening: opening a FIFO blocks, reading a device never ends.
   std::error_code ec;
   const std::filesystem::file_status status = std::filesystem::status(path, ec);
   if (status.type() == std::filesystem::file_type::not_found) {
     *error = cannot_open + " (no such file)";
-    return false;
+    return -1;
   }
   if (ec) {
     *error = cannot_open + " (" + ec.message() + ")";
-    return false;
+    return -1;
   }
   if (status.type() != std::filesystem::file_type::regular) {
     const bool directory = status.type() == std::filesystem::file_type::directory;
     *error = path + ": not a regular file" + (directory ? " (a directory)" : "");
-    return false;
+    return -1;
   }
   // O_NONBLOCK and the fstat below: the path may have been swapped since.
-  const FileDescriptor fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY | O_NONBLOCK));
+  FileDescriptor fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY | O_NONBLOCK));
   if (fd.get() < 0) {
     *error = cannot_open + " (" + std::strerror(errno) + ")";
-    return false;
+    return -1;
   }
   struct stat info {};
   if (::fstat(fd.get(), &info) != 0 || !S_ISREG(info.st_mode)) {
     *error = path + ": not a regular file";
-    return false;
+    return -1;
   }
-  const std::string too_large = path + ": larger than " + FormatMiB(max_bytes) + " (the limit for a " +
-                                noun + ")";
   if (info.st_size > 0 && static_cast<std::uintmax_t>(info.st_size) > max_bytes) {
-    *error = too_large;
-    return false;
+    *error = TooLarge(path, max_bytes, noun);
+    return -1;
   }
+  return fd.release();
+}
+
+bool ReadRegularFile(const std::string& path, std::size_t max_bytes, const char* noun,
+                     std::string* text, std::string* error) {
+  const FileDescriptor fd(OpenRegularFile(path, max_bytes, noun, error));
+  if (fd.get() < 0) return false;
+  const std::string too_large = TooLarge(path, max_bytes, noun);
   text->clear();
   char buffer[65536];
   for (;;) {

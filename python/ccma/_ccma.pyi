@@ -35,6 +35,11 @@ class ViewInputError(ValueError):
     draw cannot be read or is malformed. Carries one argument, the message naming the file, and
     the line and column where there is one: 'file:line: column 'name': what' (str(e), e.args[0])."""
 
+class WorkBoundError(ValueError):
+    """Raised by workspace and design when the run is estimated longer than their max_minutes
+    (measured on its first seconds; docs/security.md, "Work bounded by its cost"). Carries one
+    argument, the message: the estimate, the bound and the max_minutes that would allow it."""
+
 # ------------------------------------------------------------------ models ----
 
 class Body:

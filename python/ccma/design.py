@@ -19,7 +19,7 @@ def _targets(targets):
 
 def design(model, targets, vary=(), vary_length=(), max_change=0.5, min_length=0.02, min_singular_value=0.02,
            target_tolerance=1e-6, design_iterations=30, objective="reach", mocap_noise_m=0.001,
-           mocap_noise_rad=0.003, out=None):
+           mocap_noise_rad=0.003, out=None, max_minutes=10):
     """`ccma design`: moves the named geometry until every target is reachable with margin.
 
     model: the model file's path (as --model) or a ccma.Model. targets: N x 6 rows x, y, z [m],
@@ -28,6 +28,10 @@ def design(model, targets, vary=(), vary_length=(), max_change=0.5, min_length=0
     max_change [m], min_length [m], min_singular_value [m or rad per control unit],
     target_tolerance [m or rad], design_iterations, objective ('reach', 'payload', 'peak_push',
     'ee_std', 'stiffness', 'deflection'), mocap_noise_m [m], mocap_noise_rad [rad]. out: write the designed model file there.
+    max_minutes: the bound on the design's estimated time, (0, 10080] [min], as --max_minutes: the
+    iterations are timed as they go (the objective's on their own); a design estimated over 5 s
+    says how long on sys.stderr, then a progress line every 10 s; one estimated over max_minutes
+    raises ccma.WorkBoundError (naming the estimate and the max_minutes that would allow it).
 
     Returns a ccma.DesignResult: the command's JSON as attributes (to_dict()): converged,
     reached, reached_before, targets, iterations, changed, changed_points, objective, warning;
@@ -54,7 +58,7 @@ def design(model, targets, vary=(), vary_length=(), max_change=0.5, min_length=0
     document, new_model, new_text = _ccma._design(
         model, text, source, _targets(targets), list(vary), list(vary_length), float(max_change), float(min_length),
         float(min_singular_value), float(target_tolerance), int(design_iterations), str(objective),
-        float(mocap_noise_m), float(mocap_noise_rad))
+        float(mocap_noise_m), float(mocap_noise_rad), float(max_minutes))
     if out is not None:
         _write_replacing(source, new_text.encode("utf-8"))
         document["out"] = source

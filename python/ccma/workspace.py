@@ -244,7 +244,7 @@ class _Progress:
             self._bar.close()
 
 
-def _by_tiles(runner, model, text, args, control, chunk, window, store, progress):
+def _by_tiles(runner, model, text, args, control, chunk, window, store, progress, estimate):
     """The map tile by tile on `runner` (local threads or Dask): ready tiles
     sent at once, at most `window` groups in flight, each finished tile placed
     in map order and, with a store, written there; tiles already in the store
@@ -276,6 +276,7 @@ def _by_tiles(runner, model, text, args, control, chunk, window, store, progress
         _place(out, tiles[t]["rows"], part, n)
         counts["done"] += len(tiles[t]["rows"])
         counts["stored"] += 0 if write else 1
+        estimate.update(counts["done"])  # may raise ccma.WorkBoundError
         progress(counts["done"], n)
 
     schedule = _Schedule(tiles, preloaded, lambda t, blob: place(t, blob, False))
@@ -347,7 +348,7 @@ def _result(model, m, threads, samples, out):
 
 def workspace(model, ranges, resolution=11, samples=0, seed=1, threads=1, wave_size=64,
               client=None, chunk_size=1, tile_size=0, progress=None, max_in_flight=None, store=None, out=None,
-              **control):
+              max_minutes=10, **control):
     """`ccma workspace`: the reachability map over `ranges` ({"z": (lo, hi), ...}; names x y z
     roll pitch yaw, metres and radians, the model's controlled components; the flags --x ...):
     a grid of `resolution` points per range, or `samples` seeded uniform draws.
@@ -375,17 +376,22 @@ def workspace(model, ranges, resolution=11, samples=0, seed=1, threads=1, wave_s
     computed again; a store of another map is refused (ValueError).
     `progress`: True draws a bar with samples/s (tqdm, terminal or Jupyter), or a
     callable progress(done_samples, total) is called as samples finish.
+    `max_minutes`: the bound on the map's estimated time, (0, 10080] [min], as --max_minutes: the
+    samples are timed as they finish (the computed columns once at home); a map estimated over 5 s
+    says how long on sys.stderr, then a progress line every 10 s; one estimated over max_minutes
+    raises ccma.WorkBoundError a couple of seconds in (naming the estimate and the max_minutes
+    that would allow it; with a store, the tiles finished are kept).
     `control`: ControlOptions fields (max_step_m, lambda_, ...). The results do not
     depend on threads, client, chunk_size, max_in_flight, store or interruptions.
     """
     out = out_path(out)
     m, model = _map(model, ranges, resolution, samples, seed, threads, wave_size, client, chunk_size, tile_size,
-                    progress, max_in_flight, store, control)
+                    progress, max_in_flight, store, control, max_minutes)
     return _result(model, m, threads, int(samples), out)
 
 
 def _map(model, ranges, resolution, samples, seed, threads, wave_size, client, chunk_size, tile_size, progress,
-         max_in_flight, store, control):
+         max_in_flight, store, control, max_minutes):
     """The map's per-sample arrays (a dict) and the loaded model."""
     path = None
     if isinstance(model, (str, os.PathLike)):
@@ -412,12 +418,15 @@ def _map(model, ranges, resolution, samples, seed, threads, wave_size, client, c
     if progress is not None and progress is not True and progress is not False and not callable(progress):
         raise TypeError("workspace: progress must be True, False, None or callable as progress(done, total)")
     args = (range_list, int(resolution), int(samples), int(seed), int(wave_size), int(tile_size))
+    # The most samples the options can give (the C++ side refuses more): what the estimate counts.
+    total = int(samples) if int(samples) > 0 else min(int(resolution), 10 ** 6) ** len(range_list)
+    estimate = _ccma._WorkEstimate("workspace", "samples", min(total, 2 ** 62), float(max_minutes))
     report = _Progress(progress)
     try:
         if client is None and store is None:
             return _ccma._workspace_compute(model, range_list, int(resolution), int(samples), int(seed),
                                             int(threads), int(wave_size), options, int(tile_size),
-                                            report if progress else None), model
+                                            report if progress else None, estimate), model
         with open(path, encoding="utf-8") as f:
             text = f.read()
         if client is None:
@@ -426,6 +435,7 @@ def _map(model, ranges, resolution, samples, seed, threads, wave_size, client, c
             runner = _DaskRunner(client, text, args, control)
             window = max(4, 4 * sum(client.nthreads().values()))
         window = int(max_in_flight) if max_in_flight is not None else window
-        return _by_tiles(runner, model, text, args, control, int(chunk_size), window, store, report), model
+        return _by_tiles(runner, model, text, args, control, int(chunk_size), window, store, report,
+                         estimate), model
     finally:
         report.close()

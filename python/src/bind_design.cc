@@ -16,6 +16,7 @@
 #include "python/src/documents.h"
 #include "python/src/json_to_python.h"
 #include "python/src/pose_types.h"
+#include "python/src/work_bound.h"
 
 namespace py = pybind11;
 
@@ -119,16 +120,10 @@ py::list EvaluateDesign(const Model& model, const TargetArray& targets, const Ei
   return TargetsList(results);
 }
 
-// `ccma design` without the file: (document, the designed Model, the patched
-// model text or None). With the model's text, as the command: the numbers are
-// patched into the text, the text loaded back (as `source`) and the targets
-// checked in that model; without, in the designed Model itself.
-py::tuple RunDesign(const Model& model, const std::optional<std::string>& text, const std::string& source,
-                    const TargetArray& targets, const std::vector<std::string>& vary,
-                    const std::vector<std::string>& vary_length, double max_change, double min_length,
-                    double min_singular_value, double target_tolerance, int design_iterations,
-                    const std::string& objective, double mocap_noise_m, double mocap_noise_rad) {
-  const DesignParameters params = ParametersFrom(model, vary, vary_length);
+// The options of ccma.design's keywords (ValueError for a bad one).
+DesignOptions DesignOptionsFrom(const Model& model, double max_change, double min_length, double min_singular_value,
+                                double target_tolerance, int design_iterations, const std::string& objective,
+                                double mocap_noise_m, double mocap_noise_rad) {
   DesignOptions options;
   if (!ParseDesignObjective(objective, &options.objective)) {
     throw py::value_error("design: objective must be reach, payload, peak_push, ee_std, stiffness or deflection, got '" +
@@ -151,7 +146,27 @@ py::tuple RunDesign(const Model& model, const std::optional<std::string>& text, 
     if (why.rfind("max_iterations", 0) == 0) why.replace(0, 14, "design_iterations");  // the flag's name
     throw py::value_error(why);
   }
+  return options;
+}
+
+// `ccma design` without the file: (document, the designed Model, the patched
+// model text or None). With the model's text, as the command: the numbers are
+// patched into the text, the text loaded back (as `source`) and the targets
+// checked in that model; without, in the designed Model itself. A design
+// estimated beyond `max_minutes` raises ccma.WorkBoundError.
+py::tuple RunDesign(const Model& model, const std::optional<std::string>& text, const std::string& source,
+                    const TargetArray& targets, const std::vector<std::string>& vary,
+                    const std::vector<std::string>& vary_length, double max_change, double min_length,
+                    double min_singular_value, double target_tolerance, int design_iterations,
+                    const std::string& objective, double mocap_noise_m, double mocap_noise_rad, double max_minutes) {
+  const DesignParameters params = ParametersFrom(model, vary, vary_length);
+  DesignOptions options = DesignOptionsFrom(model, max_change, min_length, min_singular_value, target_tolerance,
+                                            design_iterations, objective, mocap_noise_m, mocap_noise_rad);
   const std::vector<PoseTarget> poses = PoseTargets(targets);
+  WorkEstimateOptions bound = PythonWorkEstimate("design", "design iterations", max_minutes);
+  bound.up_to = true;
+  WorkEstimate estimate(bound, MaxDesignIterations(options));
+  options.estimate = &estimate;
   nlohmann::json document;
   Model written;
   std::optional<std::string> new_text;
@@ -186,7 +201,7 @@ void BindDesign(py::module_& m) {
   m.def("_design", &RunDesign, py::arg("model"), py::arg("text"), py::arg("source"), py::arg("targets"),
         py::arg("vary"), py::arg("vary_length"), py::arg("max_change"), py::arg("min_length"),
         py::arg("min_singular_value"), py::arg("target_tolerance"), py::arg("design_iterations"), py::arg("objective"),
-        py::arg("mocap_noise_m"), py::arg("mocap_noise_rad"),
+        py::arg("mocap_noise_m"), py::arg("mocap_noise_rad"), py::arg("max_minutes") = kDefaultMaxMinutes,
         "Internal: ccma.design (python/ccma/design.py): (the JSON of `ccma design` without out, the designed "
         "Model, the patched model text or None).");
 }

@@ -22,7 +22,7 @@ using BoolVector = Eigen::Matrix<bool, Eigen::Dynamic, 1>;
 py::tuple Run(const Model& model, const std::vector<Waypoint>& waypoints, const ReplayOptions& options) {
   CheckWaypoints(waypoints);  // positions and angles too, with the messages of follow and plan
   std::string why;
-  if (!IsValidReplay(waypoints, options, &why)) throw std::invalid_argument(why);
+  if (!IsValidReplay(model, waypoints, options, &why)) throw std::invalid_argument(why);
   ReplayResult r;
   nlohmann::json document;
   {

@@ -22,6 +22,7 @@
 #include "analyses/compliance.h"
 #include "analyses/precision.h"
 #include "analyses/workspace.h"
+#include "analyses/work_estimate.h"
 #include "python/src/bindings.h"
 #include "python/src/conversions.h"
 #include "python/src/pose_types.h"
@@ -242,15 +243,30 @@ Eigen::VectorXd TileColumn(const Model& model, const StateArray& states, const R
   return out;
 }
 
-// The same column over a computed map's samples.
+// The same column over a computed map's samples; `estimate` (if not null)
+// told of every row, counted from `counted`.
 Eigen::VectorXd SamplesColumn(const Model& model, const std::vector<WorkspaceSample>& samples,
-                              double (*f)(const Model&, const State&, const Eigen::VectorXd&)) {
+                              double (*f)(const Model&, const State&, const Eigen::VectorXd&),
+                              WorkEstimate* estimate = nullptr, long long counted = 0) {
   Eigen::VectorXd out(static_cast<Eigen::Index>(samples.size()));
   for (size_t i = 0; i < samples.size(); ++i) {
     const WorkspaceSample& s = samples[i];
     out[static_cast<Eigen::Index>(i)] = s.reachable ? f(model, s.state, s.controls) : 0.0;
+    if (estimate != nullptr) estimate->Update(counted + static_cast<long long>(i) + 1);
   }
   return out;
+}
+
+// What a row's computed columns (ee_std_m, stiffness_min_N_per_m) take at
+// home [s] (LeastSecondsOf): the part of a map's estimate that follows its
+// samples (apps/workspace_command.cc CheckedRowSeconds).
+double RowSeconds(const Model& model) {
+  const State home = State::Home(model);
+  const Eigen::VectorXd u = model.home_controls();
+  return LeastSecondsOf([&] {
+    PositionStd(model, home, u);
+    if (model.compliant()) WorkspaceStiffnessMin(model, home, u);
+  });
 }
 
 // Python's progress(done, total), called with the GIL at most about 1000
@@ -266,19 +282,31 @@ WorkspaceProgress PythonProgress(const py::object& progress) {
   };
 }
 
+// With `estimate` (not null): the rows' computed columns timed at home (in
+// the estimate from the start), the samples counted as they finish, then
+// those columns as a stage of their own, never refused.
 py::dict WorkspaceCompute(const Model& model, const RangeList& ranges, int resolution, int samples,
                           std::uint64_t seed, int threads, int wave_size, const ControlOptions& control,
-                          int tile_size, const py::object& progress) {
+                          int tile_size, const py::object& progress, WorkEstimate* estimate) {
   const WorkspaceOptions o = Options(model, ranges, resolution, samples, seed, threads, wave_size, control, tile_size);
-  const WorkspaceProgress report = PythonProgress(progress);
+  if (estimate != nullptr) estimate->AddLaterSeconds(RowSeconds(model) * static_cast<double>(o.SampleCount()), "the computed columns");
+  const WorkspaceProgress python = PythonProgress(progress);
+  const WorkspaceProgress report = [&python, estimate](long long done, long long total) {
+    if (estimate != nullptr) estimate->Update(done);
+    if (python) python(done, total);
+  };
   WorkspaceResult r;
   {
     py::gil_scoped_release release;
     r = ComputeWorkspace(model, o, report);
   }
+  const long long n = static_cast<long long>(r.samples.size());
+  if (estimate != nullptr) estimate->BeginStage("rows' computed columns", n * (model.compliant() ? 2 : 1), 0, false);
   py::dict d = SamplesDict(model, r.samples, false);
-  d["ee_std_m"] = SamplesColumn(model, r.samples, PositionStd);
-  if (model.compliant()) d["stiffness_min_N_per_m"] = SamplesColumn(model, r.samples, WorkspaceStiffnessMin);
+  d["ee_std_m"] = SamplesColumn(model, r.samples, PositionStd, estimate);
+  if (model.compliant()) {
+    d["stiffness_min_N_per_m"] = SamplesColumn(model, r.samples, WorkspaceStiffnessMin, estimate, n);
+  }
   d["tile_size"] = o.TileSide();
   std::vector<std::string> components;
   for (int c : r.components) components.emplace_back(kEndEffectorComponentNames[static_cast<size_t>(c)]);
@@ -341,8 +369,11 @@ py::dict WorkspaceTileEvaluate(const Model& model, const RangeList& ranges, int 
 void BindWorkspace(py::module_& m) {
   m.def("_workspace_compute", &WorkspaceCompute, py::arg("model"), py::arg("ranges"), py::arg("resolution"),
         py::arg("samples"), py::arg("seed"), py::arg("threads"), py::arg("wave_size"), py::arg("control"),
-        py::arg("tile_size") = 0, py::arg("progress") = py::none(),
-        "Internal: ccma.workspace's map on local threads (analyses/workspace.h ComputeWorkspace).");
+        py::arg("tile_size") = 0, py::arg("progress") = py::none(), py::arg("estimate") = nullptr,
+        "Internal: ccma.workspace's map on local threads (analyses/workspace.h ComputeWorkspace); `estimate` "
+        "(a _WorkEstimate of its samples) told of every sample and row.");
+  m.def("_workspace_row_seconds", &RowSeconds, py::arg("model"),
+        "Internal: what a row's computed columns (ee_std_m, stiffness_min_N_per_m) take at home [s].");
   m.def(
       "_workspace_ee_std",
       [](const Model& model, const StateArray& states, const RowMatrix& controls,

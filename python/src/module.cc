@@ -13,6 +13,7 @@ PYBIND11_MODULE(_ccma, m) {
   ccma::python::BindAnalysis(m);
   ccma::python::BindReplay(m);
   ccma::python::BindView(m);
+  ccma::python::BindWorkEstimate(m);
   ccma::python::BindDesign(m);
   ccma::python::BindWorkspace(m);
   ccma::python::BindImport(m);

@@ -166,8 +166,9 @@ def test_every_exception_class_says_when_it_is_raised():
     them and what they carry."""
     from ccma import _ccma
     classes = {n: c for n, c in vars(_ccma).items() if isinstance(c, type) and issubclass(c, BaseException)}
-    assert sorted(classes) == ["ModelError", "ViewInputError", "WaypointError"]
-    raisers = {"ModelError": "load_model", "ViewInputError": "view_html", "WaypointError": "load_waypoints"}
+    assert sorted(classes) == ["ModelError", "ViewInputError", "WaypointError", "WorkBoundError"]
+    raisers = {"ModelError": "load_model", "ViewInputError": "view_html", "WaypointError": "load_waypoints",
+               "WorkBoundError": "workspace"}
     for name, cls in classes.items():
         assert cls.__doc__ and cls.__doc__.strip(), name
         assert cls.__doc__ != ValueError.__doc__, name

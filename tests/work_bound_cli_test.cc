@@ -1,0 +1,101 @@
+// `ccma workspace` and `ccma design` bound their work by its estimated cost
+// (issue 49 items 11 and 12; docs/security.md, "Work bounded by its cost"):
+// a run estimated beyond --max_minutes (default 10) is refused within
+// seconds, status 2, naming the estimate and the --max_minutes that would
+// allow it, nothing written. They used to run on in silence: a million
+// samples of a bundled model for 278 s, a thousand design iterations for
+// some 28 minutes. The estimate's words and timing on a set clock:
+// work_estimate_test.cc.
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "tests/tool_run.h"
+
+namespace ccma {
+namespace work_bound_cli_test {
+
+namespace fs = std::filesystem;
+using testing::ModelPath;
+using testing::RunTool;
+using testing::ToolRun;
+
+std::string Scratch(const std::string& name) { return testing::ScratchPath("work_bound", name); }
+
+// `ccma generate --agents=N` made compliant (16 KB at 24 agents): a mass of
+// 1 kg on every body, springs on every base and spherical joint.
+std::string CompliantModel(int agents) {
+  const std::string plain = Scratch("plain.yaml"), compliant = Scratch("compliant.yaml");
+  const ToolRun r = RunTool({"generate", "--agents=" + std::to_string(agents), "--out=" + plain});
+  EXPECT_EQ(r.status, 0) << r.err;
+  std::string text = testing::Slurp(plain);
+  text = std::regex_replace(text, std::regex(R"((- \{name: \w+, position: \[[^\]]*\])\})"), "$1, mass: 1}");
+  text = std::regex_replace(text, std::regex(R"((pose: \[[^\]]*\])\})"), "$1, stiffness: [1.0e5, 1.0e5, 1.0e3]}");
+  text = std::regex_replace(text, std::regex(R"(- \{type: spherical, )"),
+                            "- {type: spherical, stiffness: {translation: 1.0e7}, ");
+  std::ofstream(compliant) << text;
+  return compliant;
+}
+
+// The refusal: status 2, nothing on stdout, no output file, and the words.
+void ExpectRefused(const ToolRun& r, const std::string& command, const std::string& work, const std::string& out) {
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_NE(r.err.find("ccma " + command + ": about "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(work), std::string::npos) << r.err;
+  EXPECT_TRUE(std::regex_search(r.err, std::regex("allows: give --max_minutes=[0-9]+ or more to run it"))) << r.err;
+}
+
+TEST(WorkBound, AMillionSampleMapBeyondTheBoundIsRefusedInSeconds) {
+  // 4dof_reduced: a sample costs a fraction of a millisecond, a million of
+  // them minutes; half a minute is allowed.
+  const std::string out = Scratch("million.csv");
+  const ToolRun r = RunTool({"workspace", "--model=" + ModelPath("4dof_reduced"), "--x=-0.5:0.5", "--z=0.4:1.0",
+                             "--resolution=1000", "--max_minutes=0.5", "--out=" + out},
+                            60);
+  ExpectRefused(r, "workspace", "for 1,000,000 samples (", out);
+}
+
+TEST(WorkBound, TheDefaultBoundRefusesAMapOfHours) {
+  // A million samples of a 24-agent compliant model: each row's stiffness
+  // column alone is a compliance solve (a tenth of a second), hours in all.
+  const std::string out = Scratch("hours.csv");
+  const ToolRun r = RunTool({"workspace", "--model=" + CompliantModel(24), "--x=-0.1:0.1", "--z=0.5:0.7",
+                             "--resolution=1000", "--out=" + out},
+                            60);
+  ExpectRefused(r, "workspace", "for 1,000,000 samples (", out);
+  EXPECT_NE(r.err.find("10 min that --max_minutes=10 allows"), std::string::npos) << r.err;
+}
+
+TEST(WorkBound, AThousandIterationsOfTheDeflectionObjectiveAreRefused) {
+  // Each iteration of the objective re-solves the targets and the compliance:
+  // about a second; a thousand of them are minutes beyond one.
+  const std::string targets = Scratch("targets.csv"), out = Scratch("designed.yaml");
+  std::ofstream(targets) << "time,x,y,z,roll,pitch,yaw\n0,0,0,0.6,0,0,0\n1,0.02,0.01,0.61,0,0,0\n";
+  const ToolRun r = RunTool({"design", "--model=" + CompliantModel(24), "--targets=" + targets, "--out=" + out,
+                             "--objective=deflection", "--vary=joint2.point,joint5.point,joint8.point",
+                             "--max_change=0.1", "--design_iterations=1000", "--max_minutes=1"},
+                            120);
+  ExpectRefused(r, "design", "for up to 1,000 design iterations of the deflection objective (", out);
+}
+
+TEST(WorkBound, TheBoundIsAFlagWithARange) {
+  for (const std::string bad : {"0", "-1", "10081", "nan"}) {
+    const ToolRun r = RunTool({"workspace", "--model=" + ModelPath("4dof_reduced"), "--z=0.5:0.7",
+                               "--max_minutes=" + bad, "--out=" + Scratch("bad.csv")});
+    EXPECT_EQ(r.status, 2) << bad;
+    EXPECT_NE(r.err.find("--max_minutes"), std::string::npos) << r.err;
+  }
+  // Within the bound nothing changes: no word on stderr for a short map.
+  const ToolRun ok = RunTool({"workspace", "--model=" + ModelPath("4dof_reduced"), "--z=0.5:0.7", "--resolution=5",
+                              "--max_minutes=0.1", "--out=" + Scratch("ok.csv")});
+  EXPECT_EQ(ok.status, 0) << ok.err;
+  EXPECT_EQ(ok.err, "");
+}
+
+}  // namespace work_bound_cli_test
+}  // namespace ccma
