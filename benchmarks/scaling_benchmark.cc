@@ -81,7 +81,7 @@ void BM_Compliant(benchmark::State& state, int agents, bool loaded) {
 }
 
 int Register() {
-  for (const int agents : {10, 100, 1000}) {
+  for (const int agents : {10, 20, 35, 60, 100, 1000}) {
     for (const std::string kind : {"wheeled", "legged"}) {
       benchmark::RegisterBenchmark(("ControlStep/" + kind + "/" + std::to_string(agents)).c_str(), BM_ControlStep, kind,
                                    agents)

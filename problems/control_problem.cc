@@ -23,6 +23,7 @@
 #include "problems/internal/differential_turning.h"
 #include "problems/internal/finite_differences.h"
 #include "problems/internal/idle_motions.h"
+#include "problems/internal/large_lm_system.h"
 #include "problems/internal/lm_loop.h"
 #include "problems/internal/path_tally.h"
 #include "problems/internal/pivot_ratio.h"
@@ -190,6 +191,8 @@ std::unique_ptr<Sensitivity> ControlProblem::LinearizedSensitivity(const Eigen::
 }
 
 void ControlProblem::Linearize(const PoseTarget& target, ControlLinearization* lin) {
+  lin->large.reset();
+  lin->form_JtJ = nullptr;
   const bool finite_differences = options_.gradient == GradientMethod::kFiniteDifference;
   Eigen::VectorXd e;
   Eigen::MatrixXd de_ds;
@@ -208,14 +211,46 @@ void ControlProblem::Linearize(const PoseTarget& target, ControlLinearization* l
     LinearizeByFiniteDifferences(target, &J, &lin->ds_du);
     lin->singular = false;
     lin->J_e = J.topRows(workspace_->error.size());
+    lin->large.reset();
     lin->JtJ.noalias() = J.transpose() * J;
     lin->Jtr.noalias() = J.transpose() * lin->r;
+  } else if (static_cast<int>(effective_.size()) >= kMinLargeLmControls && !lin->singular) {
+    LargeGaussNewton(e, de_ds, lin);
   } else {
     ImplicitGaussNewton(sensitivity, e, de_ds, effective_, workspace_->effective_column, options_.lambda,
                         /*dense=*/false, lin);
   }
-  lin->has_eigen = lin->JtJ.cols() <= kMaxEigenSolveSize;
+  lin->has_eigen = lin->JtJ.size() > 0 && lin->JtJ.cols() <= kMaxEigenSolveSize;
   if (lin->has_eigen) lin->JtJ_eigen.compute(lin->JtJ);
+}
+
+// The Gauss-Newton model of ImplicitGaussNewton without the k x k matrix
+// (problems/internal/large_lm_system.h): J_e = de/ds S by one adjoint solve
+// per end-effector row, S^T G by one more; J^T J formed only if a reader asks.
+void ControlProblem::LargeGaussNewton(const Eigen::VectorXd& e, const Eigen::MatrixXd& de_ds, ControlLinearization* lin) {
+  const Sensitivity& sensitivity = *lin->sensitivity;
+  const int k = static_cast<int>(effective_.size());
+  const Eigen::VectorXd none = Eigen::VectorXd::Zero(k);
+  lin->ds_du.resize(0, 0);
+  lin->J_e.resize(de_ds.rows(), k);
+  for (Eigen::Index r = 0; r < de_ds.rows(); ++r) {
+    lin->J_e.row(r) = sensitivity.TotalDerivative(de_ds.row(r).transpose(), none).transpose();  // de/ds S
+  }
+  const EnergyDerivatives& d = sensitivity.derivatives();
+  Eigen::VectorXd constraint_part = sensitivity.TotalDerivative(d.G, none);  // S^T G
+  for (int c = 0; c < k; ++c) constraint_part[c] += d.dE_du[effective_[c]];
+  lin->Jtr.noalias() = lin->J_e.transpose() * e;
+  lin->Jtr += options_.lambda * constraint_part;
+  lin->JtJ.resize(0, 0);
+  lin->large = std::make_shared<LargeLmSystem>(lin->sensitivity, effective_, lin->J_e, lin->Jtr, options_.lambda,
+                                               &workspace_->large_lm);
+  const std::shared_ptr<const Sensitivity> kept = lin->sensitivity;
+  lin->form_JtJ = [this, kept, e, de_ds] {
+    ControlLinearization dense;
+    ImplicitGaussNewton(*kept, e, de_ds, effective_, workspace_->effective_column, options_.lambda, /*dense=*/false,
+                        &dense);
+    return dense.JtJ;
+  };
 }
 
 Eigen::VectorXd ControlProblem::PredictedStateChange(const ControlLinearization& lin, const Eigen::VectorXd& du) const {

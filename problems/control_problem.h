@@ -262,6 +262,7 @@ class ControlProblem {
   // through idle motions (de_ds given: problems/internal/idle_motions.h),
   // those of dG/ds + mu I.
   std::unique_ptr<Sensitivity> LinearizedSensitivity(const Eigen::MatrixXd* de_ds);
+  void LargeGaussNewton(const Eigen::VectorXd& e, const Eigen::MatrixXd& de_ds, ControlLinearization* lin);
   void LinearizeByFiniteDifferences(const PoseTarget& target, Eigen::MatrixXd* J, Eigen::MatrixXd* ds_du);
   // ds/du * du at the last linearisation (one sparse solve when ds/du was
   // not formed).

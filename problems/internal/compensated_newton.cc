@@ -89,13 +89,8 @@ CompensatedNewtonResult SolveCompensatedNewton(const Model& model, const Constra
   Eigen::MatrixXd de_ds, J_pinv;
   for (int i = 0; i <= options.max_iterations; ++i) {
     const bool chord = !full && mu_last.size() == system.rigid_rows();
-    if (!chord) {
-      const Eigen::VectorXd w = mu_last.size() > 0 ? system.SetOrder(mu_last) : Eigen::VectorXd::Zero(set.num_rows());
-      system.Assemble(model, set, trial, u_trial, wrench, w, mu_last, kKktIdleStiffness * system.stiffest(),
-                      kKktRowRegularization);
-    } else {
-      system.AssembleResiduals(model, set, trial, u_trial, wrench, mu_last);
-    }
+    AssembleStep(model, set, chord, trial, u_trial, wrench,
+                 mu_last.size() > 0 && !chord ? system.SetOrder(mu_last) : Eigen::VectorXd(), mu_last, &system);
     if (!SolveKktAt(system, !chord, mu_last, &workspace->kkt, &z)) return out;
     error.Evaluate(trial.s, target, &e, &de_ds);
     const Eigen::VectorXd mu = chord ? mu_last : Eigen::VectorXd(z.tail(system.rigid_rows()));
@@ -107,8 +102,7 @@ CompensatedNewtonResult SolveCompensatedNewton(const Model& model, const Constra
       out.converged = true;
       *x = std::move(trial);
       *u = std::move(u_trial);
-      workspace->mu = mu;
-      workspace->w = system.SetOrder(mu);
+      workspace->KeepMultipliers(mu);
       return out;
     }
     if (!chord) {

@@ -4,8 +4,6 @@
 #include <stdexcept>
 #include <string>
 
-#include <Eigen/SVD>
-
 #include "ccma/internal/joint_spring_directions.h"
 #include "ccma/limits.h"
 
@@ -249,7 +247,7 @@ Eigen::MatrixXd CompliantEquilibrium::Compliance(const Eigen::MatrixXd& G) const
 
 int CompliantEquilibrium::MovedDirections(const Eigen::MatrixXd& G) const {
   if (Z1_.cols() == 0 || G.rows() == 0) return 0;
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd((G * Z1_).transpose());
+  const JacobiSvd svd(Eigen::MatrixXd((G * Z1_).transpose()));
   const Eigen::VectorXd& sigma = svd.singularValues();
   int rank = 0;
   while (rank < sigma.size() && sigma[rank] > kCompliantRankThreshold * sigma[0]) ++rank;

@@ -5,6 +5,7 @@
 #ifndef CCMA_PROBLEMS_INTERNAL_CONTROL_LINEARIZATION_H_
 #define CCMA_PROBLEMS_INTERNAL_CONTROL_LINEARIZATION_H_
 
+#include <functional>
 #include <memory>
 
 #include <Eigen/Core>
@@ -13,7 +14,8 @@
 
 namespace ccma {
 
-class Sensitivity;  // sensitivity.h
+class Sensitivity;    // sensitivity.h
+class LargeLmSystem;  // large_lm_system.h
 
 struct ControlLinearization {
   Eigen::VectorXd r;      // [e; sqrt(lambda) C] (ne + m)
@@ -22,8 +24,19 @@ struct ControlLinearization {
   // constraints, sensitivity_view.h); valid until the next one.
   std::shared_ptr<const Sensitivity> sensitivity;
   Eigen::MatrixXd J_e;    // de/du_eff (ne x k): the end-effector rows of dr/du
-  Eigen::MatrixXd JtJ;    // (dr/du)^T dr/du (k x k)
   Eigen::VectorXd Jtr;    // (dr/du)^T r (k)
+  // Many controls (k >= kMinLargeLmControls): the LM step without the dense
+  // k x k matrix (large_lm_system.h); JtJ is then formed only when a reader
+  // needs it (DenseJtJ: a step constraint becomes active, a secondary
+  // objective, differential turning).
+  std::shared_ptr<const LargeLmSystem> large;
+  std::function<Eigen::MatrixXd()> form_JtJ;  // set with `large`
+  // (dr/du)^T dr/du (k x k).
+  const Eigen::MatrixXd& DenseJtJ() const {
+    if (JtJ.size() == 0 && form_JtJ) JtJ = form_JtJ();
+    return JtJ;
+  }
+  mutable Eigen::MatrixXd JtJ;  // as DenseJtJ; written by Linearize
   // Once per linearisation, for every trial (up to kMaxEigenSolveSize controls).
   SymmetricEigenSolver JtJ_eigen;
   bool has_eigen = false;

@@ -9,6 +9,7 @@
 #include "ccma/internal/constraint_set.h"
 #include "problems/control_problem.h"
 #include "problems/internal/end_effector_error.h"
+#include "problems/internal/large_lm_system.h"
 #include "problems/internal/sensitivity.h"
 #include "problems/internal/step_constraints.h"
 
@@ -38,6 +39,7 @@ struct ControlProblem::Workspace {
   EnergyDerivatives sigma_derivatives;
   std::vector<int> effective_column;  // control index -> column among the effective ones, or -1
   ActiveSet active;                   // step-constraint items held at a bound in the current step
+  LargeLmWorkspace large_lm;          // many controls: the LM step's sparse analysis, done once
 };
 
 }  // namespace ccma

@@ -23,7 +23,7 @@ bool DifferentialTurning::FaceTheMotion(const PoseTarget& target, Eigen::VectorX
   ControlLinearization lin;
   p_.Linearize(target, &lin);
   const Eigen::VectorXd d =
-      ConstrainedLmStep(lin.JtJ, lin.Jtr, 1e-12 * std::max(lin.JtJ.trace(), 1e-30), LinearConstraints{}, lin.eigen());
+      ConstrainedLmStep(lin.DenseJtJ(), lin.Jtr, 1e-12 * std::max(lin.DenseJtJ().trace(), 1e-30), LinearConstraints{}, lin.eigen());
   *u = p_.forward_.controls();
   const std::vector<int>& column = p_.workspace_->effective_column;
   bool turned = false;

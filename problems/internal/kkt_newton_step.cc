@@ -81,6 +81,18 @@ double KktNewtonStep::ComponentwiseScale(const Eigen::VectorXd& z) const {
   return products.size() > 0 ? products.lpNorm<Eigen::Infinity>() : 0.0;
 }
 
+void AssembleStep(const Model& model, const ConstraintSet& set, bool chord, const LoadedPoint& x,
+                  const Eigen::VectorXd& u, const ExternalWrench& wrench, const Eigen::VectorXd& w,
+                  const Eigen::VectorXd& mu_last, LoadedKkt* system) {
+  if (chord) {
+    system->AssembleResiduals(model, set, x, u, wrench, mu_last);
+    return;
+  }
+  const Eigen::VectorXd weights = w.size() > 0 ? w : Eigen::VectorXd::Zero(set.num_rows());
+  system->Assemble(model, set, x, u, wrench, weights, mu_last, kKktIdleStiffness * system->stiffest(),
+                   kKktRowRegularization);
+}
+
 bool SolveKktAt(const LoadedKkt& system, bool full, const Eigen::VectorXd& mu_last, KktFactorization* kkt,
                 Eigen::VectorXd* z) {
   const KktNewtonStep step(system);

@@ -61,6 +61,13 @@ class KktNewtonStep {
   Eigen::VectorXd rhs_;
 };
 
+// A full step's LoadedKkt::Assemble at x (w weighs the rigid rows'
+// curvature; zero when empty) or a chord step's AssembleResiduals (the
+// reaction of mu_last), with the iterations' regularisations.
+void AssembleStep(const Model& model, const ConstraintSet& set, bool chord, const LoadedPoint& x,
+                  const Eigen::VectorXd& u, const ExternalWrench& wrench, const Eigen::VectorXd& w,
+                  const Eigen::VectorXd& mu_last, LoadedKkt* system);
+
 // [y; mu] at the point `system` was last evaluated at: a full step (after
 // LoadedKkt::Assemble) factorises K there; a chord step (after
 // AssembleResiduals with mu_last) solves with the last factorisation for

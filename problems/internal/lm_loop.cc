@@ -8,6 +8,7 @@
 #include "problems/internal/constrained_lm_step.h"
 #include "ccma/internal/elapsed.h"
 #include "problems/internal/control_workspace.h"
+#include "problems/internal/large_lm_system.h"
 #include "problems/internal/null_space_step.h"
 
 namespace ccma {
@@ -31,6 +32,14 @@ double LargestEigenvalue(const Eigen::MatrixXd& JtJ, const SymmetricEigenSolver*
     v = w / norm;
   }
   return std::max(largest, 0.0);
+}
+
+// The unconstrained damped step: by the large system when there is one (its
+// failure falls back to the dense matrix), else ConstrainedLmStep's.
+Eigen::VectorXd UnconstrainedStep(const ControlLinearization& lin, double mu) {
+  Eigen::VectorXd step;
+  if (lin.large && lin.large->Step(mu, &step)) return step;
+  return ConstrainedLmStep(lin.DenseJtJ(), lin.Jtr, mu, LinearConstraints{}, lin.eigen());
 }
 
 // The linearisation's rcond, singularity and sigma, into a step's result.
@@ -128,7 +137,10 @@ bool LmLoop::Iteration(const PoseTarget& target, const ControlLinearization& lin
                        Eigen::VectorXd* r, ControlStepResult* result) {
   // Damped least squares (least norm among equivalent steps: the bases move
   // as little as possible), under the step constraints when there are any.
-  if (*mu < 0) *mu = 1e-12 * std::max(LargestEigenvalue(lin.JtJ, lin.eigen()), 1e-30);
+  if (*mu < 0) {
+    const double largest = lin.large ? lin.large->LargestEigenvalueBound() : LargestEigenvalue(lin.JtJ, lin.eigen());
+    *mu = 1e-12 * std::max(largest, 1e-30);
+  }
   ForwardProblem& forward = p_.forward_;
   const State base = forward.state();
   const Eigen::VectorXd u_base = forward.controls();
@@ -170,7 +182,7 @@ bool LmLoop::Iteration(const PoseTarget& target, const ControlLinearization& lin
 
 Eigen::VectorXd LmLoop::Step(const ControlLinearization& lin, double mu, ActiveSet* active) const {
   const StepConstraints& constraints = p_.workspace_->step_constraints;
-  if (constraints.empty()) return ConstrainedLmStep(lin.JtJ, lin.Jtr, mu, LinearConstraints{}, lin.eigen());
+  if (constraints.empty()) return UnconstrainedStep(lin, mu);
   // Active set: hold every item that the step would push past a bound at
   // that bound, until no other item would cross (at most one pass per item).
   *active = constraints.NoneActive();
@@ -179,9 +191,10 @@ Eigen::VectorXd LmLoop::Step(const ControlLinearization& lin, double mu, ActiveS
   Eigen::VectorXd step;
   // ds/du as formed, or through the linearisation's factorisation.
   const SensitivityView ds_du = lin.ds_du.size() > 0 ? SensitivityView(lin.ds_du)
-                                                     : SensitivityView(*lin.sensitivity, lin.JtJ.cols());
+                                                     : SensitivityView(*lin.sensitivity, static_cast<int>(lin.Jtr.size()));
   for (int pass = 0; pass <= constraints.max_passes(); ++pass) {
-    step = ConstrainedLmStep(lin.JtJ, lin.Jtr, mu, constraints.Linearize(u, s, ds_du, *active), lin.eigen());
+    const LinearConstraints rows = constraints.Linearize(u, s, ds_du, *active);
+    step = rows.rows() == 0 ? UnconstrainedStep(lin, mu) : ConstrainedLmStep(lin.DenseJtJ(), lin.Jtr, mu, rows, lin.eigen());
     if (!constraints.Grow(u, s, ds_du, step, active)) break;
   }
   return step;

@@ -80,12 +80,7 @@ LoadedNewtonResult SolveLoadedNewton(const Model& model, const ConstraintSet& se
   bool full = true;
   for (int i = 0; i <= max_iterations; ++i) {
     const bool chord = !full && mu_last.size() == m;
-    if (chord) {
-      system.AssembleResiduals(model, set, trial, u, wrench, mu_last);
-    } else {
-      system.Assemble(model, set, trial, u, wrench, w, mu_last, kKktIdleStiffness * system.stiffest(),
-                      kKktRowRegularization);
-    }
+    AssembleStep(model, set, chord, trial, u, wrench, w, mu_last, &system);
     Eigen::VectorXd z;
     if (!SolveKktAt(system, !chord, mu_last, &workspace->kkt, &z)) return out;
     const Eigen::VectorXd mu = z.tail(m);
@@ -96,8 +91,7 @@ LoadedNewtonResult SolveLoadedNewton(const Model& model, const ConstraintSet& se
     if (row_size <= kKktRowTolerance && tolerances.Converged(unbalanced, step_size)) {
       out.converged = true;
       *x = std::move(trial);
-      workspace->mu = chord ? mu_last : mu;
-      workspace->w = system.SetOrder(workspace->mu);
+      workspace->KeepMultipliers(chord ? mu_last : mu);
       return out;
     }
     if (!chord) {

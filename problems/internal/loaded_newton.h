@@ -67,6 +67,12 @@ class LoadedWorkspace {
   // row order (w) and in CompliantEquilibrium's A order (mu): the next
   // solve's first Newton matrix weighs the rows' curvature by them.
   Eigen::VectorXd w, mu;
+
+  // Keeps mu (A order) and w = system->SetOrder(mu): an equilibrium's.
+  void KeepMultipliers(const Eigen::VectorXd& equilibrium_mu) {
+    mu = equilibrium_mu;
+    w = system->SetOrder(mu);
+  }
 };
 
 struct LoadedNewtonResult {

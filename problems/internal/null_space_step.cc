@@ -69,7 +69,7 @@ bool NullSpaceStep::Iterate(const PoseTarget& target, ControlStepResult* result)
   if (!(phi > 0) || !std::isfinite(phi)) return false;
   ControlLinearization lin;
   p_.Linearize(target, &lin);
-  const Eigen::MatrixXd N = TaskNullSpace(lin.JtJ);
+  const Eigen::MatrixXd N = TaskNullSpace(lin.DenseJtJ());
   if (N.cols() == 0) return false;  // no redundancy here
   const Eigen::MatrixXd JN = J2 * N;
   const Eigen::MatrixXd JtJ = JN.transpose() * JN;

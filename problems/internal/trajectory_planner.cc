@@ -98,7 +98,7 @@ PlanSystem TrajectoryPlanner::Linearize(const Eigen::VectorXd& u0, const State& 
     const int ne = static_cast<int>(lin.J_e.rows());
     const double w = step.waypoint ? options_.waypoint_weight : options_.path_weight;
     const Eigen::MatrixXd JeJe = lin.J_e.transpose() * lin.J_e;
-    const Eigen::MatrixXd H = lin.JtJ + (w - 1.0) * JeJe;
+    const Eigen::MatrixXd H = lin.DenseJtJ() + (w - 1.0) * JeJe;
     system.g.segment(static_cast<Eigen::Index>(k) * m, m) =
         lin.Jtr + (w - 1.0) * lin.J_e.transpose() * lin.r.head(ne);
     for (int i = 0; i < m; ++i) {
