@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 
 #include "analyses/internal/sparse_mobility.h"
+#include "analyses/internal/sparse_rank.h"
 #include "analyses/mobility.h"
 #include "ccma/end_effector.h"
 #include "ccma/internal/constraint_set.h"
@@ -26,11 +27,10 @@ Eigen::MatrixXd DenseIdleMotions(const Model& model, const State& s, const Eigen
   const Eigen::MatrixXd X = EndEffectorJacobian(model, s);
   Eigen::MatrixXd M(J_s.rows() + X.rows(), J_s.cols());
   M << J_s, X;
-  const BdcSvd svd(M, Eigen::ComputeFullV);
-  const Eigen::VectorXd sigma = svd.singularValues();
-  const double threshold = kRankTolerance * std::max(1.0, sigma.size() > 0 ? sigma[0] : 0.0);
-  const int rank = static_cast<int>((sigma.array() > threshold).count());
-  return svd.matrixV().rightCols(M.cols() - rank);
+  // Above kRankTolerance * max(1, sigma_max) counts; column-pivoting QR, as
+  // the moved components (benchmarks/RESULTS.md, "Rank decisions").
+  const double threshold = kRankTolerance * std::max(1.0, LargestSingularValue(SparseMatrixCol(M.sparseView())));
+  return RankRevealingDecomposition(M, {threshold, 0.0}, RankRevealingDecomposition::Method::kPivotedQr).nullSpace();
 }
 
 // Whether the columns of `basis` move body b.

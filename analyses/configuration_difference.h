@@ -45,8 +45,8 @@ struct ConfigurationDifference {
 };
 
 // a and b: states of `model` at the controls u (b's assembly is the
-// caller's to check). Dense SVD up to kDenseMobilityStateSize, sparse QR
-// beyond; when the idle motions are too many to list there
+// caller's to check). Dense column-pivoting QR up to kDenseMobilityStateSize,
+// sparse QR beyond; when the idle motions are too many to list there
 // (kMaxFreeMotionWork), no body is left out.
 ConfigurationDifference CompareConfigurations(const Model& model, const State& a, const State& b,
                                               const Eigen::VectorXd& u);

@@ -12,28 +12,30 @@
 #include "ccma/end_effector.h"
 #include "ccma/internal/constraint_set.h"
 #include "analyses/internal/dense_rank.h"
+#include "analyses/internal/sparse_rank.h"
 #include "ccma/internal/dense_factorizations.h"
 
 namespace ccma {
 namespace {
 
 // Y = dX/ds over an orthonormal basis of the null space of [dC/ds,
-// dC/du_eff] (its state rows), as mobility.cc's EndEffectorDof.
+// dC/du_eff] (its state rows), as mobility.cc's EndEffectorDof; the rank
+// threshold scaled by the largest singular value of dC/ds.
 Eigen::MatrixXd DenseMotions(const Model& model, const State& s, const Eigen::VectorXd& u, double rank_tolerance) {
   const ConstraintSet constraints(model);
   Eigen::VectorXd C;
   Eigen::MatrixXd J_s, J_u;
   constraints.Evaluate(s, u, &C, &J_s, &J_u);
   const int n = model.state_size();
-  const Eigen::VectorXd sigma = BdcSvd(J_s).singularValues();
-  const double threshold = rank_tolerance * std::max(1.0, sigma.size() > 0 ? sigma[0] : 0.0);
+  const double threshold = rank_tolerance * std::max(1.0, LargestSingularValue(SparseMatrixCol(J_s.sparseView())));
   const std::vector<int> effective = model.effective_control_indices();
   Eigen::MatrixXd A(J_s.rows(), n + static_cast<Eigen::Index>(effective.size()));
   A.leftCols(n) = J_s;
   for (std::size_t c = 0; c < effective.size(); ++c) A.col(n + static_cast<Eigen::Index>(c)) = J_u.col(effective[c]);
-  const BdcSvd svd(A, Eigen::ComputeFullV);
-  const int free = static_cast<int>(A.cols()) - RankAbove(svd.singularValues(), threshold);
-  return EndEffectorJacobian(model, s) * svd.matrixV().rightCols(free).topRows(n);
+  // Column-pivoting QR: hundreds of columns on an imported robot
+  // (RankRevealingDecomposition; benchmarks/RESULTS.md, "Rank decisions").
+  const RankRevealingDecomposition motions(A, {threshold, 0.0}, RankRevealingDecomposition::Method::kPivotedQr);
+  return EndEffectorJacobian(model, s) * motions.nullSpace().topRows(n);
 }
 
 // The rank of the rows `rows` of Y, relative to Y's largest singular value.

@@ -41,8 +41,9 @@ struct MovedComponents {
   int given_rank = 0;  // rank of the rows of `given` (as passed in)
 };
 
-// The analysis at state s and controls u. Dense SVDs up to
-// kDenseMobilityStateSize, sparse rank-revealing QR beyond (rank([A; X_S]) -
+// The analysis at state s and controls u. Dense up to kDenseMobilityStateSize
+// (a column-pivoting QR for the motions, an SVD for Y's rows), sparse
+// rank-revealing QR beyond (rank([A; X_S]) -
 // rank(A), A = [dC/ds, dC/du_eff]), as AnalyzeMobility. Throws
 // std::invalid_argument above kMaxMobilityStateSize.
 MovedComponents AnalyzeMovedComponents(const Model& model, const State& s, const Eigen::VectorXd& u,

@@ -28,6 +28,7 @@
 
 #include <gtest/gtest.h>
 
+#include "analyses/internal/sparse_rank.h"
 #include "analyses/robot_import.h"
 #include "ccma/internal/constraint_set.h"
 #include "ccma/joint_coordinates.h"
@@ -111,17 +112,15 @@ struct Original {
 };
 
 // The bodies that the null space of dC/ds at home moves (a component above
-// 1e-6 of a unit direction, as `ccma check` counts them; BDCSVD, for speed:
-// these robots have up to 100 bodies).
+// 1e-6 of a unit direction, as `ccma check` counts them; column-pivoting QR,
+// for speed: these robots have up to 100 bodies).
 std::set<int> FreeBodies(const Model& model) {
   Eigen::VectorXd C;
   Eigen::MatrixXd J_s, J_u;
   ConstraintSet(model).Evaluate(State::Home(model), model.home_controls(), &C, &J_s, &J_u);
-  const BdcSvd svd(J_s, Eigen::ComputeFullV);
-  const Eigen::VectorXd& sigma = svd.singularValues();
-  int rank = 0;
-  while (rank < sigma.size() && sigma[rank] > 1e-8 * std::max(1.0, sigma[0])) ++rank;
-  const Eigen::MatrixXd null = svd.matrixV().rightCols(model.state_size() - rank);
+  const double threshold = 1e-8 * std::max(1.0, LargestSingularValue(SparseMatrixCol(J_s.sparseView())));
+  const Eigen::MatrixXd null =
+      RankRevealingDecomposition(J_s, {threshold, 0.0}, RankRevealingDecomposition::Method::kPivotedQr).nullSpace();
   std::set<int> free;
   for (int b = 0; b < model.num_bodies(); ++b) {
     if (null.middleRows(kPoseTangentSize * b, kPoseTangentSize).norm() > 1e-6) free.insert(b);

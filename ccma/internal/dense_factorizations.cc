@@ -1,5 +1,9 @@
 #include "ccma/internal/dense_factorizations.h"
 
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
 #include <Eigen/SVD>
@@ -22,21 +26,49 @@ const Eigen::VectorXd& JacobiSvd::singularValues() const { return impl_->svd.sin
 const Eigen::MatrixXd& JacobiSvd::matrixU() const { return impl_->svd.matrixU(); }
 const Eigen::MatrixXd& JacobiSvd::matrixV() const { return impl_->svd.matrixV(); }
 
-// --------------------------------------------------------------- BdcSvd ---
-struct BdcSvd::Impl {
-  Eigen::BDCSVD<Eigen::MatrixXd> svd;
-};
-BdcSvd::BdcSvd(const Eigen::MatrixXd& A, unsigned int options)
-    : impl_(new Impl{Eigen::BDCSVD<Eigen::MatrixXd>(A, options)}) {}
-BdcSvd::BdcSvd(const BdcSvd& other) : impl_(new Impl(*other.impl_)) {}
-BdcSvd& BdcSvd::operator=(const BdcSvd& other) {
-  *impl_ = *other.impl_;
-  return *this;
+// ------------------------------------------- RankRevealingDecomposition ---
+namespace {
+
+std::atomic<RankDecisionObserver> rank_decision_observer{nullptr};
+
+}  // namespace
+
+void SetRankDecisionObserver(RankDecisionObserver observer) { rank_decision_observer = observer; }
+
+RankRevealingDecomposition::RankRevealingDecomposition(const Eigen::MatrixXd& A, Threshold threshold,
+                                                       Method method) {
+  if (const RankDecisionObserver observer = rank_decision_observer.load()) observer(A, threshold, method);
+  const Eigen::Index n = A.cols();
+  threshold_ = threshold.absolute;
+  if (A.size() == 0) {  // no rows: everything is null
+    row_space_.resize(n, 0);
+    null_space_ = Eigen::MatrixXd::Identity(n, n);
+    return;
+  }
+  if (method == Method::kJacobiSvd) {
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
+    const Eigen::VectorXd& sigma = svd.singularValues();
+    threshold_ = std::max(threshold.absolute, threshold.relative * (sigma.size() > 0 ? sigma[0] : 0.0));
+    while (rank_ < sigma.size() && sigma[rank_] > threshold_) ++rank_;
+    row_space_ = svd.matrixV().leftCols(rank_);
+    null_space_ = svd.matrixV().rightCols(n - rank_);
+    return;
+  }
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A);
+  const Eigen::Index p = std::min(A.rows(), n);
+  threshold_ = std::max(threshold.absolute, threshold.relative * std::abs(qr.matrixQR()(0, 0)));
+  // The pivots do not increase (each is the largest remaining column norm).
+  while (rank_ < p && std::abs(qr.matrixQR()(rank_, rank_)) > threshold_) ++rank_;
+  // null(A) = P null(R_top), R_top the leading rank rows of R (the rows
+  // beyond are below the threshold): R_top^T = H [T; 0] gives
+  // null(R_top) = H [0; I] and its complement H [I; 0].
+  const Eigen::MatrixXd R_top = qr.matrixQR().topRows(rank_).triangularView<Eigen::Upper>();
+  const Eigen::HouseholderQR<Eigen::MatrixXd> h(R_top.transpose());
+  Eigen::MatrixXd H = Eigen::MatrixXd::Identity(n, n);
+  if (rank_ > 0) H.applyOnTheLeft(h.householderQ());
+  row_space_ = qr.colsPermutation() * H.leftCols(rank_);
+  null_space_ = qr.colsPermutation() * H.rightCols(n - rank_);
 }
-BdcSvd::~BdcSvd() = default;
-const Eigen::VectorXd& BdcSvd::singularValues() const { return impl_->svd.singularValues(); }
-const Eigen::MatrixXd& BdcSvd::matrixU() const { return impl_->svd.matrixU(); }
-const Eigen::MatrixXd& BdcSvd::matrixV() const { return impl_->svd.matrixV(); }
 
 // -------------------------------------------------- SymmetricEigenSolver ---
 struct SymmetricEigenSolver::Impl {

@@ -37,22 +37,62 @@ class JacobiSvd {
   std::unique_ptr<Impl> impl_;
 };
 
-// Eigen::BDCSVD<MatrixXd> (divide and conquer: faster on large matrices;
-// Jacobi below 16 columns), same interface and ordering as JacobiSvd.
-class BdcSvd {
+// A numerical rank and orthonormal bases of the null space and of the row
+// space of A (rows x cols, any shape), for the rank decisions of the dense
+// analyses. A singular value (kJacobiSvd) or a pivot |R_kk| of the column-
+// pivoting QR A P = Q R (kPivotedQr) counts towards the rank when above
+//   max(threshold.absolute, threshold.relative * scale),
+// scale = sigma_max(A) (kJacobiSvd) or the largest pivot |R_11|, A's largest
+// column norm, between sigma_max / sqrt(cols) and sigma_max (kPivotedQr, as
+// Eigen's own rank-revealing QRs; a caller that wants sigma_max scales
+// `absolute` itself, e.g. by analyses/internal/sparse_rank.h's
+// LargestSingularValue of a sparse view).
+//
+// Why not Eigen's BDCSVD: Eigen 3.4.0's BDCSVD::perturbCol0 reads the
+// deflation permutation at index -1 on some matrices (battobot_6d's dC/ds
+// among them, tests/data/rank_decisions/README.md): an assertion in a
+// build with assertions, in a release build a read of a neighbouring
+// workspace entry that can give wrong singular values without a word.
+//   kJacobiSvd: the SVD (Eigen::JacobiSVD, V in full): the most accurate;
+//     bases = V's columns past / up to the rank, exactly as BDCSVD gave
+//     them below 16 columns (where it runs this same Jacobi SVD); 7 to 14
+//     times BDCSVD's time at hundreds of columns (benchmarks/RESULTS.md,
+//     "Rank decisions"): the reference, and for small matrices.
+//   kPivotedQr: ColPivHouseholderQR of A, rank from its pivots, then a
+//     Householder QR of the leading rank rows of R, transposed (a complete
+//     orthogonal decomposition): 2 to 7 times faster than BDCSVD on the
+//     tens to hundreds of columns of the sites' matrices, which have a wide
+//     gap between the singular values that count and those at rounding
+//     level (tests/rank_decisions_test.cc checks the decisions on every
+//     model against the SVD's).
+class RankRevealingDecomposition {
  public:
-  explicit BdcSvd(const Eigen::MatrixXd& A, unsigned int options = 0);
-  BdcSvd(const BdcSvd& other);
-  BdcSvd& operator=(const BdcSvd& other);
-  ~BdcSvd();
-  const Eigen::VectorXd& singularValues() const;
-  const Eigen::MatrixXd& matrixU() const;
-  const Eigen::MatrixXd& matrixV() const;
+  enum class Method { kJacobiSvd, kPivotedQr };
+  struct Threshold {
+    double absolute = 0.0;
+    double relative = 0.0;
+  };
+  RankRevealingDecomposition(const Eigen::MatrixXd& A, Threshold threshold, Method method);
+  int rank() const { return rank_; }
+  double threshold() const { return threshold_; }  // the absolute bound applied
+  // cols x (cols - rank) and cols x rank, orthonormal, together an
+  // orthonormal basis of R^cols.
+  const Eigen::MatrixXd& nullSpace() const { return null_space_; }
+  const Eigen::MatrixXd& rowSpace() const { return row_space_; }
 
  private:
-  struct Impl;
-  std::unique_ptr<Impl> impl_;
+  int rank_ = 0;
+  double threshold_ = 0.0;
+  Eigen::MatrixXd null_space_, row_space_;
 };
+
+// For tests (tests/rank_decisions_test.cc): when set, every
+// RankRevealingDecomposition passes its matrix and threshold to `observer`
+// first. nullptr (the default) to stop. Not for concurrent use with the
+// decompositions it observes.
+using RankDecisionObserver = void (*)(const Eigen::MatrixXd& A, const RankRevealingDecomposition::Threshold& threshold,
+                                      RankRevealingDecomposition::Method method);
+void SetRankDecisionObserver(RankDecisionObserver observer);
 
 // Eigen::SelfAdjointEigenSolver<MatrixXd>: eigenvalues in increasing order,
 // orthonormal eigenvectors as columns. Reads the lower triangle.

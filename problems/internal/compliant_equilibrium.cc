@@ -157,16 +157,19 @@ void CompliantEquilibrium::Factorize(Factorization factorization) {
   // null(A): the columns of A^T's Q beyond its rank.
   Z = A_.rows() > 0 ? cod_.leftNullSpace() : Eigen::MatrixXd::Identity(N, N);
   const Eigen::MatrixXd M = S_ * Z;
-  int stretching = 0;
-  Eigen::MatrixXd V = Eigen::MatrixXd::Identity(Z.cols(), Z.cols());
   if (M.size() > 0) {
-    const BdcSvd svd(M, Eigen::ComputeFullV);
-    const Eigen::VectorXd& sigma = svd.singularValues();
-    while (stretching < sigma.size() && sigma[stretching] > kCompliantRankThreshold * sigma[0]) ++stretching;
-    V = svd.matrixV();
+    // The motions the springs stretch (M's pivots above kCompliantRankThreshold
+    // times the largest) and the rest. Column-pivoting QR: M has a column per
+    // free motion of the rigid rows, hundreds on a large compliant model
+    // (benchmarks/RESULTS.md, "Rank decisions").
+    const RankRevealingDecomposition stretched(M, {0.0, kCompliantRankThreshold},
+                                               RankRevealingDecomposition::Method::kPivotedQr);
+    Z1_ = Z * stretched.rowSpace();
+    Z0_ = Z * stretched.nullSpace();
+  } else {
+    Z1_.resize(N, 0);
+    Z0_ = Z;
   }
-  Z1_ = Z * V.leftCols(stretching);
-  Z0_ = Z * V.rightCols(V.cols() - stretching);
   if (factorization == Factorization::kIdleMotions) return;
   const Eigen::MatrixXd B = S_ * Z1_;
   K1_.compute(B.transpose() * k_.asDiagonal() * B);
