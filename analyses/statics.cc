@@ -148,13 +148,9 @@ Eigen::VectorXd CompliantStatics(const Model& model, const State& s, const Eigen
   return system.Efforts(Q);
 }
 
-}  // namespace
-
-StaticsReport ComputeStatics(const Model& model, const State& s, const Eigen::VectorXd& u,
-                             const ExternalWrench& wrench) {
-  const Eigen::VectorXd Q = GeneralizedLoads(model, s, wrench);
-  StaticsReport out;
-  const Eigen::VectorXd effort = model.compliant() ? CompliantStatics(model, s, u, Q, &out) : RigidStatics(model, s, u, Q, &out);
+// control_efforts, actuators and the limits from every control's effort.
+void FillEfforts(const Model& model, const Eigen::VectorXd& u, const Eigen::VectorXd& effort, StaticsReport* report) {
+  StaticsReport& out = *report;
   out.control_efforts = effort;
   for (int k = 0; k < model.num_bases(); ++k) {
     const MobileBase& base = model.mobile_bases[static_cast<size_t>(k)];
@@ -180,6 +176,39 @@ StaticsReport ComputeStatics(const Model& model, const State& s, const Eigen::Ve
     if (e < joint.effort.lower - slack || e > joint.effort.upper + slack) out.limiting.push_back(joint.name);
   }
   out.within_limits = out.limiting.empty();
+}
+
+}  // namespace
+
+StaticsReport ComputeStatics(const Model& model, const State& s, const Eigen::VectorXd& u,
+                             const ExternalWrench& wrench) {
+  const Eigen::VectorXd Q = GeneralizedLoads(model, s, wrench);
+  StaticsReport out;
+  const Eigen::VectorXd effort = model.compliant() ? CompliantStatics(model, s, u, Q, &out) : RigidStatics(model, s, u, Q, &out);
+  FillEfforts(model, u, effort, &out);
+  return out;
+}
+
+EffortEvaluator::EffortEvaluator(const Model& model) : model_(model), set_(std::make_unique<ConstraintSet>(model)) {}
+EffortEvaluator::~EffortEvaluator() = default;
+
+StaticsReport EffortEvaluator::At(const State& s, const Eigen::VectorXd& u, const ExternalWrench& wrench) const {
+  const Model& model = model_;
+  const ConstraintSet& set = *set_;
+  const Eigen::VectorXd Q = GeneralizedLoads(model, s, wrench);
+  StaticsReport out;
+  out.compliant = model.compliant();
+  Eigen::VectorXd effort;
+  if (out.compliant) {
+    const CompliantEquilibrium system(model, set, s, u, CompliantEquilibrium::Factorization::kEfforts);
+    effort = system.Efforts(Q, &out.residual);
+  } else {
+    const Equilibrium equilibrium(set, s, u);
+    const Eigen::VectorXd lambda = equilibrium.Multipliers(Q);
+    out.residual = Q.size() > 0 ? (equilibrium.J_s().transpose() * lambda + Q).lpNorm<Eigen::Infinity>() : 0.0;
+    effort = equilibrium.Efforts(lambda);
+  }
+  FillEfforts(model, u, effort, &out);
   return out;
 }
 

@@ -24,6 +24,7 @@
 #ifndef CCMA_ANALYSES_STATICS_H_
 #define CCMA_ANALYSES_STATICS_H_
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -83,6 +84,23 @@ bool HasLoads(const Model& model);
 // Jacobian would exceed kMaxStaticsEntries doubles.
 StaticsReport ComputeStatics(const Model& model, const State& s, const Eigen::VectorXd& u,
                              const ExternalWrench& wrench = {});
+
+class ConstraintSet;  // internal (ccma/internal/constraint_set.h)
+
+// The efforts alone, at many configurations of one model: control_efforts,
+// actuators, residual and the limits (no joint reactions, no compliance
+// report, no determinacy), the same numbers as ComputeStatics', with the
+// model's constraint set built once: a trajectory's effort columns.
+class EffortEvaluator {
+ public:
+  explicit EffortEvaluator(const Model& model);  // keeps a reference to `model`
+  ~EffortEvaluator();
+  StaticsReport At(const State& s, const Eigen::VectorXd& u, const ExternalWrench& wrench = {}) const;
+
+ private:
+  const Model& model_;
+  std::unique_ptr<const ConstraintSet> set_;
+};
 
 }  // namespace ccma
 

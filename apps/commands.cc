@@ -95,15 +95,18 @@ Command TrajectoryCommand() {
   return {"trajectory", "follow end-effector waypoints; one CSV row per control step",
           "ccma trajectory --model=FILE --waypoints=FILE.csv --out=FILE.csv [--controls=...] [--obstacles=FILE]\n"
           "                [--compensate [--wrench=fx,fy,fz,mx,my,mz]]\n"
-          "                [--method=lm|bfgs] [--max_step_m=0.01] [--max_step_rad=0.005] [--lambda=0.5]\n"
+          "                [--method=lm|bfgs] [--max_step_m=0.01] [--max_step_rad=0.005] [--lambda=0.5] [--max_minutes=10]\n"
           "                [singularity and secondary flags, as ccma control]",
           "Follows end-effector waypoints (docs/waypoints.md) in small control steps and writes one CSV row\n"
           "per step (header names carry units). Stops at the first waypoint it cannot reach and warns.\n"
           "Prints the conditioning along the path (smallest singular value of dX/du, pivot ratio of\n"
           "dG/ds); the singularity barriers and secondary objectives act at every step as in ccma control.\n"
           "With --compensate (a model with stiffness keys) every step puts the loaded, deflected end-effector\n"
-          "on the path: each row is the loaded configuration.",
-          Concat(Concat({"model", "waypoints", "out", "controls", "obstacles", "compensate", "wrench"}, SecondaryFlagNames()),
+          "on the path: each row is the loaded configuration. Work bounded by its cost: a path estimated\n"
+          "(from its first steps) over 5 s says how long on stderr, then a progress line every 10 s; one\n"
+          "estimated over --max_minutes is refused (status 2, naming the estimate), nothing written.",
+          Concat(Concat({"model", "waypoints", "out", "controls", "obstacles", "compensate", "wrench", "max_minutes"},
+                        SecondaryFlagNames()),
                  kControlFlags),
           RunTrajectory, {{"out", "the CSV to write, one row per control step [path]"}}};
 }
@@ -200,17 +203,20 @@ Command BenchCommand() {
 Command ReplayCommand() {
   return {"replay", "simulate the closed loop: bases tracking the plan from motion capture",
           "ccma replay --model=FILE --waypoints=FILE.csv --out=DIR [--noise=default|none] [--seed=1]\n"
-          "            [noise, tracking and control flags]",
+          "            [--max_minutes=10] [noise, tracking and control flags]",
           "The paper's closed loop, simulated: the control solution of every path step is fed to the bases,\n"
           "each base tracks it with a PI controller from simulated motion capture, and the chain follows\n"
           "by forward simulation. Writes CSVs, an RMSE table and plots into DIR (SIMULATION, not hardware;\n"
           "moved into DIR at the end: a link planted at one of their names is replaced, never followed).\n"
           "Warns on stderr when the plan did not converge or the chain was torn. Legged bases walk with a\n"
           "trotting gait (--gait_hz, --gait_bob_m, --gait_sway_rad): their bodies bob and sway while they\n"
-          "move, and the JSON's \"gait\" separates the end-effector error due to the gait from tracking.",
+          "move, and the JSON's \"gait\" separates the end-effector error due to the gait from tracking.\n"
+          "Work bounded by its cost: a replay whose chain solves are estimated (from the first ones) over 5 s\n"
+          "says how long on stderr, then a progress line every 10 s; one estimated over --max_minutes is\n"
+          "refused (status 2, naming the estimate), nothing written.",
           Concat({"model", "waypoints", "out", "noise", "seed", "mocap_noise_m", "mocap_noise_rad", "latency_s",
                   "slip", "kp", "ki", "controller_hz", "max_wheel_speed", "gait_hz", "gait_bob_m", "gait_sway_rad",
-                  "obstacles"},
+                  "obstacles", "max_minutes"},
                  kControlFlags),
           RunReplay, {{"out", "folder for the CSVs, the RMSE table and the plots, created if missing [path]"}}};
 }

@@ -10,11 +10,13 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <string>
 
 #include <gflags/gflags.h>
 
 #include "apps/cli.h"
+#include "apps/work_bound.h"
 #include "ccma/internal/format.h"
 #include "apps/flags.h"
 #include "apps/commands.h"
@@ -139,11 +141,29 @@ nlohmann::json ReplayJson(const Model& model, const ReplayOptions& options, cons
   return out;
 }
 
-void CreateOutputDirectory(const std::string& dir) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec || !std::filesystem::is_directory(dir)) throw UsageError("ccma replay: --out: cannot create '" + dir + "'");
-}
+// --out, created (with its parents) if missing; a folder this run created is
+// removed again, if still empty, when the run does not finish (a refusal:
+// nothing written).
+class OutputDirectory {
+ public:
+  explicit OutputDirectory(const std::string& dir) : dir_(dir) {
+    std::error_code ec;
+    created_ = !std::filesystem::exists(dir, ec);
+    std::filesystem::create_directories(dir, ec);
+    if (ec || !std::filesystem::is_directory(dir)) throw UsageError("ccma replay: --out: cannot create '" + dir + "'");
+  }
+  ~OutputDirectory() {
+    std::error_code ec;
+    if (created_ && !kept_ && std::filesystem::is_empty(dir_, ec)) std::filesystem::remove(dir_, ec);
+  }
+  OutputDirectory(const OutputDirectory&) = delete;
+  OutputDirectory& operator=(const OutputDirectory&) = delete;
+  void Keep() { kept_ = true; }
+
+ private:
+  const std::string dir_;
+  bool created_ = false, kept_ = false;
+};
 
 }  // namespace
 
@@ -152,15 +172,22 @@ int RunReplay(const std::vector<std::string>& args) {
   const Model model = LoadModelOrThrow(RequireFlag(FLAGS_model, "model", "replay"));
   const std::vector<Waypoint> waypoints = WaypointsFlag("replay");
   const std::string dir = RequireFlag(FLAGS_out, "out", "replay");
-  const ReplayOptions options = ReplayOptionsFromFlags();
+  ReplayOptions options = ReplayOptionsFromFlags();
   std::string why;
   if (!IsValidReplay(model, waypoints, options, &why)) throw UsageError("ccma replay: " + why);
-  CreateOutputDirectory(dir);
+  const WorkEstimateOptions bound = CommandWorkEstimate("replay", "chain solves", false);  // checks --max_minutes
+  OutputDirectory output(dir);
   // Written in a private scratch folder, moved into --out at the end
   // (apps/output_file.h): a link planted in --out is replaced, never
   // written through. Made before the run: an unwritable --out stops here.
   FolderOutput folder(dir, "out");
 
+  // Work bounded by its cost (--max_minutes): the chain's solves timed as they are made.
+  std::unique_ptr<WorkEstimate> estimate;
+  options.on_solve = [&estimate, &bound](long done, long total) {
+    if (!estimate) estimate = std::make_unique<WorkEstimate>(bound, total);
+    estimate->Update(done);
+  };
   const ReplayResult r = Replay(model, waypoints, options);
   const std::string path_name = std::filesystem::path(FLAGS_waypoints).filename().string();
   WriteReplayCsv(folder.scratch(), model, r);
@@ -173,6 +200,7 @@ int RunReplay(const std::vector<std::string>& args) {
   for (std::string& plot : plots) plot = folder.Final(plot);
   if (!plot_warning.empty()) std::cerr << "ccma replay: " << plot_warning << "\n";
   folder.Commit();
+  output.Keep();
   nlohmann::json out = ReplayJson(model, options, r, dir, plots);
   if (!plot_warning.empty()) out["plot_warning"] = plot_warning;
   PrintJson(out);

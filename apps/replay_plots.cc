@@ -102,6 +102,17 @@ std::string KeyEntries(const ReplayResult& r) {
   return s;
 }
 
+// The plots draw at most about this many samples of a series: a long replay's
+// CSVs keep every sample, its plots every n-th (gnuplot's `every`), so that
+// gnuplot's time stays bounded (a million samples took it minutes).
+constexpr size_t kMaxPlottedSamples = 4000;
+
+// " every n" for the samples' files (bases.csv, end_effector.csv), or "".
+std::string Every(const ReplayResult& r) {
+  const size_t n = (r.samples.size() + kMaxPlottedSamples - 1) / kMaxPlottedSamples;
+  return n > 1 ? " every " + std::to_string(n) : "";
+}
+
 // `using` of a column in display units (positions m -> mm).
 std::string Scaled(int column, bool angle) {
   return angle ? std::to_string(column) : "(1000*$" + std::to_string(column) + ")";
@@ -130,9 +141,9 @@ std::string EndEffectorFigure(const std::string& format, const Model& model, con
   for (size_t i = 0; i < components.size(); ++i) {
     const int c = components[i];
     const bool angle = IsAngle(c);
-    s << "set ylabel '" << ComponentName(c) << (angle ? " [rad]'\n" : " [mm]'\n") << "plot 'end_effector.csv' using 1:"
+    s << "set ylabel '" << ComponentName(c) << (angle ? " [rad]'\n" : " [mm]'\n") << "plot 'end_effector.csv'" << Every(r) << " using 1:"
       << Scaled(CommandedColumn(c), angle) << " with lines lw 2 lc rgb '" << kCommandedColour
-      << "' title 'commanded', '' using 1:" << Scaled(TrackedColumn(c), angle) << " with lines lw 1.5 dt 2 lc rgb '"
+      << "' title 'commanded', ''" << Every(r) << " using 1:" << Scaled(TrackedColumn(c), angle) << " with lines lw 1.5 dt 2 lc rgb '"
       << kTrackedColour << "' title 'tracked'";
     s << KeyEntries(r) << "\n";
     if (i == 0) s << UnsetHeadingLabels(r);
@@ -149,7 +160,7 @@ std::string EndEffectorFigure(const std::string& format, const Model& model, con
     const int c = components[i];
     const bool angle = IsAngle(c);
     const std::string axes = both && angle ? " axes x1y2" : " axes x1y1";
-    s << (i ? ", " : "") << "'end_effector.csv' using 1:" << ErrorColumn(c) << axes << " with lines lw 1.5"
+    s << (i ? ", " : "") << "'end_effector.csv'" << Every(r) << " using 1:" << ErrorColumn(c) << axes << " with lines lw 1.5"
       << (both && angle ? " dt 2" : "") << " lc rgb '" << DistinctColour(int(i), 8) << "' title '"
       << ComponentName(c) << (angle ? " [rad]'" : " [mm]'");
   }
@@ -247,23 +258,23 @@ int TrueXColumn(const Model& model, int k) {
 
 // Red dots where base k's tracked pose was recorded while the chain was
 // torn (drawn under its paths), followed by ", ".
-std::string TornClause(const Model& model, int k, bool titled) {
+std::string TornClause(const Model& model, const ReplayResult& r, int k, bool titled) {
   const int torn_column = 2 + 2 * model.num_base_controls() + model.num_actuated_joints();  // bases, joints, torn
   const int x = TrueXColumn(model, k);
   std::ostringstream s;
-  s << "'bases.csv' using ($" << torn_column << ">0 ? $" << x << " : NaN):" << x + 1
+  s << "'bases.csv'" << Every(r) << " using ($" << torn_column << ">0 ? $" << x << " : NaN):" << x + 1
     << " with points pt 7 ps 0.4 lc rgb '" << kFailColour << "' "
     << (titled ? "title 'tracked pose while the chain was torn'" : "notitle") << ", ";
   return s.str();
 }
 
 // Base k's set path (solid, with `title`) and tracked path (dashed) in its colour.
-std::string PathClauses(const Model& model, int k, const std::string& title) {
+std::string PathClauses(const Model& model, const ReplayResult& r, int k, const std::string& title) {
   const std::string colour = DistinctColour(k, model.num_bases());
   std::ostringstream s;
   const int set_x = SetXColumn(model, k), true_x = TrueXColumn(model, k);
-  s << "'bases.csv' using " << set_x << ":" << set_x + 1 << " with lines lw 2 lc rgb '" << colour << "' " << title
-    << ", '' using " << true_x << ":" << true_x + 1 << " with lines lw 1.5 dt 2 lc rgb '" << colour << "' notitle";
+  s << "'bases.csv'" << Every(r) << " using " << set_x << ":" << set_x + 1 << " with lines lw 2 lc rgb '" << colour
+    << "' " << title << ", ''" << Every(r) << " using " << true_x << ":" << true_x + 1 << " with lines lw 1.5 dt 2 lc rgb '" << colour << "' notitle";
   return s.str();
 }
 
@@ -272,14 +283,14 @@ std::string PathClauses(const Model& model, int k, const std::string& title) {
 std::string AllBasesPlot(const Model& model, const ReplayResult& r, bool named, bool windows) {
   const int n = model.num_bases();
   std::string s = "plot ";
-  for (int k = 0; r.torn && k < n; ++k) s += TornClause(model, k, k == 0);
+  for (int k = 0; r.torn && k < n; ++k) s += TornClause(model, r, k, k == 0);
   for (int k = 0; windows && k < n; ++k) {
     s += "$windows using 1:2:3:3 every ::" + std::to_string(k) + "::" + std::to_string(k) +
          " with boxxyerror fillstyle empty lw 1 lc rgb '" + DistinctColour(k, n) + "' notitle, ";
   }
   for (int k = 0; k < n; ++k) {
     s += (k ? ", " : "") +
-         PathClauses(model, k, named ? "title " + GnuplotQuote(model.mobile_bases[k].name) : std::string("notitle"));
+         PathClauses(model, r, k, named ? "title " + GnuplotQuote(model.mobile_bases[k].name) : std::string("notitle"));
   }
   return s + ", $starts using 1:2 with points pt 6 ps 1.2 lc rgb 'black' title 'start'" +
          ", keyentry with lines lw 2 lc rgb 'black' title 'set pose (solid)'" +
@@ -346,7 +357,7 @@ std::string ZoomedBasesFigure(const std::string& format, const Model& model, con
   s << "set xtics " << FormatG(tic) << "\nset ytics " << FormatG(tic) << "\n";
   for (int k = 0; k < n; ++k) {
     s << "set title " << GnuplotQuote(model.mobile_bases[k].name) << "\n" << WindowRanges(extents[k], side) << "plot "
-      << (r.torn ? TornClause(model, k, false) : "") << PathClauses(model, k, "notitle") << ", $starts using 1:2 every ::"
+      << (r.torn ? TornClause(model, r, k, false) : "") << PathClauses(model, r, k, "notitle") << ", $starts using 1:2 every ::"
       << k << "::" << k << " with points pt 6 ps 1.2 lc rgb 'black' notitle\n";
   }
   s << "unset multiplot\nunset title\nset xtics autofreq\nset ytics autofreq\nset size noratio\nset autoscale\n"

@@ -12,6 +12,7 @@
 #include "apps/json_output.h"
 #include "apps/output_file.h"
 #include "apps/trajectory_csv.h"
+#include "apps/work_bound.h"
 #include "problems/compensated_trajectory.h"
 
 namespace ccma::cli {
@@ -76,9 +77,21 @@ int RunTrajectory(const std::vector<std::string>& args) {
   TrajectoryCsv csv(model, file.stream());
   TrajectoryTally tally;
   tally.last_state = control.forward().state();
+  // Work bounded by its cost (--max_minutes): the path's steps timed as they are made.
+  long steps = 0;
+  try {
+    steps = CheckPathStepCount(control, waypoints);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("ccma trajectory: ") + e.what());
+  }
+  WorkEstimate estimate(CommandWorkEstimate("trajectory", FLAGS_compensate ? "compensated path steps" : "path steps",
+                                            false),
+                        steps);
+  long done = 0;
   const auto on_step = [&](const TrajectoryStep& s) {
     csv.Write(s);
     tally.Add(s);
+    estimate.Update(++done);
   };
   CompensatedPath compensated;
   const TrajectoryResult result = FLAGS_compensate

@@ -43,8 +43,8 @@ void WriteEffortHeader(const Model& model, std::ostream& csv) {
   csv << ",within_limits";
 }
 
-void WriteEffortCells(const Model& model, const TrajectoryStep& s, std::ostream& csv) {
-  const StaticsReport r = ComputeStatics(model, s.state, s.controls);
+void WriteEffortCells(const EffortEvaluator& efforts, const TrajectoryStep& s, std::ostream& csv) {
+  const StaticsReport r = efforts.At(s.state, s.controls);
   for (Eigen::Index c = 0; c < r.control_efforts.size(); ++c) csv << "," << r.control_efforts[c];
   csv << "," << (r.within_limits ? 1 : 0);
 }
@@ -79,7 +79,7 @@ void WriteRow(const Model& model, const ClearanceSummary* clearance, const State
 }  // namespace
 
 TrajectoryCsv::TrajectoryCsv(const Model& model, std::ostream& csv)
-    : model_(model), csv_(csv), collision_(model), efforts_(HasLoads(model)) {
+    : model_(model), csv_(csv), collision_(model), efforts_(HasLoads(model)), effort_evaluator_(model) {
   csv_ << std::setprecision(17);
   WriteHeader(model_, csv_);
   if (efforts_) WriteEffortHeader(model_, csv_);
@@ -93,7 +93,7 @@ void TrajectoryCsv::Write(const TrajectoryStep& step) {
     if (clearance.any && (!path_clearance_.any || clearance.min < path_clearance_.min)) path_clearance_ = clearance;
   }
   WriteRow(model_, collision_.enabled() ? &clearance : nullptr, step.state, step, csv_);
-  if (efforts_) WriteEffortCells(model_, step, csv_);
+  if (efforts_) WriteEffortCells(effort_evaluator_, step, csv_);
   csv_ << "\n";
 }
 

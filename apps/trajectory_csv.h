@@ -24,6 +24,7 @@ class TrajectoryCsv {
   const CollisionModel collision_;
   ClearanceSummary path_clearance_;
   const bool efforts_;  // statics columns (masses, payload or effort limits given)
+  const EffortEvaluator effort_evaluator_;
 };
 
 }  // namespace ccma::cli

@@ -246,11 +246,15 @@ void Simulate(const Model& model, const Plan& plan, const ReplayOptions& options
   // Checked by IsValidReplay: at most kMaxReplayTicks, so the conversion is exact.
   const long ticks = static_cast<long>(std::ceil(result->duration_s * options.gains.rate_hz));
   double next_output = t0;
+  // The chain's solves: every tick with a gait, else every output sample.
+  const long solves = chain.gait() ? ticks + 1 : static_cast<long>(std::floor(result->duration_s * options.output_hz)) + 1;
+  long solved = 0;
   for (long tick = 0; tick <= ticks; ++tick) {
     const double t = t0 + static_cast<double>(tick) * dt;
     const bool output = t + 1e-9 >= next_output;
     if (output || chain.gait()) {
       const ReplaySample sample = chain.At(t, plan, bases);
+      if (options.on_solve) options.on_solve(++solved, std::max(solves, solved));
       if (chain.gait()) sums->Add(sample);
       if (output) {
         result->samples.push_back(sample);

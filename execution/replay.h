@@ -22,6 +22,7 @@
 #define CCMA_PROBLEMS_REPLAY_H_
 
 #include <array>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -53,6 +54,10 @@ struct ReplayOptions {
   // A legged base's body bobs and sways while it walks (execution/gait.h);
   // no effect on a model without legged bases.
   Gait gait;
+  // Called after every solve of the chain with the solves done and their
+  // total (the output samples, or with legged bases every controller tick):
+  // a long replay's progress and its work bound (it may throw to stop it).
+  std::function<void(long done, long total)> on_solve;
 
   // gains.IsValid, noise.IsValid, gait.IsValid, and output_hz, settle_s and
   // torn_residual_energy in range.

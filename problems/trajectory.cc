@@ -10,7 +10,7 @@
 namespace ccma {
 
 // The whole path's step count, bounded before anything runs.
-void CheckPathStepCount(const ControlProblem& problem, const std::vector<Waypoint>& waypoints) {
+long CheckPathStepCount(const ControlProblem& problem, const std::vector<Waypoint>& waypoints) {
   const ControlOptions& o = problem.options();
   PoseTarget from = problem.CurrentPose();
   double total = 0;
@@ -24,6 +24,7 @@ void CheckPathStepCount(const ControlProblem& problem, const std::vector<Waypoin
     }
     from = to;
   }
+  return static_cast<long>(total);
 }
 
 TrajectoryResult FollowWaypoints(ControlProblem& problem, const std::vector<Waypoint>& waypoints,

@@ -33,9 +33,10 @@ struct TrajectoryResult {
   std::string warning;     // the first waypoint not reached, if any
 };
 
-// Throws std::invalid_argument when walking `waypoints` from the problem's
-// current pose would take more than kMaxPathSteps steps (ccma/limits.h).
-void CheckPathStepCount(const ControlProblem& problem, const std::vector<Waypoint>& waypoints);
+// The number of path steps walking `waypoints` from the problem's current
+// pose takes; throws std::invalid_argument when it would be more than
+// kMaxPathSteps (ccma/limits.h).
+long CheckPathStepCount(const ControlProblem& problem, const std::vector<Waypoint>& waypoints);
 
 // Starts from the problem's current controls; stops at the first waypoint it
 // cannot reach (reported in the result). Throws std::invalid_argument when

@@ -49,6 +49,36 @@ std::string Tripod(double mass, const std::string& leg_extra = "") {
   return m.str();
 }
 
+// The effort columns of a trajectory (EffortEvaluator: the efforts alone,
+// one constraint set for every row) are ComputeStatics' efforts, on rigid
+// and compliant models with masses, at home and at moved controls.
+TEST(Statics, TheEffortEvaluatorGivesComputeStaticsEfforts) {
+  for (const char* path : {"/examples/statics/stewart_gough_compliant.yaml", "/examples/statics/4dof_payload.yaml",
+                           "/examples/statics/tripod.yaml"}) {
+    const Model model = LoadModel(std::string(CCMA_SOURCE_DIR) + path);
+    ASSERT_TRUE(HasLoads(model)) << path;
+    const EffortEvaluator evaluator(model);
+    ForwardProblem forward(model);
+    ExternalWrench w;
+    w.force = Eigen::Vector3d(1.5, -2, -7);
+    w.moment = Eigen::Vector3d(0.1, 0.2, -0.3);
+    for (const double move : {0.0, 0.01}) {
+      Eigen::VectorXd u = model.home_controls();
+      if (move > 0 && model.num_bases() == 0) u.array() += move;
+      if (!forward.Solve(u).assembled) continue;
+      const StaticsReport full = ComputeStatics(model, forward.state(), forward.controls(), w);
+      const StaticsReport fast = evaluator.At(forward.state(), forward.controls(), w);
+      ASSERT_EQ(full.control_efforts.size(), fast.control_efforts.size());
+      EXPECT_LT((full.control_efforts - fast.control_efforts).cwiseAbs().maxCoeff(),
+                1e-12 * (1 + full.control_efforts.cwiseAbs().maxCoeff()))
+          << path;
+      EXPECT_EQ(full.within_limits, fast.within_limits) << path;
+      EXPECT_EQ(full.limiting, fast.limiting) << path;
+      ASSERT_EQ(full.actuators.size(), fast.actuators.size());
+    }
+  }
+}
+
 TEST(Statics, SymmetricTripodLegsCarryAThirdOfTheWeightEach) {
   const Model model = LoadModelFromString(Tripod(3.0), "tripod.yaml");
   ForwardProblem forward(model);

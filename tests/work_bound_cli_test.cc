@@ -50,6 +50,31 @@ void ExpectRefused(const ToolRun& r, const std::string& command, const std::stri
   EXPECT_TRUE(std::regex_search(r.err, std::regex("allows: give --max_minutes=[0-9]+ or more to run it"))) << r.err;
 }
 
+// trajectory --compensate: a 60-byte waypoint file whose path takes 50,000
+// steps of 2 micrometres on a compliant Stewart-Gough platform (half a
+// millisecond each, half a minute in all) is refused at a bound of 1.2 s;
+// it used to run on in silence.
+TEST(WorkBound, ALongCompensatedPathIsRefused) {
+  const std::string model = std::string(CCMA_SOURCE_DIR) + "/examples/statics/stewart_gough_compliant.yaml";
+  const std::string path = Scratch("long_path.csv"), out = Scratch("long_path_rows.csv");
+  std::ofstream(path) << "time,x,y,z,roll,pitch,yaw\n0,0,0,0.5,0,0,0\n10,0.1,0,0.5,0,0,0\n";
+  const ToolRun r = RunTool({"trajectory", "--model=" + model, "--waypoints=" + path, "--out=" + out, "--compensate",
+                       "--max_step_m=0.000002", "--max_minutes=0.02"},
+                      60);
+  ExpectRefused(r, "trajectory", "compensated path steps (", out);
+}
+
+// replay: a 2,000 s stay at home on 6dof_six_agents is 40,000 chain solves
+// at 20 Hz, refused at a bound of a hundredth of a minute.
+TEST(WorkBound, ALongReplayIsRefused) {
+  const std::string path = Scratch("stay.csv"), out = Scratch("stay_replay");
+  std::ofstream(path) << "time,x,y,z,roll,pitch,yaw\n0,0,0,0.6,0,0,0\n2000,0,0,0.6,0,0,0\n";
+  const ToolRun r = RunTool({"replay", "--model=" + ModelPath("6dof_six_agents"), "--waypoints=" + path,
+                             "--out=" + out, "--max_minutes=0.01"},
+                            60);
+  ExpectRefused(r, "replay", "chain solves (", out);
+}
+
 TEST(WorkBound, AMillionSampleMapBeyondTheBoundIsRefusedInSeconds) {
   // 4dof_reduced: a sample costs a fraction of a millisecond, a million of
   // them minutes; half a minute is allowed.

@@ -173,7 +173,7 @@ void CompliantEquilibrium::Factorize(Factorization factorization) {
   if (factorization == Factorization::kIdleMotions) return;
   const Eigen::MatrixXd B = S_ * Z1_;
   K1_.compute(B.transpose() * k_.asDiagonal() * B);
-  determinate_ = Determinate(rank);
+  if (factorization == Factorization::kFull) determinate_ = Determinate(rank);
 }
 
 // null(A^T) = P Z^T [0; I] of the decomposition A^T P = Q [T 0; 0 0] Z; a

@@ -61,6 +61,7 @@ class CompliantEquilibrium {
                     // (Displacement, Multipliers, Compliance, UnheldMotion,
                     // determinate) may be called
     kIdleMotions,   // also the split of null(A) into Z1 and Z0: UnheldMotion only
+    kEfforts,       // everything but determinate() (a trajectory row's efforts)
     kFull,          // everything
   };
 
