@@ -29,6 +29,7 @@
 #include "apps/json_output.h"
 #include "apps/output_file.h"
 #include "apps/plots.h"
+#include "apps/work_bound.h"
 #include "ccma/internal/constraint_set.h"
 
 DEFINE_int32(steps, 0, "path steps per model, 1..10000 (default 20; 10 with --scaling) [steps]");
@@ -104,7 +105,7 @@ struct Curve {
 // and, for the second step, the convergence curve.
 std::vector<StepRecord> Walk(const Model& model, const std::vector<PoseTarget>& path, ControlMethod method,
                              GradientMethod gradient, int max_steps, Curve* curve,
-                             std::vector<double>* forward_us) {
+                             std::vector<double>* forward_us, WorkEstimate* bound, long long* done) {
   ControlOptions options;
   options.method = method;
   options.gradient = gradient;
@@ -124,6 +125,7 @@ std::vector<StepRecord> Walk(const Model& model, const std::vector<PoseTarget>& 
     records.push_back({method == ControlMethod::kBfgs ? "bfgs" : "lm",
                        gradient == GradientMethod::kImplicit ? "implicit" : "finite_difference", i, r});
     if (forward_us != nullptr) forward_us->push_back(1000.0 * tracking.Solve(control.controls()).solve_time_ms);
+    bound->Update(++*done);
   }
   return records;
 }
@@ -205,20 +207,25 @@ void WriteCurve(const std::string& path, const Curve& curve) {
   for (const auto& p : curve.points) out << p[0] << " " << p[1] << " " << p[2] << "\n";
 }
 
-nlohmann::json BenchModel(const Model& model, int steps, const std::string& out_dir) {
+// The control steps one model's walks solve (BenchModel).
+long long StepsPerModel(int steps) { return 3LL * steps + std::min(steps, 4); }
+
+nlohmann::json BenchModel(const Model& model, int steps, const std::string& out_dir, WorkEstimate* bound) {
+  long long done = 0;
   ForwardProblem probe(model);
   const PoseTarget home{probe.end_effector().position, probe.end_effector().rpy};
   const std::vector<PoseTarget> path = SeededPath(model, home, steps, FLAGS_seed);
   std::vector<double> forward_us;
   Curve lm_curve, bfgs_curve;
   const auto lm = Walk(model, path, ControlMethod::kLevenbergMarquardt, GradientMethod::kImplicit, steps,
-                       &lm_curve, &forward_us);
-  const auto bfgs = Walk(model, path, ControlMethod::kBfgs, GradientMethod::kImplicit, steps, &bfgs_curve, nullptr);
+                       &lm_curve, &forward_us, bound, &done);
+  const auto bfgs = Walk(model, path, ControlMethod::kBfgs, GradientMethod::kImplicit, steps, &bfgs_curve, nullptr,
+                         bound, &done);
   const auto lm_fd = Walk(model, path, ControlMethod::kLevenbergMarquardt, GradientMethod::kFiniteDifference,
-                          steps, nullptr, nullptr);
+                          steps, nullptr, nullptr, bound, &done);
   // BFGS with finite differences costs ~100 solves per iteration: a few steps.
   const auto bfgs_fd = Walk(model, path, ControlMethod::kBfgs, GradientMethod::kFiniteDifference,
-                            std::min(steps, 4), nullptr, nullptr);
+                            std::min(steps, 4), nullptr, nullptr, bound, &done);
 
   nlohmann::json out;
   out["model"] = model.name;
@@ -253,10 +260,13 @@ nlohmann::json BenchModel(const Model& model, int steps, const std::string& out_
   return out;
 }
 
-nlohmann::json Scaling(int steps) {
+nlohmann::json Scaling(int steps, WorkEstimate* bound) {
   nlohmann::json rows = nlohmann::json::array();
   std::vector<double> log_n, log_forward, log_control;
   for (int agents : {3, 6, 12, 24, 48}) {
+    // Each size a stage of its own: its steps cost more than the last's.
+    if (agents > 3) bound->BeginStage("control steps of " + std::to_string(agents) + " agents", steps, 0, true);
+    long long done = 0;
     StewartOptions options;
     options.agents = agents;
     const Model model = LoadModelFromString(GenerateStewartModel(options), "generated");
@@ -265,7 +275,7 @@ nlohmann::json Scaling(int steps) {
     const auto path = SeededPath(model, home, steps, FLAGS_seed);
     std::vector<double> forward_us;
     const auto lm = Walk(model, path, ControlMethod::kLevenbergMarquardt, GradientMethod::kImplicit, steps,
-                         nullptr, &forward_us);
+                         nullptr, &forward_us, bound, &done);
     const nlohmann::json control = LoopJson(lm);
     const double forward = Summarize(forward_us).median;
     rows.push_back({{"agents", agents},
@@ -370,19 +380,19 @@ int RunBench(const std::vector<std::string>& args) {
   if (modes != 1) throw UsageError("ccma bench: give exactly one of --model=FILE, --all, --scaling");
   const int steps = FLAGS_steps > 0 ? FLAGS_steps : (FLAGS_scaling ? 10 : 20);
   if (FLAGS_steps < 0 || steps > 10000) throw UsageError("ccma bench: --steps must be between 1 and 10000");
-  if (!FLAGS_out.empty()) {
-    std::error_code ec;
-    std::filesystem::create_directories(FLAGS_out, ec);
-    if (ec || !std::filesystem::is_directory(FLAGS_out)) {
-      throw UsageError("ccma bench: --out: cannot create directory '" + FLAGS_out + "'");
-    }
-  }
+  const WorkEstimateOptions bound_options = CommandWorkEstimate("bench", "control steps", false);
+  std::unique_ptr<OutputDirectory> output;
+  if (!FLAGS_out.empty()) output = std::make_unique<OutputDirectory>(FLAGS_out, "ccma bench");
+  // Work bounded by its cost (--max_minutes): the control steps timed as
+  // they are solved, each model (each size) a stage of its own.
   if (FLAGS_scaling) {
-    const nlohmann::json scaling = Scaling(steps);
+    WorkEstimate bound(bound_options, steps);
+    const nlohmann::json scaling = Scaling(steps, &bound);
     if (!FLAGS_out.empty()) {
       FolderOutput folder(FLAGS_out, "out");
       WriteScalingTable(folder.scratch() + "/scaling.md", scaling);
       folder.Commit();
+      output->Keep();
     }
     PrintJson(scaling);
     return 0;
@@ -395,9 +405,12 @@ int RunBench(const std::vector<std::string>& args) {
   // never written through.
   std::unique_ptr<FolderOutput> folder;
   if (!FLAGS_out.empty()) folder = std::make_unique<FolderOutput>(FLAGS_out, "out");
-  for (const Model& model : models) {
+  WorkEstimate bound(bound_options, StepsPerModel(steps));
+  for (size_t m = 0; m < models.size(); ++m) {
+    const Model& model = models[m];
     std::cerr << "ccma bench: " << model.name << " ..." << std::endl;
-    results.push_back(BenchModel(model, steps, folder ? folder->scratch() : ""));
+    if (m > 0) bound.BeginStage("control steps of " + model.name, StepsPerModel(steps), 0, true);
+    results.push_back(BenchModel(model, steps, folder ? folder->scratch() : "", &bound));
     names.push_back(model.name);
   }
   if (folder) {
@@ -410,6 +423,7 @@ int RunBench(const std::vector<std::string>& args) {
     for (auto& r : results) r["plots"] = plots;
     WriteModelTable(folder->scratch() + "/models.md", results);
     folder->Commit();
+    output->Keep();
   }
   PrintJson(FLAGS_all ? results : results[0]);
   return 0;

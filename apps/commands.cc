@@ -49,7 +49,7 @@ Command CheckCommand() {
 Command SimulateCommand() {
   return {"simulate", "forward problem: assemble the mechanism at given controls",
           "ccma simulate --model=FILE [--controls=u0,u1,...] [--from=RESULT.json] [--loaded]\n"
-          "              [--wrench=fx,fy,fz,mx,my,mz]",
+          "              [--wrench=fx,fy,fz,mx,my,mz] [--max_minutes=10]",
           "Forward problem: assembles the mechanism for the controls, walking them from the start in\n"
           "sub-steps (2 cm / 0.02 rad) so that it stays on the assembly branch it starts on. The start is\n"
           "home, or the configuration and controls in a JSON document printed by `ccma simulate` or\n"
@@ -59,8 +59,10 @@ Command SimulateCommand() {
           "--wrench with its springs yielding and the controls held: bodies, joints and end_effector are the\n"
           "loaded configuration (nonlinear, not linearised), deflection {end_effector [m, rad], max_body_m,\n"
           "held} is its difference from the rigid assembly, and loaded {converged, iterations,\n"
-          "unbalanced_load, yields} says how it was found (warns when it was not).",
-          {"model", "controls", "from", "obstacles", "loaded", "wrench"}, RunSimulate,
+          "unbalanced_load, yields} says how it was found (warns when it was not). Work bounded by its cost:\n"
+          "a walk estimated (from its first sub-steps) over 5 s says how long on stderr, then a progress line\n"
+          "every 10 s; one estimated over --max_minutes is refused (status 2, naming the estimate).",
+          {"model", "controls", "from", "obstacles", "loaded", "wrench", "max_minutes"}, RunSimulate,
           {{"from", "start from the configuration and controls of a JSON document printed by `ccma simulate` or "
                     "`ccma control` instead of home (at most 4 MiB, nested at most 64 levels) [path]"}}};
 }
@@ -71,7 +73,7 @@ Command ControlCommand() {
           "             [--max_step_m=0.01] [--max_step_rad=0.005] [--lambda=0.5]\n"
           "             [--singularity_weight=0] [--singularity_threshold=0.1] [--pivot_weight=0]\n"
           "             [--pivot_threshold=0.001] [--secondary=none|spread|sigma|travel] [--secondary_weight=1]\n"
-          "             [--clearance_m=0.5] [--compensate] [--wrench=fx,fy,fz,mx,my,mz]",
+          "             [--clearance_m=0.5] [--compensate] [--wrench=fx,fy,fz,mx,my,mz] [--max_minutes=10]",
           "Kinematic control: finds controls that put the end-effector at the target, walking there in\n"
           "small end-effector steps from the start controls (home, or --controls). --target takes all six\n"
           "components, or only the model's controlled ones in the order x y z roll pitch yaw. Warns on\n"
@@ -85,8 +87,11 @@ Command ControlCommand() {
           "loaded end-effector (ccma simulate --loaded, under gravity, the payload and --wrench) on the target;\n"
           "end_effector, bodies, joints and error are then the loaded ones, and compensation {converged,\n"
           "rounds, miss, aim, rigid_end_effector} tells how (the rigid end-effector is off by about the\n"
-          "deflection).",
-          Concat(Concat({"model", "target", "controls", "obstacles", "compensate", "wrench"}, SecondaryFlagNames()),
+          "deflection). Work bounded by its cost: a path estimated (from its first steps) over 5 s says how\n"
+          "long on stderr, then a progress line every 10 s; one estimated over --max_minutes is refused\n"
+          "(status 2, naming the estimate).",
+          Concat(Concat({"model", "target", "controls", "obstacles", "compensate", "wrench", "max_minutes"},
+                        SecondaryFlagNames()),
                  kControlFlags),
           RunControl};
 }
@@ -191,12 +196,16 @@ Command ImportCommand() {
 
 Command BenchCommand() {
   return {"bench", "time forward solves and control steps (LM, BFGS) on models",
-          "ccma bench --model=FILE | --all [--models_dir=DIR] | --scaling  [--steps=N] [--seed=1] [--out=DIR]",
+          "ccma bench --model=FILE | --all [--models_dir=DIR] | --scaling  [--steps=N] [--seed=1] [--out=DIR]\n"
+          "           [--max_minutes=10]",
           "The paper's convergence study: seeded paper-size control steps (10 mm + 0.005 rad) solved by LM\n"
           "and BFGS with implicit-function and finite-difference gradients, the warm forward solve and the\n"
           "Jacobians, all in one run; medians and p95. --out writes per-step CSVs, tables and plots (moved\n"
-          "into DIR at the end: a link planted at one of their names is replaced, never followed).",
-          {"model", "all", "models_dir", "scaling", "steps", "seed", "out"}, RunBench,
+          "into DIR at the end: a link planted at one of their names is replaced, never followed).\n"
+          "Work bounded by its cost: each model's control steps are timed as they are solved; a model\n"
+          "estimated over 5 s says how long on stderr, then a progress line every 10 s; one estimated over\n"
+          "--max_minutes is refused (status 2, naming the estimate).",
+          {"model", "all", "models_dir", "scaling", "steps", "seed", "out", "max_minutes"}, RunBench,
           {{"out", "folder for the per-step CSVs, tables and plots, created if missing (default: no files) [path]"}}};
 }
 

@@ -3,13 +3,16 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <memory>
 
 #include "analyses/configuration_difference.h"
 #include "apps/cli.h"
 #include "apps/commands.h"
 #include "apps/flags.h"
 #include "apps/json_output.h"
+#include "apps/work_bound.h"
 #include "ccma/internal/format.h"
+#include "problems/path.h"
 
 DEFINE_string(target, "",
               "end-effector target: x,y,z [m], roll,pitch,yaw [rad]; or only the model's controlled "
@@ -92,6 +95,26 @@ ControlResult Move(ControlProblem* control, const PoseTarget& target, Compensate
   return result;
 }
 
+// Work bounded by its cost (--max_minutes): the path's steps timed as they
+// are made; every further path (a compensated control's later rounds) a
+// stage of its own.
+void BoundTheMove(ControlProblem* control, const PoseTarget& target, std::shared_ptr<WorkEstimate>* estimate) {
+  long steps = 1;
+  try {
+    const ControlOptions& o = control->options();
+    steps = PosePath(control->forward().model(), control->CurrentPose(), target, o.max_step_m, o.max_step_rad).steps();
+  } catch (const std::invalid_argument&) {
+    // MoveTo says why the path cannot be taken.
+  }
+  *estimate = std::make_shared<WorkEstimate>(
+      CommandWorkEstimate("control", FLAGS_compensate ? "path steps (first round)" : "path steps", false), steps);
+  control->SetPathStepObserver([bound = *estimate, first = true](int step, int path_steps) mutable {
+    if (step == 1 && !first) bound->BeginStage("path steps (a later round)", path_steps, 0, true);
+    first = false;
+    bound->Update(step);
+  });
+}
+
 }  // namespace
 
 int RunControl(const std::vector<std::string>& args) {
@@ -104,6 +127,8 @@ int RunControl(const std::vector<std::string>& args) {
   const PoseTarget target = TargetFlag(model, control.CurrentPose());
 
   const ForwardResult start_assembly = control.SetControls(start);
+  std::shared_ptr<WorkEstimate> estimate;
+  BoundTheMove(&control, target, &estimate);
   CompensatedResult compensated;
   ControlResult result = Move(&control, target, &compensated);
   if (!start_assembly.assembled) {

@@ -251,4 +251,16 @@ void FolderOutput::Commit() {
   SyncFolder(dir_);
 }
 
+OutputDirectory::OutputDirectory(const std::string& dir, const std::string& who) : dir_(dir) {
+  std::error_code ec;
+  created_ = !std::filesystem::exists(dir, ec);
+  std::filesystem::create_directories(dir, ec);
+  if (ec || !std::filesystem::is_directory(dir)) throw UsageError(who + ": --out: cannot create '" + dir + "'");
+}
+
+OutputDirectory::~OutputDirectory() {
+  std::error_code ec;
+  if (created_ && !kept_ && std::filesystem::is_empty(dir_, ec)) std::filesystem::remove(dir_, ec);
+}
+
 }  // namespace ccma::cli

@@ -112,6 +112,24 @@ class FolderOutput {
   std::string scratch_;
 };
 
+// An output folder (--out of `ccma replay`, `ccma bench`), created with its
+// parents if missing; one this run created is removed again, if still empty,
+// when the run does not finish (a refusal: nothing written). Throws
+// UsageError "<who>: --out: cannot create ..." when it cannot be made.
+class OutputDirectory {
+ public:
+  OutputDirectory(const std::string& dir, const std::string& who);
+  ~OutputDirectory();
+  OutputDirectory(const OutputDirectory&) = delete;
+  OutputDirectory& operator=(const OutputDirectory&) = delete;
+  // The run finished: the folder stays.
+  void Keep() { kept_ = true; }
+
+ private:
+  const std::string dir_;
+  bool created_ = false, kept_ = false;
+};
+
 }  // namespace ccma::cli
 
 #endif  // CCMA_APPS_OUTPUT_FILE_H_

@@ -141,30 +141,6 @@ nlohmann::json ReplayJson(const Model& model, const ReplayOptions& options, cons
   return out;
 }
 
-// --out, created (with its parents) if missing; a folder this run created is
-// removed again, if still empty, when the run does not finish (a refusal:
-// nothing written).
-class OutputDirectory {
- public:
-  explicit OutputDirectory(const std::string& dir) : dir_(dir) {
-    std::error_code ec;
-    created_ = !std::filesystem::exists(dir, ec);
-    std::filesystem::create_directories(dir, ec);
-    if (ec || !std::filesystem::is_directory(dir)) throw UsageError("ccma replay: --out: cannot create '" + dir + "'");
-  }
-  ~OutputDirectory() {
-    std::error_code ec;
-    if (created_ && !kept_ && std::filesystem::is_empty(dir_, ec)) std::filesystem::remove(dir_, ec);
-  }
-  OutputDirectory(const OutputDirectory&) = delete;
-  OutputDirectory& operator=(const OutputDirectory&) = delete;
-  void Keep() { kept_ = true; }
-
- private:
-  const std::string dir_;
-  bool created_ = false, kept_ = false;
-};
-
 }  // namespace
 
 int RunReplay(const std::vector<std::string>& args) {
@@ -176,7 +152,7 @@ int RunReplay(const std::vector<std::string>& args) {
   std::string why;
   if (!IsValidReplay(model, waypoints, options, &why)) throw UsageError("ccma replay: " + why);
   const WorkEstimateOptions bound = CommandWorkEstimate("replay", "chain solves", false);  // checks --max_minutes
-  OutputDirectory output(dir);
+  OutputDirectory output(dir, "ccma replay");
   // Written in a private scratch folder, moved into --out at the end
   // (apps/output_file.h): a link planted in --out is replaced, never
   // written through. Made before the run: an unwritable --out stops here.

@@ -8,6 +8,7 @@
 #include "apps/commands.h"
 #include "apps/flags.h"
 #include "apps/json_output.h"
+#include "apps/work_bound.h"
 #include "ccma/internal/format.h"
 
 DEFINE_bool(loaded, false,
@@ -159,6 +160,10 @@ int RunSimulate(const std::vector<std::string>& args) {
   }
   CheckActuatedLimits(model, u);
   if (!FLAGS_wrench.empty() && !FLAGS_loaded) throw UsageError("--wrench: only with --loaded (the loads of the loaded equilibrium)");
+  // Work bounded by its cost (--max_minutes): the sub-steps timed as they
+  // are made (a far, torn walk can take minutes).
+  WorkEstimate estimate(CommandWorkEstimate("simulate", "assembly sub-steps", false), forward.SubstepsTo(u));
+  forward.SetSubstepObserver([&estimate](int substep, int) { estimate.Update(substep); });
   const ForwardResult result = forward.Assemble(u);
 
   nlohmann::json out;

@@ -403,6 +403,7 @@ ControlResult ControlProblem::MoveTo(
       break;
     }
     tally.KeepIfAssembled(step.assembled, forward_.state(), forward_.controls(), i);
+    if (path_step_observer_) path_step_observer_(i, path.steps());
   }
   if (!tally.last.assembled && tally.have_assembled) ReturnToLastAssembled(target, &tally);
   return tally.Close(

@@ -30,6 +30,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -224,6 +225,13 @@ class ControlProblem {
   // The secondary objective Phi (options().secondary) at the current, solved,
   // controls and, if asked, dPhi/du over the effective controls.
   double SecondaryObjective(const PoseTarget& target, Eigen::VectorXd* gradient = nullptr);
+  // Called after every step of every MoveTo path (a compensated control's
+  // rounds too) with the step's index and the path's step count (1-based):
+  // what a caller's progress and work bound count (apps/work_bound.h). Null:
+  // nothing. It may throw to stop the move (the exception leaves MoveTo).
+  void SetPathStepObserver(std::function<void(int step, int steps)> observer) {
+    path_step_observer_ = std::move(observer);
+  }
   // Where base travel is measured from (set by SetControls and MoveTo).
   void SetTravelOrigin(const Eigen::VectorXd& u) { travel_origin_ = u; }
 
@@ -281,6 +289,7 @@ class ControlProblem {
   std::unique_ptr<Workspace> workspace_;
   Eigen::VectorXd travel_origin_;  // all controls; the start of base travel
   int forward_solves_ = 0;
+  std::function<void(int, int)> path_step_observer_;
 };
 
 }  // namespace ccma

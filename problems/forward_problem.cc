@@ -314,6 +314,20 @@ void ForwardProblem::NewtonPolish(ForwardResult* result) {
   result->assembled = result->residual_energy < options_.assembly_tolerance;
 }
 
+Eigen::VectorXd ForwardProblem::ControlChange(const Eigen::VectorXd& u) const {
+  // Headings matter modulo 2 pi (motor rows use cos, sin): walk the short way.
+  Eigen::VectorXd change = u - controls_;
+  for (int k = 0; k < model_.num_bases(); ++k) {
+    change[model_.base_control(k) + kBaseHeading] = WrapAngle(change[model_.base_control(k) + kBaseHeading]);
+  }
+  return change;
+}
+
+int ForwardProblem::SubstepsTo(const Eigen::VectorXd& u) const {
+  CheckControls(u);
+  return SubstepCount(ControlChange(u));
+}
+
 int ForwardProblem::SubstepCount(const Eigen::VectorXd& change) const {
   // Computed in double and bounded before any conversion to an integer.
   const double count = std::ceil(change.lpNorm<Eigen::Infinity>() / options_.max_control_step);
@@ -329,11 +343,7 @@ int ForwardProblem::SubstepCount(const Eigen::VectorXd& change) const {
 ForwardResult ForwardProblem::Assemble(const Eigen::VectorXd& u) {
   CheckControls(u);
   const Eigen::VectorXd from = controls_;
-  // Headings matter modulo 2 pi (motor rows use cos, sin): walk the short way.
-  Eigen::VectorXd change = u - from;
-  for (int k = 0; k < model_.num_bases(); ++k) {
-    change[model_.base_control(k) + kBaseHeading] = WrapAngle(change[model_.base_control(k) + kBaseHeading]);
-  }
+  const Eigen::VectorXd change = ControlChange(u);
   const int substeps = SubstepCount(change);
   std::vector<int> all_controls(static_cast<size_t>(model_.num_controls()));
   for (int c = 0; c < model_.num_controls(); ++c) all_controls[c] = c;
@@ -373,6 +383,7 @@ ForwardResult ForwardProblem::Assemble(const Eigen::VectorXd& u) {
     total.gradient_norm = step.gradient_norm;
     total.gradient_norm_is_bound = step.gradient_norm_is_bound;
     total.message = step.message;
+    if (substep_observer_) substep_observer_(i, substeps);
   }
   return total;
 }

@@ -15,8 +15,10 @@
 #ifndef CCMA_PROBLEMS_FORWARD_PROBLEM_H_
 #define CCMA_PROBLEMS_FORWARD_PROBLEM_H_
 
+#include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include <Eigen/Core>
 
@@ -143,6 +145,14 @@ class ForwardProblem {
   // What `ccma simulate` uses. Throws std::invalid_argument as Solve() does,
   // and when more than kMaxAssemblySubsteps sub-steps would be needed.
   ForwardResult Assemble(const Eigen::VectorXd& u);
+  // The number of sub-steps Assemble(u) will take. Throws as Assemble() does.
+  int SubstepsTo(const Eigen::VectorXd& u) const;
+  // Called after every sub-step of Assemble() with its index and the
+  // sub-step count (1-based): what a caller's progress and work bound count
+  // (apps/work_bound.h). Null: nothing. It may throw to stop the walk.
+  void SetSubstepObserver(std::function<void(int substep, int substeps)> observer) {
+    substep_observer_ = std::move(observer);
+  }
 
   // Back to the home configuration and home controls (no solve).
   void ResetToHome();
@@ -171,6 +181,8 @@ class ForwardProblem {
   // prediction for controls u (ForwardOptions::rigid_motion_predictor,
   // secant_predictor); remembers this step for the next.
   void PredictFromLastStep(const Eigen::VectorXd& u);
+  // u - controls, headings wrapped to the short way.
+  Eigen::VectorXd ControlChange(const Eigen::VectorXd& u) const;
   // Number of sub-steps to move the controls by `change`; throws when too many.
   int SubstepCount(const Eigen::VectorXd& change) const;
 
@@ -179,6 +191,7 @@ class ForwardProblem {
   State state_;
   Eigen::VectorXd controls_;
   std::unique_ptr<Workspace> workspace_;
+  std::function<void(int, int)> substep_observer_;
 };
 
 }  // namespace ccma

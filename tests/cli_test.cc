@@ -371,8 +371,9 @@ TEST(Cli, HelpGoesToStdout) {
 TEST(Cli, EachCommandHasItsOwnHelpWithUnits) {
   const std::map<std::string, std::vector<std::string>> flags = {
       {"check", {"model", "obstacles"}},
-      {"simulate", {"model", "controls", "from", "obstacles", "loaded", "wrench"}},
-      {"control", {"model", "target", "controls", "obstacles", "compensate", "wrench", "singularity_weight", "singularity_threshold", "pivot_weight",
+      {"simulate", {"model", "controls", "from", "obstacles", "loaded", "wrench", "max_minutes"}},
+      {"control", {"model", "target", "controls", "obstacles", "compensate", "wrench", "max_minutes",
+                   "singularity_weight", "singularity_threshold", "pivot_weight",
                    "pivot_threshold", "secondary", "secondary_weight", "clearance_m", "method", "max_step_m",
                    "max_step_rad", "lambda"}},
       {"statics", {"model", "controls", "wrench", "mocap_noise_m", "mocap_noise_rad", "obstacles"}},
@@ -385,7 +386,7 @@ TEST(Cli, EachCommandHasItsOwnHelpWithUnits) {
                       "max_step_m", "max_step_rad", "lambda"}},
       {"generate", {"agents", "kind", "out"}},
       {"import", {"from", "closures", "actuated", "end_effector", "controlled", "collision_radius", "out"}},
-      {"bench", {"model", "all", "models_dir", "scaling", "steps", "seed", "out"}},
+      {"bench", {"model", "all", "models_dir", "scaling", "steps", "seed", "out", "max_minutes"}},
       {"replay", {"model", "waypoints", "out", "noise", "seed", "mocap_noise_m", "mocap_noise_rad",
                   "latency_s", "slip", "kp", "ki", "controller_hz", "max_wheel_speed", "gait_hz", "gait_bob_m",
                   "gait_sway_rad", "obstacles", "max_minutes", "method", "max_step_m",

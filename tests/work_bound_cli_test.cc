@@ -1,4 +1,5 @@
-// `ccma workspace` and `ccma design` bound their work by its estimated cost
+// `ccma workspace`, `ccma design`, `ccma simulate`, `ccma control`,
+// `ccma trajectory`, `ccma replay` and `ccma bench` bound their work by its estimated cost
 // (issue 49 items 11 and 12; docs/security.md, "Work bounded by its cost"):
 // a run estimated beyond --max_minutes (default 10) is refused within
 // seconds, status 2, naming the estimate and the --max_minutes that would
@@ -62,6 +63,40 @@ TEST(WorkBound, ALongCompensatedPathIsRefused) {
                        "--max_step_m=0.000002", "--max_minutes=0.02"},
                       60);
   ExpectRefused(r, "trajectory", "compensated path steps (", out);
+}
+
+// simulate: one base driven 1,900 m away tears the chain at once; the
+// 95,000 sub-steps that follow (a quarter of a minute) are refused at a
+// bound of 0.6 s.
+TEST(WorkBound, AFarTornWalkIsRefused) {
+  const std::string far =
+      "1900.499271447,0.418938487,0.698131701,-0.499271447,0.418938487,2.443460953,-0.612447096,0.222912513,"
+      "2.792526803,-0.113175649,-0.641851,-1.745329252,0.113175649,-0.641851,-1.396263402,0.612447096,"
+      "0.222912513,0.34906585";
+  const ToolRun r =
+      RunTool({"simulate", "--model=" + ModelPath("6dof_six_agents"), "--controls=" + far, "--max_minutes=0.01"}, 60);
+  ExpectRefused(r, "simulate", "assembly sub-steps (", Scratch("no_such_output"));
+}
+
+// bench: 10,000 steps of a bundled model (about a minute) are refused at a
+// bound of 0.6 s, and the --out folder it made is gone again.
+TEST(WorkBound, ALongBenchIsRefused) {
+  const std::string out = Scratch("bench_out");
+  fs::remove_all(out);
+  const ToolRun r = RunTool({"bench", "--model=" + ModelPath("6dof_six_agents"), "--steps=10000", "--out=" + out,
+                             "--max_minutes=0.01"},
+                            60);
+  ExpectRefused(r, "bench", "control steps (", out);
+}
+
+// control: a 0.1 m move in steps of 2 micrometres (50,000 path steps, some
+// tens of seconds) is refused at a bound of 0.6 s; it used to run on in
+// silence (a 1000-agent model's long move for hours).
+TEST(WorkBound, ALongControlMoveIsRefused) {
+  const ToolRun r = RunTool({"control", "--model=" + ModelPath("6dof_six_agents"), "--target=0.1,0,0.6,0,0,0",
+                             "--max_step_m=0.000002", "--max_minutes=0.01"},
+                            60);
+  ExpectRefused(r, "control", "path steps (", Scratch("no_such_output"));
 }
 
 // replay: a 2,000 s stay at home on 6dof_six_agents is 40,000 chain solves
