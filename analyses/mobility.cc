@@ -168,4 +168,13 @@ MobilityReport AnalyzeMobility(const Model& model, const State& s, const Eigen::
   return report;
 }
 
+bool OnlyIdleMotions(const Model& model, const State& s, const MobilityReport& mobility) {
+  if (!mobility.free_motions_listed || mobility.free_motions.empty()) return false;
+  const Eigen::MatrixXd dX_ds = EndEffectorJacobian(model, s);
+  for (const FreeMotion& motion : mobility.free_motions) {
+    if ((dX_ds * motion.direction).norm() > 1e-8) return false;
+  }
+  return true;
+}
+
 }  // namespace ccma

@@ -89,6 +89,12 @@ struct MobilityReport {
 MobilityReport AnalyzeMobility(const Model& model, const State& s, const Eigen::VectorXd& u,
                                double rank_tolerance = 1e-8);
 
+// Whether every listed free motion of `mobility` (analysed at s) leaves the
+// end-effector where it is (|dX/ds * direction| <= 1e-8): idle motions, such
+// as a rod spinning about its axis (problems/internal/idle_motions.h). False
+// when none is listed.
+bool OnlyIdleMotions(const Model& model, const State& s, const MobilityReport& mobility);
+
 }  // namespace ccma
 
 #endif  // CCMA_MOBILITY_H_

@@ -68,15 +68,6 @@ std::string Excerpt(FILE* file) {
 
 }  // namespace
 
-std::string OneLine(const std::string& text) {
-  std::string out = text;
-  for (char& c : out) {
-    const unsigned char u = static_cast<unsigned char>(c);
-    if (u < 0x20 || u == 0x7f) c = '?';
-  }
-  return out;
-}
-
 std::string GnuplotQuote(const std::string& text) {
   const std::string run = OneLine(text);
   if (run.find('\'') == std::string::npos) return "'" + run + "'";

@@ -10,6 +10,8 @@
 
 #include <string>
 
+#include "ccma/internal/format.h"
+
 namespace ccma::cli {
 
 // A gnuplot string expression whose value is `text`, safe for any input:
@@ -25,9 +27,7 @@ namespace ccma::cli {
 // TerminalCommand), so the text is also shown literally.
 std::string GnuplotQuote(const std::string& text);
 
-// Text for one line of a script or a message: control characters (and DEL)
-// replaced by '?'.
-std::string OneLine(const std::string& text);
+// OneLine (ccma/internal/format.h): text for one line of a script.
 
 // The gnuplot executable found on PATH (searched here, not by a shell), or "".
 std::string FindGnuplot();

@@ -1,71 +1,16 @@
 #include "apps/json_output.h"
 
 #include <algorithm>
-#include <cmath>
 #include <iostream>
 
 #include "apps/cli.h"
-#include "ccma/internal/format.h"
 
 namespace ccma::cli {
 
-nlohmann::json ToJson(const Eigen::VectorXd& v) {
-  return nlohmann::json(std::vector<double>(v.data(), v.data() + v.size()));
-}
-
-nlohmann::json ToJson(const EndEffectorPose& pose) {
-  nlohmann::json rotation = nlohmann::json::array();
-  for (int r = 0; r < 3; ++r) {
-    rotation.push_back({pose.rotation(r, 0), pose.rotation(r, 1), pose.rotation(r, 2)});
-  }
-  return {{"position", ToJson(pose.position)}, {"rotation", rotation}, {"rpy", ToJson(pose.rpy)}};
-}
-
-nlohmann::json BodiesToJson(const Model& model, const State& s) {
-  nlohmann::json bodies = nlohmann::json::array();
-  for (int i = 0; i < model.num_bodies(); ++i) {
-    const Eigen::Quaterniond q = s.q_WB(i);
-    bodies.push_back({{"name", model.bodies[i].name},
-                      {"position", ToJson(s.p_WB(i))},
-                      {"rpy", ToJson(RpyFromRotation(s.R_WB(i)))},
-                      {"quaternion", {q.w(), q.x(), q.y(), q.z()}}});
-  }
-  return bodies;
-}
-
-nlohmann::json JointsToJson(const Model& model, const State& s) {
-  nlohmann::json joints = nlohmann::json::array();
-  for (const JointCoordinateReport& r : JointCoordinates(model, s)) {
-    const Joint& joint = model.joints[r.joint];
-    nlohmann::json entry = {{"name", joint.name}, {"type", JointTypeName(joint.type)}, {"q", r.q},
-                            {"actuated", joint.actuated}};
-    if (joint.limited) entry["limits"] = {joint.lower, joint.upper};
-    joints.push_back(entry);
-  }
-  return joints;
-}
-
-nlohmann::json LimitsViolatedToJson(const Model& model, const State& s) {
-  return nlohmann::json(LimitsViolated(model, s));
-}
-
-nlohmann::json ClearanceToJson(const Model& model, const State& s) {
-  const CollisionModel collision(model);
-  const ClearanceSummary c = MinimumClearance(collision, s);
-  if (!c.any) return nullptr;
-  return {{"min", c.min}, {"pair", {c.a, c.b}}, {"margin", collision.margin()}, {"below_margin", c.min < collision.margin() - 1e-9}};
-}
-
 void AddClearance(const Model& model, const State& s, const std::string& command, nlohmann::json* out) {
-  const nlohmann::json clearance = ClearanceToJson(model, s);
-  if (clearance.is_null()) return;
-  (*out)["clearance"] = clearance;
-  if (clearance["below_margin"].get<bool>()) {
-    std::cerr << "ccma " << command << ": warning: clearance " << FormatG(clearance["min"].get<double>())
-              << " m between '" << clearance["pair"][0].get<std::string>() << "' and '"
-              << clearance["pair"][1].get<std::string>() << "' is below the margin "
-              << FormatG(clearance["margin"].get<double>()) << " m\n";
-  }
+  std::vector<std::string> warnings;
+  documents::AddClearance(model, s, out, &warnings);
+  for (const std::string& w : warnings) std::cerr << "ccma " << command << ": warning: " << w << "\n";
 }
 
 namespace {
@@ -168,83 +113,9 @@ void PrintJson(const nlohmann::json& document) {
   std::cout << std::endl;
 }
 
-namespace {
-
-nlohmann::json ShortfallJson(const PlanShortfall& f) {
-  nlohmann::json j = {{"step", f.step}, {"midpoint", f.midpoint}, {"time_s", f.time_s}, {"torn", f.torn}};
-  if (f.torn) {
-    j["residual_energy"] = f.residual_energy;
-  } else {
-    j["pair"] = {f.a, f.b};
-    j["clearance_m"] = f.clearance_m;
-    j["floor_m"] = f.floor_m;
-    j["shortfall_m"] = f.shortfall_m;
-  }
-  return j;
-}
-
-}  // namespace
-
-void AddPlanFinishing(const PlanResult& result, nlohmann::json* out) {
-  (*out)["stopped_by"] = result.stopped_by;
-  (*out)["finishing"] = {{"repaired_rows", result.repaired_rows}, {"inserted_rows", result.inserted_rows}};
-  if (result.shortfall.any) (*out)["shortfall"] = ShortfallJson(result.shortfall);
-}
-
-namespace {
-
-nlohmann::json MatrixRows(const Eigen::Matrix<double, 6, 6>& m) {
-  nlohmann::json rows = nlohmann::json::array();
-  for (int r = 0; r < 6; ++r) rows.push_back(ToJson(Eigen::VectorXd(m.row(r).transpose())));
-  return rows;
-}
-
-}  // namespace
-
-void AddComplianceJson(const StaticsReport& report, nlohmann::json* out) {
-  if (!report.compliant) return;
-  const ComplianceReport& c = report.compliance;
-  (*out)["compliant_reactions"] = true;
-  (*out)["deflection"] = {{"end_effector", ToJson(Eigen::VectorXd(c.deflection))},
-                          {"max_body_m", c.max_body_m},
-                          {"held", c.held}};
-  (*out)["ee_compliance"] = MatrixRows(c.ee_compliance);
-  if (c.stiffness_defined) {
-    (*out)["ee_stiffness"] = MatrixRows(c.ee_stiffness);
-  } else {
-    (*out)["ee_stiffness"] = nullptr;
-    (*out)["ee_stiffness_note"] = c.stiffness_note;
-  }
-  (*out)["most_compliant"] = {{"direction", ToJson(Eigen::VectorXd(c.most_compliant_direction))},
-                              {"compliance", c.most_compliant}};
-}
-
-void AddLoadedJson(const Model& model, const LoadedEquilibrium& loaded, nlohmann::json* out) {
-  (*out)["end_effector"] = ToJson(ComputeEndEffectorPose(model, loaded.state));
-  (*out)["bodies"] = BodiesToJson(model, loaded.state);
-  (*out)["joints"] = JointsToJson(model, loaded.state);
-  (*out)["deflection"] = {{"end_effector", ToJson(Eigen::VectorXd(loaded.deflection))},
-                          {"max_body_m", loaded.max_body_m},
-                          {"held", loaded.held}};
-  (*out)["loaded"] = {{"converged", loaded.converged},
-                      {"iterations", loaded.iterations},
-                      {"load_fraction", loaded.load_fraction},
-                      {"unbalanced_load", loaded.unbalanced},
-                      {"yields", ToJson(loaded.yields)}};
-}
-
-void AddCompensationJson(const Model& model, const EndEffectorPose& rigid, const CompensatedResult& c,
-                         nlohmann::json* out) {
-  AddLoadedJson(model, c.loaded, out);
-  (*out)["converged"] = c.converged;
-  (*out)["error"] = c.miss;
-  (*out)["limits_violated"] = LimitsViolatedToJson(model, c.loaded.state);
-  (*out)["compensation"] = {{"converged", c.converged},
-                            {"rounds", c.rounds},
-                            {"miss", c.miss},
-                            {"aim", {c.aim.position[0], c.aim.position[1], c.aim.position[2], c.aim.rpy[0],
-                                     c.aim.rpy[1], c.aim.rpy[2]}},
-                            {"rigid_end_effector", ToJson(rigid)}};
+void PrintDocument(const documents::Document& document, const std::string& command) {
+  for (const std::string& w : document.warnings) std::cerr << "ccma " << command << ": warning: " << w << "\n";
+  PrintJson(document.json);
 }
 
 }  // namespace ccma::cli

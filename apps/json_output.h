@@ -1,31 +1,29 @@
-// JSON shapes shared by the `ccma` sub-commands (cli.md).
+// Printing a command's document and reading one back (`simulate --from`):
+// the CLI's side of the JSON. The document's values are the document layer's
+// (documents/json_values.h), named here for the commands.
 #ifndef CCMA_APPS_JSON_OUTPUT_H_
 #define CCMA_APPS_JSON_OUTPUT_H_
+
+#include <string>
 
 #include <nlohmann/json.hpp>
 
 #include "ccma/ccma.h"
+#include "documents/document.h"
+#include "documents/json_values.h"
 
 namespace ccma::cli {
 
-nlohmann::json ToJson(const Eigen::VectorXd& v);
-// {"position": [..], "rotation": [[..],[..],[..]], "rpy": [..]}
-nlohmann::json ToJson(const EndEffectorPose& pose);
-// [{"name", "position", "rpy", "quaternion"}] for every body: the body
-// frame's world position [m], R_WB as rpy [rad] and as the unit quaternion
-// [w, x, y, z] (exact, for `simulate --from`).
-nlohmann::json BodiesToJson(const Model& model, const State& s);
+using documents::AddCompensationJson;
+using documents::AddComplianceJson;
+using documents::AddLoadedJson;
+using documents::AddPlanFinishing;
+using documents::BodiesToJson;
+using documents::ClearanceToJson;
+using documents::JointsToJson;
+using documents::LimitsViolatedToJson;
+using documents::ToJson;
 
-// [{"name", "type", "q", "actuated", "limits"?}] for every revolute and
-// prismatic joint in file order (q in rad or m; limits only when given).
-nlohmann::json JointsToJson(const Model& model, const State& s);
-// The names of the joints outside their limits (tolerance 1e-9).
-nlohmann::json LimitsViolatedToJson(const Model& model, const State& s);
-
-// {"min": d [m], "pair": [a, b], "margin": m [m], "below_margin": bool}: the
-// smallest clearance at s (collision/clearance.h); null when the model has
-// no collision geometry or no pair of shapes is checked.
-nlohmann::json ClearanceToJson(const Model& model, const State& s);
 // Adds ClearanceToJson as out["clearance"] when not null, and when it is
 // below the margin says so on stderr in one line ("ccma COMMAND: warning: ...").
 void AddClearance(const Model& model, const State& s, const std::string& command, nlohmann::json* out);
@@ -35,32 +33,11 @@ void AddClearance(const Model& model, const State& s, const std::string& command
 // naming `source` and the offending key.
 State StateFromJson(const Model& model, const nlohmann::json& document, const std::string& source);
 
-// The compliance keys of `ccma statics` (cli.md, "Compliance in `ccma
-// statics`") into `out` when the report is a compliant mechanism's:
-// compliant_reactions, deflection, ee_compliance, ee_stiffness (null with
-// ee_stiffness_note when singular), most_compliant. Nothing otherwise.
-void AddComplianceJson(const StaticsReport& report, nlohmann::json* out);
-
-// The loaded equilibrium of `ccma simulate --loaded` and `ccma control
-// --compensate` (cli.md, "Compliance in ..."): end_effector, bodies and
-// joints of the deflected configuration, deflection {end_effector [m, rad],
-// max_body_m, held} against the rigid assembly, and loaded {converged,
-// iterations, unbalanced_load [N or N*m], yields [per control, m or rad]}.
-void AddLoadedJson(const Model& model, const LoadedEquilibrium& loaded, nlohmann::json* out);
-
-// The keys `ccma control --compensate` adds or replaces: the loaded
-// configuration (AddLoadedJson), converged and error of the loaded
-// end-effector, limits_violated there, and compensation {converged, rounds,
-// miss, aim, rigid_end_effector} (`rigid`: the rigid assembly's end-effector).
-void AddCompensationJson(const Model& model, const EndEffectorPose& rigid, const CompensatedResult& c,
-                         nlohmann::json* out);
-
-// How `ccma plan` stopped and was finished (docs/cli.md): stopped_by,
-// finishing and, only when the finished plan stayed below the margin, shortfall.
-void AddPlanFinishing(const PlanResult& result, nlohmann::json* out);
-
 // Prints one JSON document on stdout.
 void PrintJson(const nlohmann::json& document);
+// A command's document (documents/document.h): its warnings on stderr, one
+// line each ("ccma COMMAND: warning: ..."), then its JSON on stdout.
+void PrintDocument(const documents::Document& document, const std::string& command);
 
 }  // namespace ccma::cli
 

@@ -10,7 +10,7 @@
 #include "apps/flags.h"
 #include "apps/json_output.h"
 #include "apps/output_file.h"
-#include "apps/trajectory_csv.h"
+#include "documents/trajectory_csv.h"
 #include "ccma/internal/format.h"
 
 DEFINE_int32(plan_iterations, 200, "plan: Gauss-Newton iterations of the whole path, [1, 10000] [count]");
@@ -89,7 +89,7 @@ int RunPlan(const std::vector<std::string>& args) {
   control.SetControls(ControlsFlagOrHome(model));
   const PlanResult result = PlanTrajectory(control, waypoints, plan_options);
   OutputFile file(out_path, "out");
-  TrajectoryCsv csv(model, file.stream());
+  documents::TrajectoryCsv csv(model, file.stream());
   for (const TrajectoryStep& step : result.steps) csv.Write(step);
   file.Commit();
 

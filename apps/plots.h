@@ -10,7 +10,7 @@
 
 #include "analyses/workspace.h"
 #include "apps/gnuplot.h"
-#include "apps/replay_report.h"
+#include "documents/replay_report.h"
 #include "ccma/model.h"
 #include "execution/replay.h"
 

@@ -123,11 +123,11 @@ nlohmann::json ReplayJson(const Model& model, const ReplayOptions& options, cons
   out["duration_s"] = r.duration_s;
   out["samples"] = r.samples.size();
   out.update(OptionsJson(options));
-  out["rmse"] = ReplayRmseJson(model, r.rmse);
-  if (r.gait) out["gait"] = ReplayGaitJson(model, options, r);
-  if (IsPaperModel(model)) {
+  out["rmse"] = documents::ReplayRmseJson(model, r.rmse);
+  if (r.gait) out["gait"] = documents::ReplayGaitJson(model, options, r);
+  if (documents::IsPaperModel(model)) {
     nlohmann::json paper = nlohmann::json::array();
-    for (const PaperRow& row : PaperHardwareRmse()) {
+    for (const documents::PaperRow& row : documents::PaperHardwareRmse()) {
       paper.push_back({{"experiment", row.experiment}, {"y_mm", row.y_mm}, {"z_mm", row.z_mm},
                        {"x_mm", row.x_mm}, {"yaw_rad", row.yaw_rad}});
     }
@@ -136,7 +136,7 @@ nlohmann::json ReplayJson(const Model& model, const ReplayOptions& options, cons
   out["files"] = {dir + "/end_effector.csv", dir + "/bases.csv", dir + "/rmse.md"};
   out["plots"] = plots;
   std::string warning;
-  for (const std::string& failure : ReplayFailures(r)) warning += (warning.empty() ? "" : "; ") + failure;
+  for (const std::string& failure : documents::ReplayFailures(r)) warning += (warning.empty() ? "" : "; ") + failure;
   if (!warning.empty()) out["warning"] = warning;
   return out;
 }
@@ -166,11 +166,11 @@ int RunReplay(const std::vector<std::string>& args) {
   };
   const ReplayResult r = Replay(model, waypoints, options);
   const std::string path_name = std::filesystem::path(FLAGS_waypoints).filename().string();
-  WriteReplayCsv(folder.scratch(), model, r);
-  const std::string table = ReplayRmseTable(model, r, Setting(model, path_name, options));
+  documents::WriteReplayCsv(folder.scratch(), model, r);
+  const std::string table = documents::ReplayRmseTable(model, r, Setting(model, path_name, options));
   std::ofstream(folder.scratch() + "/rmse.md") << table;
   std::cerr << table;
-  for (const std::string& failure : ReplayFailures(r)) std::cerr << "ccma replay: warning: " << failure << "\n";
+  for (const std::string& failure : documents::ReplayFailures(r)) std::cerr << "ccma replay: warning: " << failure << "\n";
   std::string plot_warning;
   std::vector<std::string> plots = PlotReplay(folder.scratch(), model, r, path_name, &plot_warning);
   for (std::string& plot : plots) plot = folder.Final(plot);

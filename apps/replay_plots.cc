@@ -120,7 +120,7 @@ std::string Scaled(int column, bool angle) {
 
 std::string EndEffectorFigure(const std::string& format, const Model& model, const ReplayResult& r,
                               const std::string& path_name) {
-  const std::vector<int> components = ReportedComponents(model);
+  const std::vector<int> components = documents::ReportedComponents(model);
   const int panels = static_cast<int>(components.size()) + 1;
   const int height = 110 + HeadingHeight(r) + 210 * panels;
   const double top = 1 - (HeadingHeight(r) + 20.0) / height, bottom = 55.0 / height;
@@ -140,8 +140,8 @@ std::string EndEffectorFigure(const std::string& format, const Model& model, con
   }
   for (size_t i = 0; i < components.size(); ++i) {
     const int c = components[i];
-    const bool angle = IsAngle(c);
-    s << "set ylabel '" << ComponentName(c) << (angle ? " [rad]'\n" : " [mm]'\n") << "plot 'end_effector.csv'" << Every(r) << " using 1:"
+    const bool angle = documents::IsAngle(c);
+    s << "set ylabel '" << documents::ComponentName(c) << (angle ? " [rad]'\n" : " [mm]'\n") << "plot 'end_effector.csv'" << Every(r) << " using 1:"
       << Scaled(CommandedColumn(c), angle) << " with lines lw 2 lc rgb '" << kCommandedColour
       << "' title 'commanded', ''" << Every(r) << " using 1:" << Scaled(TrackedColumn(c), angle) << " with lines lw 1.5 dt 2 lc rgb '"
       << kTrackedColour << "' title 'tracked'";
@@ -150,7 +150,7 @@ std::string EndEffectorFigure(const std::string& format, const Model& model, con
   }
   // The error panel: positions [mm] on the left axis, angles [rad] on the right.
   bool positions = false, angles = false;
-  for (const int c : components) (IsAngle(c) ? angles : positions) = true;
+  for (const int c : components) (documents::IsAngle(c) ? angles : positions) = true;
   const bool both = positions && angles;
   s << "set format x '%g'\nset xlabel 'time [s]'\nset ylabel "
     << (positions ? "'error, tracked - commanded [mm]'" : "'error, tracked - commanded [rad]'") << "\n";
@@ -158,11 +158,11 @@ std::string EndEffectorFigure(const std::string& format, const Model& model, con
   s << "plot ";
   for (size_t i = 0; i < components.size(); ++i) {
     const int c = components[i];
-    const bool angle = IsAngle(c);
+    const bool angle = documents::IsAngle(c);
     const std::string axes = both && angle ? " axes x1y2" : " axes x1y1";
     s << (i ? ", " : "") << "'end_effector.csv'" << Every(r) << " using 1:" << ErrorColumn(c) << axes << " with lines lw 1.5"
       << (both && angle ? " dt 2" : "") << " lc rgb '" << DistinctColour(int(i), 8) << "' title '"
-      << ComponentName(c) << (angle ? " [rad]'" : " [mm]'");
+      << documents::ComponentName(c) << (angle ? " [rad]'" : " [mm]'");
   }
   s << KeyEntries(r) << "\nunset multiplot\nunset arrow\nunset object\nunset y2tics\nunset y2label\nset ytics mirror\nunset xrange\n"
     << "set format x '%g'\nset output\n";

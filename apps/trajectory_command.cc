@@ -11,7 +11,7 @@
 #include "apps/flags.h"
 #include "apps/json_output.h"
 #include "apps/output_file.h"
-#include "apps/trajectory_csv.h"
+#include "documents/trajectory_csv.h"
 #include "apps/work_bound.h"
 #include "problems/compensated_trajectory.h"
 
@@ -74,7 +74,7 @@ int RunTrajectory(const std::vector<std::string>& args) {
   ControlProblem control(model, options);
   control.SetControls(start);
   OutputFile file(out_path, "out");  // nothing half-written; links and devices kept
-  TrajectoryCsv csv(model, file.stream());
+  documents::TrajectoryCsv csv(model, file.stream());
   TrajectoryTally tally;
   tally.last_state = control.forward().state();
   // Work bounded by its cost (--max_minutes): the path's steps timed as they are made.

@@ -37,11 +37,14 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 MAX_FILE_LINES = 500
 MAX_FUNCTION_LINES = 60
 SOURCE_DIRS = ["ccma", "cost_functions", "formats", "collision", "problems", "analyses",
-               "execution", "viewer", "apps", "python/src"]
+               "execution", "viewer", "documents", "apps", "python/src"]
 # Layer of each top folder, lowest first. A file may include its own layer
 # and lower ones. ccma/ccma.h (the umbrella header) may include everything.
 LAYERS = {"ccma": 0, "cost_functions": 0, "formats": 1, "collision": 1, "problems": 2,
-          "analyses": 3, "execution": 4, "viewer": 5, "apps": 6, "python": 6}
+          "analyses": 3, "execution": 4, "viewer": 5, "documents": 6, "apps": 7, "python": 7}
+# The two faces of the top layer: neither includes the other (what both need
+# is in documents/, below them).
+FACES = {"apps", "python"}
 UMBRELLA = "ccma/ccma.h"
 DENSE_FACTORIZATIONS = "ccma/internal/dense_factorizations.cc"
 HEAVY_DECOMPOSITION = re.compile(
@@ -111,6 +114,9 @@ def check_text(path, text):
             other = layer_of(m.group(1))
             if other is not None and other > own:
                 breaches.append(f"{path}: includes {m.group(1)} (a higher layer)")
+            faces = {path.split("/")[0], m.group(1).split("/")[0]}
+            if faces == FACES:
+                breaches.append(f"{path}: includes {m.group(1)} (the other face: share it through documents/)")
     if path != DENSE_FACTORIZATIONS:
         for m in HEAVY_DECOMPOSITION.finditer(blank(text)):
             line = text.count("\n", 0, m.start()) + 1
@@ -185,6 +191,10 @@ def self_test():
     assert len(check_text("ccma/a.cc", '#include "problems/forward_problem.h"\n')) == 1
     assert not check_text("problems/a.cc", '#include "ccma/model.h"\n')
     assert not check_text("ccma/ccma.h", '#include "analyses/design.h"\n')
+    assert len(check_text("python/src/a.cc", '#include "apps/json_output.h"\n')) == 1
+    assert len(check_text("apps/a.cc", '#include "python/src/documents.h"\n')) == 1
+    assert not check_text("python/src/a.cc", '#include "documents/json_values.h"\n')
+    assert len(check_text("documents/a.cc", '#include "apps/cli.h"\n')) == 1
     assert len(check_text("problems/a.cc", "Eigen::JacobiSVD<Eigen::MatrixXd> svd(A);\n")) == 1
     assert not check_text("problems/a.cc", "JacobiSvd svd(A);  // not Eigen::JacobiSVD<Eigen::MatrixXd>\n")
     assert not check_text(DENSE_FACTORIZATIONS, "Eigen::BDCSVD<Eigen::MatrixXd> svd;\n")

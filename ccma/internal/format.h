@@ -28,6 +28,17 @@ inline std::string Printable(const std::string& text) {
   return out;
 }
 
+// Text for one line of a script, a table or a message: control characters
+// (and DEL) replaced by '?', nothing cut (names already bounded by the model).
+inline std::string OneLine(const std::string& text) {
+  std::string out = text;
+  for (char& c : out) {
+    const unsigned char u = static_cast<unsigned char>(c);
+    if (u < 0x20 || u == 0x7f) c = '?';
+  }
+  return out;
+}
+
 // 'text' for a message (Printable), with the length when it was cut.
 inline std::string Quote(const std::string& text) {
   std::string out = "'" + Printable(text) + "'";

@@ -9,6 +9,7 @@
 #include <pybind11/stl.h>
 
 #include "analyses/mobility.h"
+#include "documents/check_document.h"
 #include "python/src/bindings.h"
 #include "python/src/documents.h"
 #include "python/src/json_to_python.h"
@@ -98,7 +99,7 @@ void BindAnalysis(py::module_& m) {
         nlohmann::json document;
         {
           py::gil_scoped_release release;
-          document = CheckDocument(model);
+          document = documents::CheckDocument(model).json;
         }
         return MakeResult("CheckResult", document);
       },

@@ -8,8 +8,8 @@
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
-#include "apps/json_output.h"
-#include "apps/trajectory_csv.h"
+#include "documents/json_values.h"
+#include "documents/trajectory_csv.h"
 #include "ccma/ccma.h"
 #include "python/src/bindings.h"
 #include "python/src/conversions.h"
@@ -33,7 +33,7 @@ py::object Plan(ControlProblem& p, const std::vector<Waypoint>& waypoints, const
     py::gil_scoped_release release;
     const UsageGuard guard(p);
     const PlanResult r = PlanTrajectory(p, waypoints, options);
-    cli::TrajectoryCsv csv(p.forward().model(), csv_text);
+    documents::TrajectoryCsv csv(p.forward().model(), csv_text);
     for (const TrajectoryStep& step : r.steps) csv.Write(step);
     document = PlanDocument(p, r, waypoints.size(), csv.min_clearance());
   }
@@ -52,7 +52,7 @@ void BindCollision(py::module_& m) {
       "clearance",
       [](const ForwardProblem& p) {
         const UsageGuard guard(p);
-        return ToView(cli::ClearanceToJson(p.model(), p.state()));
+        return ToView(documents::ClearanceToJson(p.model(), p.state()));
       },
       py::arg("problem"),
       "The smallest clearance over the checked pairs of shapes at the problem's current configuration "
@@ -63,7 +63,7 @@ void BindCollision(py::module_& m) {
       "clearance",
       [](const ControlProblem& p) {
         const UsageGuard guard(p);
-        return ToView(cli::ClearanceToJson(p.forward().model(), p.forward().state()));
+        return ToView(documents::ClearanceToJson(p.forward().model(), p.forward().state()));
       },
       py::arg("problem"), "The same for a ControlProblem.");
   m.def(

@@ -12,8 +12,8 @@
 #include <pybind11/stl/filesystem.h>
 #include <pybind11/stl.h>
 
-#include "apps/json_output.h"
-#include "apps/trajectory_csv.h"
+#include "documents/json_values.h"
+#include "documents/trajectory_csv.h"
 #include "ccma/end_effector.h"
 #include "ccma/internal/format.h"
 #include "ccma/model.h"
@@ -177,7 +177,7 @@ void BindCompensation(py::class_<ControlSolution>& c) {
           [](const ControlSolution& r) -> py::object {
             if (!r.compensation) return py::none();
             nlohmann::json out;
-            cli::AddCompensationJson(*r.model, r.rigid_end_effector, *r.compensation, &out);
+            documents::AddCompensationJson(*r.model, r.rigid_end_effector, *r.compensation, &out);
             return ToView(out["compensation"]);
           },
           "move_to(compensate=True): Record {converged, rounds, miss [m or rad], aim [x, y, z, roll, pitch, yaw], "
@@ -187,7 +187,7 @@ void BindCompensation(py::class_<ControlSolution>& c) {
           [](const ControlSolution& r) -> py::object {
             if (!r.compensation) return py::none();
             nlohmann::json out;
-            cli::AddLoadedJson(*r.model, r.compensation->loaded, &out);
+            documents::AddLoadedJson(*r.model, r.compensation->loaded, &out);
             return ToView(out["deflection"]);
           },
           "move_to(compensate=True): the loaded configuration's deflection, as ForwardResult.deflection; None "
@@ -217,13 +217,13 @@ void BindControlConfiguration(py::class_<ControlSolution>& c) {
           },
           "every body's absolute pose at the end (BodyPose: name, position [m], rpy [rad], quaternion)")
       .def_property_readonly(
-          "joints", [](const ControlSolution& r) { return ToView(cli::JointsToJson(*r.model, Reported(r))); },
+          "joints", [](const ControlSolution& r) { return ToView(documents::JointsToJson(*r.model, Reported(r))); },
           "list of Record {name, type, q [rad or m], actuated, limits?}")
       .def_property_readonly(
           "limits_violated", [](const ControlSolution& r) { return LimitsViolated(*r.model, Reported(r)); },
           "names of the joints outside their limits")
       .def_property_readonly(
-          "clearance", [](const ControlSolution& r) { return ToView(cli::ClearanceToJson(*r.model, Reported(r))); },
+          "clearance", [](const ControlSolution& r) { return ToView(documents::ClearanceToJson(*r.model, Reported(r))); },
           "Record {min [m], pair, margin [m], below_margin}; None without collision geometry")
       .def_property_readonly(
           "from_home", [](const ControlSolution& r) { return ToView(FromHome(r)); },
@@ -318,7 +318,7 @@ py::object Follow(ControlProblem& p, const std::vector<Waypoint>& waypoints, con
   {
     py::gil_scoped_release release;
     const UsageGuard guard(p);
-    cli::TrajectoryCsv csv(p.forward().model(), csv_text);
+    documents::TrajectoryCsv csv(p.forward().model(), csv_text);
     PathSummary path;
     path.min_sigma = path.min_rcond = std::numeric_limits<double>::infinity();
     const auto on_step = [&](const TrajectoryStep& step) {

@@ -2,7 +2,7 @@
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
-#include "apps/json_output.h"
+#include "documents/json_values.h"
 #include "ccma/end_effector.h"
 #include "ccma/internal/format.h"
 #include "ccma/joint_coordinates.h"
@@ -97,20 +97,20 @@ void BindResultConfiguration(py::class_<ForwardSolution>& c) {
           },
           "every body's absolute pose after the solve (BodyPose: name, position [m], rpy [rad], quaternion)")
       .def_property_readonly(
-          "joints", [](const ForwardSolution& r) { return ToView(cli::JointsToJson(*r.model, r.state)); },
+          "joints", [](const ForwardSolution& r) { return ToView(documents::JointsToJson(*r.model, r.state)); },
           "list of Record {name, type, q [rad or m], actuated, limits?}: every revolute and prismatic joint")
       .def_property_readonly(
           "limits_violated", [](const ForwardSolution& r) { return LimitsViolated(*r.model, r.state); },
           "names of the joints outside their limits")
       .def_property_readonly(
-          "clearance", [](const ForwardSolution& r) { return ToView(cli::ClearanceToJson(*r.model, r.state)); },
+          "clearance", [](const ForwardSolution& r) { return ToView(documents::ClearanceToJson(*r.model, r.state)); },
           "Record {min [m], pair, margin [m], below_margin}; None without collision geometry")
       .def_property_readonly(
           "deflection",
           [](const ForwardSolution& r) -> py::object {
             if (!r.loaded) return py::none();
             nlohmann::json out;
-            cli::AddLoadedJson(*r.model, *r.loaded, &out);
+            documents::AddLoadedJson(*r.model, *r.loaded, &out);
             return ToView(out["deflection"]);
           },
           "assemble(loaded=True): Record {end_effector [dx, dy, dz [m], rx, ry, rz [rad]], max_body_m [m], held}: "
@@ -120,7 +120,7 @@ void BindResultConfiguration(py::class_<ForwardSolution>& c) {
           [](const ForwardSolution& r) -> py::object {
             if (!r.loaded) return py::none();
             nlohmann::json out;
-            cli::AddLoadedJson(*r.model, *r.loaded, &out);
+            documents::AddLoadedJson(*r.model, *r.loaded, &out);
             return ToView(out["loaded"]);
           },
           "assemble(loaded=True): Record {converged, iterations, unbalanced_load [N or N*m], yields [m or rad per "

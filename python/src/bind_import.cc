@@ -10,7 +10,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include "analyses/robot_import.h"
-#include "apps/json_output.h"
+#include "documents/json_values.h"
 #include "ccma/internal/format.h"
 #include "formats/internal/sdformat_console.h"
 #include "formats/sdformat_reader.h"
@@ -85,7 +85,7 @@ py::tuple ImportRobotFile(const std::filesystem::path& from, const std::optional
                                    {"controlled_chosen", imported.controlled_chosen},
                                    {"assembled", true},
                                    {"residual_energy", imported.residual_energy},
-                                   {"controls", cli::ToJson(imported.model.home_controls())}};
+                                   {"controls", documents::ToJson(imported.model.home_controls())}};
   if (collision_radius > 0) {
     document["collision_capsules"] = imported.collision_capsules;
     document["collision_ignored_pairs"] = imported.collision_ignored_pairs;

@@ -7,6 +7,7 @@
 #include <pybind11/stl.h>
 
 #include "ccma/ccma.h"
+#include "documents/statics_document.h"
 #include "python/src/bindings.h"
 #include "python/src/conversions.h"
 #include "python/src/documents.h"
@@ -26,8 +27,10 @@ py::object Statics(const ForwardProblem& p, const std::optional<Eigen::VectorXd>
     const UsageGuard guard(p);
     py::gil_scoped_release release;
     try {
-      document = StaticsDocument(p.model(), p.state(), p.controls(), p.Energy(), p.options().assembly_tolerance, w,
-                                 noise);
+      const double energy = p.Energy();
+      document = documents::StaticsDocument(p.model(), p.state(), p.controls(),
+                                            energy < p.options().assembly_tolerance, energy, w, noise)
+                     .json;
     } catch (const std::invalid_argument& e) {
       throw py::value_error(std::string("statics: ") + e.what());
     }

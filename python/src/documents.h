@@ -56,14 +56,6 @@ nlohmann::json TrajectoryDocument(const ControlProblem& control, const Trajector
 nlohmann::json PlanDocument(const ControlProblem& control, const PlanResult& r, std::size_t waypoints,
                             const ClearanceSummary& path_clearance);
 
-// apps/statics_command.cc: RunStatics, at a configuration (state, controls)
-// whose assembly left residual energy `residual_energy` [m^2].
-nlohmann::json StaticsDocument(const Model& model, const State& s, const Eigen::VectorXd& u, double residual_energy,
-                               double assembly_tolerance, const ExternalWrench& wrench, const BasePoseNoise& noise);
-
-// apps/check_command.cc: RunCheck (the model at home).
-nlohmann::json CheckDocument(const Model& model);
-
 // apps/design_command.cc: RunDesign (without "out"); `final_check`: the
 // targets evaluated in the model as written.
 nlohmann::json DesignDocument(const Model& model, const Model& designed, const DesignParameters& params,

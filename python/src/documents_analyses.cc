@@ -1,4 +1,4 @@
-// The documents of the analysing commands: statics, check, design, replay
+// The documents of the analysing commands: design, replay
 // (python/src/documents.h).
 #include <algorithm>
 #include <cmath>
@@ -6,213 +6,17 @@
 
 #include "analyses/design_objective.h"
 #include "analyses/payload.h"
-#include "apps/json_output.h"
-#include "apps/replay_report.h"
+#include "documents/json_values.h"
+#include "documents/replay_report.h"
 #include "ccma/end_effector.h"
 #include "ccma/internal/format.h"
 #include "python/src/documents.h"
 
 namespace ccma::python {
 
-using cli::BodiesToJson;
-using cli::ClearanceToJson;
-using cli::ToJson;
-
-namespace {
-
-nlohmann::json Vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
-
-// apps/statics_command.cc: ReportJson.
-nlohmann::json StaticsReportJson(const StaticsReport& r) {
-  nlohmann::json out;
-  nlohmann::json joints = nlohmann::json::array(), actuators = nlohmann::json::array();
-  for (const JointReaction& j : r.joints) {
-    joints.push_back({{"name", j.name}, {"point", Vec(j.point)}, {"force", Vec(j.force)}, {"moment", Vec(j.moment)}});
-  }
-  for (const ActuatorEffort& a : r.actuators) {
-    actuators.push_back({{"name", a.name}, {"kind", a.kind}, {"effort", a.effort}});
-  }
-  out["joints"] = joints;
-  out["actuators"] = actuators;
-  out["determinate"] = r.determinate;
-  out["balanced"] = r.balanced;
-  out["unbalanced_load"] = r.residual;
-  if (r.limits_given) {
-    out["within_limits"] = r.within_limits;
-    out["limiting"] = r.limiting;
-  }
-  return out;
-}
-
-// apps/statics_command.cc: Warnings.
-std::string StaticsWarning(const StaticsReport& r, bool assembled, double residual_energy) {
-  std::string w;
-  if (!assembled) JoinWarning("not assembled (E = " + FormatG(residual_energy) + "): the reactions are not meaningful", &w);
-  if (!r.balanced) {
-    JoinWarning("the joints cannot hold the loads (" + FormatG(r.residual) +
-             " N or N*m left over): the mechanism moves freely under them",
-         &w);
-  }
-  if (!r.determinate) JoinWarning("statically indeterminate: the minimum-norm reactions are reported", &w);
-  if (r.compliant && !r.compliance.held) {
-    JoinWarning("the loaded mechanism is not held: a motion that no spring resists moves the end-effector", &w);
-  }
-  if (r.compliant && !r.compliance.range_note.empty()) JoinWarning(r.compliance.range_note, &w);
-  if (!r.within_limits) {
-    std::string names;
-    for (const std::string& n : r.limiting) names += (names.empty() ? "'" : ", '") + n + "'";
-    JoinWarning("beyond their effort or push limits: " + names, &w);
-  }
-  return w;
-}
-
-}  // namespace
-
-nlohmann::json StaticsDocument(const Model& model, const State& s, const Eigen::VectorXd& u, double residual_energy,
-                               double assembly_tolerance, const ExternalWrench& wrench, const BasePoseNoise& noise) {
-  const StaticsReport report = ComputeStatics(model, s, u, wrench);  // std::invalid_argument: ValueError
-  const bool assembled = residual_energy < assembly_tolerance;
-  nlohmann::json out = StaticsReportJson(report);
-  cli::AddComplianceJson(report, &out);
-  out["model"] = model.name;
-  out["assembled"] = assembled;
-  out["residual_energy"] = residual_energy;
-  out["controls"] = ToJson(u);
-  out["end_effector"] = ToJson(ComputeEndEffectorPose(model, s));
-  out["bodies"] = BodiesToJson(model, s);
-  const Eigen::Matrix<double, 6, 6> sigma = EndEffectorCovariance(model, s, u, noise);
-  if (sigma.allFinite()) {
-    nlohmann::json rows = nlohmann::json::array();
-    for (int r = 0; r < 6; ++r) rows.push_back(ToJson(Eigen::VectorXd(sigma.row(r).transpose())));
-    out["ee_covariance"] = rows;
-  }
-  out["noise"] = {{"mocap_noise_m", noise.position_sigma}, {"mocap_noise_rad", noise.heading_sigma}};
-  if (report.limits_given) {
-    const PayloadCapacity capacity = ComputePayloadCapacity(model, s, u);
-    if (Reportable(capacity)) {
-      const std::string limiting = capacity.broken_unloaded.empty() ? capacity.limiting : capacity.broken_unloaded;
-      out["payload_capacity"] = {{"mass", ReportedMass(capacity)}, {"limiting", limiting}};
-      if (!capacity.note.empty()) out["payload_capacity"]["note"] = capacity.note;
-    }
-  }
-  const nlohmann::json clearance = ClearanceToJson(model, s);
-  if (!clearance.is_null()) out["clearance"] = clearance;
-  const std::string warning = StaticsWarning(report, assembled, residual_energy);
-  if (!warning.empty()) out["warning"] = warning;
-  return out;
-}
-
-namespace {
-
-// apps/check_command.cc: CheckJson.
-nlohmann::json CheckCounts(const Model& model, const MobilityReport& mobility, bool assembled) {
-  nlohmann::json out;
-  out["model"] = model.name;
-  out["bodies"] = model.num_bodies();
-  out["mobile_bases"] = model.num_bases();
-  out["joints"] = model.joints.size();
-  out["state_size"] = model.state_size();
-  out["controls"] = model.num_controls();
-  out["effective_controls"] = model.effective_control_indices().size();
-  out["constraints"] = mobility.constraint_rows;
-  out["rigid_with_controls_fixed"] = mobility.rigid_with_controls_fixed;
-  out["end_effector_dof"] = mobility.end_effector_dof;
-  out["end_effector_dof_nonholonomic"] = mobility.end_effector_dof_nonholonomic;
-  out["assembled_at_home"] = assembled;
-  out["constraint_rank"] = mobility.constraint_rank;
-  out["dof_with_controls_fixed"] = mobility.dof_with_controls_fixed;
-  out["dof_with_controls_free"] = mobility.dof_with_controls_free;
-  out["smallest_singular_value"] = mobility.smallest_singular_value;
-  out["energy_at_home"] = mobility.energy;
-  nlohmann::json controlled = nlohmann::json::array();
-  for (int c = 0; c < 6; ++c) {
-    if (model.end_effector.controlled[c]) controlled.push_back(kEndEffectorComponentNames[c]);
-  }
-  out["controlled"] = controlled;
-  nlohmann::json motions = nlohmann::json::array();
-  for (const FreeMotion& motion : mobility.free_motions) {
-    nlohmann::json bodies = nlohmann::json::array();
-    for (const int b : motion.bodies) bodies.push_back(model.bodies[b].name);
-    nlohmann::json joints = nlohmann::json::array();
-    for (const int j : motion.joints) joints.push_back(model.joints[j].name);
-    motions.push_back({{"bodies", bodies}, {"joints", joints}});
-  }
-  out["free_motions"] = motions;
-  return out;
-}
-
-// apps/check_command.cc: FreeMotionText.
-std::string FreeMotionText(const Model& model, const std::vector<FreeMotion>& motions) {
-  std::string text;
-  for (size_t m = 0; m < motions.size(); ++m) {
-    text += (m ? "; motion " : "motion ") + std::to_string(m + 1) + " moves ";
-    for (size_t i = 0; i < motions[m].bodies.size(); ++i) text += (i ? ", " : "") + model.bodies[motions[m].bodies[i]].name;
-    for (size_t i = 0; i < motions[m].joints.size(); ++i) {
-      text += (i ? ", " : " (joints ") + model.joints[motions[m].joints[i]].name;
-    }
-    if (!motions[m].joints.empty()) text += ")";
-  }
-  return text;
-}
-
-// apps/check_command.cc: OnlyIdleMotions.
-bool OnlyIdleMotions(const Model& model, const MobilityReport& mobility) {
-  if (!mobility.free_motions_listed || mobility.free_motions.empty()) return false;
-  const Eigen::MatrixXd dX_ds = EndEffectorJacobian(model, State::Home(model));
-  for (const FreeMotion& motion : mobility.free_motions) {
-    if ((dX_ds * motion.direction).norm() > 1e-8) return false;
-  }
-  return true;
-}
-
-// apps/check_command.cc: CheckWarnings.
-nlohmann::json CheckWarnings(const Model& model, const MobilityReport& mobility, bool assembled) {
-  const ForwardOptions defaults;
-  int controlled_count = 0;
-  for (int c = 0; c < 6; ++c) controlled_count += model.end_effector.controlled[c] ? 1 : 0;
-  nlohmann::json warnings = nlohmann::json::array();
-  if (!mobility.rigid_with_controls_fixed) {
-    const bool idle = OnlyIdleMotions(model, mobility);
-    warnings.push_back("not rigid with its controls fixed: " + std::to_string(mobility.dof_with_controls_fixed) +
-                       " free motion(s) remain (smallest singular value of dC/ds " +
-                       FormatG(mobility.smallest_singular_value) + "): " +
-                       (mobility.free_motions_listed ? FreeMotionText(model, mobility.free_motions)
-                                                     : std::string("too many to list them")) +
-                       (idle ? "; none moves the end-effector (idle motions, docs/numerics.md): control resolves "
-                               "them, simulation leaves them where they are"
-                             : "; simulation and control are ill-posed"));
-  }
-  if (!assembled) {
-    warnings.push_back("not assembled at home: E = " + FormatG(mobility.energy) + " m^2 (above " +
-                       FormatG(defaults.assembly_tolerance) + "); check the joint points and axes");
-  }
-  if (mobility.end_effector_dof < controlled_count) {
-    warnings.push_back("the controls move only " + std::to_string(mobility.end_effector_dof) +
-                       " end-effector DOF at home, fewer than the " + std::to_string(controlled_count) +
-                       " controlled components");
-  }
-  if (mobility.end_effector_dof_nonholonomic < std::min(controlled_count, mobility.end_effector_dof)) {
-    warnings.push_back("the differential bases, which cannot move sideways, leave the end-effector only " +
-                       std::to_string(mobility.end_effector_dof_nonholonomic) +
-                       " instantaneous DOF at home, fewer than the " + std::to_string(controlled_count) +
-                       " controlled components: most paths are infeasible");
-  }
-  return warnings;
-}
-
-}  // namespace
-
-nlohmann::json CheckDocument(const Model& model) {
-  const State home = State::Home(model);
-  const MobilityReport mobility = AnalyzeMobility(model, home, model.home_controls());
-  const bool assembled = mobility.energy < ForwardOptions().assembly_tolerance;
-  nlohmann::json out = CheckCounts(model, mobility, assembled);
-  const nlohmann::json warnings = CheckWarnings(model, mobility, assembled);
-  if (!warnings.empty()) out["warnings"] = warnings;
-  const nlohmann::json clearance = ClearanceToJson(model, home);
-  if (!clearance.is_null()) out["clearance"] = clearance;
-  return out;
-}
+using documents::BodiesToJson;
+using documents::ClearanceToJson;
+using documents::ToJson;
 
 namespace {
 
@@ -325,18 +129,18 @@ nlohmann::json ReplayDocument(const Model& model, const ReplayOptions& options, 
   out["duration_s"] = r.duration_s;
   out["samples"] = r.samples.size();
   out.update(ReplayOptionsJson(options));
-  out["rmse"] = cli::ReplayRmseJson(model, r.rmse);
-  if (r.gait) out["gait"] = cli::ReplayGaitJson(model, options, r);
-  if (cli::IsPaperModel(model)) {
+  out["rmse"] = documents::ReplayRmseJson(model, r.rmse);
+  if (r.gait) out["gait"] = documents::ReplayGaitJson(model, options, r);
+  if (documents::IsPaperModel(model)) {
     nlohmann::json paper = nlohmann::json::array();
-    for (const cli::PaperRow& row : cli::PaperHardwareRmse()) {
+    for (const documents::PaperRow& row : documents::PaperHardwareRmse()) {
       paper.push_back({{"experiment", row.experiment}, {"y_mm", row.y_mm}, {"z_mm", row.z_mm},
                        {"x_mm", row.x_mm}, {"yaw_rad", row.yaw_rad}});
     }
     out["paper_hardware_rmse"] = paper;
   }
   std::string warning;
-  for (const std::string& failure : cli::ReplayFailures(r)) JoinWarning(failure, &warning);
+  for (const std::string& failure : documents::ReplayFailures(r)) JoinWarning(failure, &warning);
   if (!warning.empty()) out["warning"] = warning;
   return out;
 }

@@ -4,17 +4,17 @@
 #include <cmath>
 
 #include "analyses/configuration_difference.h"
-#include "apps/json_output.h"
+#include "documents/json_values.h"
 #include "ccma/internal/format.h"
 #include "python/src/documents.h"
 
 namespace ccma::python {
 
-using cli::BodiesToJson;
-using cli::ClearanceToJson;
-using cli::JointsToJson;
-using cli::LimitsViolatedToJson;
-using cli::ToJson;
+using documents::BodiesToJson;
+using documents::ClearanceToJson;
+using documents::JointsToJson;
+using documents::LimitsViolatedToJson;
+using documents::ToJson;
 
 namespace {
 
@@ -64,7 +64,7 @@ nlohmann::json SimulateDocument(const ForwardSolution& s) {
   out["joints"] = JointsToJson(model, s.state);
   out["limits_violated"] = LimitsViolatedToJson(model, s.state);
   PutClearance(model, s.state, &out);
-  if (s.loaded) cli::AddLoadedJson(model, *s.loaded, &out);
+  if (s.loaded) documents::AddLoadedJson(model, *s.loaded, &out);
   out["message"] = s.message;
   const std::string warning = SimulateWarning(s);
   if (!warning.empty()) out["warning"] = warning;
@@ -149,7 +149,7 @@ nlohmann::json ControlDocument(const ControlSolution& s) {
   out["joints"] = JointsToJson(model, s.state);
   out["limits_violated"] = LimitsViolatedToJson(model, s.state);
   if (s.compensation) {
-    cli::AddCompensationJson(model, s.rigid_end_effector, *s.compensation, &out);
+    documents::AddCompensationJson(model, s.rigid_end_effector, *s.compensation, &out);
     PutClearance(model, s.compensation->loaded.state, &out);
   } else {
     PutClearance(model, s.state, &out);
@@ -219,7 +219,7 @@ nlohmann::json PlanDocument(const ControlProblem& control, const PlanResult& r, 
   out["waypoints"] = waypoints;
   out["steps"] = r.steps.size();
   out["iterations"] = r.iterations;
-  cli::AddPlanFinishing(r, &out);
+  documents::AddPlanFinishing(r, &out);
   out["greedy"] = MeasuresJson(r.greedy);
   out["plan"] = MeasuresJson(r.plan);
   out["solve_time_ms"] = r.solve_time_ms;

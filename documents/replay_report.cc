@@ -1,16 +1,15 @@
 // What `ccma replay` reports besides its plots (apps/replay_report.h): the
 // components shown, the RMSE table and the CSV files.
-#include "apps/replay_report.h"
+#include "documents/replay_report.h"
 
 #include <fstream>
 #include <iomanip>
 #include <sstream>
 
-#include "apps/gnuplot.h"
 #include "ccma/internal/format.h"
 #include "ccma/rotation.h"
 
-namespace ccma::cli {
+namespace ccma::documents {
 namespace {
 
 }  // namespace
@@ -152,4 +151,4 @@ nlohmann::json ReplayGaitJson(const Model& model, const ReplayOptions& options, 
           {"rmse_from_tracking", ReplayRmseJson(model, result.tracking_rmse)}};
 }
 
-}  // namespace ccma::cli
+}  // namespace ccma::documents

@@ -1,10 +1,10 @@
-#include "apps/trajectory_csv.h"
+#include "documents/trajectory_csv.h"
 
 #include <iomanip>
 #include <sstream>
 #include <string>
 
-namespace ccma::cli {
+namespace ccma::documents {
 namespace {
 
 // The header: every name carries its unit (_s, _m, _rad, _m2, _ms).
@@ -97,4 +97,4 @@ void TrajectoryCsv::Write(const TrajectoryStep& step) {
   csv_ << "\n";
 }
 
-}  // namespace ccma::cli
+}  // namespace ccma::documents

@@ -1,8 +1,8 @@
 // What `ccma replay --out=DIR` reports besides its plots: the end-effector
 // components it shows, the RMSE table (with the paper's hardware rows) and
 // the CSV files the plots read.
-#ifndef CCMA_APPS_REPLAY_REPORT_H_
-#define CCMA_APPS_REPLAY_REPORT_H_
+#ifndef CCMA_DOCUMENTS_REPLAY_REPORT_H_
+#define CCMA_DOCUMENTS_REPLAY_REPORT_H_
 
 #include <array>
 #include <string>
@@ -13,7 +13,7 @@
 #include "ccma/model.h"
 #include "execution/replay.h"
 
-namespace ccma::cli {
+namespace ccma::documents {
 
 // The end-effector components a replay reports, in display order: the
 // paper's y, z, x, yaw for a model controlling exactly x, y, z and yaw;
@@ -53,6 +53,6 @@ std::string ReplayRmseTable(const Model& model, const ReplayResult& result, cons
 // labelled SIMULATION, with units in the header and a torn 0/1 column.
 void WriteReplayCsv(const std::string& dir, const Model& model, const ReplayResult& result);
 
-}  // namespace ccma::cli
+}  // namespace ccma::documents
 
-#endif  // CCMA_APPS_REPLAY_REPORT_H_
+#endif  // CCMA_DOCUMENTS_REPLAY_REPORT_H_

@@ -1,14 +1,14 @@
 // The CSV of `ccma trajectory` and `ccma plan` (cli.md): one row per control
 // step, every column name carrying its unit; clearance columns only with
 // collision geometry, effort columns only with masses or limits.
-#ifndef CCMA_APPS_TRAJECTORY_CSV_H_
-#define CCMA_APPS_TRAJECTORY_CSV_H_
+#ifndef CCMA_DOCUMENTS_TRAJECTORY_CSV_H_
+#define CCMA_DOCUMENTS_TRAJECTORY_CSV_H_
 
 #include <ostream>
 
 #include "ccma/ccma.h"
 
-namespace ccma::cli {
+namespace ccma::documents {
 
 // Writes rows as steps arrive; keeps the smallest clearance of all rows.
 class TrajectoryCsv {
@@ -27,6 +27,6 @@ class TrajectoryCsv {
   const EffortEvaluator effort_evaluator_;
 };
 
-}  // namespace ccma::cli
+}  // namespace ccma::documents
 
-#endif  // CCMA_APPS_TRAJECTORY_CSV_H_
+#endif  // CCMA_DOCUMENTS_TRAJECTORY_CSV_H_
