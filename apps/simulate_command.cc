@@ -10,6 +10,7 @@
 #include "apps/json_output.h"
 #include "apps/work_bound.h"
 #include "ccma/internal/format.h"
+#include "documents/simulate_document.h"
 
 DEFINE_bool(loaded, false,
             "simulate: the nonlinear loaded equilibrium of a compliant model (stiffness keys) under gravity, the "
@@ -111,25 +112,6 @@ void CheckActuatedLimits(const Model& model, const Eigen::VectorXd& u) {
   }
 }
 
-void WarnOnFailure(const ForwardResult& result, const nlohmann::json& limits_violated, nlohmann::json* out) {
-  std::string warning;
-  if (!limits_violated.empty()) warning = "joints outside their limits: " + limits_violated.dump();
-  if (!result.assembled) {
-    warning += std::string(warning.empty() ? "" : "; ") + "not assembled: residual energy " + FormatG(result.residual_energy) +
-              " m^2 stays above the assembly tolerance; the controls cannot be reached from this start";
-  } else if (!result.converged) {
-    warning += std::string(warning.empty() ? "" : "; ") + "the solver did not report convergence (" + result.message + ")";
-  }
-  if (result.branch_jump) {
-    warning += std::string(warning.empty() ? "" : "; ") + "jumped to another assembly branch at sub-step " +
-               std::to_string(result.branch_jump_substep) + " of " + std::to_string(result.substeps) +
-               " (" + FormatG(result.branch_jump_size) + " m or rad beyond the prediction)";
-  }
-  if (warning.empty()) return;
-  (*out)["warning"] = warning;
-  std::cerr << "ccma simulate: warning: " << warning << "\n";
-}
-
 // The loaded equilibrium at the rigid assembly (--loaded).
 LoadedEquilibrium Loaded(const Model& model, const ForwardProblem& forward) {
   try {
@@ -137,14 +119,6 @@ LoadedEquilibrium Loaded(const Model& model, const ForwardProblem& forward) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("ccma simulate --loaded: ") + e.what());
   }
-}
-
-void WarnOnLoaded(const LoadedEquilibrium& loaded, nlohmann::json* out) {
-  if (loaded.converged) return;
-  const std::string warning = "the loaded equilibrium was not found: " + loaded.message;
-  const std::string before = out->contains("warning") ? (*out)["warning"].get<std::string>() + "; " : "";
-  (*out)["warning"] = before + warning;
-  std::cerr << "ccma simulate: warning: " << warning << "\n";
 }
 
 }  // namespace
@@ -166,33 +140,13 @@ int RunSimulate(const std::vector<std::string>& args) {
   forward.SetSubstepObserver([&estimate](int substep, int) { estimate.Update(substep); });
   const ForwardResult result = forward.Assemble(u);
 
-  nlohmann::json out;
-  out["model"] = model.name;
-  out["converged"] = result.converged;
-  out["assembled"] = result.assembled;
-  out["residual_energy"] = result.residual_energy;
-  out["assembly_tolerance"] = forward.options().assembly_tolerance;
-  out["iterations"] = result.iterations;
-  out["substeps"] = result.substeps;
-  out["branch_jump"] = result.branch_jump;
-  out["solve_time_ms"] = result.solve_time_ms;
-  out["start"] = FLAGS_from.empty() ? "home" : FLAGS_from;
-  out["controls"] = ToJson(u);
-  out["end_effector"] = ToJson(forward.end_effector());
-  out["bodies"] = BodiesToJson(model, forward.state());
-  out["joints"] = JointsToJson(model, forward.state());
+  documents::ForwardSolution solution =
+      documents::MakeForwardSolution(forward, result, FLAGS_from.empty() ? "home" : FLAGS_from);
+  solution.controls = u;
   // --loaded: the deflected configuration replaces the rigid one (no rigid
-  // assembly: nothing to load, said by WarnOnFailure).
-  const bool loaded = FLAGS_loaded && result.assembled;
-  const LoadedEquilibrium equilibrium = loaded ? Loaded(model, forward) : LoadedEquilibrium();
-  if (loaded) AddLoadedJson(model, equilibrium, &out);
-  const State& reported = loaded ? equilibrium.state : forward.state();
-  out["limits_violated"] = LimitsViolatedToJson(model, reported);
-  AddClearance(model, reported, "simulate", &out);
-  out["message"] = result.message;
-  WarnOnFailure(result, out["limits_violated"], &out);
-  if (loaded) WarnOnLoaded(equilibrium, &out);
-  PrintJson(out);
+  // assembly: nothing to load, said by the warning).
+  if (FLAGS_loaded && result.assembled) solution.loaded = Loaded(model, forward);
+  PrintDocument(documents::SimulateDocument(solution), "simulate");
   return 0;
 }
 

@@ -361,7 +361,7 @@ void BindControlSolves(ProblemClass& c) {
             const UsageGuard guard(p);
             const bool at_home = AtHome(p.forward());
             const ForwardResult r = p.SetControls(u);
-            return MakeForwardSolution(p.forward(), r, at_home);
+            return MakeForwardSolution(p.forward(), r, at_home ? "home" : "current");
           },
           py::arg("u"), py::call_guard<py::gil_scoped_release>(), py::keep_alive<0, 1>(),
           "Assembles the mechanism at u (following the branch) and starts from there.")

@@ -125,10 +125,10 @@ void BindResultConfiguration(py::class_<ForwardSolution>& c) {
           },
           "assemble(loaded=True): Record {converged, iterations, unbalanced_load [N or N*m], yields [m or rad per "
           "control]}; None otherwise")
-      .def_property_readonly("warning", &SimulateWarning,
+      .def_property_readonly("warning", &documents::SimulateWarning,
                              "what went wrong: not assembled, not converged, a branch jump ('' when nothing)")
       .def(
-          "to_dict", [](const ForwardSolution& r) { return ToPython(SimulateDocument(r)); },
+          "to_dict", [](const ForwardSolution& r) { return ToPython(documents::SimulateDocument(r).json); },
           "The JSON document `ccma simulate` prints for the same solve (same keys and values).");
 }
 
@@ -166,7 +166,7 @@ ForwardSolution Solved(ForwardProblem& p, Solve solve) {
   const UsageGuard guard(p);
   const bool at_home = AtHome(p);
   const ForwardResult r = solve(p);
-  return MakeForwardSolution(p, r, at_home);
+  return MakeForwardSolution(p, r, at_home ? "home" : "current");
 }
 
 // assemble(u, loaded, wrench): `ccma simulate [--loaded]`.

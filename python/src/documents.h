@@ -21,10 +21,6 @@
 
 namespace ccma::python {
 
-// apps/simulate_command.cc: RunSimulate and WarnOnFailure.
-nlohmann::json SimulateDocument(const ForwardSolution& s);
-std::string SimulateWarning(const ForwardSolution& s);
-
 // apps/control_command.cc: RunControl. The from_home check is made once,
 // when first asked for (FromHome), and adds to the warning when it fails.
 nlohmann::json ControlDocument(const ControlSolution& s);

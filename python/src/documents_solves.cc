@@ -27,50 +27,6 @@ void PutClearance(const Model& model, const State& s, nlohmann::json* out) {
 
 }  // namespace
 
-std::string SimulateWarning(const ForwardSolution& s) {
-  std::string warning;
-  if (!s.assembled) {
-    JoinWarning("not assembled: residual energy " + FormatG(s.residual_energy) +
-             " m^2 stays above the assembly tolerance; the controls cannot be reached from this start",
-         &warning);
-  } else if (!s.converged) {
-    JoinWarning("the solver did not report convergence (" + s.message + ")", &warning);
-  }
-  if (s.branch_jump) {
-    JoinWarning("jumped to another assembly branch at sub-step " + std::to_string(s.branch_jump_substep) + " of " +
-             std::to_string(s.substeps) + " (" + FormatG(s.branch_jump_size) + " m or rad beyond the prediction)",
-         &warning);
-  }
-  if (s.loaded && !s.loaded->converged) JoinWarning("the loaded equilibrium was not found: " + s.loaded->message, &warning);
-  return warning;
-}
-
-nlohmann::json SimulateDocument(const ForwardSolution& s) {
-  const Model& model = *s.model;
-  nlohmann::json out;
-  out["model"] = model.name;
-  out["converged"] = s.converged;
-  out["assembled"] = s.assembled;
-  out["residual_energy"] = s.residual_energy;
-  out["assembly_tolerance"] = s.assembly_tolerance;
-  out["iterations"] = s.iterations;
-  out["substeps"] = s.substeps;
-  out["branch_jump"] = s.branch_jump;
-  out["solve_time_ms"] = s.solve_time_ms;
-  out["start"] = s.start;
-  out["controls"] = ToJson(s.controls);
-  out["end_effector"] = ToJson(s.end_effector);
-  out["bodies"] = BodiesToJson(model, s.state);
-  out["joints"] = JointsToJson(model, s.state);
-  out["limits_violated"] = LimitsViolatedToJson(model, s.state);
-  PutClearance(model, s.state, &out);
-  if (s.loaded) documents::AddLoadedJson(model, *s.loaded, &out);
-  out["message"] = s.message;
-  const std::string warning = SimulateWarning(s);
-  if (!warning.empty()) out["warning"] = warning;
-  return out;
-}
-
 // apps/control_command.cc CheckReproducibleFromHome: idle motions (a rod
 // spinning about its axis) are not branches (analyses/configuration_difference.h).
 const nlohmann::json& FromHome(const ControlSolution& s) {

@@ -15,18 +15,6 @@ bool AtHome(const ForwardProblem& problem) {
          problem.state().Minus(State::Home(model)).lpNorm<Eigen::Infinity>() == 0;
 }
 
-ForwardSolution MakeForwardSolution(const ForwardProblem& problem, const ForwardResult& r, bool started_at_home) {
-  ForwardSolution s;
-  static_cast<ForwardResult&>(s) = r;
-  s.end_effector = problem.end_effector();
-  s.controls = problem.controls();
-  s.model = &problem.model();
-  s.state = problem.state();
-  s.assembly_tolerance = problem.options().assembly_tolerance;
-  s.start = started_at_home ? "home" : "current";
-  return s;
-}
-
 BodyPose PoseOfBody(const Model& model, const State& s, int body) {
   BodyPose pose;
   pose.name = model.bodies[body].name;

@@ -15,6 +15,7 @@
 #include "ccma/end_effector.h"
 #include "ccma/model.h"
 #include "ccma/state.h"
+#include "documents/simulate_document.h"
 #include "problems/compensated_control.h"
 #include "problems/control_problem.h"
 #include "problems/forward_problem.h"
@@ -22,25 +23,11 @@
 
 namespace ccma::python {
 
-// ForwardResult plus where it left the mechanism.
-struct ForwardSolution : ForwardResult {
-  EndEffectorPose end_effector;
-  Eigen::VectorXd controls;
-  // The problem's model: the bound result keeps its problem alive
-  // (py::keep_alive), and the problem keeps the model alive.
-  const Model* model = nullptr;
-  State state;                    // the configuration after the solve
-  double assembly_tolerance = 0;  // of the problem's options [m^2]
-  std::string start;              // "home" (the solve started at home) or "current"
-  // assemble(u, loaded=True): the loaded equilibrium, whose state and
-  // end-effector are then `state` and `end_effector` (the problem itself
-  // stays at the rigid assembly, to warm-start the next solve).
-  std::optional<LoadedEquilibrium> loaded;
-};
+// A forward solve's result and where it left the mechanism: the document
+// layer's (documents/simulate_document.h), whose document is its to_dict().
+using documents::ForwardSolution;
+using documents::MakeForwardSolution;
 
-// The solution of `r`, just returned by problem.Solve/Assemble/SetControls;
-// `started_at_home`: the problem was at its home state and controls before.
-ForwardSolution MakeForwardSolution(const ForwardProblem& problem, const ForwardResult& r, bool started_at_home);
 // Whether the problem is at its model's home state and home controls.
 bool AtHome(const ForwardProblem& problem);
 
