@@ -11,6 +11,7 @@
 #include "ccma/internal/constraint_set.h"
 #include "ccma/internal/dense_factorizations.h"
 #include "ccma/rotation.h"
+#include "problems/forward_problem.h"
 
 namespace ccma {
 namespace {
@@ -99,6 +100,15 @@ ConfigurationDifference CompareConfigurations(const Model& model, const State& a
   }
   out.same = pose_same && out.max_state_difference < kSameConfigurationTolerance;
   return out;
+}
+
+FromHomeCheck CheckFromHome(const Model& model, const State& reached, const Eigen::VectorXd& u) {
+  ForwardProblem from_home(model);
+  FromHomeCheck check;
+  check.assembled = from_home.Assemble(u).assembled;
+  check.difference = CompareConfigurations(model, reached, from_home.state(), u);
+  check.reproducible = check.assembled && check.difference.same;
+  return check;
 }
 
 }  // namespace ccma

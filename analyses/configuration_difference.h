@@ -51,6 +51,18 @@ struct ConfigurationDifference {
 ConfigurationDifference CompareConfigurations(const Model& model, const State& a, const State& b,
                                               const Eigen::VectorXd& u);
 
+// Whether controls u that a path reached in configuration `reached` give the
+// same configuration when assembled from home (`ccma simulate --controls`):
+// not always, a path can lead to another assembly branch of the same
+// controls. Idle motions (a rod spinning about its axis) are not branches.
+struct FromHomeCheck {
+  bool assembled = false;     // the assembly from home
+  bool reproducible = false;  // assembled and the same configuration
+  ConfigurationDifference difference;  // reached against the assembly from home
+};
+// One assembly from home (as long as a `ccma simulate`).
+FromHomeCheck CheckFromHome(const Model& model, const State& reached, const Eigen::VectorXd& u);
+
 }  // namespace ccma
 
 #endif  // CCMA_ANALYSES_CONFIGURATION_DIFFERENCE_H_

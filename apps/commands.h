@@ -71,10 +71,9 @@ BasePoseNoise PoseNoiseFromFlags();
 // Singularity-aware control and redundancy resolution (secondary_flags.cc):
 // the flags' names (accepted by control and trajectory),
 // their values checked and applied to options->secondary (UsageError naming
-// the flag), and the "secondary" block of the commands' JSON.
+// the flag; the JSON's "secondary": documents/json_values.h SecondaryJson).
 const std::vector<std::string>& SecondaryFlagNames();
 void ApplySecondaryFlags(ControlOptions* options);
-nlohmann::json SecondaryJson(const ControlOptions::Secondary& secondary, int null_space_steps, double objective);
 
 // Loads the model, printing its warnings (unknown keys, implausible magnitudes) on stderr.
 Model LoadModelOrThrow(const std::string& path);

@@ -4,14 +4,16 @@
 #include <cmath>
 #include <iostream>
 #include <memory>
+#include <optional>
+#include <utility>
 
-#include "analyses/configuration_difference.h"
 #include "apps/cli.h"
 #include "apps/commands.h"
 #include "apps/flags.h"
 #include "apps/json_output.h"
 #include "apps/work_bound.h"
 #include "ccma/internal/format.h"
+#include "documents/control_document.h"
 #include "problems/path.h"
 
 DEFINE_string(target, "",
@@ -51,48 +53,17 @@ PoseTarget TargetFlag(const Model& model, const PoseTarget& home) {
   return {full.head<3>(), full.tail<3>()};
 }
 
-// Do the returned controls, assembled from home the way `ccma simulate
-// --controls=...` does, give the same configuration? Not always: a path can
-// lead to another assembly branch of the same controls. Idle motions (a rod
-// spinning about its axis) are not branches: analyses/configuration_difference.h.
-nlohmann::json CheckReproducibleFromHome(const Model& model, const ControlProblem& control, std::string* warning) {
-  ForwardProblem from_home(model);
-  const ForwardResult r = from_home.Assemble(control.controls());
-  const ConfigurationDifference difference =
-      CompareConfigurations(model, control.forward().state(), from_home.state(), control.controls());
-  const bool same = r.assembled && difference.same;
-  if (!same) {
-    *warning += std::string(warning->empty() ? "" : "; ") +
-                "these controls, simulated from home (ccma simulate --controls=...), assemble to another "
-                "configuration (end-effector " + FormatG(difference.end_effector_distance) + " m away" +
-                (r.assembled ? "" : ", not assembled") +
-                "): the mechanism has several assembly branches here; reproduce this result exactly with "
-                "ccma simulate --from=<this JSON>";
-  }
-  nlohmann::json idle = nlohmann::json::array();
-  for (const int b : difference.idle_bodies) idle.push_back(model.bodies[b].name);
-  return {{"reproducible", same},
-          {"end_effector_distance_m", difference.end_effector_distance},
-          {"end_effector_rotation_rad", difference.end_effector_rotation},
-          {"max_state_difference", difference.max_state_difference},
-          {"idle_bodies", idle}};
-}
-
 // The move to the target: plain, or (--compensate) putting the loaded
-// end-effector there, its rounds in `compensated`.
-ControlResult Move(ControlProblem* control, const PoseTarget& target, CompensatedResult* compensated) {
+// end-effector there.
+documents::ControlSolution Move(ControlProblem* control, const PoseTarget& target) {
   if (!FLAGS_wrench.empty() && !FLAGS_compensate) throw UsageError("--wrench: only with --compensate (the loads it compensates)");
-  if (!FLAGS_compensate) return control->MoveTo(target);
+  if (!FLAGS_compensate) return documents::MakeControlSolution(*control, control->MoveTo(target), target, std::nullopt);
   try {
-    *compensated = MoveToCompensated(control, target, WrenchFlag());
+    CompensatedResult compensated = MoveToCompensated(control, target, WrenchFlag());
+    return documents::MakeControlSolution(*control, {}, target, std::move(compensated));
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("ccma control --compensate: ") + e.what());
   }
-  ControlResult result = compensated->control;
-  if (!compensated->warning.empty()) {
-    result.warning += std::string(result.warning.empty() ? "" : "; ") + "--compensate: " + compensated->warning;
-  }
-  return result;
 }
 
 // Work bounded by its cost (--max_minutes): the path's steps timed as they
@@ -129,50 +100,12 @@ int RunControl(const std::vector<std::string>& args) {
   const ForwardResult start_assembly = control.SetControls(start);
   std::shared_ptr<WorkEstimate> estimate;
   BoundTheMove(&control, target, &estimate);
-  CompensatedResult compensated;
-  ControlResult result = Move(&control, target, &compensated);
+  documents::ControlSolution solution = Move(&control, target);
   if (!start_assembly.assembled) {
-    result.warning = "the starting controls do not assemble (E = " + FormatG(start_assembly.residual_energy) +
-                     "); " + result.warning;
+    solution.warning = "the starting controls do not assemble (E = " + FormatG(start_assembly.residual_energy) +
+                       "); " + solution.warning;
   }
-  const nlohmann::json from_home = CheckReproducibleFromHome(model, control, &result.warning);
-
-  nlohmann::json out;
-  out["model"] = model.name;
-  out["method"] = FLAGS_method;
-  out["converged"] = result.converged;
-  out["assembled"] = result.assembled;
-  out["steps"] = result.steps;
-  out["iterations"] = result.iterations;
-  out["forward_solves"] = result.forward_solves;
-  out["branch_jumps_rejected"] = result.branch_jumps_rejected;
-  out["objective"] = result.objective;
-  out["error"] = result.error;
-  out["residual_energy"] = result.residual_energy;
-  out["max_step_residual_energy"] = result.max_step_residual_energy;
-  out["conditioning"] = {{"dG_ds_pivot_ratio", result.rcond},
-                         {"min_dG_ds_pivot_ratio_on_path", result.min_rcond},
-                         {"min_singular_value_dX_du", result.min_singular_value_dX_du},
-                         {"min_singular_value_dX_du_on_path", result.min_singular_value_dX_du_on_path}};
-  if (options.secondary.enabled()) {
-    out["secondary"] = SecondaryJson(options.secondary, result.null_space_steps, result.secondary_objective);
-  }
-  out["solve_time_ms"] = result.solve_time_ms;
-  out["target"] = {target.position[0], target.position[1], target.position[2],
-                   target.rpy[0],      target.rpy[1],      target.rpy[2]};
-  out["controls"] = ToJson(control.controls());
-  out["end_effector"] = ToJson(control.forward().end_effector());
-  out["bodies"] = BodiesToJson(model, control.forward().state());
-  out["joints"] = JointsToJson(model, control.forward().state());
-  out["limits_violated"] = LimitsViolatedToJson(model, control.forward().state());
-  AddClearance(model, FLAGS_compensate ? compensated.loaded.state : control.forward().state(), "control", &out);
-  out["from_home"] = from_home;
-  if (FLAGS_compensate) AddCompensationJson(model, control.forward().end_effector(), compensated, &out);
-  if (!result.warning.empty()) {
-    out["warning"] = result.warning;
-    std::cerr << "ccma control: warning: " << result.warning << "\n";
-  }
-  PrintJson(out);
+  PrintDocument(documents::ControlDocument(solution), "control");
   return 0;
 }
 

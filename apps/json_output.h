@@ -22,6 +22,7 @@ using documents::BodiesToJson;
 using documents::ClearanceToJson;
 using documents::JointsToJson;
 using documents::LimitsViolatedToJson;
+using documents::SecondaryJson;
 using documents::ToJson;
 
 // Adds ClearanceToJson as out["clearance"] when not null, and when it is

@@ -145,4 +145,18 @@ void AddCompensationJson(const Model& model, const EndEffectorPose& rigid, const
                             {"rigid_end_effector", ToJson(rigid)}};
 }
 
+nlohmann::json SecondaryJson(const ControlOptions::Secondary& secondary, int null_space_steps, double objective) {
+  nlohmann::json out = {{"null_space_steps", null_space_steps},
+                        {"singularity_weight", secondary.singularity_weight},
+                        {"singularity_threshold", secondary.singularity_threshold},
+                        {"pivot_weight", secondary.pivot_weight},
+                        {"pivot_threshold", secondary.pivot_threshold},
+                        {"spread_weight", secondary.spread_weight},
+                        {"clearance_m", secondary.clearance_m},
+                        {"travel_weight", secondary.travel_weight}};
+  // Phi is infinite only where dG/ds could not be factorised: no number then.
+  if (std::isfinite(objective)) out["objective"] = objective;
+  return out;
+}
+
 }  // namespace ccma::documents

@@ -60,6 +60,11 @@ void AddCompensationJson(const Model& model, const EndEffectorPose& rigid, const
 // finishing and, only when the finished plan stayed below the margin, shortfall.
 void AddPlanFinishing(const PlanResult& result, nlohmann::json* out);
 
+// The "secondary" object of `ccma control` and `ccma trajectory`: the null
+// space steps, the secondary objective's settings and its value Phi (left
+// out where it is not finite: dG/ds could not be factorised).
+nlohmann::json SecondaryJson(const ControlOptions::Secondary& secondary, int null_space_steps, double objective);
+
 }  // namespace ccma::documents
 
 #endif  // CCMA_DOCUMENTS_JSON_VALUES_H_

@@ -6,6 +6,7 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <pybind11/eigen.h>
@@ -13,6 +14,7 @@
 #include <pybind11/stl.h>
 
 #include "documents/json_values.h"
+#include "documents/control_document.h"
 #include "documents/trajectory_csv.h"
 #include "ccma/end_effector.h"
 #include "ccma/internal/format.h"
@@ -169,7 +171,7 @@ void BindStepResult(py::module_& m) {
 const State& Reported(const ControlSolution& r) { return r.compensation ? r.compensation->loaded.state : r.state; }
 
 // The attributes of `ccma control`'s JSON beyond the solve's own numbers
-// (documents.h ControlDocument), computed when asked for.
+// (documents/control_document.h ControlDocument), computed when asked for.
 // What compensate=True adds: compensation and deflection (None otherwise).
 void BindCompensation(py::class_<ControlSolution>& c) {
   c.def_property_readonly(
@@ -198,14 +200,14 @@ void BindControlConfiguration(py::class_<ControlSolution>& c) {
   c.def_property_readonly("model", [](const ControlSolution& r) { return r.model->name; }, "the model's name")
       .def_readonly("method", &ControlSolution::method, "'lm' or 'bfgs'")
       .def_property_readonly(
-          "conditioning", [](const ControlSolution& r) { return ToView(ConditioningJson(r)); },
+          "conditioning", [](const ControlSolution& r) { return ToView(documents::ConditioningJson(r)); },
           "Record {dG_ds_pivot_ratio, min_dG_ds_pivot_ratio_on_path [1], min_singular_value_dX_du, "
           "min_singular_value_dX_du_on_path [m or rad per control unit]}: at the end and over the path")
       .def_property_readonly(
           "secondary",
           [](const ControlSolution& r) -> py::object {
             if (!r.secondary.enabled()) return py::none();
-            return ToView(SecondaryJson(r.secondary, r.null_space_steps, r.secondary_objective));
+            return ToView(documents::SecondaryJson(r.secondary, r.null_space_steps, r.secondary_objective));
           },
           "Record of the null-space objective (weights, null_space_steps, objective); None when off")
       .def_property_readonly(
@@ -226,15 +228,15 @@ void BindControlConfiguration(py::class_<ControlSolution>& c) {
           "clearance", [](const ControlSolution& r) { return ToView(documents::ClearanceToJson(*r.model, Reported(r))); },
           "Record {min [m], pair, margin [m], below_margin}; None without collision geometry")
       .def_property_readonly(
-          "from_home", [](const ControlSolution& r) { return ToView(FromHome(r)); },
+          "from_home", [](const ControlSolution& r) { return ToView(documents::FromHome(r)); },
           "Record {reproducible, end_effector_distance_m [m], end_effector_rotation_rad [rad], "
           "max_state_difference [m, rad], idle_bodies}: whether the controls, assembled from home, give this "
           "configuration up to idle motions (the bodies idle_bodies names; checked when first asked for)")
-      .def_property_readonly("warning", &ControlWarning,
+      .def_property_readonly("warning", &documents::ControlWarning,
                              "why the target was not reached, or that the controls assemble elsewhere from home "
                              "('' when neither)")
       .def(
-          "to_dict", [](const ControlSolution& r) { return ToPython(ControlDocument(r)); },
+          "to_dict", [](const ControlSolution& r) { return ToPython(documents::ControlDocument(r).json); },
           "The JSON document `ccma control` prints for the same move (same keys and values).");
 }
 
@@ -279,30 +281,13 @@ ControlSolution MoveTo(ControlProblem& p, const Eigen::VectorXd& values, bool co
   const PoseTarget target = TargetFrom(p, values);
   if (wrench && !compensate) throw py::value_error("move_to: wrench only with compensate=True (the loads it compensates)");
   const ExternalWrench w = WrenchFrom(wrench, "move_to");
-  ControlSolution s;
-  if (compensate) {
-    try {
-      s.compensation = MoveToCompensated(&p, target, w);
-    } catch (const std::invalid_argument& e) {
-      throw py::value_error(std::string("move_to: ") + e.what());
-    }
-    static_cast<ControlResult&>(s) = s.compensation->control;
-    if (!s.compensation->warning.empty()) JoinWarning("--compensate: " + s.compensation->warning, &s.warning);
-    s.converged = s.compensation->converged;
-    s.error = s.compensation->miss;
-  } else {
-    static_cast<ControlResult&>(s) = p.MoveTo(target);
+  if (!compensate) return documents::MakeControlSolution(p, p.MoveTo(target), target, std::nullopt);
+  try {
+    CompensatedResult compensated = MoveToCompensated(&p, target, w);
+    return documents::MakeControlSolution(p, {}, target, std::move(compensated));
+  } catch (const std::invalid_argument& e) {
+    throw py::value_error(std::string("move_to: ") + e.what());
   }
-  s.target = AsVector(target);
-  s.controls = p.controls();
-  s.rigid_end_effector = p.forward().end_effector();
-  s.end_effector = compensate ? ComputeEndEffectorPose(p.forward().model(), s.compensation->loaded.state)
-                              : s.rigid_end_effector;
-  s.model = &p.forward().model();
-  s.state = p.forward().state();
-  s.method = p.options().method == ControlMethod::kBfgs ? "bfgs" : "lm";
-  s.secondary = p.options().secondary;
-  return s;
 }
 
 // `ccma trajectory [--compensate]` in Python: the JSON summary and the CSV

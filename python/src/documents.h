@@ -21,15 +21,6 @@
 
 namespace ccma::python {
 
-// apps/control_command.cc: RunControl. The from_home check is made once,
-// when first asked for (FromHome), and adds to the warning when it fails.
-nlohmann::json ControlDocument(const ControlSolution& s);
-const nlohmann::json& FromHome(const ControlSolution& s);
-std::string ControlWarning(const ControlSolution& s);
-nlohmann::json ConditioningJson(const ControlResult& r);
-// apps/secondary_flags.cc: SecondaryJson.
-nlohmann::json SecondaryJson(const ControlOptions::Secondary& secondary, int null_space_steps, double objective);
-
 // What `ccma trajectory` gathers over the steps it writes.
 struct PathSummary {
   int steps = 0;

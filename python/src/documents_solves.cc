@@ -27,95 +27,6 @@ void PutClearance(const Model& model, const State& s, nlohmann::json* out) {
 
 }  // namespace
 
-// apps/control_command.cc CheckReproducibleFromHome: idle motions (a rod
-// spinning about its axis) are not branches (analyses/configuration_difference.h).
-const nlohmann::json& FromHome(const ControlSolution& s) {
-  if (s.from_home) return *s.from_home;
-  const Model& model = *s.model;
-  ForwardProblem from_home(model);
-  const ForwardResult r = from_home.Assemble(s.controls);
-  const ConfigurationDifference difference = CompareConfigurations(model, s.state, from_home.state(), s.controls);
-  const bool same = r.assembled && difference.same;
-  if (!same) {
-    s.from_home_warning = "these controls, simulated from home (ccma simulate --controls=...), assemble to another "
-                          "configuration (end-effector " + FormatG(difference.end_effector_distance) + " m away" +
-                          (r.assembled ? "" : ", not assembled") +
-                          "): the mechanism has several assembly branches here; reproduce this result exactly with "
-                          "ccma simulate --from=<this JSON>";
-  }
-  nlohmann::json idle = nlohmann::json::array();
-  for (const int b : difference.idle_bodies) idle.push_back(model.bodies[b].name);
-  s.from_home = nlohmann::json{{"reproducible", same},
-                               {"end_effector_distance_m", difference.end_effector_distance},
-                               {"end_effector_rotation_rad", difference.end_effector_rotation},
-                               {"max_state_difference", difference.max_state_difference},
-                               {"idle_bodies", idle}};
-  return *s.from_home;
-}
-
-std::string ControlWarning(const ControlSolution& s) {
-  FromHome(s);
-  std::string warning = s.warning;
-  if (!s.from_home_warning.empty()) JoinWarning(s.from_home_warning, &warning);
-  return warning;
-}
-
-nlohmann::json ConditioningJson(const ControlResult& r) {
-  return {{"dG_ds_pivot_ratio", r.rcond},
-          {"min_dG_ds_pivot_ratio_on_path", r.min_rcond},
-          {"min_singular_value_dX_du", r.min_singular_value_dX_du},
-          {"min_singular_value_dX_du_on_path", r.min_singular_value_dX_du_on_path}};
-}
-
-nlohmann::json SecondaryJson(const ControlOptions::Secondary& secondary, int null_space_steps, double objective) {
-  nlohmann::json out = {{"null_space_steps", null_space_steps},
-                        {"singularity_weight", secondary.singularity_weight},
-                        {"singularity_threshold", secondary.singularity_threshold},
-                        {"pivot_weight", secondary.pivot_weight},
-                        {"pivot_threshold", secondary.pivot_threshold},
-                        {"spread_weight", secondary.spread_weight},
-                        {"clearance_m", secondary.clearance_m},
-                        {"travel_weight", secondary.travel_weight}};
-  if (std::isfinite(objective)) out["objective"] = objective;
-  return out;
-}
-
-nlohmann::json ControlDocument(const ControlSolution& s) {
-  const Model& model = *s.model;
-  nlohmann::json out;
-  out["model"] = model.name;
-  out["method"] = s.method;
-  out["converged"] = s.converged;
-  out["assembled"] = s.assembled;
-  out["steps"] = s.steps;
-  out["iterations"] = s.iterations;
-  out["forward_solves"] = s.forward_solves;
-  out["branch_jumps_rejected"] = s.branch_jumps_rejected;
-  out["objective"] = s.objective;
-  out["error"] = s.error;
-  out["residual_energy"] = s.residual_energy;
-  out["max_step_residual_energy"] = s.max_step_residual_energy;
-  out["conditioning"] = ConditioningJson(s);
-  if (s.secondary.enabled()) out["secondary"] = SecondaryJson(s.secondary, s.null_space_steps, s.secondary_objective);
-  out["solve_time_ms"] = s.solve_time_ms;
-  out["target"] = ToJson(Eigen::VectorXd(s.target));
-  out["controls"] = ToJson(s.controls);
-  out["end_effector"] = ToJson(s.end_effector);
-  out["bodies"] = BodiesToJson(model, s.state);
-  out["joints"] = JointsToJson(model, s.state);
-  out["limits_violated"] = LimitsViolatedToJson(model, s.state);
-  if (s.compensation) {
-    documents::AddCompensationJson(model, s.rigid_end_effector, *s.compensation, &out);
-    PutClearance(model, s.compensation->loaded.state, &out);
-  } else {
-    PutClearance(model, s.state, &out);
-  }
-  out["from_home"] = FromHome(s);
-  const std::string warning = ControlWarning(s);
-  if (!warning.empty()) out["warning"] = warning;
-  return out;
-}
-
 void AddPathClearance(const ClearanceSummary& path, nlohmann::json* out) {
   if (!path.any) return;
   (*out)["clearance"]["min_on_path"] = path.min;
@@ -140,7 +51,7 @@ nlohmann::json TrajectoryDocument(const ControlProblem& control, const Trajector
                            {"min_dG_ds_pivot_ratio_on_path", path.min_rcond}};
   }
   if (options.secondary.enabled()) {
-    out["secondary"] = SecondaryJson(options.secondary, path.null_space_steps, path.secondary_objective);
+    out["secondary"] = documents::SecondaryJson(options.secondary, path.null_space_steps, path.secondary_objective);
   }
   out["solve_time_ms"] = r.solve_time_ms;
   out["controls"] = ToJson(control.controls());

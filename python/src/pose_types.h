@@ -15,6 +15,7 @@
 #include "ccma/end_effector.h"
 #include "ccma/model.h"
 #include "ccma/state.h"
+#include "documents/control_document.h"
 #include "documents/simulate_document.h"
 #include "problems/compensated_control.h"
 #include "problems/control_problem.h"
@@ -33,25 +34,9 @@ bool AtHome(const ForwardProblem& problem);
 
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 
-// ControlResult plus where it left the mechanism and what `ccma control`
-// prints besides (its method, the secondary objective's settings).
-struct ControlSolution : ControlResult {
-  Vector6d target;  // x y z [m], roll pitch yaw [rad]
-  Eigen::VectorXd controls;
-  EndEffectorPose end_effector;
-  const Model* model = nullptr;  // as in ForwardSolution
-  State state;
-  std::string method;            // "lm" or "bfgs"
-  ControlOptions::Secondary secondary;
-  // `ccma control`'s "from_home" check (documents.h FromHome), made when first
-  // asked for: an assembly from home, as long as a simulate.
-  // move_to(target, compensate=True): how the loaded end-effector was put on
-  // the target; `state` and `end_effector` are then the loaded ones.
-  std::optional<CompensatedResult> compensation;
-  EndEffectorPose rigid_end_effector;  // with compensation: the rigid assembly's
-  mutable std::optional<nlohmann::json> from_home;
-  mutable std::string from_home_warning;
-};
+// ControlResult plus where it left the mechanism: the document layer's
+// (documents/control_document.h), whose document is its to_dict().
+using documents::ControlSolution;
 
 // One body's absolute pose.
 struct BodyPose {
