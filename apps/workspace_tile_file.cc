@@ -24,7 +24,7 @@ std::uint64_t SampleBytes(const Model& model) {
   return SampleBytes(static_cast<std::uint64_t>(model.num_controls()), static_cast<std::uint64_t>(model.num_bodies()));
 }
 
-std::string Hex(std::uint64_t x) {
+std::string Hex16(std::uint64_t x) {
   char text[17];
   std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(x));
   return text;
@@ -91,7 +91,7 @@ class Reader {
     if (!Raw(&map)) return false;
     if (map == limits_.map) return true;
     if (other_map != nullptr) *other_map = true;
-    return Fail("a tile of another map (map " + Hex(map) + ", not this map's " + Hex(limits_.map) + ")");
+    return Fail("a tile of another map (map " + Hex16(map) + ", not this map's " + Hex16(limits_.map) + ")");
   }
 
   bool Fail(const std::string& why) {

@@ -60,15 +60,8 @@ void BM_ClearanceStep(benchmark::State& state, const std::string& name, double r
   const Model model =
       LoadModelFromString(obstacles < 0 ? text : WithCollision(text, ring, base_radius, obstacles), name);
   ControlProblem control(model);
-  const PoseTarget targets[2] = {control.CurrentPose(), PaperStep(model, control.CurrentPose())};
-  int which = 1;
-  long steps = 0, reached = 0;
-  for (auto _ : state) {
-    reached += control.SolveStep(targets[which]).reached;
-    which ^= 1;
-    ++steps;
-  }
-  state.counters["reached_fraction"] = double(reached) / steps;
+  const double reached_fraction = TimePaperStepsOutAndBack(state, &control);
+  state.counters["reached_fraction"] = reached_fraction;
   state.counters["shapes"] = model.collision.enabled ? model.num_bases() + obstacles : 0;
 }
 

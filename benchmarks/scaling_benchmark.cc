@@ -35,16 +35,9 @@ Model GeneratedModel(const std::string& kind, int agents) {
 void BM_ControlStep(benchmark::State& state, const std::string& kind, int agents) {
   const Model model = GeneratedModel(kind, agents);
   ControlProblem control(model);
-  const PoseTarget targets[2] = {control.CurrentPose(), PaperStep(model, control.CurrentPose())};
-  int which = 1;
-  long steps = 0, reached = 0;
-  for (auto _ : state) {
-    reached += control.SolveStep(targets[which]).reached;
-    which ^= 1;
-    ++steps;
-  }
+  const double reached_fraction = TimePaperStepsOutAndBack(state, &control);
   state.counters["controls"] = static_cast<double>(control.effective_controls().size());
-  state.counters["reached_fraction"] = double(reached) / steps;
+  state.counters["reached_fraction"] = reached_fraction;
 }
 
 Model CompliantEverywhere(int agents) {

@@ -18,6 +18,10 @@
 namespace ccma::cli {
 namespace plots_test {
 
+using documents::ReplayRmseTable;
+using documents::ReportedComponents;
+using documents::WriteReplayCsv;
+
 namespace fs = std::filesystem;
 
 const char kHostile[] = "'.system('touch PWNED').'";

@@ -1,11 +1,11 @@
-// The JSON documents of the `ccma` commands, for the Python results'
-// to_dict(): the keys and values the command prints for the same inputs
-// (docs/cli.md; python/tests/test_cli_agreement.py holds them equal, key by
-// key). They are built from the command's own helpers where those are free of
-// command-line flags (apps/json_output.h, apps/trajectory_csv.h,
-// apps/replay_report.h, compiled into the module too); the lines each command
-// adds around them are mirrored here, one function per command, each naming
-// the command file it follows. A change to a command's JSON is made in both.
+// The JSON documents of the `ccma` commands not yet built in documents/ (check,
+// statics, simulate and control are: documents/*_document.h), for the Python
+// results' to_dict(): the keys and values the command prints for the same
+// inputs (docs/cli.md; python/tests/test_cli_agreement.py holds them equal,
+// key by key). They are built from the document layer's values
+// (documents/json_values.h, trajectory_csv.h, replay_report.h); the lines each
+// command adds around them are mirrored here, one function per command, each
+// naming the command file it follows, until they move to documents/ too.
 #ifndef CCMA_PYTHON_SRC_DOCUMENTS_H_
 #define CCMA_PYTHON_SRC_DOCUMENTS_H_
 
