@@ -88,7 +88,7 @@ bool LargeLmSystem::Factorize(double mu) const {
 }
 
 Eigen::MatrixXd LargeLmSystem::SchurSolve(const Eigen::MatrixXd& V) const {
-  const Eigen::Index k = V.rows(), n = W_.rows() - k;
+  const Eigen::Index k = V.rows();
   Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(W_.rows(), V.cols());
   rhs.bottomRows(k) = V;
   const Eigen::MatrixXd x = workspace_->ldlt.solve(rhs);
