@@ -12,9 +12,17 @@
 
 #include "analyses/design_objective.h"
 #include "analyses/work_estimate.h"
+#include "ccma/internal/format.h"
 #include "problems/internal/end_effector_error.h"
 
 namespace ccma {
+
+bool IsValidAsDesignCommand(const DesignOptions& options, std::string* why) {
+  std::string message;
+  if (options.IsValid(&message)) return true;
+  if (why != nullptr) *why = RenameLeadingWord(message, {{"max_iterations", "design_iterations"}});
+  return false;
+}
 
 bool DesignOptions::IsValid(std::string* why) const {
   auto fail = [why](const std::string& m) {

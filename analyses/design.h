@@ -25,6 +25,7 @@
 #ifndef CCMA_PROBLEMS_DESIGN_H_
 #define CCMA_PROBLEMS_DESIGN_H_
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -68,6 +69,14 @@ bool AddJointCoordinates(const Model& model, const std::string& item, DesignPara
 // which must share a body, differ, and have distinct home points; B moves, A
 // must not be varied itself.
 bool AddLinkLength(const Model& model, const std::string& item, DesignParameters* params, std::string* why);
+// The `vary` items then the `vary_length` items, in order (as `ccma design
+// --vary --vary_length` and Python's design() name them). Returns false at
+// the first bad item with `why` = "vary: ..." or "vary_length: ...".
+bool AddDesignParameters(const Model& model, const std::vector<std::string>& vary,
+                         const std::vector<std::string>& vary_length, DesignParameters* params, std::string* why);
+
+// The most targets one design takes: each costs a control solve per trial.
+constexpr std::size_t kMaxDesignTargets = 1000;
 
 // The home world point of a joint [m] (from its body-frame copy p_A).
 Eigen::Vector3d JointPointWorld(const Model& model, int joint);
@@ -138,6 +147,10 @@ struct DesignOptions {
   WorkEstimate* estimate = nullptr;
   bool IsValid(std::string* why) const;
 };
+
+// IsValid with the message naming max_iterations as `ccma design` and
+// Python's design() do: design_iterations.
+bool IsValidAsDesignCommand(const DesignOptions& options, std::string* why);
 
 // The most outer iterations Design may take with `options`: max_iterations
 // for reach and margin, as many again for an objective.

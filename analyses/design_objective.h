@@ -57,6 +57,10 @@ bool ParseDesignObjective(const std::string& name, DesignObjective* out);
 const char* DesignObjectiveName(DesignObjective objective);
 const char* DesignObjectiveUnit(DesignObjective objective);  // "", "kg", "N", "m", "m/N"
 inline bool IsMaximised(DesignObjective objective) { return objective == DesignObjective::kPayload; }
+// Whether the objective is a compliance (only a model with stiffness keys has one).
+inline bool NeedsSprings(DesignObjective objective) {
+  return objective == DesignObjective::kStiffness || objective == DesignObjective::kDeflection;
+}
 
 ObjectiveAtTarget EvaluateObjective(DesignObjective objective, const Model& model, const State& s,
                                     const Eigen::VectorXd& u, const BasePoseNoise& noise);

@@ -271,4 +271,21 @@ std::string PatchModelText(const std::string& text, const Model& original, const
   return out;
 }
 
+bool AddDesignParameters(const Model& model, const std::vector<std::string>& vary,
+                         const std::vector<std::string>& vary_length, DesignParameters* params, std::string* why) {
+  for (const std::string& item : vary) {
+    if (!AddJointCoordinates(model, item, params, why)) {
+      *why = "vary: " + *why;
+      return false;
+    }
+  }
+  for (const std::string& item : vary_length) {
+    if (!AddLinkLength(model, item, params, why)) {
+      *why = "vary_length: " + *why;
+      return false;
+    }
+  }
+  return true;
+}
+
 }  // namespace ccma

@@ -1,5 +1,7 @@
 #include "analyses/precision.h"
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <numeric>
 #include <vector>
@@ -51,6 +53,11 @@ Eigen::Matrix<double, 6, 6> EndEffectorCovariance(const Model& model, const Stat
         noise.position_sigma * noise.position_sigma, noise.heading_sigma * noise.heading_sigma;
   }
   return J * variance.asDiagonal() * J.transpose();
+}
+
+double EndEffectorPositionStd(const Model& model, const State& s, const Eigen::VectorXd& u) {
+  const Eigen::Matrix<double, 6, 6> sigma = EndEffectorCovariance(model, s, u, BasePoseNoise());
+  return sigma.allFinite() ? std::sqrt(std::max(0.0, sigma.topLeftCorner<3, 3>().trace())) : 0.0;
 }
 
 }  // namespace ccma

@@ -37,6 +37,12 @@ Eigen::MatrixXd EndEffectorControlJacobian(const Model& model, const State& s, c
 Eigen::Matrix<double, 6, 6> EndEffectorCovariance(const Model& model, const State& s, const Eigen::VectorXd& u,
                                                   const BasePoseNoise& noise);
 
+// The end-effector's position standard deviation sqrt(trace Sigma_p) [m] at
+// an assembled (s, u) under the bases' default pose noise (BasePoseNoise(),
+// the replay's defaults); 0 where dG/ds is singular (`ccma workspace`'s
+// ee_std_m).
+double EndEffectorPositionStd(const Model& model, const State& s, const Eigen::VectorXd& u);
+
 }  // namespace ccma
 
 #endif  // CCMA_ANALYSES_PRECISION_H_

@@ -6,9 +6,11 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <stdexcept>
 
 #include <Eigen/Geometry>
 #include <string>
+#include <utility>
 
 #include "analyses/internal/import_collision.h"
 #include "analyses/internal/import_mesh_paths.h"
@@ -201,7 +203,32 @@ void SetControlled(const internal::RobotModel& built, const std::string& source,
 
 }  // namespace
 
+bool ImportOptions::IsValid(std::string* why) const {
+  for (const auto& [what, names] : {std::pair{"actuated", &actuated}, std::pair{"controlled", &controlled}}) {
+    for (const std::string& name : *names) {
+      if (name.empty() || name.size() > kMaxImportNameBytes) {
+        *why = std::string(what) + ": empty or overlong name " + Quote(name);
+        return false;
+      }
+    }
+  }
+  if (end_effector_link.size() > kMaxImportNameBytes) {
+    *why = "end_effector: overlong name " + Quote(end_effector_link);
+    return false;
+  }
+  if (!end_effector_point_L.allFinite() || end_effector_point_L.cwiseAbs().maxCoeff() > 1e4) {
+    *why = "point must be finite, within 1e4 m";
+    return false;
+  }
+  if (!(collision_radius == 0 || (collision_radius >= 1e-4 && collision_radius <= 10))) {
+    *why = "collision_radius: must be 0 or in [1e-4, 10] m, got " + FormatG(collision_radius);
+    return false;
+  }
+  return true;
+}
+
 ImportedRobot ImportRobot(const RobotDescription& robot, const ImportOptions& options) {
+  if (std::string why; !options.IsValid(&why)) throw std::invalid_argument(why);
   const internal::RobotModel built = internal::BuildRobotModel(robot, options);
   ForwardOptions forward;
   forward.max_iterations = 500;

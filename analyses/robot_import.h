@@ -22,6 +22,7 @@
 #ifndef CCMA_ANALYSES_ROBOT_IMPORT_H_
 #define CCMA_ANALYSES_ROBOT_IMPORT_H_
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -55,7 +56,15 @@ struct ImportOptions {
   // 0: no collision geometry (robot files give meshes, which clearance does
   // not use).
   double collision_radius = 0;
+
+  // Names non-empty and at most kMaxImportNameBytes, the point finite and
+  // within 1e4 m, collision_radius 0 or in [1e-4, 10] m. `why` names the
+  // option as Python's import_robot() does ("collision_radius: ...").
+  bool IsValid(std::string* why) const;
 };
+
+// The longest joint or link name an import is asked for [bytes].
+constexpr std::size_t kMaxImportNameBytes = 256;
 
 struct ImportedRobot {
   Model model;          // as loaded back from `yaml` (validated by the loader); mesh paths
@@ -77,7 +86,8 @@ struct ImportedRobot {
 // be assembled (its residual), a joint whose assembled position lies outside
 // its limits, controlled components the controls cannot move independently
 // at home (naming the ones they move), an end-effector the controls do not
-// move at all (unless the source stores its components).
+// move at all (unless the source stores its components). Throws
+// std::invalid_argument, before any work, for options that are not IsValid.
 ImportedRobot ImportRobot(const RobotDescription& robot, const ImportOptions& options);
 
 }  // namespace ccma

@@ -2,8 +2,6 @@
 // moves the named geometry (analyses/design.h) until every target pose is
 // reachable with margin; writes the model file with only those numbers
 // changed and prints {reached, changed, converged, ...}.
-#include <cmath>
-#include <limits>
 #include <iostream>
 #include <sstream>
 
@@ -18,6 +16,7 @@
 #include "formats/waypoints.h"
 #include "analyses/design.h"
 #include "analyses/design_objective.h"
+#include "documents/design_document.h"
 
 DEFINE_string(targets, "", "design: target poses, waypoint CSV (docs/waypoints.md; time is ignored) [path]");
 DEFINE_string(vary, "",
@@ -42,8 +41,6 @@ DEFINE_string(objective, "reach",
 namespace ccma::cli {
 namespace {
 
-constexpr std::size_t kMaxTargets = 1000;  // each costs a control solve per design trial
-
 std::vector<std::string> SplitList(const std::string& list) {
   std::vector<std::string> items;
   std::stringstream in(list);
@@ -66,21 +63,6 @@ Model LoadModelKeepingText(const std::string& path, std::string* text) {
   return model;
 }
 
-nlohmann::json TargetsJson(const std::vector<DesignTargetResult>& results, bool reached_only) {
-  nlohmann::json out = nlohmann::json::array();
-  for (const DesignTargetResult& r : results) {
-    if (reached_only) {
-      out.push_back(r.reached);
-    } else {
-      out.push_back({{"reached", r.reached},
-                     {"error", std::isfinite(r.error) ? r.error : -1.0},
-                     {"min_singular_value", r.min_singular_value},
-                     {"within_limits", r.within_limits}});
-    }
-  }
-  return out;
-}
-
 // The --targets poses (times ignored); UsageError for a bad file or count.
 std::vector<PoseTarget> TargetsFlag() {
   std::vector<Waypoint> waypoints;
@@ -89,8 +71,8 @@ std::vector<PoseTarget> TargetsFlag() {
   } catch (const WaypointError& e) {
     throw UsageError(std::string("ccma design: --targets: ") + e.what());
   }
-  if (waypoints.empty() || waypoints.size() > kMaxTargets) {
-    throw UsageError("ccma design: --targets: between 1 and " + std::to_string(kMaxTargets) + " targets needed, got " +
+  if (waypoints.empty() || waypoints.size() > kMaxDesignTargets) {
+    throw UsageError("ccma design: --targets: between 1 and " + std::to_string(kMaxDesignTargets) + " targets needed, got " +
                      std::to_string(waypoints.size()));
   }
   std::vector<PoseTarget> targets;
@@ -102,11 +84,8 @@ std::vector<PoseTarget> TargetsFlag() {
 DesignParameters ParametersFromFlags(const Model& model) {
   DesignParameters params;
   std::string why;
-  for (const std::string& item : SplitList(FLAGS_vary)) {
-    if (!AddJointCoordinates(model, item, &params, &why)) throw UsageError("--vary: " + why);
-  }
-  for (const std::string& item : SplitList(FLAGS_vary_length)) {
-    if (!AddLinkLength(model, item, &params, &why)) throw UsageError("--vary_length: " + why);
+  if (!AddDesignParameters(model, SplitList(FLAGS_vary), SplitList(FLAGS_vary_length), &params, &why)) {
+    throw UsageError("--" + why);
   }
   if (params.size() == 0) throw UsageError("ccma design: name what to vary with --vary and/or --vary_length");
   return params;
@@ -126,83 +105,8 @@ DesignOptions DesignOptionsFromFlags() {
   }
   options.noise = PoseNoiseFromFlags();
   std::string why;
-  if (!options.IsValid(&why)) throw UsageError("ccma design: " + why);
+  if (!IsValidAsDesignCommand(options, &why)) throw UsageError("ccma design: " + why);
   return options;
-}
-
-// Every target reached in `check`, with sigma_min at least the threshold.
-bool ConvergedIn(const std::vector<DesignTargetResult>& check, const DesignOptions& options) {
-  bool all_reached = true;
-  double min_sigma = std::numeric_limits<double>::infinity();
-  for (const DesignTargetResult& r : check) {
-    all_reached = all_reached && r.reached;
-    min_sigma = std::min(min_sigma, r.min_singular_value);
-  }
-  return all_reached && min_sigma >= options.min_singular_value;
-}
-
-// "changed" (parameter, old, new) and "changed_points" (joint, old and new world point).
-void AddChanges(const Model& model, const Model& designed, const DesignParameters& params,
-                const DesignResult& result, nlohmann::json* out) {
-  nlohmann::json changed = nlohmann::json::array();
-  for (int k = 0; k < params.size(); ++k) {
-    changed.push_back({{"parameter", params.list[k].label}, {"old", result.p0[k]}, {"new", result.p[k]}, {"unit", "m"}});
-  }
-  (*out)["changed"] = changed;
-  nlohmann::json points = nlohmann::json::array();
-  for (int j = 0; j < static_cast<int>(model.joints.size()); ++j) {
-    const Eigen::Vector3d a = JointPointWorld(model, j), b = JointPointWorld(designed, j);
-    if (a != b) points.push_back({{"joint", model.joints[j].name}, {"old_point", ToJson(Eigen::VectorXd(a))},
-                                  {"new_point", ToJson(Eigen::VectorXd(b))}});
-  }
-  (*out)["changed_points"] = points;
-}
-
-nlohmann::json ObjectiveValueJson(const ObjectiveAtTarget& v) {
-  if (!v.defined) return nullptr;
-  return {{"value", v.value}, {"limiting", v.limiting}};
-}
-
-// "objective": what phase 3 improved (null values where not defined).
-nlohmann::json ObjectiveJson(const DesignOptions& options, const DesignResult& result) {
-  nlohmann::json out = {{"name", DesignObjectiveName(options.objective)},
-                        {"unit", DesignObjectiveUnit(options.objective)},
-                        {"maximised", IsMaximised(options.objective)},
-                        {"before", ObjectiveValueJson(result.objective_before)},
-                        {"after", ObjectiveValueJson(result.objective_after)},
-                        {"iterations", result.objective_iterations},
-                        {"stopped", result.objective_message}};
-  return out;
-}
-
-// The JSON on stdout (docs/cli.md, "ccma design"); warnings also on stderr.
-nlohmann::json DesignJson(const Model& model, const Model& designed, const DesignParameters& params,
-                          const DesignOptions& options, const DesignResult& result,
-                          const std::vector<DesignTargetResult>& final_check, const std::string& out_path) {
-  const bool converged = ConvergedIn(final_check, options);
-  nlohmann::json out;
-  out["model"] = model.name;
-  out["out"] = out_path;
-  out["converged"] = converged;
-  out["reached"] = TargetsJson(final_check, true);
-  out["reached_before"] = TargetsJson(result.initial, true);
-  out["targets"] = TargetsJson(final_check, false);
-  out["iterations"] = result.iterations;
-  AddChanges(model, designed, params, result, &out);
-  if (options.objective != DesignObjective::kReach) {
-    out["objective"] = ObjectiveJson(options, result);
-    if (converged && !result.objective_after.defined) {
-      out["warning"] = "the " + std::string(DesignObjectiveName(options.objective)) +
-                       " objective is not defined: " + result.objective_after.why;
-      std::cerr << "ccma design: warning: " << out["warning"].get<std::string>() << "\n";
-    }
-  }
-  if (!converged) {
-    const std::string message = result.message.empty() ? "not every target is reached with margin" : result.message;
-    out["warning"] = message;
-    std::cerr << "ccma design: warning: not converged: " << message << "\n";
-  }
-  return out;
 }
 
 }  // namespace
@@ -216,9 +120,7 @@ int RunDesign(const std::vector<std::string>& args) {
   const std::string out_path = RequireFlag(FLAGS_out, "out", "design");
   const DesignParameters params = ParametersFromFlags(model);
   DesignOptions options = DesignOptionsFromFlags();
-  const bool needs_springs =
-      options.objective == DesignObjective::kStiffness || options.objective == DesignObjective::kDeflection;
-  if (needs_springs && !model.compliant()) {
+  if (NeedsSprings(options.objective) && !model.compliant()) {
     throw UsageError("ccma design: --objective=" + FLAGS_objective + ": model " + Quote(model.name) +
                      " has no stiffness keys: a rigid mechanism has no compliance to lower (model_format.md, "
                      "\"Compliance\")");
@@ -240,7 +142,9 @@ int RunDesign(const std::vector<std::string>& args) {
   file.stream() << text;
   file.Commit();
 
-  PrintJson(DesignJson(model, designed, params, options, result, final_check, out_path));
+  documents::Document document = documents::DesignDocument(model, designed, params, options, result, final_check);
+  document.json["out"] = out_path;
+  PrintDocument(document, "design");
   return 0;
 }
 

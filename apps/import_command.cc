@@ -17,8 +17,8 @@
 #include "apps/flags.h"
 #include "apps/json_output.h"
 #include "apps/output_file.h"
-#include "formats/sdformat_reader.h"
-#include "formats/urdf_reader.h"
+#include "documents/import_document.h"
+#include "formats/robot_file.h"
 
 DEFINE_string(closures, "", "import: the URDF's closure file (closed_loop, type, name_mot; docs/import.md) [path]");
 DEFINE_string(actuated, "", "import: the actuated joints, comma-separated (URDF: overrides name_mot) [names]");
@@ -40,15 +40,11 @@ std::vector<std::string> SplitNames(const std::string& text, const std::string& 
   std::vector<std::string> names;
   std::istringstream in(text);
   for (std::string item; std::getline(in, item, ',');) {
-    if (item.empty() || item.size() > 256) throw UsageError("--" + flag + ": empty or overlong name in " + Quote(text));
+    if (item.empty() || item.size() > kMaxImportNameBytes) throw UsageError("--" + flag + ": empty or overlong name in " + Quote(text));
     names.push_back(item);
   }
   if (!text.empty() && text.back() == ',') throw UsageError("--" + flag + ": trailing comma");
   return names;
-}
-
-bool EndsWith(const std::string& text, const std::string& suffix) {
-  return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 void ParseEndEffector(const std::string& text, ImportOptions* options) {
@@ -60,7 +56,7 @@ void ParseEndEffector(const std::string& text, ImportOptions* options) {
     if (p.cwiseAbs().maxCoeff() > 1e4) throw UsageError("--end_effector: the point must lie within 1e4 m");
     options->end_effector_point_L = p;
   }
-  if (options->end_effector_link.empty() || options->end_effector_link.size() > 256) {
+  if (options->end_effector_link.empty() || options->end_effector_link.size() > kMaxImportNameBytes) {
     throw UsageError("--end_effector: give a link name (LINK[:px,py,pz])");
   }
 }
@@ -71,26 +67,26 @@ int RunImport(const std::vector<std::string>& args) {
   ParseCommandFlags(args, "import");
   const std::string from = RequireFlag(FLAGS_from, "from", "import");
   const std::string out_path = RequireFlag(FLAGS_out, "out", "import");
-  const bool sdf = EndsWith(from, ".sdf") || EndsWith(from, ".world");
-  if (!sdf && !EndsWith(from, ".urdf") && !EndsWith(from, ".xml")) {
-    throw UsageError("ccma import: --from must be a .urdf or .sdf file");
+  const RobotFileFormat format = RobotFileFormatOf(from);
+  if (format == RobotFileFormat::kUnknown) throw UsageError("ccma import: --from must be a .urdf or .sdf file");
+  if (format == RobotFileFormat::kSdformat && !FLAGS_closures.empty()) {
+    throw UsageError("ccma import: --closures is for URDF (SDFormat holds its loops)");
   }
-  if (sdf && !FLAGS_closures.empty()) throw UsageError("ccma import: --closures is for URDF (SDFormat holds its loops)");
   ImportOptions options;
   options.actuated = SplitNames(FLAGS_actuated, "actuated");
   options.controlled = SplitNames(FLAGS_controlled, "controlled");
   if (!FLAGS_end_effector.empty()) ParseEndEffector(FLAGS_end_effector, &options);
-  if (!(FLAGS_collision_radius == 0 || (FLAGS_collision_radius >= 1e-4 && FLAGS_collision_radius <= 10))) {
-    throw UsageError("--collision_radius: must be 0 or in [1e-4, 10] m, got " + FormatG(FLAGS_collision_radius));
-  }
   options.collision_radius = FLAGS_collision_radius;
+  std::string why;
+  if (!options.IsValid(&why)) throw UsageError("--" + why);
   OutputFile out(out_path, "out");  // checked before the work
   // Mesh paths relative to the model file: the two can be moved together.
   options.model_folder = std::filesystem::absolute(out_path).parent_path().string();
-  const RobotDescription robot = sdf ? ReadSdformat(from, options.actuated) : ReadUrdf(from, FLAGS_closures);
+  const RobotDescription robot = ReadRobotFile(from, format, FLAGS_closures, options.actuated);
   for (const std::string& warning : robot.warnings) std::cerr << "ccma import: warning: " << warning << "\n";
   const ImportedRobot imported = ImportRobot(robot, options);
-  for (const std::string& warning : imported.warnings) std::cerr << "ccma import: warning: " << warning << "\n";
+  documents::Document document = documents::ImportDocument(imported, options);
+  PrintWarnings(document, "import");
   if (imported.controlled_chosen) {
     std::string names;
     for (const std::string& name : imported.controlled) names += (names.empty() ? "" : ",") + name;
@@ -99,21 +95,8 @@ int RunImport(const std::vector<std::string>& args) {
   }
   out.stream() << imported.yaml;
   out.Commit();
-  nlohmann::json summary = {{"out", out_path},
-                            {"bodies", imported.model.num_bodies()},
-                            {"joints", static_cast<int>(imported.model.joints.size())},
-                            {"closures", imported.closures},
-                            {"actuated", imported.actuated},
-                            {"controlled", imported.controlled},
-                            {"controlled_chosen", imported.controlled_chosen},
-                            {"assembled", true},
-                            {"residual_energy", imported.residual_energy},
-                            {"controls", ToJson(imported.model.home_controls())}};
-  if (options.collision_radius > 0) {
-    summary["collision_capsules"] = imported.collision_capsules;
-    summary["collision_ignored_pairs"] = imported.collision_ignored_pairs;
-  }
-  PrintJson(summary);
+  document.json["out"] = out_path;
+  PrintJson(document.json);
   return 0;
 }
 

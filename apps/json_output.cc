@@ -113,8 +113,12 @@ void PrintJson(const nlohmann::json& document) {
   std::cout << std::endl;
 }
 
-void PrintDocument(const documents::Document& document, const std::string& command) {
+void PrintWarnings(const documents::Document& document, const std::string& command) {
   for (const std::string& w : document.warnings) std::cerr << "ccma " << command << ": warning: " << w << "\n";
+}
+
+void PrintDocument(const documents::Document& document, const std::string& command) {
+  PrintWarnings(document, command);
   PrintJson(document.json);
 }
 

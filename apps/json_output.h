@@ -17,7 +17,6 @@ namespace ccma::cli {
 using documents::AddCompensationJson;
 using documents::AddComplianceJson;
 using documents::AddLoadedJson;
-using documents::AddPlanFinishing;
 using documents::BodiesToJson;
 using documents::ClearanceToJson;
 using documents::JointsToJson;
@@ -36,8 +35,10 @@ State StateFromJson(const Model& model, const nlohmann::json& document, const st
 
 // Prints one JSON document on stdout.
 void PrintJson(const nlohmann::json& document);
-// A command's document (documents/document.h): its warnings on stderr, one
-// line each ("ccma COMMAND: warning: ..."), then its JSON on stdout.
+// A document's warnings on stderr, one line each ("ccma COMMAND: warning: ...").
+void PrintWarnings(const documents::Document& document, const std::string& command);
+// A command's document (documents/document.h): its warnings on stderr
+// (PrintWarnings), then its JSON on stdout.
 void PrintDocument(const documents::Document& document, const std::string& command);
 
 }  // namespace ccma::cli

@@ -10,8 +10,9 @@
 #include "apps/flags.h"
 #include "apps/json_output.h"
 #include "apps/output_file.h"
-#include "documents/trajectory_csv.h"
 #include "ccma/internal/format.h"
+#include "documents/plan_document.h"
+#include "documents/trajectory_csv.h"
 
 DEFINE_int32(plan_iterations, 200, "plan: Gauss-Newton iterations of the whole path, [1, 10000] [count]");
 DEFINE_double(path_weight, 1e-2,
@@ -36,11 +37,7 @@ PlanOptions PlanOptionsFromFlags() {
   options.max_iterations = FLAGS_plan_iterations;
   options.max_seconds = FLAGS_plan_time_s;
   std::string why;
-  if (!options.IsValid(&why)) {
-    if (why.rfind("max_iterations", 0) == 0) why.replace(0, 14, "plan_iterations");
-    if (why.rfind("max_seconds", 0) == 0) why.replace(0, 11, "plan_time_s");
-    throw UsageError("ccma plan: --" + why);
-  }
+  if (!IsValidAsPlanCommand(options, &why)) throw UsageError("ccma plan: --" + why);
   // A line on stderr at least every kProgressEvery seconds of a long plan.
   auto last = std::make_shared<double>(0.0);
   options.on_progress = [last](const PlanProgress& p) {
@@ -52,16 +49,8 @@ PlanOptions PlanOptionsFromFlags() {
   return options;
 }
 
-nlohmann::json MeasuresJson(const PathMeasures& m) {
-  nlohmann::json j = {{"reached_waypoints", m.reached_waypoints}, {"travel_m", m.travel_m}};
-  if (std::isfinite(m.min_clearance_m)) j["min_clearance_m"] = m.min_clearance_m;
-  return j;
-}
-
-// How the optimisation stopped and the plan was finished (JSON stopped_by,
-// finishing, shortfall); a note on stderr when the time bound stopped it.
-void AddFinishing(const PlanResult& result, nlohmann::json* out) {
-  AddPlanFinishing(result, out);
+// A note on stderr when the time bound stopped the optimisation.
+void NoteTheTimeBound(const PlanResult& result) {
   if (result.stopped_by == "plan_time_s") {
     std::cerr << "ccma plan: note: the optimisation stopped at the time bound --plan_time_s="
               << FormatG(FLAGS_plan_time_s) << " after " << result.iterations
@@ -93,36 +82,10 @@ int RunPlan(const std::vector<std::string>& args) {
   for (const TrajectoryStep& step : result.steps) csv.Write(step);
   file.Commit();
 
-  nlohmann::json out;
-  out["model"] = model.name;
-  out["converged"] = result.converged;
-  out["used"] = result.used_plan ? "plan" : "greedy";
-  out["waypoints"] = waypoints.size();
-  out["steps"] = result.steps.size();
-  out["iterations"] = result.iterations;
-  AddFinishing(result, &out);
-  out["greedy"] = MeasuresJson(result.greedy);
-  out["plan"] = MeasuresJson(result.plan);
-  out["solve_time_ms"] = result.solve_time_ms;
-  out["out"] = out_path;
-  out["controls"] = ToJson(control.controls());
-  out["end_effector"] = ToJson(control.forward().end_effector());
-  AddClearance(model, control.forward().state(), "plan", &out);
-  if (csv.min_clearance().any) {
-    out["clearance"]["min_on_path"] = csv.min_clearance().min;
-    out["clearance"]["pair_on_path"] = {csv.min_clearance().a, csv.min_clearance().b};
-  }
-  std::string warning;
-  if (!result.used_plan) warning = "kept the greedy trajectory: " + result.note;
-  if (!result.converged) {
-    warning += std::string(warning.empty() ? "" : "; ") + "not every waypoint was reached" +
-               (result.greedy_warning.empty() ? "" : " (greedy: " + result.greedy_warning + ")");
-  }
-  if (!warning.empty()) {
-    out["warning"] = warning;
-    std::cerr << "ccma plan: warning: " << warning << "\n";
-  }
-  PrintJson(out);
+  NoteTheTimeBound(result);
+  documents::Document document = documents::PlanDocument(control, result, waypoints.size(), csv.min_clearance());
+  document.json["out"] = out_path;
+  PrintDocument(document, "plan");
   return 0;
 }
 

@@ -5,7 +5,6 @@
 // DIR/end_effector.{png,svg} and DIR/bases_xy.{png,svg} (apps/plots.h).
 // A replay that failed (plan not converged, chain torn) says so on stderr,
 // in rmse.md, in the plots and in the JSON.
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -23,6 +22,8 @@
 #include "apps/json_output.h"
 #include "apps/output_file.h"
 #include "apps/plots.h"
+#include "documents/replay_document.h"
+#include "documents/replay_report.h"
 
 DEFINE_string(noise, "default",
               "simulated imperfections: 'default' (the documented ones, docs/cli.md) or 'none' [default|none]");
@@ -89,58 +90,6 @@ std::string Setting(const Model& model, const std::string& path_name, const Repl
          FormatG(o.gains.ki_position) + "/s^2 at " + FormatG(o.gains.rate_hz) + " Hz)";
 }
 
-nlohmann::json OptionsJson(const ReplayOptions& options) {
-  const SimulationNoise& n = options.noise;
-  const TrackingGains& g = options.gains;
-  return {{"noise",
-           {{"mocap_position_sigma_m", n.position_sigma}, {"mocap_heading_sigma_rad", n.heading_sigma},
-            {"mocap_latency_s", n.mocap_latency}, {"mocap_hz", n.mocap_hz}, {"command_latency_s", n.command_latency},
-            {"slip", n.slip}, {"slip_sigma", n.slip_sigma}, {"seed", n.seed}}},
-          {"controller",
-           {{"kp", g.kp_position}, {"ki", g.ki_position}, {"rate_hz", g.rate_hz},
-            {"max_wheel_speed", g.max_wheel_speed}, {"velocity_feedforward", g.velocity_feedforward}}}};
-}
-
-// A time that exists only when something happened: the key is left out
-// otherwise (no null is ever printed as a result).
-void PutTimeIfAny(nlohmann::json* out, const char* key, double seconds) {
-  if (std::isfinite(seconds)) (*out)[key] = seconds;
-}
-
-nlohmann::json ReplayJson(const Model& model, const ReplayOptions& options, const ReplayResult& r,
-                          const std::string& dir, const std::vector<std::string>& plots) {
-  nlohmann::json out;
-  out["model"] = model.name;
-  out["simulation"] = true;
-  out["converged"] = r.converged;
-  out["torn"] = r.torn;
-  out["torn_samples"] = r.torn_samples;
-  PutTimeIfAny(&out, "first_torn_time_s", r.first_torn_time);
-  out["max_residual_energy"] = r.max_residual_energy;
-  out["torn_residual_energy"] = r.torn_residual_energy;
-  PutTimeIfAny(&out, "failed_step_time_s", r.failed_step_time);
-  out["trustworthy"] = r.trustworthy();
-  out["duration_s"] = r.duration_s;
-  out["samples"] = r.samples.size();
-  out.update(OptionsJson(options));
-  out["rmse"] = documents::ReplayRmseJson(model, r.rmse);
-  if (r.gait) out["gait"] = documents::ReplayGaitJson(model, options, r);
-  if (documents::IsPaperModel(model)) {
-    nlohmann::json paper = nlohmann::json::array();
-    for (const documents::PaperRow& row : documents::PaperHardwareRmse()) {
-      paper.push_back({{"experiment", row.experiment}, {"y_mm", row.y_mm}, {"z_mm", row.z_mm},
-                       {"x_mm", row.x_mm}, {"yaw_rad", row.yaw_rad}});
-    }
-    out["paper_hardware_rmse"] = paper;
-  }
-  out["files"] = {dir + "/end_effector.csv", dir + "/bases.csv", dir + "/rmse.md"};
-  out["plots"] = plots;
-  std::string warning;
-  for (const std::string& failure : documents::ReplayFailures(r)) warning += (warning.empty() ? "" : "; ") + failure;
-  if (!warning.empty()) out["warning"] = warning;
-  return out;
-}
-
 }  // namespace
 
 int RunReplay(const std::vector<std::string>& args) {
@@ -170,14 +119,17 @@ int RunReplay(const std::vector<std::string>& args) {
   const std::string table = documents::ReplayRmseTable(model, r, Setting(model, path_name, options));
   std::ofstream(folder.scratch() + "/rmse.md") << table;
   std::cerr << table;
-  for (const std::string& failure : documents::ReplayFailures(r)) std::cerr << "ccma replay: warning: " << failure << "\n";
+  documents::Document document = documents::ReplayDocument(model, options, r);
+  PrintWarnings(document, "replay");
   std::string plot_warning;
   std::vector<std::string> plots = PlotReplay(folder.scratch(), model, r, path_name, &plot_warning);
   for (std::string& plot : plots) plot = folder.Final(plot);
   if (!plot_warning.empty()) std::cerr << "ccma replay: " << plot_warning << "\n";
   folder.Commit();
   output.Keep();
-  nlohmann::json out = ReplayJson(model, options, r, dir, plots);
+  nlohmann::json& out = document.json;
+  out["files"] = {dir + "/end_effector.csv", dir + "/bases.csv", dir + "/rmse.md"};
+  out["plots"] = plots;
   if (!plot_warning.empty()) out["plot_warning"] = plot_warning;
   PrintJson(out);
   return 0;

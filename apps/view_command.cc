@@ -10,7 +10,6 @@
 // controls; with --deflection=SCALE (a compliant model, a static view), its
 // loaded shape exaggerated SCALE times over the rigid one, coloured by each
 // body's deflection. Prints {"out", "bytes", "frames", ...} on stdout.
-#include <iostream>
 #include <new>
 #include <optional>
 #include <stdexcept>
@@ -22,6 +21,7 @@
 #include "apps/flags.h"
 #include "apps/json_output.h"
 #include "apps/output_file.h"
+#include "documents/view_document.h"
 #include "viewer/html.h"
 #include "viewer/mesh_files.h"
 #include "viewer/scene.h"
@@ -53,74 +53,6 @@ DEFINE_string(deflection, "",
 namespace ccma::cli {
 
 namespace {
-
-// The stderr warning about frames not assembled, branch jumps and frames
-// beyond the work bound (viewer/scene.h).
-void WarnAboutFrames(const viewer::SceneSummary& summary, const std::string& source, double margin) {
-  if (summary.not_assembled > 0 || summary.branch_jumps > 0) {
-    std::cerr << "ccma view: warning: " << summary.not_assembled << " frame(s) not assembled and "
-              << summary.branch_jumps << " branch jump(s) while re-assembling the " << source
-              << " (marked red in the page)\n";
-  }
-  if (summary.beyond_work_bound > 0) {
-    std::cerr << "ccma view: warning: " << summary.beyond_work_bound << " of them not attempted: more than "
-              << viewer::kMaxViewFrameSubsteps << " assembly sub-steps from the last frame assembled, or past "
-              << viewer::kMaxViewSubsteps << " in all\n";
-  }
-  if (summary.clearance_below_margin > 0) {
-    std::cerr << "ccma view: warning: " << summary.clearance_below_margin
-              << " frame(s) with a clearance below the margin of " << margin << " m (marked red in the page)\n";
-  }
-}
-
-// The stderr warning about frames whose statics is not balanced or not determinate.
-void WarnAboutLoads(const viewer::SceneSummary& summary, viewer::ColorBy color_by) {
-  if (color_by != viewer::ColorBy::kLoad) return;
-  if (summary.unbalanced_frames > 0) {
-    std::cerr << "ccma view: warning: " << summary.unbalanced_frames
-              << " frame(s) whose joints cannot hold the loads (unbalanced): their loads are a least-squares fit\n";
-  }
-  if (summary.indeterminate_frames > 0) {
-    std::cerr << "ccma view: warning: " << summary.indeterminate_frames
-              << " frame(s) statically indeterminate: coloured by the minimum-norm loads\n";
-  }
-}
-
-// The JSON on stdout (docs/cli.md, "ccma view").
-nlohmann::json Result(const std::string& out_path, std::size_t bytes, const viewer::SceneSummary& summary,
-                      const std::string& source, const viewer::MeshFiles* meshes, bool workspace, bool collision,
-                      bool loads) {
-  nlohmann::json result = {{"out", out_path},
-                           {"bytes", bytes},
-                           {"frames", summary.frames},
-                           {"source", source},
-                           {"flagged_frames", summary.flagged_frames},
-                           {"not_assembled_frames", summary.not_assembled},
-                           {"branch_jumps", summary.branch_jumps}};
-  if (summary.beyond_work_bound > 0) result["beyond_work_bound_frames"] = summary.beyond_work_bound;
-  if (collision) result["clearance_below_margin_frames"] = summary.clearance_below_margin;
-  if (meshes != nullptr) {
-    result["mesh_files"] = meshes->files.size();
-    result["mesh_bytes"] = meshes->bytes_read;
-  }
-  if (loads) {
-    result["max_load"] = summary.max_load;
-    result["unbalanced_frames"] = summary.unbalanced_frames;
-    result["indeterminate_frames"] = summary.indeterminate_frames;
-  }
-  if (summary.deflected) {
-    const LoadedEquilibrium& e = summary.deflected->equilibrium;
-    result["deflection_scale"] = summary.deflected->scale;
-    result["max_deflection_m"] = summary.deflected->max_deflection_m;
-    result["deflection_converged"] = e.converged;
-    result["load_fraction"] = e.load_fraction;
-  }
-  if (workspace) {
-    result["workspace_points"] = summary.workspace_points;
-    result["workspace_reachable"] = summary.workspace_reachable;
-  }
-  return result;
-}
 
 // --mesh_root: the folders, comma-separated (an empty item is an error).
 std::vector<std::string> MeshRoots() {
@@ -168,13 +100,6 @@ std::optional<viewer::DeflectionRequest> StaticViewFlags(const Model& model) {
   }
   request.wrench = WrenchFlag();
   return request;
-}
-
-// The stderr warning about a loaded shape that is not an equilibrium.
-void WarnAboutDeflection(const viewer::SceneSummary& summary) {
-  if (!summary.deflected || summary.deflected->equilibrium.converged) return;
-  std::cerr << "ccma view: warning: the loaded equilibrium was not found (" << summary.deflected->equilibrium.message
-            << "); the shape drawn holds " << summary.deflected->equilibrium.load_fraction << " of the loads\n";
 }
 
 // --color_by: body (the default) or load.
@@ -274,11 +199,11 @@ int WriteView(const std::string& model_path) {
   OutputFile out(out_path, "out");
   out.stream() << html;
   out.Commit();
-  WarnAboutFrames(summary, source, model.collision.margin);
-  WarnAboutLoads(summary, color_by);
-  WarnAboutDeflection(summary);
-  PrintJson(Result(out_path, html.size(), summary, source, meshes ? &*meshes : nullptr, workspace.has_value(),
-                   model.collision.enabled, color_by == viewer::ColorBy::kLoad));
+  documents::Document document =
+      documents::ViewDocument(model, summary, html.size(), source, meshes ? &*meshes : nullptr, workspace.has_value(),
+                              color_by == viewer::ColorBy::kLoad);
+  document.json["out"] = out_path;
+  PrintDocument(document, "view");
   return 0;
 }
 

@@ -7,14 +7,11 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <iomanip>
 #include <iostream>
-#include <limits>
 #include <memory>
 
 #include <gflags/gflags.h>
 
-#include "analyses/compliance.h"
 #include "apps/cli.h"
 #include "apps/commands.h"
 #include "apps/flags.h"
@@ -26,6 +23,8 @@
 #include "apps/workspace_store.h"
 #include "formats/model_loader.h"
 #include "ccma/internal/format.h"
+#include "documents/table.h"
+#include "documents/workspace_table.h"
 
 DEFINE_string(x, "", "workspace: sample x over lo:hi [m] (e.g. -0.2:0.2)");
 DEFINE_string(y, "", "workspace: sample y over lo:hi [m]");
@@ -73,78 +72,22 @@ const std::string* RangeFlag(int component) {
   return flags[component];
 }
 
-// A number for the CSV: never NaN or inf (empty instead).
-std::string Cell(double v) {
-  if (!std::isfinite(v)) return "";
-  std::ostringstream os;
-  os << std::setprecision(17) << v;
-  return os.str();
-}
-
-// The end-effector's position standard deviation sqrt(trace Sigma_p) [m] at
-// a reached sample, from the bases' pose noise (the replay's defaults;
-// analyses/precision.h); 0 where dG/ds is singular.
-double PositionStd(const Model& model, const WorkspaceSample& s) {
-  const Eigen::Matrix<double, 6, 6> sigma = EndEffectorCovariance(model, s.state, s.controls, BasePoseNoise());
-  return sigma.allFinite() ? std::sqrt(std::max(0.0, sigma.topLeftCorner<3, 3>().trace())) : 0.0;
-}
-
-// The stiffness_min_N_per_m cell of a compliant model's sample: the
-// end-effector's smallest translational stiffness [N/m] where reached, 0
-// where not (or not held), empty where every translation is rigid.
-std::string StiffnessCell(const Model& model, const WorkspaceSample& s) {
-  return Cell(s.reachable ? SmallestTranslationalStiffness(model, s.state, s.controls) : 0.0);
-}
-
-// A compliant model's stiffness column is within the statics' bound
-// (kMaxStaticsEntries): checked once at home, before the long run. Returns
-// what a row's computed columns (ee_std_m, stiffness_min_N_per_m) take
-// there [s]: part of the run's estimate.
+// What a row's computed columns take at home [s] (part of the run's
+// estimate), checked once before the long run: a compliant model's
+// stiffness column must be within the statics' bound (kMaxStaticsEntries).
 double CheckedRowSeconds(const Model& model) {
-  WorkspaceSample at_home;
-  at_home.reachable = true;
-  at_home.state = State::Home(model);
-  at_home.controls = model.home_controls();
   try {
-    return LeastSecondsOf([&] {
-      PositionStd(model, at_home);
-      if (model.compliant()) SmallestTranslationalStiffness(model, at_home.state, at_home.controls);
-    });
+    return documents::WorkspaceRowSeconds(model);
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("ccma workspace: stiffness_min_N_per_m: ") + e.what());
   }
 }
 
+// The map as its CSV; `estimate` told of every row's computed columns.
 void WriteCsv(const Model& model, const WorkspaceResult& result, std::ostream& csv, WorkEstimate* estimate) {
-  for (int c = 0; c < 6; ++c) {
-    if (model.end_effector.controlled[static_cast<size_t>(c)]) csv << kEndEffectorComponentNames[static_cast<size_t>(c)] << ",";
-  }
-  csv << "reachable,residual_energy,sigma_min,error,rcond,max_limit_violation,limited_by,wave,start,ee_std_m";
-  const bool compliant = model.compliant();  // a rigid model's map has no stiffness column
-  if (compliant) csv << ",stiffness_min_N_per_m";
-  for (int k = 0; k < model.num_controls(); ++k) csv << ",u" << k;
-  csv << "\n";
-  long long row = 0;
-  for (const WorkspaceSample& s : result.samples) {
-    estimate->Update(row++);
-    for (int c = 0; c < 6; ++c) {
-      if (!model.end_effector.controlled[static_cast<size_t>(c)]) continue;
-      csv << Cell(c < 3 ? s.pose.position[c] : s.pose.rpy[c - 3]) << ",";
-    }
-    std::string limited = s.limited_by;
-    for (char& ch : limited) {
-      if (ch == ',' || ch == '"' || ch == '\n' || ch == '\r') ch = ';';
-    }
-    csv << (s.reachable ? 1 : 0) << "," << Cell(s.residual_energy) << "," << Cell(s.reachable ? s.sigma_min : 0.0)
-        << "," << Cell(s.error) << "," << Cell(s.rcond) << "," << Cell(s.max_limit_violation) << "," << limited << ","
-        << s.wave << "," << s.start << "," << Cell(s.reachable ? PositionStd(model, s) : 0.0);
-    if (compliant) csv << "," << StiffnessCell(model, s);
-    for (int k = 0; k < model.num_controls(); ++k) {
-      csv << ",";
-      if (s.reachable) csv << Cell(s.controls[k]);
-    }
-    csv << "\n";
-  }
+  const documents::WorkspaceComputedColumns computed =
+      documents::ComputeWorkspaceColumns(model, result.samples, [estimate](long long row) { estimate->Update(row); });
+  documents::WriteCsv(documents::WorkspaceTable(model, result.samples, computed), csv);
 }
 
 // The sampling options from the flags, checked against the model.

@@ -97,10 +97,7 @@ Document ControlDocument(const ControlSolution& s) {
   AddClearance(model, s.compensation ? s.compensation->loaded.state : s.state, &out, &doc.warnings);
   out["from_home"] = FromHome(s);
   const std::string warning = ControlWarning(s);
-  if (!warning.empty()) {
-    out["warning"] = warning;
-    doc.warnings.push_back(warning);
-  }
+  doc.Warn(warning);
   return doc;
 }
 

@@ -15,6 +15,14 @@ namespace ccma::documents {
 struct Document {
   nlohmann::json json;
   std::vector<std::string> warnings;
+
+  // The JSON's "warning" and the same line among the warnings; nothing when
+  // `warning` is empty.
+  void Warn(const std::string& warning) {
+    if (warning.empty()) return;
+    json["warning"] = warning;
+    warnings.push_back(warning);
+  }
 };
 
 // Appends `text` to a "; "-separated warning (as the commands join theirs).

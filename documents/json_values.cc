@@ -65,30 +65,6 @@ void AddClearance(const Model& model, const State& s, nlohmann::json* out, std::
   }
 }
 
-
-namespace {
-
-nlohmann::json ShortfallJson(const PlanShortfall& f) {
-  nlohmann::json j = {{"step", f.step}, {"midpoint", f.midpoint}, {"time_s", f.time_s}, {"torn", f.torn}};
-  if (f.torn) {
-    j["residual_energy"] = f.residual_energy;
-  } else {
-    j["pair"] = {f.a, f.b};
-    j["clearance_m"] = f.clearance_m;
-    j["floor_m"] = f.floor_m;
-    j["shortfall_m"] = f.shortfall_m;
-  }
-  return j;
-}
-
-}  // namespace
-
-void AddPlanFinishing(const PlanResult& result, nlohmann::json* out) {
-  (*out)["stopped_by"] = result.stopped_by;
-  (*out)["finishing"] = {{"repaired_rows", result.repaired_rows}, {"inserted_rows", result.inserted_rows}};
-  if (result.shortfall.any) (*out)["shortfall"] = ShortfallJson(result.shortfall);
-}
-
 namespace {
 
 nlohmann::json MatrixRows(const Eigen::Matrix<double, 6, 6>& m) {

@@ -56,10 +56,6 @@ void AddLoadedJson(const Model& model, const LoadedEquilibrium& loaded, nlohmann
 void AddCompensationJson(const Model& model, const EndEffectorPose& rigid, const CompensatedResult& c,
                          nlohmann::json* out);
 
-// How `ccma plan` stopped and was finished (docs/cli.md): stopped_by,
-// finishing and, only when the finished plan stayed below the margin, shortfall.
-void AddPlanFinishing(const PlanResult& result, nlohmann::json* out);
-
 // The "secondary" object of `ccma control` and `ccma trajectory`: the null
 // space steps, the secondary objective's settings and its value Phi (left
 // out where it is not finite: dG/ds could not be factorised).

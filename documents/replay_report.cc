@@ -3,16 +3,12 @@
 #include "documents/replay_report.h"
 
 #include <fstream>
-#include <iomanip>
 #include <sstream>
 
 #include "ccma/internal/format.h"
 #include "ccma/rotation.h"
 
 namespace ccma::documents {
-namespace {
-
-}  // namespace
 
 std::vector<int> ReportedComponents(const Model& model) {
   const auto& c = model.end_effector.controlled;
@@ -89,50 +85,73 @@ std::string ReplayRmseTable(const Model& model, const ReplayResult& r, const std
   return table.str();
 }
 
-void WriteReplayCsv(const std::string& dir, const Model& model, const ReplayResult& r) {
+Table ReplayEndEffectorTable(const ReplayResult& r) {
   static const char* kUnits[] = {"m", "m", "m", "rad", "rad", "rad"};
-  std::ofstream ee(dir + "/end_effector.csv");
-  ee << "# SIMULATION (ccma replay): commanded = control solution, tracked = chain on the driven bases; "
-        "err = tracked - commanded; torn = 1 where the chain could not follow the bases\ntime_s";
-  for (int c = 0; c < 6; ++c) ee << ",cmd_" << ComponentName(c) << "_" << kUnits[c];
-  for (int c = 0; c < 6; ++c) ee << "," << ComponentName(c) << "_" << kUnits[c];
-  for (int c = 0; c < 6; ++c) ee << ",err_" << ComponentName(c) << (IsAngle(c) ? "_rad" : "_mm");
-  ee << ",residual_energy_m2,torn\n" << std::setprecision(12);
-  std::ofstream bases(dir + "/bases.csv");
-  bases << "# SIMULATION (ccma replay): set and true poses of every base (k = index in the model:";
-  for (int k = 0; k < model.num_bases(); ++k) bases << " " << k << " = " << OneLine(model.mobile_bases[k].name);
-  bases << ")\ntime_s";
+  Table t;
+  std::vector<double>& time = t.Add("time_s").values;
+  for (const ReplaySample& s : r.samples) time.push_back(s.time);
+  for (int c = 0; c < 6; ++c) {
+    std::vector<double>& v = t.Add("cmd_" + ComponentName(c) + "_" + kUnits[c]).values;
+    for (const ReplaySample& s : r.samples) v.push_back(s.commanded[c]);
+  }
+  for (int c = 0; c < 6; ++c) {
+    std::vector<double>& v = t.Add(ComponentName(c) + "_" + kUnits[c]).values;
+    for (const ReplaySample& s : r.samples) v.push_back(s.tracked[c]);
+  }
+  // err = tracked - commanded: angles wrapped [rad], positions [mm].
+  for (int c = 0; c < 6; ++c) {
+    std::vector<double>& v = t.Add("err_" + ComponentName(c) + (IsAngle(c) ? "_rad" : "_mm")).values;
+    for (const ReplaySample& s : r.samples) {
+      v.push_back(IsAngle(c) ? WrapAngle(s.tracked[c] - s.commanded[c]) : 1000 * (s.tracked[c] - s.commanded[c]));
+    }
+  }
+  std::vector<double>& energy = t.Add("residual_energy_m2").values;
+  std::vector<double>& torn = t.Add("torn", ColumnKind::kFlag).values;
+  for (const ReplaySample& s : r.samples) {
+    energy.push_back(s.residual_energy);
+    torn.push_back(s.torn ? 1 : 0);
+  }
+  return t;
+}
+
+Table ReplayBasesTable(const Model& model, const ReplayResult& r) {
+  Table t;
+  std::vector<double>& time = t.Add("time_s").values;
+  for (const ReplaySample& s : r.samples) time.push_back(s.time);
   for (int k = 0; k < model.num_bases(); ++k) {
     // Every control of the base's type (a legged base's height, roll and pitch too), set then true.
     const std::vector<BaseControl>& controls = KindOf(model.mobile_bases[static_cast<size_t>(k)]).controls();
+    const int first = model.base_control(k);
     for (const char* which : {"set", "base"}) {
-      for (const BaseControl& c : controls) bases << "," << which << k << "_" << c.name << "_" << c.unit;
+      const bool set = std::string(which) == "set";
+      for (int c = 0; c < static_cast<int>(controls.size()); ++c) {
+        const BaseControl& control = controls[static_cast<size_t>(c)];
+        std::vector<double>& v = t.Add(which + std::to_string(k) + "_" + control.name + "_" + control.unit).values;
+        for (const ReplaySample& s : r.samples) v.push_back(set ? s.set_controls[first + c] : s.true_controls[first + c]);
+      }
     }
   }
   // Actuated joints hold their set-points (execution/replay.h): one column each.
   for (const Joint& joint : model.joints) {
-    if (joint.actuated) bases << ",u_" << joint.name << (joint.type == JointType::kRevolute ? "_rad" : "_m");
+    if (!joint.actuated) continue;
+    std::vector<double>& v = t.Add("u_" + joint.name + (joint.type == JointType::kRevolute ? "_rad" : "_m")).values;
+    for (const ReplaySample& s : r.samples) v.push_back(s.true_controls[joint.control]);
   }
-  bases << ",torn\n" << std::setprecision(12);
-  for (const ReplaySample& s : r.samples) {
-    ee << s.time;
-    for (int c = 0; c < 6; ++c) ee << "," << s.commanded[c];
-    for (int c = 0; c < 6; ++c) ee << "," << s.tracked[c];
-    for (int c = 0; c < 6; ++c) {
-      ee << "," << (IsAngle(c) ? WrapAngle(s.tracked[c] - s.commanded[c]) : 1000 * (s.tracked[c] - s.commanded[c]));
-    }
-    ee << "," << s.residual_energy << "," << (s.torn ? 1 : 0) << "\n";
-    bases << s.time;
-    for (int k = 0; k < model.num_bases(); ++k) {
-      const int first = model.base_control(k), n = KindOf(model.mobile_bases[static_cast<size_t>(k)]).num_controls();
-      for (int c = 0; c < n; ++c) bases << "," << s.set_controls[first + c];
-      for (int c = 0; c < n; ++c) bases << "," << s.true_controls[first + c];
-    }
-    for (const Joint& joint : model.joints) {
-      if (joint.actuated) bases << "," << s.true_controls[joint.control];
-    }
-    bases << "," << (s.torn ? 1 : 0) << "\n";
-  }
+  std::vector<double>& torn = t.Add("torn", ColumnKind::kFlag).values;
+  for (const ReplaySample& s : r.samples) torn.push_back(s.torn ? 1 : 0);
+  return t;
+}
+
+void WriteReplayCsv(const std::string& dir, const Model& model, const ReplayResult& r) {
+  std::ofstream ee(dir + "/end_effector.csv");
+  ee << "# SIMULATION (ccma replay): commanded = control solution, tracked = chain on the driven bases; "
+        "err = tracked - commanded; torn = 1 where the chain could not follow the bases\n";
+  WriteCsv(ReplayEndEffectorTable(r), ee, kReplayCsvDigits);
+  std::ofstream bases(dir + "/bases.csv");
+  bases << "# SIMULATION (ccma replay): set and true poses of every base (k = index in the model:";
+  for (int k = 0; k < model.num_bases(); ++k) bases << " " << k << " = " << OneLine(model.mobile_bases[k].name);
+  bases << ")\n";
+  WriteCsv(ReplayBasesTable(model, r), bases, kReplayCsvDigits);
 }
 
 nlohmann::json ReplayRmseJson(const Model& model, const std::array<double, 6>& rmse_m_rad) {

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "ccma/model.h"
+#include "documents/table.h"
 #include "execution/replay.h"
 
 namespace ccma::documents {
@@ -49,8 +50,18 @@ nlohmann::json ReplayGaitJson(const Model& model, const ReplayOptions& options, 
 // run (model, path, noise) in one sentence.
 std::string ReplayRmseTable(const Model& model, const ReplayResult& result, const std::string& setting);
 
-// The CSV files the plots read (in DIR): end_effector.csv and bases.csv,
-// labelled SIMULATION, with units in the header and a torn 0/1 column.
+// The tables of a replay (Python's ReplayResult.tables): per sample, the
+// end-effector commanded, tracked and their difference (err_*: mm and
+// wrapped rad), E and torn; and every base's set and true controls, every
+// actuated joint's control, and torn.
+Table ReplayEndEffectorTable(const ReplayResult& result);
+Table ReplayBasesTable(const Model& model, const ReplayResult& result);
+
+// The significant digits of the replay's CSV files.
+constexpr int kReplayCsvDigits = 12;
+
+// The CSV files the plots read (in DIR): end_effector.csv and bases.csv (the
+// two tables), each after a comment line that labels it SIMULATION.
 void WriteReplayCsv(const std::string& dir, const Model& model, const ReplayResult& result);
 
 }  // namespace ccma::documents

@@ -98,10 +98,7 @@ Document StaticsDocument(const Model& model, const State& s, const Eigen::Vector
   if (report.limits_given) AddPayloadCapacity(model, s, u, &out, &doc.warnings);
   AddClearance(model, s, &out, &doc.warnings);
   const std::string warning = Warnings(report, assembled, residual_energy);
-  if (!warning.empty()) {
-    out["warning"] = warning;
-    doc.warnings.push_back(warning);
-  }
+  doc.Warn(warning);
   return doc;
 }
 

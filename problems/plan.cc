@@ -196,6 +196,13 @@ void Choose(const Model& model, std::vector<TrajectoryStep> rows,
 
 }  // namespace
 
+bool IsValidAsPlanCommand(const PlanOptions& options, std::string* why) {
+  std::string message;
+  if (options.IsValid(&message)) return true;
+  if (why != nullptr) *why = RenameLeadingWord(message, {{"max_iterations", "plan_iterations"}, {"max_seconds", "plan_time_s"}});
+  return false;
+}
+
 bool PlanOptions::IsValid(std::string* why) const {
   auto fail = [&](const std::string& text) {
     if (why != nullptr) *why = text;

@@ -53,6 +53,10 @@ struct PlanOptions {
   bool IsValid(std::string* why) const;
 };
 
+// IsValid with the message naming max_iterations and max_seconds as `ccma
+// plan` and Python's plan() do: plan_iterations, plan_time_s.
+bool IsValidAsPlanCommand(const PlanOptions& options, std::string* why);
+
 // A trajectory's measures (the comparison of plan and greedy).
 struct PathMeasures {
   int reached_waypoints = 0;

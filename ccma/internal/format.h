@@ -3,7 +3,9 @@
 #define CCMA_INTERNAL_FORMAT_H_
 
 #include <cstdio>
+#include <initializer_list>
 #include <string>
+#include <utility>
 
 namespace ccma {
 
@@ -48,6 +50,19 @@ inline std::string Quote(const std::string& text) {
 
 // `value` with printf's %.<digits>g.
 // A size in whole MiB, for messages about size limits.
+// `text` with its first word renamed when it is one of `renames`' (from, to)
+// pairs: a message about an option in the words its command uses.
+inline std::string RenameLeadingWord(std::string text,
+                                     std::initializer_list<std::pair<const char*, const char*>> renames) {
+  for (const auto& [from, to] : renames) {
+    const std::string word = from;
+    if (text.compare(0, word.size(), word) == 0 && (text.size() == word.size() || text[word.size()] == ' ')) {
+      return to + text.substr(word.size());
+    }
+  }
+  return text;
+}
+
 inline std::string FormatMiB(std::size_t bytes) { return std::to_string(bytes >> 20) + " MiB"; }
 
 // `value` with `digits` digits after the point (tables of results).

@@ -99,6 +99,23 @@ class Table:
         self._text = text
 
     @classmethod
+    def from_arrays(cls, columns):
+        """The table of a command's columns as ccma builds them (documents/table.h): NumPy
+        arrays already of their kind, by name, in order; kept read-only."""
+        table = cls.__new__(cls)
+        table._columns = {}
+        for name, values in columns.items():
+            array = _np.asarray(values, dtype=object) if isinstance(values, list) else _np.asarray(values)
+            array.flags.writeable = False
+            table._columns[str(name)] = array
+        rows = {len(c) for c in table._columns.values()}
+        if len(rows) > 1:
+            raise ValueError("Table: columns of different lengths %s" % sorted(rows))
+        table._rows = rows.pop() if rows else 0
+        table._text = None
+        return table
+
+    @classmethod
     def from_csv(cls, text, source="<csv>", comment_lines=0):
         """The table of a CSV text as the tool writes it (after `comment_lines` lines)."""
         lines = text.splitlines()[comment_lines:]

@@ -75,7 +75,7 @@ def export(model, format, out):
     if out is None:
         raise ValueError("export: out names the file to write")
     files = _ccma._export(model, str(format), out)
-    for path, text in files.pop("files"):
+    for path, text in reversed(files.pop("files")):  # the closure file before the URDF naming it
         _write_replacing(path, text.encode("utf-8"))
     files["out"] = out
     return ExportResult(files)

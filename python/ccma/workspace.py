@@ -293,42 +293,6 @@ def _by_tiles(runner, model, text, args, control, chunk, window, store, progress
     return out
 
 
-def _finite(values):
-    """A float column as the CSV writes it (apps/workspace_command.cc Cell): NaN for inf."""
-    values = _np.array(values, dtype=float)
-    values[~_np.isfinite(values)] = _np.nan
-    return values
-
-
-def _map_table(model, m):
-    """The columns of `ccma workspace --out` (apps/workspace_command.cc WriteCsv)."""
-    reachable = _np.asarray(m["reachable"], dtype=bool)
-    columns = {}
-    for c, name in enumerate(("x", "y", "z", "roll", "pitch", "yaw")):
-        if name in model.controlled:
-            columns[name] = _finite(m["poses"][:, c])
-    columns["reachable"] = reachable
-    columns["residual_energy"] = _finite(m["residual_energy"])
-    columns["sigma_min"] = _finite(_np.where(reachable, m["sigma_min"], 0.0))
-    columns["error"] = _finite(m["error"])
-    columns["rcond"] = _finite(m["rcond"])
-    columns["max_limit_violation"] = _finite(m["max_limit_violation"])
-    columns["limited_by"] = [str(v).translate(_CSV_SEPARATORS) for v in m["limited_by"]]
-    columns["wave"] = m["wave"]
-    columns["start"] = m["start"]
-    columns["ee_std_m"] = _finite(_np.where(reachable, m["ee_std_m"], 0.0))
-    if "stiffness_min_N_per_m" in m:  # a compliant model only, as the CSV
-        columns["stiffness_min_N_per_m"] = _finite(_np.where(reachable, m["stiffness_min_N_per_m"], 0.0))
-    controls = _finite(m["controls"])
-    controls[~reachable] = _np.nan  # the CSV leaves them empty
-    for k in range(model.num_controls):
-        columns["u%d" % k] = controls[:, k]
-    return Table(columns)
-
-
-_CSV_SEPARATORS = str.maketrans({",": ";", '"': ";", "\n": ";", "\r": ";"})
-
-
 def _result(model, m, threads, samples, out):
     """The map as a ccma.WorkspaceResult: `ccma workspace`'s JSON and CSV."""
     document = {"model": model.name, "samples": int(len(m["reachable"])),
@@ -337,7 +301,7 @@ def _result(model, m, threads, samples, out):
                 "mode": "random" if samples > 0 else "grid", "components": list(m["components"])}
     if "tiles_from_store" in m:
         document["tiles_from_store"] = int(m["tiles_from_store"])
-    table = _map_table(model, m)
+    table = _ccma._workspace_table(model, m)  # the CSV's columns (documents/workspace_table.h)
     details = Table({"converged": m["converged"], "assembled": m["assembled"], "steps": m["steps"],
                      "tile": m["tile"], "warning": m["warning"]})
     if out is not None:

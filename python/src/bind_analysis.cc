@@ -11,7 +11,6 @@
 #include "analyses/mobility.h"
 #include "documents/check_document.h"
 #include "python/src/bindings.h"
-#include "python/src/documents.h"
 #include "python/src/json_to_python.h"
 #include "python/src/pose_types.h"
 

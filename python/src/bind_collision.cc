@@ -9,11 +9,11 @@
 #include <pybind11/stl.h>
 
 #include "documents/json_values.h"
+#include "documents/plan_document.h"
 #include "documents/trajectory_csv.h"
 #include "ccma/ccma.h"
 #include "python/src/bindings.h"
 #include "python/src/conversions.h"
-#include "python/src/documents.h"
 #include "python/src/json_to_python.h"
 #include "python/src/usage_guard.h"
 
@@ -35,7 +35,7 @@ py::object Plan(ControlProblem& p, const std::vector<Waypoint>& waypoints, const
     const PlanResult r = PlanTrajectory(p, waypoints, options);
     documents::TrajectoryCsv csv(p.forward().model(), csv_text);
     for (const TrajectoryStep& step : r.steps) csv.Write(step);
-    document = PlanDocument(p, r, waypoints.size(), csv.min_clearance());
+    document = documents::PlanDocument(p, r, waypoints.size(), csv.min_clearance()).json;
   }
   if (!out_path.empty()) document["out"] = out_path;
   py::dict tables;
@@ -77,11 +77,7 @@ void BindCollision(py::module_& m) {
         options.travel_weight = travel_weight;
         options.max_iterations = plan_iterations;
         std::string why;
-        if (!options.IsValid(&why)) {
-          // The flag's name, as `ccma plan` says it (apps/plan_command.cc).
-          if (why.rfind("max_iterations", 0) == 0) why.replace(0, 14, "plan_iterations");
-          throw py::value_error("plan: " + why);
-        }
+        if (!IsValidAsPlanCommand(options, &why)) throw py::value_error("plan: " + why);
         CheckWaypoints(waypoints);
         return Plan(p, waypoints, options, out);
       },

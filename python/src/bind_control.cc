@@ -25,7 +25,7 @@
 #include "problems/trajectory.h"
 #include "python/src/bindings.h"
 #include "python/src/conversions.h"
-#include "python/src/documents.h"
+#include "documents/trajectory_document.h"
 #include "python/src/json_to_python.h"
 #include "python/src/pose_types.h"
 #include "python/src/usage_guard.h"
@@ -304,22 +304,18 @@ py::object Follow(ControlProblem& p, const std::vector<Waypoint>& waypoints, con
     py::gil_scoped_release release;
     const UsageGuard guard(p);
     documents::TrajectoryCsv csv(p.forward().model(), csv_text);
-    PathSummary path;
-    path.min_sigma = path.min_rcond = std::numeric_limits<double>::infinity();
+    documents::TrajectorySolution solution;
+    solution.control = &p;
+    solution.waypoints = waypoints.size();
     const auto on_step = [&](const TrajectoryStep& step) {
       csv.Write(step);
-      path.min_sigma = std::min(path.min_sigma, step.result.min_singular_value_dX_du);
-      path.min_rcond = std::min(path.min_rcond, step.result.rcond);
-      path.null_space_steps += step.result.null_space_steps;
-      path.secondary_objective = step.result.secondary_objective;
-      if (compensate) path.loaded_state = step.state;
+      solution.tally.Add(step);
     };
-    if (compensate) path.compensation.emplace();  // (ValueError from std::invalid_argument, as the plain path's)
-    const TrajectoryResult r = compensate ? FollowWaypointsCompensated(p, waypoints, w, on_step, &*path.compensation)
-                                          : FollowWaypoints(p, waypoints, on_step);
-    if (compensate && !path.loaded_state) path.loaded_state = p.forward().state();
-    path.path_clearance = csv.min_clearance();
-    document = TrajectoryDocument(p, r, waypoints.size(), path);
+    if (compensate) solution.compensation.emplace();  // (ValueError from std::invalid_argument, as the plain path's)
+    solution.result = compensate ? FollowWaypointsCompensated(p, waypoints, w, on_step, &*solution.compensation)
+                                 : FollowWaypoints(p, waypoints, on_step);
+    solution.path_clearance = csv.min_clearance();
+    document = documents::TrajectoryDocument(solution).json;
   }
   if (!out_path.empty()) document["out"] = out_path;
   py::dict tables;

@@ -12,8 +12,8 @@
 #include "analyses/design_objective.h"
 #include "ccma/limits.h"
 #include "formats/model_loader.h"
+#include "documents/design_document.h"
 #include "python/src/bindings.h"
-#include "python/src/documents.h"
 #include "python/src/json_to_python.h"
 #include "python/src/pose_types.h"
 #include "python/src/work_bound.h"
@@ -27,12 +27,7 @@ DesignParameters ParametersFrom(const Model& model, const std::vector<std::strin
                                 const std::vector<std::string>& vary_length) {
   DesignParameters params;
   std::string why;
-  for (const std::string& item : vary) {
-    if (!AddJointCoordinates(model, item, &params, &why)) throw py::value_error("vary: " + why);
-  }
-  for (const std::string& item : vary_length) {
-    if (!AddLinkLength(model, item, &params, &why)) throw py::value_error("vary_length: " + why);
-  }
+  if (!AddDesignParameters(model, vary, vary_length, &params, &why)) throw py::value_error(why);
   if (params.size() == 0) throw py::value_error("name what to vary (vary and/or vary_length)");
   return params;
 }
@@ -59,14 +54,10 @@ py::list TargetsList(const std::vector<DesignTargetResult>& results) {
 
 using TargetArray = Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::RowMajor>;
 
-// The most targets `ccma design --targets` takes (apps/design_command.cc):
-// each costs a control solve per design trial.
-constexpr Eigen::Index kMaxDesignTargets = 1000;
-
 // Rows x, y, z [m], roll, pitch, yaw [rad] -> targets: 1 to kMaxDesignTargets
 // rows of finite numbers within kMaxMagnitude, as a --targets CSV holds.
 std::vector<PoseTarget> PoseTargets(const TargetArray& targets) {
-  if (targets.rows() == 0 || targets.rows() > kMaxDesignTargets || !targets.allFinite() ||
+  if (targets.rows() == 0 || targets.rows() > static_cast<Eigen::Index>(kMaxDesignTargets) || !targets.allFinite() ||
       targets.cwiseAbs().maxCoeff() > kMaxMagnitude) {
     throw py::value_error("targets: N x 6 finite numbers within [-1e4, 1e4], 1 <= N <= " +
                           std::to_string(kMaxDesignTargets) + " (got " + std::to_string(targets.rows()) + " rows)");
@@ -129,9 +120,7 @@ DesignOptions DesignOptionsFrom(const Model& model, double max_change, double mi
     throw py::value_error("design: objective must be reach, payload, peak_push, ee_std, stiffness or deflection, got '" +
                           objective + "'");
   }
-  const bool needs_springs =
-      options.objective == DesignObjective::kStiffness || options.objective == DesignObjective::kDeflection;
-  if (needs_springs && !model.compliant()) {
+  if (NeedsSprings(options.objective) && !model.compliant()) {
     throw py::value_error("design: objective '" + objective + "': model " + Quote(model.name) +
                           " has no stiffness keys: a rigid mechanism has no compliance to lower");
   }
@@ -142,10 +131,7 @@ DesignOptions DesignOptionsFrom(const Model& model, double max_change, double mi
   options.target_tolerance = target_tolerance;
   options.max_iterations = design_iterations;
   std::string why;
-  if (!options.IsValid(&why)) {
-    if (why.rfind("max_iterations", 0) == 0) why.replace(0, 14, "design_iterations");  // the flag's name
-    throw py::value_error(why);
-  }
+  if (!IsValidAsDesignCommand(options, &why)) throw py::value_error(why);
   return options;
 }
 
@@ -179,7 +165,7 @@ py::tuple RunDesign(const Model& model, const std::optional<std::string>& text, 
       new_text = PatchModelText(*text, model, designed, params);
       written = LoadModelFromString(*new_text, source);
     }
-    document = DesignDocument(model, designed, params, r, EvaluateTargets(written, poses, options), options);
+    document = documents::DesignDocument(model, designed, params, options, r, EvaluateTargets(written, poses, options)).json;
   }
   return py::make_tuple(ToPython(document), written, new_text ? py::object(py::str(*new_text)) : py::object(py::none()));
 }

@@ -10,7 +10,6 @@
 #include "problems/loaded_equilibrium.h"
 #include "python/src/bindings.h"
 #include "python/src/conversions.h"
-#include "python/src/documents.h"
 #include "python/src/json_to_python.h"
 #include "python/src/pose_types.h"
 #include "python/src/usage_guard.h"

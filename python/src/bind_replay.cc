@@ -3,57 +3,38 @@
 #include <pybind11/stl.h>
 
 #include "execution/replay.h"
-#include "python/src/documents.h"
-#include "python/src/json_to_python.h"
+#include "documents/replay_document.h"
+#include "documents/replay_report.h"
 #include "python/src/bindings.h"
 #include "python/src/conversions.h"
+#include "python/src/json_to_python.h"
 
 namespace py = pybind11;
 
 namespace ccma::python {
 namespace {
 
-using BoolVector = Eigen::Matrix<bool, Eigen::Dynamic, 1>;
-
 // `ccma replay` without its files: (the command's JSON without "files" and
-// "plots", the samples as arrays: time, commanded, tracked (samples x 6),
-// set_controls, true_controls (samples x controls), residual_energy, torn);
-// ccma.replay (python/ccma/replay.py) makes the CSV tables from them.
+// "plots", its two CSV files' tables {"end_effector", "bases"}) for
+// ccma.replay (python/ccma/replay.py).
 py::tuple Run(const Model& model, const std::vector<Waypoint>& waypoints, const ReplayOptions& options) {
   CheckWaypoints(waypoints);  // positions and angles too, with the messages of follow and plan
   std::string why;
   if (!IsValidReplay(model, waypoints, options, &why)) throw std::invalid_argument(why);
   ReplayResult r;
   nlohmann::json document;
+  documents::Table end_effector, bases;
   {
     py::gil_scoped_release release;
     r = Replay(model, waypoints, options);
-    document = ReplayDocument(model, options, r);
+    document = documents::ReplayDocument(model, options, r).json;
+    end_effector = documents::ReplayEndEffectorTable(r);
+    bases = documents::ReplayBasesTable(model, r);
   }
-  const int n = static_cast<int>(r.samples.size());
-  const int nc = model.num_controls();
-  Eigen::VectorXd time(n), energy(n);
-  RowMatrix commanded(n, 6), tracked(n, 6), set_controls(n, nc), true_controls(n, nc);
-  BoolVector torn(n);
-  for (int i = 0; i < n; ++i) {
-    const ReplaySample& sample = r.samples[static_cast<size_t>(i)];
-    time[i] = sample.time;
-    commanded.row(i) = sample.commanded.transpose();
-    tracked.row(i) = sample.tracked.transpose();
-    set_controls.row(i) = sample.set_controls.transpose();
-    true_controls.row(i) = sample.true_controls.transpose();
-    energy[i] = sample.residual_energy;
-    torn[i] = sample.torn;
-  }
-  py::dict arrays;
-  arrays["time"] = time;
-  arrays["commanded"] = commanded;
-  arrays["tracked"] = tracked;
-  arrays["set_controls"] = set_controls;
-  arrays["true_controls"] = true_controls;
-  arrays["residual_energy"] = energy;
-  arrays["torn"] = torn;
-  return py::make_tuple(ToPython(document), arrays);
+  py::dict tables;
+  tables["end_effector"] = ToTable(end_effector);
+  tables["bases"] = ToTable(bases);
+  return py::make_tuple(ToPython(document), tables);
 }
 
 void BindReplayOptions(py::module_& m) {
@@ -123,7 +104,7 @@ void BindReplay(py::module_& m) {
   BindReplayOptions(m);
   m.def("_replay", &Run, py::arg("model"), py::arg("waypoints"), py::arg("options"),
         "Internal: ccma.replay (python/ccma/replay.py) for a list of ccma.Waypoint: (the JSON of `ccma replay` "
-        "without files and plots, the samples as arrays).");
+        "without files and plots, its tables {end_effector, bases}).");
   m.def(
       "_replay",
       [](const Model& model, const Eigen::Ref<const RowMatrix>& a, const ReplayOptions& options) {

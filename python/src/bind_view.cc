@@ -11,6 +11,7 @@
 
 #include "ccma/internal/format.h"
 #include "ccma/limits.h"
+#include "documents/view_document.h"
 #include "python/src/bindings.h"
 #include "python/src/conversions.h"
 #include "python/src/json_to_python.h"
@@ -68,39 +69,6 @@ std::optional<viewer::DeflectionRequest> StaticViewArguments(const Model& model,
   return viewer::DeflectionRequest{*deflection, WrenchFrom(wrench, "view")};
 }
 
-// apps/view_command.cc: Result, without "out".
-nlohmann::json ViewInfo(const Model& model, const viewer::SceneSummary& summary, std::size_t bytes,
-                        const std::string& source, const viewer::MeshFiles* mesh_files, bool loads, bool workspace) {
-  nlohmann::json info = {{"bytes", bytes},
-                         {"frames", summary.frames},
-                         {"source", source},
-                         {"flagged_frames", summary.flagged_frames},
-                         {"not_assembled_frames", summary.not_assembled},
-                         {"branch_jumps", summary.branch_jumps}};
-  if (summary.beyond_work_bound > 0) info["beyond_work_bound_frames"] = summary.beyond_work_bound;
-  if (model.collision.enabled) info["clearance_below_margin_frames"] = summary.clearance_below_margin;
-  if (mesh_files != nullptr) {
-    info["mesh_files"] = mesh_files->files.size();
-    info["mesh_bytes"] = mesh_files->bytes_read;
-  }
-  if (loads) {
-    info["max_load"] = summary.max_load;
-    info["unbalanced_frames"] = summary.unbalanced_frames;
-    info["indeterminate_frames"] = summary.indeterminate_frames;
-  }
-  if (summary.deflected) {
-    info["deflection_scale"] = summary.deflected->scale;
-    info["max_deflection_m"] = summary.deflected->max_deflection_m;
-    info["deflection_converged"] = summary.deflected->equilibrium.converged;
-    info["load_fraction"] = summary.deflected->equilibrium.load_fraction;
-  }
-  if (workspace) {
-    info["workspace_points"] = summary.workspace_points;
-    info["workspace_reachable"] = summary.workspace_reachable;
-  }
-  return info;
-}
-
 // The frames to draw (none: the model at home) and their source.
 std::vector<viewer::ViewFrame> ViewFramesFrom(const Model& model, const std::optional<std::string>& trajectory,
                                               const std::optional<std::string>& replay,
@@ -156,9 +124,10 @@ py::tuple ViewHtml(const Model& model, std::optional<std::string> trajectory, st
   } catch (const viewer::DeflectionError& e) {
     throw py::value_error(std::string("deflection: ") + e.what());
   }
-  const nlohmann::json info = ViewInfo(model, summary, html.size(), source, mesh_files ? &*mesh_files : nullptr,
-                                       colors == viewer::ColorBy::kLoad, workspace.has_value());
-  return py::make_tuple(html, MakeResult("ViewResult", info));
+  const documents::Document document =
+      documents::ViewDocument(model, summary, html.size(), source, mesh_files ? &*mesh_files : nullptr,
+                              workspace.has_value(), colors == viewer::ColorBy::kLoad);
+  return py::make_tuple(html, MakeResult("ViewResult", document.json));
 }
 
 }  // namespace

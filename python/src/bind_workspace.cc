@@ -19,12 +19,12 @@
 #include <pybind11/stl.h>
 
 #include "ccma/model.h"
-#include "analyses/compliance.h"
-#include "analyses/precision.h"
 #include "analyses/workspace.h"
 #include "analyses/work_estimate.h"
+#include "documents/workspace_table.h"
 #include "python/src/bindings.h"
 #include "python/src/conversions.h"
+#include "python/src/json_to_python.h"
 #include "python/src/pose_types.h"
 
 namespace py = pybind11;
@@ -145,10 +145,11 @@ py::dict SamplesDict(const Model& model, const std::vector<WorkspaceSample>& sam
   return d;
 }
 
-// The per-sample arrays of a SamplesDict (with states) have n rows; throws otherwise.
-void CheckShapes(const Model& model, const py::dict& d, Eigen::Index n) {
+// The per-sample arrays of a SamplesDict (with states when `with_states`)
+// have n rows; throws otherwise.
+void CheckShapes(const Model& model, const py::dict& d, Eigen::Index n, bool with_states) {
   bool ok = d["controls"].cast<RowMatrix>().rows() == n && d["controls"].cast<RowMatrix>().cols() == model.num_controls() &&
-            d["states"].cast<StateArray>().rows() == n * model.num_bodies() &&
+            (!with_states || d["states"].cast<StateArray>().rows() == n * model.num_bodies()) &&
             d["limited_by"].cast<std::vector<std::string>>().size() == static_cast<size_t>(n) &&
             d["warning"].cast<std::vector<std::string>>().size() == static_cast<size_t>(n);
   for (const char* key : {"reachable", "converged", "assembled"}) {
@@ -162,11 +163,12 @@ void CheckShapes(const Model& model, const py::dict& d, Eigen::Index n) {
   if (!ok) throw std::invalid_argument("workspace: a tile's input has arrays of the wrong shape");
 }
 
-// The inverse of SamplesDict (with states), for a tile's inputs.
-std::vector<WorkspaceSample> SamplesFromDict(const Model& model, const py::dict& d) {
+// The inverse of SamplesDict: with states for a tile's inputs, without (the
+// samples' states left empty) for a map's table.
+std::vector<WorkspaceSample> SamplesFromDict(const Model& model, const py::dict& d, bool with_states = true) {
   const auto reachable = d["reachable"].cast<Eigen::Matrix<bool, Eigen::Dynamic, 1>>();
   const Eigen::Index n = reachable.size();
-  CheckShapes(model, d, n);
+  CheckShapes(model, d, n, with_states);
   const auto converged = d["converged"].cast<Eigen::Matrix<bool, Eigen::Dynamic, 1>>();
   const auto assembled = d["assembled"].cast<Eigen::Matrix<bool, Eigen::Dynamic, 1>>();
   const auto controls = d["controls"].cast<RowMatrix>();
@@ -181,7 +183,7 @@ std::vector<WorkspaceSample> SamplesFromDict(const Model& model, const py::dict&
   const auto start = d["start"].cast<Eigen::Matrix<long long, Eigen::Dynamic, 1>>();
   const auto limited_by = d["limited_by"].cast<std::vector<std::string>>();
   const auto warning = d["warning"].cast<std::vector<std::string>>();
-  const auto states = d["states"].cast<StateArray>();
+  const auto states = with_states ? d["states"].cast<StateArray>() : StateArray();
   const auto poses = d["poses"].cast<RowMatrix>();
   std::vector<WorkspaceSample> out(static_cast<size_t>(n));
   for (Eigen::Index i = 0; i < n; ++i) {
@@ -203,26 +205,9 @@ std::vector<WorkspaceSample> SamplesFromDict(const Model& model, const py::dict&
     s.tile = tile[i];
     s.limited_by = limited_by[static_cast<size_t>(i)];
     s.warning = warning[static_cast<size_t>(i)];
-    s.state = FromArray(model, states.middleRows(i * model.num_bodies(), model.num_bodies()));
+    if (with_states) s.state = FromArray(model, states.middleRows(i * model.num_bodies(), model.num_bodies()));
   }
   return out;
-}
-
-// The end-effector's position standard deviation sqrt(trace Sigma_p) [m] of
-// a reached sample, from the bases' pose noise (the replay's defaults), 0
-// where dG/ds is singular: the `ee_std_m` column of `ccma workspace`
-// (apps/workspace_command.cc PositionStd).
-double PositionStd(const Model& model, const State& state, const Eigen::VectorXd& controls) {
-  const Eigen::Matrix<double, 6, 6> sigma = EndEffectorCovariance(model, state, controls, BasePoseNoise());
-  return sigma.allFinite() ? std::sqrt(std::max(0.0, sigma.topLeftCorner<3, 3>().trace())) : 0.0;
-}
-
-// The smallest translational stiffness [N/m] of a reached sample of a
-// compliant model: the `stiffness_min_N_per_m` column of `ccma workspace`
-// (apps/workspace_command.cc StiffnessCell; +inf where every translation is
-// rigid, which the table writes as NaN like the CSV's empty cell).
-double WorkspaceStiffnessMin(const Model& model, const State& state, const Eigen::VectorXd& controls) {
-  return SmallestTranslationalStiffness(model, state, controls);
 }
 
 // A per-sample column of a tile's samples (SamplesDict with states): f at
@@ -241,32 +226,6 @@ Eigen::VectorXd TileColumn(const Model& model, const StateArray& states, const R
                           : 0.0;
   }
   return out;
-}
-
-// The same column over a computed map's samples; `estimate` (if not null)
-// told of every row, counted from `counted`.
-Eigen::VectorXd SamplesColumn(const Model& model, const std::vector<WorkspaceSample>& samples,
-                              double (*f)(const Model&, const State&, const Eigen::VectorXd&),
-                              WorkEstimate* estimate = nullptr, long long counted = 0) {
-  Eigen::VectorXd out(static_cast<Eigen::Index>(samples.size()));
-  for (size_t i = 0; i < samples.size(); ++i) {
-    const WorkspaceSample& s = samples[i];
-    out[static_cast<Eigen::Index>(i)] = s.reachable ? f(model, s.state, s.controls) : 0.0;
-    if (estimate != nullptr) estimate->Update(counted + static_cast<long long>(i) + 1);
-  }
-  return out;
-}
-
-// What a row's computed columns (ee_std_m, stiffness_min_N_per_m) take at
-// home [s] (LeastSecondsOf): the part of a map's estimate that follows its
-// samples (apps/workspace_command.cc CheckedRowSeconds).
-double RowSeconds(const Model& model) {
-  const State home = State::Home(model);
-  const Eigen::VectorXd u = model.home_controls();
-  return LeastSecondsOf([&] {
-    PositionStd(model, home, u);
-    if (model.compliant()) WorkspaceStiffnessMin(model, home, u);
-  });
 }
 
 // Python's progress(done, total), called with the GIL at most about 1000
@@ -289,7 +248,10 @@ py::dict WorkspaceCompute(const Model& model, const RangeList& ranges, int resol
                           std::uint64_t seed, int threads, int wave_size, const ControlOptions& control,
                           int tile_size, const py::object& progress, WorkEstimate* estimate) {
   const WorkspaceOptions o = Options(model, ranges, resolution, samples, seed, threads, wave_size, control, tile_size);
-  if (estimate != nullptr) estimate->AddLaterSeconds(RowSeconds(model) * static_cast<double>(o.SampleCount()), "the computed columns");
+  if (estimate != nullptr) {
+    estimate->AddLaterSeconds(documents::WorkspaceRowSeconds(model) * static_cast<double>(o.SampleCount()),
+                              "the computed columns");
+  }
   const WorkspaceProgress python = PythonProgress(progress);
   const WorkspaceProgress report = [&python, estimate](long long done, long long total) {
     if (estimate != nullptr) estimate->Update(done);
@@ -301,12 +263,14 @@ py::dict WorkspaceCompute(const Model& model, const RangeList& ranges, int resol
     r = ComputeWorkspace(model, o, report);
   }
   const long long n = static_cast<long long>(r.samples.size());
-  if (estimate != nullptr) estimate->BeginStage("rows' computed columns", n * (model.compliant() ? 2 : 1), 0, false);
+  if (estimate != nullptr) estimate->BeginStage("rows' computed columns", n, 0, false);
   py::dict d = SamplesDict(model, r.samples, false);
-  d["ee_std_m"] = SamplesColumn(model, r.samples, PositionStd, estimate);
-  if (model.compliant()) {
-    d["stiffness_min_N_per_m"] = SamplesColumn(model, r.samples, WorkspaceStiffnessMin, estimate, n);
-  }
+  const documents::WorkspaceComputedColumns computed =
+      documents::ComputeWorkspaceColumns(model, r.samples, [estimate](long long row) {
+        if (estimate != nullptr) estimate->Update(row);
+      });
+  d["ee_std_m"] = computed.ee_std_m;
+  if (model.compliant()) d["stiffness_min_N_per_m"] = computed.stiffness_min;
   d["tile_size"] = o.TileSide();
   std::vector<std::string> components;
   for (int c : r.components) components.emplace_back(kEndEffectorComponentNames[static_cast<size_t>(c)]);
@@ -364,21 +328,38 @@ py::dict WorkspaceTileEvaluate(const Model& model, const RangeList& ranges, int 
   return TileResultDict(model, out);
 }
 
+// The map's table (documents/workspace_table.h) from its arrays: a
+// SamplesDict without states plus "ee_std_m" and, for a compliant model,
+// "stiffness_min_N_per_m".
+py::object WorkspaceTableOf(const Model& model, const py::dict& map) {
+  const std::vector<WorkspaceSample> samples = SamplesFromDict(model, map, false);
+  documents::WorkspaceComputedColumns computed;
+  computed.ee_std_m = map["ee_std_m"].cast<Eigen::VectorXd>();
+  if (model.compliant()) computed.stiffness_min = map["stiffness_min_N_per_m"].cast<Eigen::VectorXd>();
+  try {
+    return ToTable(documents::WorkspaceTable(model, samples, computed));
+  } catch (const std::invalid_argument& e) {
+    throw py::value_error(e.what());
+  }
+}
+
 }  // namespace
 
 void BindWorkspace(py::module_& m) {
+  m.def("_workspace_table", &WorkspaceTableOf, py::arg("model"), py::arg("map"),
+        "Internal: the map's table (`ccma workspace --out`'s columns) from its arrays.");
   m.def("_workspace_compute", &WorkspaceCompute, py::arg("model"), py::arg("ranges"), py::arg("resolution"),
         py::arg("samples"), py::arg("seed"), py::arg("threads"), py::arg("wave_size"), py::arg("control"),
         py::arg("tile_size") = 0, py::arg("progress") = py::none(), py::arg("estimate") = nullptr,
         "Internal: ccma.workspace's map on local threads (analyses/workspace.h ComputeWorkspace); `estimate` "
         "(a _WorkEstimate of its samples) told of every sample and row.");
-  m.def("_workspace_row_seconds", &RowSeconds, py::arg("model"),
+  m.def("_workspace_row_seconds", &documents::WorkspaceRowSeconds, py::arg("model"),
         "Internal: what a row's computed columns (ee_std_m, stiffness_min_N_per_m) take at home [s].");
   m.def(
       "_workspace_ee_std",
       [](const Model& model, const StateArray& states, const RowMatrix& controls,
          const Eigen::Matrix<bool, Eigen::Dynamic, 1>& reachable) {
-        return TileColumn(model, states, controls, reachable, PositionStd);
+        return TileColumn(model, states, controls, reachable, documents::WorkspaceEeStd);
       },
       py::arg("model"), py::arg("states"), py::arg("controls"), py::arg("reachable"),
       "Internal: the ee_std_m column [m] of a tile's samples.");
@@ -387,7 +368,7 @@ void BindWorkspace(py::module_& m) {
       [](const Model& model, const StateArray& states, const RowMatrix& controls,
          const Eigen::Matrix<bool, Eigen::Dynamic, 1>& reachable) -> py::object {
         if (!model.compliant()) return py::none();
-        return py::cast(TileColumn(model, states, controls, reachable, WorkspaceStiffnessMin));
+        return py::cast(TileColumn(model, states, controls, reachable, documents::WorkspaceStiffnessMin));
       },
       py::arg("model"), py::arg("states"), py::arg("controls"), py::arg("reachable"),
       "Internal: the stiffness_min_N_per_m column [N/m] of a compliant model's tile (None for a rigid model).");

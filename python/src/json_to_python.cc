@@ -1,8 +1,12 @@
 #include "python/src/json_to_python.h"
 
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <string>
+
+#include <pybind11/numpy.h>
 
 #include "ccma/internal/format.h"
 
@@ -59,6 +63,43 @@ std::string OutPath(const py::object& out) {
     throw py::value_error("out: " + Quote(path) + ": its folder does not exist");
   }
   return path;
+}
+
+py::object ToTable(const documents::Table& table) {
+  py::dict columns;
+  for (const documents::Column& c : table.columns) {
+    const auto n = static_cast<py::ssize_t>(c.size());
+    switch (c.kind) {
+      case documents::ColumnKind::kNumber: {  // NaN where the CSV leaves the cell empty
+        py::array_t<double> a(n);
+        for (py::ssize_t i = 0; i < n; ++i) {
+          const double v = c.values[static_cast<std::size_t>(i)];
+          a.mutable_at(i) = std::isfinite(v) ? v : std::numeric_limits<double>::quiet_NaN();
+        }
+        columns[c.name.c_str()] = a;
+        break;
+      }
+      case documents::ColumnKind::kFlag: {
+        py::array_t<bool> a(n);
+        for (py::ssize_t i = 0; i < n; ++i) a.mutable_at(i) = c.values[static_cast<std::size_t>(i)] != 0;
+        columns[c.name.c_str()] = a;
+        break;
+      }
+      case documents::ColumnKind::kCount: {
+        py::array_t<std::int64_t> a(n);
+        for (py::ssize_t i = 0; i < n; ++i) a.mutable_at(i) = static_cast<std::int64_t>(c.values[static_cast<std::size_t>(i)]);
+        columns[c.name.c_str()] = a;
+        break;
+      }
+      case documents::ColumnKind::kText: {
+        py::list texts;
+        for (const std::string& t : c.texts) texts.append(py::str(documents::CsvSafeText(t)));
+        columns[c.name.c_str()] = texts;
+        break;
+      }
+    }
+  }
+  return py::module_::import("ccma._tables").attr("Table").attr("from_arrays")(columns);
 }
 
 py::object TableFromCsv(const std::string& text, const std::string& source) {

@@ -8,6 +8,8 @@
 #include <nlohmann/json.hpp>
 #include <pybind11/pybind11.h>
 
+#include "documents/table.h"
+
 namespace ccma::python {
 
 // The value as the tool's JSON reads back in Python: null -> None, a
@@ -28,6 +30,11 @@ pybind11::object MakeResult(const char* class_name, const nlohmann::json& docume
 // The path `out=` names (os.fspath), "" for None; ValueError when its folder
 // does not exist, before anything is computed (as the command checks --out).
 std::string OutPath(const pybind11::object& out);
+
+// A command's table (documents/table.h) as a ccma.Table: each column as a
+// read-only NumPy array of its kind (float64, bool, int64, str), text cells
+// as the CSV holds them (CsvSafeText).
+pybind11::object ToTable(const documents::Table& table);
 
 // ccma.Table.from_csv(text): the columns of a CSV the tool writes.
 pybind11::object TableFromCsv(const std::string& text, const std::string& source);

@@ -2,7 +2,7 @@
 // carries the end-effector pose, the controls it was solved at and the
 // configuration it reached, so a Python user gets one object per call whose
 // to_dict() is the JSON of `ccma simulate` or `ccma control` (cli.md,
-// "Python"; python/src/documents.h).
+// "Python"; documents/simulate_document.h, control_document.h).
 #ifndef CCMA_PYTHON_SRC_POSE_TYPES_H_
 #define CCMA_PYTHON_SRC_POSE_TYPES_H_
 

@@ -259,6 +259,7 @@ def test_workspace_equals_cli(tmp_path):
     assert 0 < unreachable.sum() < len(table)  # both kinds of row
     assert np.isnan(table["u0"][unreachable]).all() and not np.isnan(table["u0"][~unreachable]).any()
     assert (table["sigma_min"][unreachable] == 0).all()
+    assert table["wave"].dtype == np.int64 and table["limited_by"].dtype == object
     records = result.to_records()
     assert records[int(np.argmax(unreachable))]["u0"] is None
     assert (tmp_path / "py.csv").read_bytes() == (tmp_path / "cli.csv").read_bytes()
@@ -289,6 +290,9 @@ def test_replay_equals_cli(tmp_path):
     # The command writes 12 significant digits.
     assert_table_is_csv(result.tables["end_effector"], tmp_path / "end_effector.csv", comment_lines=1, rel=1e-9)
     assert_table_is_csv(result.tables["bases"], tmp_path / "bases.csv", comment_lines=1, rel=1e-9)
+    # The columns' kinds are the CSV writer's (documents/table.h), not guessed from the text.
+    assert result.tables["end_effector"]["torn"].dtype == bool
+    assert result.tables["bases"]["time_s"].dtype == np.float64
 
 
 # ------------------------------------------------------------------ import, export, view

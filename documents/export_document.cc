@@ -1,0 +1,35 @@
+#include "documents/export_document.h"
+
+#include <stdexcept>
+
+#include "formats/sdformat_writer.h"
+#include "formats/urdf_writer.h"
+
+namespace ccma::documents {
+
+Export ExportModel(const Model& model, const std::string& format, const std::string& out) {
+  Export e;
+  nlohmann::json& json = e.document.json;
+  json = {{"format", format}, {"closures", nullptr}};
+  if (format == "urdf") {
+    UrdfExport urdf = WriteUrdf(model);
+    const std::string closures = ClosureFilePath(out);
+    e.files.push_back({out, std::move(urdf.urdf), false});
+    e.files.push_back({closures, std::move(urdf.closures), true});
+    json["closures"] = closures;
+    json["links"] = urdf.links;
+    json["joints"] = urdf.joints;
+    json["loops"] = urdf.loops;
+  } else if (format == "sdf") {
+    SdformatExport sdf = WriteSdformat(model);
+    e.files.push_back({out, std::move(sdf.sdf), false});
+    json["links"] = sdf.links;
+    json["joints"] = sdf.joints;
+    json["loops"] = sdf.loops;
+  } else {
+    throw std::invalid_argument("format must be urdf or sdf");
+  }
+  return e;
+}
+
+}  // namespace ccma::documents
