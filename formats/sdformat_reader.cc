@@ -6,7 +6,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
-#include <set>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -32,6 +31,7 @@
 #include "formats/internal/robot_xml.h"
 #include "formats/internal/sdf_extension_elements.h"
 #include "formats/internal/sdformat_console.h"
+#include "formats/internal/root_weld.h"
 #include "formats/internal/sdformat_cost.h"
 #include "formats/model_loader.h"
 
@@ -124,7 +124,11 @@ void CheckMemory(const internal::RobotXmlSummary& summary, const std::string& so
 // cannot read an <sdf>, reads the text again as a URDF and follows what that
 // says), no <include> (libsdformat would open the files it names: the only
 // place where it opens a file of its own), within kMaxSdformatMegabytes of
-// libsdformat's memory, and an `sdf version` of 1.7 or later.
+// libsdformat's memory, and an `sdf version` of 1.4 or later (libsdformat
+// converts an older version's file to its own, with the meaning the file has
+// in its version: a 1.4 joint axis in the model frame, a 1.5 or 1.6 one
+// with <use_parent_model_frame>; the reader then resolves every axis and
+// pose through libsdformat's frame graph, so each keeps that meaning).
 void CheckXml(const std::string& text, const std::string& source) {
   const internal::RobotXmlSummary summary = internal::CheckRobotXml(text, source, "sdf", "an SDFormat file");
   const auto include = summary.names.find("include");
@@ -143,9 +147,9 @@ void CheckXml(const std::string& text, const std::string& source) {
   const char* version = root->Attribute("version");
   int major = 0, minor = 0;
   if (version == nullptr || std::sscanf(version, "%d.%d", &major, &minor) != 2 || major < 1 ||
-      (major == 1 && minor < 7)) {
+      (major == 1 && minor < 4)) {
     throw ModelError(source + ":" + std::to_string(root->Row()) + ": sdf version " +
-                     Quote(version ? version : "") + ": SDFormat 1.7 or later is needed");
+                     Quote(version ? version : "") + ": SDFormat 1.4 or later is needed");
   }
 }
 
@@ -464,6 +468,7 @@ RobotDescription ReadSdformatFromString(const std::string& text, const std::stri
     robot.links.push_back(ReadLink(*model.LinkByIndex(i), context));
   for (uint64_t i = 0; i < model.JointCount(); ++i)
     robot.joints.push_back(ReadJoint(*model.JointByIndex(i), context));
+  internal::WeldTheRoot(model.Name(), &robot);
   robot.actuated = actuated.empty() ? StoredActuated(model) : actuated;
   ReadEndEffector(model, context, &robot);
   return robot;

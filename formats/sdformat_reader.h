@@ -1,4 +1,5 @@
-// Reading an SDFormat (1.7 or later) robot into a RobotDescription, with
+// Reading an SDFormat (1.4 or later: older versions through libsdformat's own
+// conversion, with their meaning) robot into a RobotDescription, with
 // libsdformat 12. SDFormat joints may form loops: libsdformat loads such a
 // model when its links are posed assembled, and so does this reader (the
 // closures of the description stay empty; the loop-closing joints are
@@ -28,6 +29,9 @@
 //  - ccma's own optional element, inside <model>:
 //      <ccma:end_effector link="L" point="x y z" controlled="x y z yaw"/>
 //    (point in the link frame, m; controlled from x y z roll pitch yaw).
+//  - a model with no joint to `world`: its root link (the first that is no
+//    joint's child) is welded to `world` by a fixed joint `world__ROOT`, as a
+//    URDF's root is, with a warning in RobotDescription::warnings.
 // Mesh uris are resolved against the file's folder as URDF ones are
 // (formats/internal/mesh_paths.h: file://, relative, model://NAME/rest and
 // package://NAME/rest searched from the file's folder upwards; not found ->

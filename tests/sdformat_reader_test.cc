@@ -162,8 +162,8 @@ TEST(SdformatReaderTest, UnsupportedJointTypeNamesTheJoint) {
 }
 
 TEST(SdformatReaderTest, OtherBadInputIsRejected) {
-  EXPECT_NE(Rejection(Sdf("<link name=\"a\"/>", "1.6"))
-                .find("/tmp/robot.sdf:2: sdf version '1.6': SDFormat 1.7"),
+  EXPECT_NE(Rejection(Sdf("<link name=\"a\"/>", "1.3"))
+                .find("/tmp/robot.sdf:2: sdf version '1.3': SDFormat 1.4 or later is needed"),
             std::string::npos);
   EXPECT_NE(Rejection("<robot name=\"r\"/>").find("not an SDFormat file"), std::string::npos);
   EXPECT_NE(Rejection(Sdf("<include><uri>/dev/zero</uri></include>"))
