@@ -82,6 +82,27 @@ Eigen::MatrixXd LateralRows(const Model& model, const State& s, const Eigen::Vec
   return L.topRows(rows);
 }
 
+// Whether every effective control that cannot move alone (its column of
+// dC/du outside the range of dC/ds: the state cannot follow it) is an x, y or
+// heading of a wheeled (not legged) base. J = [J_s, J_u_eff].
+bool OnlyWheeledBasesDependent(const Model& model, const Eigen::MatrixXd& J_s, const Eigen::MatrixXd& J,
+                               int constraint_rank, const std::vector<int>& effective, double threshold) {
+  const int n = static_cast<int>(J_s.cols());
+  const Eigen::MatrixXd U = JacobiSvd(J_s, Eigen::ComputeThinU).matrixU().leftCols(constraint_rank);
+  for (int c = 0; c < static_cast<int>(effective.size()); ++c) {
+    const Eigen::VectorXd column = J.col(n + c);
+    if ((column - U * (U.transpose() * column)).norm() <= threshold) continue;  // followable alone
+    bool wheeled = false;
+    for (int b = 0; b < model.num_bases(); ++b) {
+      const int first = model.base_control(b);
+      wheeled = wheeled || (model.mobile_bases[b].type != BaseType::kLegged && effective[c] >= first &&
+                            effective[c] < first + 3);
+    }
+    if (!wheeled) return false;
+  }
+  return true;
+}
+
 // FreeMotion::joints of each motion: the coordinates' rates along the
 // motion by a central difference (exact to about 1e-9 rad or m per unit of
 // ds, far below kMovingJointRate).
@@ -129,6 +150,7 @@ MobilityReport AnalyzeMobility(const Model& model, const State& s, const Eigen::
     report.energy = 0.5 * C.squaredNorm();
     AnalyzeMobilitySparse(model, s, u, rank_tolerance, &report);
     AddMovingJoints(model, s, &report.free_motions);
+    report.independent_controls = report.dof_with_controls_free - report.dof_with_controls_fixed;
     return report;
   }
   Eigen::VectorXd C;
@@ -156,6 +178,9 @@ MobilityReport AnalyzeMobility(const Model& model, const State& s, const Eigen::
   for (int c = 0; c < k; ++c) J.col(n + c) = J_u.col(effective[c]);
   report.end_effector_dof =
       EndEffectorDof(model, s, J, rank_tolerance * scale, rank_tolerance, &report.dof_with_controls_free);
+  report.independent_controls = report.dof_with_controls_free - report.dof_with_controls_fixed;
+  report.only_wheeled_bases_dependent = report.independent_controls < k &&
+      OnlyWheeledBasesDependent(model, J_s, J, report.constraint_rank, effective, rank_tolerance * scale);
   const Eigen::MatrixXd L = LateralRows(model, s, u, J_s, J_u, effective, rank_tolerance * scale);
   if (L.rows() == 0) {
     report.end_effector_dof_nonholonomic = report.end_effector_dof;
@@ -175,6 +200,17 @@ bool OnlyIdleMotions(const Model& model, const State& s, const MobilityReport& m
     if ((dX_ds * motion.direction).norm() > 1e-8) return false;
   }
   return true;
+}
+
+ControlDependence ClassifyControls(const Model& model, const MobilityReport& mobility) {
+  if (mobility.independent_controls >= static_cast<int>(model.effective_control_indices().size())) {
+    return ControlDependence::kIndependent;
+  }
+  int controlled = 0;
+  for (int c = 0; c < 6; ++c) controlled += model.end_effector.controlled[c] ? 1 : 0;
+  const bool redundant = mobility.independent_controls == mobility.end_effector_dof && mobility.end_effector_dof >= controlled;
+  return mobility.only_wheeled_bases_dependent || redundant ? ControlDependence::kRedundantByDesign
+                                                            : ControlDependence::kDependent;
 }
 
 }  // namespace ccma

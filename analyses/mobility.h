@@ -78,6 +78,16 @@ struct MobilityReport {
   // False when free motions exist but were too many to list (above
   // kMaxFreeMotionWork): free_motions is then empty.
   bool free_motions_listed = true;
+  // The control directions the mechanism can follow at home:
+  // dof_with_controls_free - dof_with_controls_fixed. Fewer than the
+  // effective controls: most control vectors cannot be assembled.
+  int independent_controls = 0;
+  // When some controls depend on others: true when only the planar controls
+  // (x, y, heading) of wheeled bases do (moving any other effective control
+  // alone can be followed): agents on the floor that carry one rigid frame,
+  // over-actuated by design as the paper's systems are. Found up to
+  // kDenseMobilityStateSize; false beyond.
+  bool only_wheeled_bases_dependent = false;
 };
 
 // The mobility of `model` at state s and controls u (model.h). Ranks use
@@ -94,6 +104,20 @@ MobilityReport AnalyzeMobility(const Model& model, const State& s, const Eigen::
 // as a rod spinning about its axis (problems/internal/idle_motions.h). False
 // when none is listed.
 bool OnlyIdleMotions(const Model& model, const State& s, const MobilityReport& mobility);
+
+// How the effective controls relate at home (`ccma check`'s note or warning).
+enum class ControlDependence {
+  kIndependent,  // every effective control can move alone
+  // Over-actuated by design: only wheeled bases' floor positions depend on
+  // each other (the frame they carry ties them), or every independent
+  // direction moves the end-effector and they drive all its controlled
+  // components (redundant actuation, e.g. a motor beside the agents).
+  kRedundantByDesign,
+  // Anything else (a Stewart platform with UPU legs, legged bases under one
+  // platform): most control vectors cannot be assembled.
+  kDependent,
+};
+ControlDependence ClassifyControls(const Model& model, const MobilityReport& mobility);
 
 }  // namespace ccma
 

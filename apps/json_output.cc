@@ -115,6 +115,7 @@ void PrintJson(const nlohmann::json& document) {
 
 void PrintWarnings(const documents::Document& document, const std::string& command) {
   for (const std::string& w : document.warnings) std::cerr << "ccma " << command << ": warning: " << w << "\n";
+  for (const std::string& n : document.notes) std::cerr << "ccma " << command << ": note: " << n << "\n";
 }
 
 void PrintDocument(const documents::Document& document, const std::string& command) {

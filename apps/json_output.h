@@ -35,7 +35,8 @@ State StateFromJson(const Model& model, const nlohmann::json& document, const st
 
 // Prints one JSON document on stdout.
 void PrintJson(const nlohmann::json& document);
-// A document's warnings on stderr, one line each ("ccma COMMAND: warning: ...").
+// A document's warnings on stderr, one line each ("ccma COMMAND: warning:
+// ..."), then its notes ("ccma COMMAND: note: ...").
 void PrintWarnings(const documents::Document& document, const std::string& command);
 // A command's document (documents/document.h): its warnings on stderr
 // (PrintWarnings), then its JSON on stdout.

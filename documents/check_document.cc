@@ -31,6 +31,7 @@ nlohmann::json CheckJson(const Model& model, const MobilityReport& mobility, boo
   out["dof_with_controls_free"] = mobility.dof_with_controls_free;
   out["smallest_singular_value"] = mobility.smallest_singular_value;
   out["energy_at_home"] = mobility.energy;
+  out["independent_controls"] = mobility.independent_controls;
   nlohmann::json controlled = nlohmann::json::array();
   for (int c = 0; c < 6; ++c) {
     if (model.end_effector.controlled[c]) controlled.push_back(kEndEffectorComponentNames[c]);
@@ -90,6 +91,13 @@ nlohmann::json CheckWarnings(const Model& model, const MobilityReport& mobility,
                        " end-effector DOF at home, fewer than the " + std::to_string(controlled_count) +
                        " controlled components");
   }
+  const int effective = static_cast<int>(model.effective_control_indices().size());
+  if (ClassifyControls(model, mobility) == ControlDependence::kDependent) {
+    warnings.push_back("only " + std::to_string(mobility.independent_controls) + " of the " +
+                       std::to_string(effective) + " effective controls are independent at home: most control "
+                       "vectors cannot be assembled (ccma simulate --controls=... says not assembled); control and "
+                       "trajectory keep the controls consistent");
+  }
   if (mobility.end_effector_dof_nonholonomic < std::min(controlled_count, mobility.end_effector_dof)) {
     warnings.push_back("the differential bases, which cannot move sideways, leave the end-effector only " +
                        std::to_string(mobility.end_effector_dof_nonholonomic) + " instantaneous DOF at home, fewer than the " +
@@ -104,13 +112,27 @@ Document CheckDocument(const Model& model) {
   const State home = State::Home(model);
   const MobilityReport mobility = AnalyzeMobility(model, home, model.home_controls());
   const bool assembled = mobility.energy < ForwardOptions().assembly_tolerance;
-  Document doc{CheckJson(model, mobility, assembled), {}};
+  Document doc;
+  doc.json = CheckJson(model, mobility, assembled);
   const nlohmann::json warnings = CheckWarnings(model, mobility, assembled);
   if (!warnings.empty()) {
     doc.json["warnings"] = warnings;
     for (const auto& w : warnings) doc.warnings.push_back(w.get<std::string>());
   }
   AddClearance(model, home, &doc.json, &doc.warnings);  // at home
+  if (!doc.warnings.empty()) {
+    std::string joined;
+    for (const std::string& w : doc.warnings) JoinWarning(w, &joined);
+    doc.json["warning"] = joined;
+  }
+  const int effective = static_cast<int>(model.effective_control_indices().size());
+  if (ClassifyControls(model, mobility) == ControlDependence::kRedundantByDesign) {
+    doc.notes.push_back("over-actuated by design: " + std::to_string(mobility.independent_controls) + " of the " +
+                        std::to_string(effective) + " effective controls are independent at home (redundant "
+                        "actuation: the controls are tied by the mechanism they drive); control and trajectory keep "
+                        "the controls consistent, ccma simulate --controls=... needs consistent ones");
+    doc.json["note"] = doc.notes.back();
+  }
   return doc;
 }
 

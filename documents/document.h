@@ -15,6 +15,9 @@ namespace ccma::documents {
 struct Document {
   nlohmann::json json;
   std::vector<std::string> warnings;
+  // What is worth knowing but not a fault ("ccma COMMAND: note: <text>"),
+  // said after the warnings.
+  std::vector<std::string> notes;
 
   // The JSON's "warning" and the same line among the warnings; nothing when
   // `warning` is empty.

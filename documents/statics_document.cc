@@ -83,7 +83,8 @@ void AddPayloadCapacity(const Model& model, const State& s, const Eigen::VectorX
 Document StaticsDocument(const Model& model, const State& s, const Eigen::VectorXd& u, bool assembled,
                          double residual_energy, const ExternalWrench& wrench, const BasePoseNoise& noise) {
   const StaticsReport report = ComputeStatics(model, s, u, wrench);
-  Document doc{ReportJson(report), {}};
+  Document doc;
+  doc.json = ReportJson(report);
   nlohmann::json& out = doc.json;
   AddComplianceJson(report, &out);
   out["model"] = model.name;

@@ -155,9 +155,14 @@ class CheckResult(Result):
     dof_with_controls_free = Field("dof_with_controls_free", "motions with the controls free")
     smallest_singular_value = Field("smallest_singular_value", "of dC/ds")
     energy_at_home = Field("energy_at_home", "E at home [m^2]")
+    independent_controls = Field("independent_controls",
+                                 "control directions the mechanism can follow at home (fewer than "
+                                 "effective_controls: most control vectors cannot be assembled)")
     controlled = Field("controlled", "the controlled components, among x y z roll pitch yaw")
     free_motions = Field("free_motions", "list of Record {bodies: names}: a basis of the free motions")
     warnings = Field("warnings", "what a user would not expect of the mechanism; None when nothing")
+    warning = Field("warning", "the warnings joined with '; '; None when nothing")
+    note = Field("note", "over-actuated by design: how many controls are independent; None otherwise")
     clearance = Field("clearance", "Record, the clearance at home; None without collision geometry")
 
 
