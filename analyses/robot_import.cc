@@ -14,6 +14,7 @@
 
 #include "analyses/internal/import_collision.h"
 #include "analyses/internal/import_mesh_paths.h"
+#include "analyses/internal/import_report.h"
 #include "analyses/internal/robot_model_builder.h"
 #include "analyses/moved_components.h"
 #include "ccma/internal/constraint_set.h"
@@ -227,14 +228,18 @@ bool ImportOptions::IsValid(std::string* why) const {
   return true;
 }
 
-ImportedRobot ImportRobot(const RobotDescription& robot, const ImportOptions& options) {
-  if (std::string why; !options.IsValid(&why)) throw std::invalid_argument(why);
-  const internal::RobotModel built = internal::BuildRobotModel(robot, options);
+namespace {
+
+// The source's configuration assembled: with the motors held, else (a CAD
+// export whose loops do not close at the motors' zero) with them free, as
+// near as the solver gets; *motors_held says which. Throws ModelError when
+// neither closes the loops.
+State AssembleTheSource(const RobotDescription& robot, const internal::RobotModel& built, bool* motors_held) {
   ForwardOptions forward;
   forward.max_iterations = 500;
   double energy = 0;
   State assembled = Assemble(built, forward, &energy);
-  bool motors_held = true;
+  *motors_held = true;
   if (!(energy < kAssembledEnergy)) {
     // CAD files are not always exported with the loops closable at the
     // motors' zero: close them with the motors free, as near the source's
@@ -249,11 +254,37 @@ ImportedRobot ImportRobot(const RobotDescription& robot, const ImportOptions& op
                        " m^2 (" + FormatG(free_energy) + " m^2 with the motors free)");
     }
     assembled = loose;
-    motors_held = false;
+    *motors_held = false;
   }
+  return assembled;
+}
+
+// ImportedRobot::closure_gaps and motor_moves, and a warning for each beyond
+// kImportTolerance; ModelError naming them all instead with options.strict.
+void ReportChanges(const RobotDescription& robot, const Model& source, const Model& home, const ImportOptions& options,
+                   ImportedRobot* out) {
+  out->closure_gaps = internal::ClosureGaps(robot);
+  out->motor_moves = internal::MotorMoves(source, home);
+  const std::vector<std::string> changes = internal::ImportChanges(out->closure_gaps, out->motor_moves);
+  if (options.strict && !changes.empty()) {
+    std::string all;
+    for (const std::string& line : changes) all += (all.empty() ? "" : "; ") + line;
+    throw ModelError(robot.source + ": --strict: the import would change the mechanism: " + all);
+  }
+  out->warnings.insert(out->warnings.end(), changes.begin(), changes.end());
+}
+
+}  // namespace
+
+ImportedRobot ImportRobot(const RobotDescription& robot, const ImportOptions& options) {
+  if (std::string why; !options.IsValid(&why)) throw std::invalid_argument(why);
+  const internal::RobotModel built = internal::BuildRobotModel(robot, options);
+  bool motors_held = true;
+  const State assembled = AssembleTheSource(robot, built, &motors_held);
   Model home = Rehome(built, assembled, motors_held);
-  CheckLimits(home, robot.source);
   ImportedRobot out;
+  ReportChanges(robot, built.model, home, options, &out);
+  CheckLimits(home, robot.source);
   SetControlled(built, robot.source, &home, &out.warnings);
   out.controlled_chosen = built.controlled == internal::RobotModel::Controlled::kToChoose;
   for (int c = 0; c < 6; ++c) {

@@ -56,6 +56,11 @@ struct ImportOptions {
   // 0: no collision geometry (robot files give meshes, which clearance does
   // not use).
   double collision_radius = 0;
+  // Refuse (ModelError) an import that closes a gap between a closure's
+  // frames or moves a motor from its source position by more than
+  // kImportTolerance: the file then describes another mechanism than the
+  // one written.
+  bool strict = false;
 
   // Names non-empty and at most kMaxImportNameBytes, the point finite and
   // within 1e4 m, collision_radius 0 or in [1e-4, 10] m. `why` names the
@@ -65,6 +70,23 @@ struct ImportOptions {
 
 // The longest joint or link name an import is asked for [bytes].
 constexpr std::size_t kMaxImportNameBytes = 256;
+
+// A gap or a motor move beyond this [m or rad] is named (and refused with
+// ImportOptions::strict).
+constexpr double kImportTolerance = 1e-6;
+
+// How far a closure's two frames are apart at the source's joint positions.
+struct ClosureGap {
+  std::string name;   // the closing joint's name in the model (A__B)
+  double gap_m = 0;   // distance between the origins [m]
+  double gap_rad = 0; // angle between the frames [rad] (6d closures; 0 for 3d)
+};
+
+// How far assembling at home moved an actuated joint from its source position.
+struct MotorMove {
+  std::string name;
+  double move = 0;  // [rad or m], home minus source (revolute: wrapped into (-pi, pi])
+};
 
 struct ImportedRobot {
   Model model;          // as loaded back from `yaml` (validated by the loader); mesh paths
@@ -78,6 +100,8 @@ struct ImportedRobot {
   std::vector<std::string> warnings;  // e.g. the motors had to move to close the loops
   int collision_capsules = 0;       // with collision_radius: capsules written
   int collision_ignored_pairs = 0;  // with collision_radius: body pairs touching at home, ignored
+  std::vector<ClosureGap> closure_gaps;  // every closure of the description, in its order
+  std::vector<MotorMove> motor_moves;    // every actuated revolute or prismatic joint, in model order
 };
 
 // Throws ModelError naming the source, the element and the name: an unknown

@@ -174,7 +174,7 @@ Command ImportCommand() {
   return {"import", "convert a URDF (with a closure file) or SDFormat robot into a model file",
           "ccma import --from=FILE.urdf|FILE.sdf [--closures=FILE.yaml] [--actuated=J,...]\n"
           "            --end_effector=LINK[:px,py,pz] [--controlled=x,y,z,roll,pitch,yaw] [--collision_radius=R]\n"
-          "            --out=MODEL.yaml",
+          "            [--strict] --out=MODEL.yaml",
           "Converts a robot described elsewhere into a model file (docs/import.md): every link a body, every\n"
           "joint kept, each loop closure (URDF: the closure file's closed_loop pairs; SDFormat: its own\n"
           "loops) a fixed (6d) or spherical (3d) joint. The written model is assembled at home (the source's\n"
@@ -186,9 +186,13 @@ Command ImportCommand() {
           "With --collision_radius, every body gets capsules of that radius along the segments between its\n"
           "joint points (robot files' collision meshes are not used), so that --obstacles and clearance\n"
           "work; pairs of bodies closer than the margin at home are ignored (they touch by design).\n"
+          "SDFormat 1.4 to 1.6 is read with its own version's meaning; a model with no joint to world has its\n"
+          "root link welded to world (said on stderr). The JSON's closure_gaps give how far apart each closure's\n"
+          "frames are in the source and motor_moves how far assembling moved each motor; any beyond 1e-6 is\n"
+          "named on stderr, and --strict refuses the import then (exit 2).\n"
           "Exit 2 naming the file, the element and the name for a malformed source, an unknown name, a\n"
           "closure that cannot be assembled, or --controlled components the motors cannot move.",
-          {"from", "closures", "actuated", "end_effector", "controlled", "collision_radius", "out"}, RunImport,
+          {"from", "closures", "actuated", "end_effector", "controlled", "collision_radius", "strict", "out"}, RunImport,
           {{"from", "the robot file: URDF (.urdf, .xml) or SDFormat (.sdf), at most 16 MiB [path]"},
            {"out", "the model file to write (YAML); mesh paths are written relative to its folder [path]"}}};
 

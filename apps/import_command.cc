@@ -33,6 +33,10 @@ DEFINE_double(collision_radius, 0,
               "import: give every body capsules of this radius along the segments between its joint points "
               "(0: no collision geometry) [m, 0 or in [1e-4, 10]]");
 
+DEFINE_bool(strict, false,
+            "import: refuse (status 2) an import that joins a closure's frames that are apart in the source or moves "
+            "a motor from its source position by more than 1e-6 [flag]");
+
 namespace ccma::cli {
 namespace {
 
@@ -77,6 +81,7 @@ int RunImport(const std::vector<std::string>& args) {
   options.controlled = SplitNames(FLAGS_controlled, "controlled");
   if (!FLAGS_end_effector.empty()) ParseEndEffector(FLAGS_end_effector, &options);
   options.collision_radius = FLAGS_collision_radius;
+  options.strict = FLAGS_strict;
   std::string why;
   if (!options.IsValid(&why)) throw UsageError("--" + why);
   OutputFile out(out_path, "out");  // checked before the work

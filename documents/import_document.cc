@@ -16,6 +16,12 @@ Document ImportDocument(const ImportedRobot& imported, const ImportOptions& opti
          {"assembled", true},
          {"residual_energy", imported.residual_energy},
          {"controls", ToJson(imported.model.home_controls())}};
+  out["closure_gaps"] = nlohmann::json::array();
+  for (const ClosureGap& g : imported.closure_gaps) {
+    out["closure_gaps"].push_back({{"name", g.name}, {"gap_m", g.gap_m}, {"gap_rad", g.gap_rad}});
+  }
+  out["motor_moves"] = nlohmann::json::array();
+  for (const MotorMove& m : imported.motor_moves) out["motor_moves"].push_back({{"name", m.name}, {"move", m.move}});
   if (options.collision_radius > 0) {
     out["collision_capsules"] = imported.collision_capsules;
     out["collision_ignored_pairs"] = imported.collision_ignored_pairs;

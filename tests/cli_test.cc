@@ -385,7 +385,7 @@ TEST(Cli, EachCommandHasItsOwnHelpWithUnits) {
                       "pivot_weight", "pivot_threshold", "secondary", "secondary_weight", "clearance_m", "method",
                       "max_step_m", "max_step_rad", "lambda"}},
       {"generate", {"agents", "kind", "out"}},
-      {"import", {"from", "closures", "actuated", "end_effector", "controlled", "collision_radius", "out"}},
+      {"import", {"from", "closures", "actuated", "end_effector", "controlled", "collision_radius", "strict", "out"}},
       {"bench", {"model", "all", "models_dir", "scaling", "steps", "seed", "out", "max_minutes"}},
       {"replay", {"model", "waypoints", "out", "noise", "seed", "mocap_noise_m", "mocap_noise_rad",
                   "latency_s", "slip", "kp", "ki", "controller_hz", "max_wheel_speed", "gait_hz", "gait_bob_m",

@@ -2,6 +2,7 @@
 // robot written by hand, and hostile sources (exit 2, file, line, element and
 // name in one line on stderr, nothing on stdout).
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -9,6 +10,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "ccma/internal/format.h"
 #include "ccma/joint_coordinates.h"
 #include "formats/model_loader.h"
 #include "problems/forward_problem.h"
@@ -456,4 +458,70 @@ TEST_F(ImportCli, HostileRobotFilesAreRefusedEarlyNamingTheFile) {
 }
 
 }  // namespace
+}  // namespace ccma
+
+namespace ccma {
+namespace import_cli_test {
+
+// A four-bar whose loop cannot close with the crank at its source position:
+// crank 1 m from the origin and coupler 5.5 m along +x, rocker 2 m about
+// (4, 0, 0) along +y at zero, so the closure's frames (the coupler's and the
+// rocker's far ends, (6.5, 0) and (4, 2)) are sqrt(10.25) m apart, and the
+// crank end (1, 0) is 3 m from the rocker pivot, less than 5.5 - 2: the loop
+// closes only with the crank turned by at least acos(0.59375) = 0.936 rad
+// (|(cos t, sin t) - (4, 0)| >= 3.5).
+constexpr char kGappedFourBar[] = R"(<?xml version="1.0"?>
+<robot name="gapped">
+  <link name="world"/>
+  <link name="crank"/><link name="coupler"/><link name="coupler_end"/><link name="rocker"/><link name="rocker_end"/>
+  <joint name="drive" type="continuous"><parent link="world"/><child link="crank"/><axis xyz="0 0 1"/></joint>
+  <joint name="knee" type="continuous"><parent link="crank"/><child link="coupler"/>
+    <origin xyz="1 0 0"/><axis xyz="0 0 1"/></joint>
+  <joint name="coupler_tip" type="fixed"><parent link="coupler"/><child link="coupler_end"/><origin xyz="5.5 0 0"/></joint>
+  <joint name="hip" type="continuous"><parent link="world"/><child link="rocker"/>
+    <origin xyz="4 0 0"/><axis xyz="0 0 1"/></joint>
+  <joint name="rocker_tip" type="fixed"><parent link="rocker"/><child link="rocker_end"/><origin xyz="0 2 0"/></joint>
+</robot>
+)";
+constexpr char kGappedClosures[] = "closed_loop: [['coupler_end', 'rocker_end']]\ntype: ['3d']\nname_mot: ['drive']\n";
+
+TEST_F(ImportCli, GapsAndMotorMovesAreReportedAndStrictRefusesThem) {
+  const std::string urdf = Write("gapped.urdf", kGappedFourBar);
+  const std::string closures = Write("gapped.yaml", kGappedClosures);
+  const std::vector<std::string> args = {"import", "--from=" + urdf, "--closures=" + closures,
+                                         "--end_effector=coupler:2,0,0", "--out=" + Out()};
+  const ToolRun r = RunTool(args);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["closure_gaps"].size(), 1u);
+  EXPECT_EQ(j["closure_gaps"][0]["name"], "coupler_end__rocker_end");
+  EXPECT_NEAR(j["closure_gaps"][0]["gap_m"].get<double>(), std::sqrt(10.25), 1e-12);
+  EXPECT_EQ(j["closure_gaps"][0]["gap_rad"].get<double>(), 0.0);  // 3d: origins only
+  ASSERT_EQ(j["motor_moves"].size(), 1u);
+  EXPECT_EQ(j["motor_moves"][0]["name"], "drive");
+  const double move = j["motor_moves"][0]["move"].get<double>();
+  EXPECT_GE(std::abs(move), std::acos(0.59375) - 1e-9);
+  EXPECT_NEAR(j["controls"][0].get<double>(), move, 1e-12);  // the control is the motor's source-relative position
+  EXPECT_NE(r.err.find("closure 'coupler_end__rocker_end': its frames are 3.20156 m and 0 rad apart"), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("motor 'drive' moved " + FormatG(move)), std::string::npos) << r.err;
+  std::filesystem::remove(Out());
+  std::vector<std::string> strict = args;
+  strict.insert(strict.end() - 1, "--strict");
+  ExpectRefused(strict, "--strict: the import would change the mechanism: closure 'coupler_end__rocker_end'");
+}
+
+// A loop the source poses closed: no gap, no move, nothing said.
+TEST_F(ImportCli, AClosedSourceHasNoGapsAndStrictAcceptsIt) {
+  const ToolRun r = RunTool({"import", "--from=" + std::string(CCMA_TEST_DATA_DIR) + "/four_bar_loop.sdf",
+                             "--actuated=crank", "--end_effector=coupler:4.8,0,0", "--strict", "--out=" + Out()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j["closure_gaps"].empty());  // SDFormat closes its loops with joints
+  ASSERT_EQ(j["motor_moves"].size(), 1u);
+  EXPECT_EQ(j["motor_moves"][0]["move"].get<double>(), 0.0);
+  EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
+}
+
+}  // namespace import_cli_test
 }  // namespace ccma

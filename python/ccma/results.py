@@ -256,6 +256,10 @@ class ImportResult(Result):
     assembled = Field("assembled", "assembled at home (always True: import refuses otherwise)")
     residual_energy = Field("residual_energy", "E at home [m^2]")
     controls = Field("controls", "the home controls")
+    closure_gaps = Field("closure_gaps", "list of Record {name, gap_m [m], gap_rad [rad]}: how far apart each "
+                                         "closure's frames are in the source")
+    motor_moves = Field("motor_moves", "list of Record {name, move [rad or m]}: how far assembling at home moved "
+                                       "each motor from its source position")
     collision_capsules = Field("collision_capsules", "with collision_radius: capsules written to collision.links; "
                                "None without")
     collision_ignored_pairs = Field("collision_ignored_pairs", "with collision_radius: body pairs closer than "

@@ -22,7 +22,8 @@ def _end_effector(text):
     return link, point
 
 
-def import_robot(from_, closures=None, actuated=(), end_effector="", controlled=(), collision_radius=0.0, out=None):
+def import_robot(from_, closures=None, actuated=(), end_effector="", controlled=(), collision_radius=0.0, out=None,
+                 strict=False):
     """`ccma import`: a URDF (with its closure file, the example-parallel-robots convention) or
     an SDFormat file as a ccma model assembled at home.
 
@@ -37,11 +38,15 @@ def import_robot(from_, closures=None, actuated=(), end_effector="", controlled=
     capsules of that radius [m] along the segments between its joint points, so that
     obstacles and clearance apply (0 or [1e-4, 10] m; --collision_radius,
     docs/import.md#collision-geometry); out: also write the model file there (replaced
-    atomically, never through a planted link).
+    atomically, never through a planted link); strict: raise ccma.ModelError instead of
+    joining a closure's frames that are apart in the source or moving a motor from its source
+    position by more than 1e-6 (--strict).
 
     Returns a ccma.ImportResult: the command's JSON as attributes (to_dict()): bodies,
     joints, closures, actuated, controlled (the model's components), controlled_chosen
-    (True when import chose them), assembled, residual_energy [m^2], controls,
+    (True when import chose them), assembled, residual_energy [m^2], controls, closure_gaps
+    ({name, gap_m, gap_rad} per closure, in the source), motor_moves ({name, move} per motor,
+    rad or m, from its source position to home),
     collision_capsules and collision_ignored_pairs with collision_radius, and out when
     written; `new_model` is the imported Model (as loaded back from `out` when written).
     Every joint's q equals the source's joint position (q_home). Mesh paths are written
@@ -52,7 +57,7 @@ def import_robot(from_, closures=None, actuated=(), end_effector="", controlled=
     folder = None if out is None else _os.path.dirname(_os.path.abspath(out))
     link, point = _end_effector(str(end_effector))
     model, text, document = _ccma._import_robot(from_, closures, list(actuated), link, point, list(controlled),
-                                                folder, float(collision_radius))
+                                                folder, float(collision_radius), bool(strict))
     if out is not None:
         _write_replacing(out, text.encode("utf-8"))
         model = _ccma.load_model(out)

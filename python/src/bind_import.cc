@@ -30,7 +30,8 @@ namespace {
 py::tuple ImportRobotFile(const std::filesystem::path& from, const std::optional<std::filesystem::path>& closures,
                           const std::vector<std::string>& actuated, const std::string& end_effector,
                           const Eigen::Vector3d& point, const std::vector<std::string>& controlled,
-                          const std::optional<std::filesystem::path>& model_folder, double collision_radius) {
+                          const std::optional<std::filesystem::path>& model_folder, double collision_radius,
+                          bool strict) {
   const std::string path = from.string();
   ImportOptions options;
   options.actuated = actuated;
@@ -39,6 +40,7 @@ py::tuple ImportRobotFile(const std::filesystem::path& from, const std::optional
   options.controlled = controlled;
   if (model_folder) options.model_folder = model_folder->string();  // mesh paths relative to it
   options.collision_radius = collision_radius;
+  options.strict = strict;
   std::string why;
   if (!options.IsValid(&why)) throw py::value_error(why);
   RobotFileFormat format = RobotFileFormatOf(path);
@@ -85,7 +87,7 @@ void BindImport(py::module_& m) {
   m.def("_import_robot", &ImportRobotFile, py::arg("path"), py::arg("closures") = py::none(),
         py::arg("actuated") = std::vector<std::string>{}, py::arg("end_effector") = "",
         py::arg("point") = Eigen::Vector3d::Zero(), py::arg("controlled") = std::vector<std::string>{},
-        py::arg("model_folder") = py::none(), py::arg("collision_radius") = 0.0,
+        py::arg("model_folder") = py::none(), py::arg("collision_radius") = 0.0, py::arg("strict") = false,
         "Private: ccma.import_robot. Converts a URDF (with its closure file, the example-parallel-robots convention) or an "
         "SDFormat file into a Model assembled at home, as `ccma import` (docs/import.md): "
         "actuated: joint names (URDF default: the closure file's name_mot); end_effector: the "
@@ -93,7 +95,8 @@ void BindImport(py::module_& m) {
         "components (default: the stored ones, else those the motors move at home, translations first; "
         "refused when the motors cannot move them); model_folder: the folder the model file will be written to "
         "(mesh paths are written relative to it; default the robot file's folder); collision_radius: > 0 gives every "
-        "body capsules of that radius [m] between its joint points (--collision_radius). Returns (Model, model file text, "
+        "body capsules of that radius [m] between its joint points (--collision_radius); strict: refuse an import that joins a closure's frames that are apart or moves a motor by more "
+        "than 1e-6 (--strict). Returns (Model, model file text, "
         "`ccma import`'s JSON without out). Every joint's q "
         "equals the source's joint position (q_home). Raises ccma.ModelError naming the file, "
         "the element and the name.");

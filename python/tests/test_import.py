@@ -1,4 +1,5 @@
 """ccma.import_robot on the bundled example-parallel-robots copies (docs/import.md)."""
+import math
 import os
 
 import numpy as np
@@ -176,3 +177,16 @@ def test_an_sdformat_import_writes_nothing_under_home(tmp_path, planted):
     else:
         assert list(home.iterdir()) == []
     assert "HOME" not in run.stderr
+
+
+def test_closure_gaps_and_motor_moves_are_reported_and_strict_refuses_them():
+    folder = os.path.join(ROBOTS, "5bar_linkage")
+    args = dict(closures=os.path.join(folder, "robot.yaml"), end_effector="effector")
+    with pytest.warns(UserWarning, match=r"closure 'closedloop1_A__closedloop1_B': its frames are 0.3 m and 1.5708 rad"):
+        imported = ccma.import_robot(os.path.join(folder, "robot.urdf"), **args)
+    gap = imported.closure_gaps[0]
+    assert gap.name == "closedloop1_A__closedloop1_B"
+    assert abs(gap.gap_m - 0.3) < 1e-12 and abs(gap.gap_rad - math.pi / 2) < 1e-12
+    assert [m.move for m in imported.motor_moves] == [0.0, 0.0]  # the passive joints close it
+    with pytest.raises(ccma.ModelError, match=r"--strict: the import would change the mechanism: closure"):
+        ccma.import_robot(os.path.join(folder, "robot.urdf"), strict=True, **args)
