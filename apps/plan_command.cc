@@ -31,13 +31,9 @@ constexpr double kProgressEvery = 10.0;
 
 PlanOptions PlanOptionsFromFlags() {
   PlanOptions options;
-  options.path_weight = FLAGS_path_weight;
-  options.smoothness_weight = FLAGS_smoothness_weight;
-  options.travel_weight = FLAGS_travel_weight;
-  options.max_iterations = FLAGS_plan_iterations;
-  options.max_seconds = FLAGS_plan_time_s;
-  std::string why;
-  if (!IsValidAsPlanCommand(options, &why)) throw UsageError("ccma plan: --" + why);
+  const PlanCommandSettings settings{FLAGS_path_weight, FLAGS_smoothness_weight, FLAGS_travel_weight,
+                                     FLAGS_plan_iterations, FLAGS_plan_time_s};
+  if (std::string why; !PlanOptionsFromSettings(settings, &options, &why)) throw UsageError("ccma plan: --" + why);
   // A line on stderr at least every kProgressEvery seconds of a long plan.
   auto last = std::make_shared<double>(0.0);
   options.on_progress = [last](const PlanProgress& p) {

@@ -6,6 +6,7 @@
 #include "ccma/internal/format.h"
 #include "ccma/limits.h"
 #include "ccma/model.h"
+#include "ccma/rotation.h"
 #include "formats/internal/library_message.h"
 #include "formats/internal/yaml_checks.h"
 #include "formats/internal/yaml_document.h"
@@ -62,6 +63,30 @@ void ReadLoops(const internal::YamlReader& r, const YAML::Node& root, ClosureFil
       loop.six_d = type == "6d";
     }
     file->loops.push_back(loop);
+  }
+}
+
+// ccma's `offset: [[x, y, z, roll, pitch, yaw] | null, ...]`, one per pair.
+void ReadOffsets(const internal::YamlReader& r, const YAML::Node& root, ClosureFile* file) {
+  if (!internal::YamlReader::Has(root, "offset")) return;
+  const YAML::Node offsets = r.Sequence(root["offset"], "offset", kMaxClosureEntries, "offsets");
+  if (offsets.size() != file->loops.size()) {
+    r.Fail(root["offset"], "offset", "must have one entry per closed_loop pair (" + std::to_string(file->loops.size()) +
+                                         "), each [x, y, z, roll, pitch, yaw] or null");
+  }
+  for (std::size_t i = 0; i < offsets.size(); ++i) {
+    if (offsets[i].IsNull()) continue;
+    const std::string path = internal::Indexed("offset", i);
+    const YAML::Node six = r.Sequence(offsets[i], path);
+    if (six.size() != 6) r.Fail(offsets[i], path, "must be [x, y, z, roll, pitch, yaw] (m, rad) or null");
+    Eigen::Vector3d p, rpy;
+    for (int k = 0; k < 3; ++k) {
+      p[k] = r.Number(six[k], path + "[" + std::to_string(k) + "]", "m");
+      rpy[k] = r.Number(six[k + 3], path + "[" + std::to_string(k + 3) + "]", "rad");
+    }
+    Eigen::Isometry3d& X = file->loops[i].X_A_offset;
+    X.linear() = RotationFromRpy(rpy);
+    X.translation() = p;
   }
 }
 
@@ -129,6 +154,7 @@ ClosureFile ParseClosureFile(const std::string& text, const std::string& source)
   r.Map(root, "");
   try {
     ReadLoops(r, root, &file);
+    ReadOffsets(r, root, &file);
     file.actuated = Names(r, root, "name_mot");
     if (internal::YamlReader::Has(root, "name_mot")) file.actuated_line = root["name_mot"].Mark().line + 1;
     ReadOverrides(r, root, &file);

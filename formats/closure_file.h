@@ -5,7 +5,13 @@
 //   name_mot: [joint, ...]         the actuated joints
 //   joint_name: [joint, ...]       optional: joints whose type is replaced by
 //   joint_type: [SPHERICAL | FIXED | UJOINT_XY | UJOINT_YZ | UJOINT_ZX | UJOINT_ZY, ...]
-// plus ccma's own optional keys, written by `ccma export`:
+// plus ccma's own optional keys:
+//   offset: [[x, y, z, roll, pitch, yaw] | null, ...]   per pair: where the
+//                                  closing point lies in the pair's first
+//                                  frame (m, rad; R = Rz Ry Rx): that frame
+//                                  moved by its offset is joined to the
+//                                  second (null or missing: identity)
+// and, written by `ccma export`:
 //   end_effector: {link, point, controlled}
 //   q_home: {joint: q, ...}        the joint positions (rad or m) at which the
 //                                  URDF's links are read: the model's home,
@@ -25,6 +31,8 @@ struct ClosureFile {
   struct Loop {
     std::string frame_a, frame_b;
     bool six_d = true;
+    // `offset`: the joined frame in frame A (identity when none is given).
+    Eigen::Isometry3d X_A_offset = Eigen::Isometry3d::Identity();
     int line = 0;
   };
   struct Override {

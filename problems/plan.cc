@@ -196,11 +196,26 @@ void Choose(const Model& model, std::vector<TrajectoryStep> rows,
 
 }  // namespace
 
+namespace {
+
+// IsValid with the message naming max_iterations and max_seconds as `ccma
+// plan` and Python's plan() do: plan_iterations, plan_time_s.
 bool IsValidAsPlanCommand(const PlanOptions& options, std::string* why) {
   std::string message;
   if (options.IsValid(&message)) return true;
   if (why != nullptr) *why = RenameLeadingWord(message, {{"max_iterations", "plan_iterations"}, {"max_seconds", "plan_time_s"}});
   return false;
+}
+
+}  // namespace
+
+bool PlanOptionsFromSettings(const PlanCommandSettings& settings, PlanOptions* options, std::string* why) {
+  options->path_weight = settings.path_weight;
+  options->smoothness_weight = settings.smoothness_weight;
+  options->travel_weight = settings.travel_weight;
+  options->max_iterations = settings.plan_iterations;
+  options->max_seconds = settings.plan_time_s;
+  return IsValidAsPlanCommand(*options, why);
 }
 
 bool PlanOptions::IsValid(std::string* why) const {

@@ -53,9 +53,19 @@ struct PlanOptions {
   bool IsValid(std::string* why) const;
 };
 
-// IsValid with the message naming max_iterations and max_seconds as `ccma
-// plan` and Python's plan() do: plan_iterations, plan_time_s.
-bool IsValidAsPlanCommand(const PlanOptions& options, std::string* why);
+// The settings `ccma plan` and Python's plan() take, under their names there.
+struct PlanCommandSettings {
+  double path_weight = 1e-2;
+  double smoothness_weight = 1.0;
+  double travel_weight = 1e-2;
+  int plan_iterations = 200;  // PlanOptions::max_iterations
+  double plan_time_s = 120;   // PlanOptions::max_seconds
+};
+
+// The options of `settings`; false, with `why` naming the setting as the
+// command does ("plan_iterations must be in [1, 10000]"), when one is out of
+// range (PlanOptions::IsValid).
+bool PlanOptionsFromSettings(const PlanCommandSettings& settings, PlanOptions* options, std::string* why);
 
 // A trajectory's measures (the comparison of plan and greedy).
 struct PathMeasures {

@@ -199,8 +199,11 @@ TEST(Cli, BenchPrintsTheStudyAndWritesItsFiles) {
   }
   EXPECT_GT(j["forward_us"]["median"].get<double>(), 0);
   EXPECT_GE(j["forward_us"]["p95"].get<double>(), j["forward_us"]["median"].get<double>());
-  EXPECT_GT(j["finite_difference_ms"]["median"].get<double>(), j["control_ms"]["lm"]["median"].get<double>());
-  EXPECT_GT(j["jacobian_us"]["autodiff"].get<double>(), j["jacobian_us"]["analytic"].get<double>());
+  // Times are reported, not compared: which is faster is measured in
+  // benchmarks (benchmarks/RESULTS.md), not asserted on a loaded machine.
+  EXPECT_GT(j["finite_difference_ms"]["median"].get<double>(), 0);
+  EXPECT_GT(j["jacobian_us"]["autodiff"].get<double>(), 0);
+  EXPECT_GT(j["jacobian_us"]["analytic"].get<double>(), 0);
   for (const char* key : {"cpu", "cores", "build_type"}) EXPECT_TRUE(j["machine"].contains(key)) << key;
   EXPECT_TRUE(std::ifstream(dir + "/4dof_reduced_steps.csv").good());
   EXPECT_TRUE(std::ifstream(dir + "/4dof_reduced_convergence_bfgs.dat").good());

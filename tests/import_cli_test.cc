@@ -525,3 +525,70 @@ TEST_F(ImportCli, AClosedSourceHasNoGapsAndStrictAcceptsIt) {
 
 }  // namespace import_cli_test
 }  // namespace ccma
+
+namespace ccma {
+namespace import_cli_test {
+
+// The four-bar of four_bar_loop.sdf as a URDF posed assembled, its loop
+// closed between the coupler's frame (at its pivot A on the crank, x toward
+// B) and the rocker's far end B: the closing point lies 4.8 m along the
+// coupler's x, which the closure file's offset says.
+constexpr char kPosedFourBar[] = R"(<?xml version="1.0"?>
+<robot name="posed">
+  <link name="world"/>
+  <link name="crank"/><link name="coupler"/><link name="rocker"/><link name="rocker_end"/>
+  <joint name="drive" type="continuous"><parent link="world"/><child link="crank"/>
+    <origin xyz="-2 0 0" rpy="0 0 1.5707963267948966"/><axis xyz="0 0 1"/></joint>
+  <joint name="knee" type="continuous"><parent link="crank"/><child link="coupler"/>
+    <origin xyz="1 0 0" rpy="0 0 -1.3895166182633261"/><axis xyz="0 0 1"/></joint>
+  <joint name="hip" type="continuous"><parent link="world"/><child link="rocker"/>
+    <origin xyz="2 0 0" rpy="0 0 1.2018068856832935"/><axis xyz="0 0 1"/></joint>
+  <joint name="rocker_tip" type="fixed"><parent link="rocker"/><child link="rocker_end"/><origin xyz="2 0 0"/></joint>
+</robot>
+)";
+
+TEST_F(ImportCli, AClosureOffsetClosesAGappedPairExactly) {
+  const std::string urdf = Write("posed.urdf", kPosedFourBar);
+  const std::string with_offset = Write("offset.yaml", "closed_loop: [['coupler', 'rocker_end']]\ntype: ['3d']\n"
+                                                       "name_mot: ['drive']\noffset: [[4.8, 0, 0, 0, 0, 0]]\n");
+  const ToolRun r = RunTool({"import", "--from=" + urdf, "--closures=" + with_offset, "--end_effector=coupler:4.8,0,0",
+                             "--strict", "--out=" + Out()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_LT(j["closure_gaps"][0]["gap_m"].get<double>(), 1e-12);
+  EXPECT_EQ(j["motor_moves"][0]["move"].get<double>(), 0.0);
+  // The same mechanism as the SDFormat four-bar, at every crank angle.
+  const Model urdf_model = LoadModel(Out());
+  const ToolRun sdf = RunTool({"import", "--from=" + std::string(CCMA_TEST_DATA_DIR) + "/four_bar_loop.sdf",
+                               "--actuated=crank", "--end_effector=coupler:4.8,0,0",
+                               "--out=" + (dir_ / "sdf.yaml").string()});
+  ASSERT_EQ(sdf.status, 0) << sdf.err;
+  const Model sdf_model = LoadModel((dir_ / "sdf.yaml").string());
+  ForwardProblem a(urdf_model), b(sdf_model);
+  for (const double u : {0.0, 0.4, -0.9, 2.0}) {
+    const Eigen::VectorXd controls = Eigen::VectorXd::Constant(1, u);
+    ASSERT_TRUE(a.Assemble(controls).assembled) << u;
+    ASSERT_TRUE(b.Assemble(controls).assembled) << u;
+    EXPECT_LT((a.end_effector().position - b.end_effector().position).norm(), 1e-9) << "u = " << u;
+  }
+  EXPECT_LT((a.end_effector().position - b.end_effector().position).norm(), 1e-9);
+  // Without the offset the pair is 4.8 m apart: another mechanism, one that
+  // cannot be assembled even with the motor free.
+  std::filesystem::remove(Out());
+  const std::string without = Write("plain.yaml", "closed_loop: [['coupler', 'rocker_end']]\ntype: ['3d']\n"
+                                                  "name_mot: ['drive']\n");
+  ExpectRefused({"import", "--from=" + urdf, "--closures=" + without, "--end_effector=coupler:4.8,0,0",
+                 "--out=" + Out()},
+                "cannot assemble closure 'coupler__rocker_end'");
+}
+
+TEST_F(ImportCli, AMalformedOffsetNamesItsLine) {
+  const std::string urdf = Write("posed.urdf", kPosedFourBar);
+  const std::string bad = Write("bad.yaml", "closed_loop: [['coupler', 'rocker_end']]\ntype: ['3d']\n"
+                                            "name_mot: ['drive']\noffset: [[4.8, 0, 0]]\n");
+  ExpectRefused({"import", "--from=" + urdf, "--closures=" + bad, "--end_effector=coupler:4.8,0,0", "--out=" + Out()},
+                "bad.yaml:4: offset[0]: must be [x, y, z, roll, pitch, yaw] (m, rad) or null");
+}
+
+}  // namespace import_cli_test
+}  // namespace ccma

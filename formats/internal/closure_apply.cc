@@ -43,7 +43,7 @@ RobotClosure Closure(const ClosureFile& file, std::size_t i, const RobotDescript
   if (a == b) Fail(file, loop.line, key, "both frames are on link " + Quote(robot.links[a].name));
   closure.link_a = robot.links[a].name;
   closure.link_b = robot.links[b].name;
-  closure.X_WA = robot.links[a].X_WL;
+  closure.X_WA = robot.links[a].X_WL * loop.X_A_offset;
   closure.X_WB = robot.links[b].X_WL;
   return closure;
 }

@@ -71,13 +71,8 @@ void BindCollision(py::module_& m) {
       [](ControlProblem& p, const std::vector<Waypoint>& waypoints, double path_weight, double smoothness_weight,
          double travel_weight, int plan_iterations, double plan_time_s, const py::object& out) {
         PlanOptions options;
-        options.max_seconds = plan_time_s;
-        options.path_weight = path_weight;
-        options.smoothness_weight = smoothness_weight;
-        options.travel_weight = travel_weight;
-        options.max_iterations = plan_iterations;
-        std::string why;
-        if (!IsValidAsPlanCommand(options, &why)) throw py::value_error("plan: " + why);
+        const PlanCommandSettings settings{path_weight, smoothness_weight, travel_weight, plan_iterations, plan_time_s};
+        if (std::string why; !PlanOptionsFromSettings(settings, &options, &why)) throw py::value_error("plan: " + why);
         CheckWaypoints(waypoints);
         return Plan(p, waypoints, options, out);
       },
