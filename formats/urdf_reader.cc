@@ -15,6 +15,7 @@
 #include "ccma/internal/format.h"
 #include "ccma/limits.h"
 #include "formats/closure_file.h"
+#include "formats/internal/gazebo_loop_joints.h"
 #include "formats/internal/legged_extension.h"
 #include "formats/internal/library_message.h"
 #include "formats/internal/mesh_paths.h"
@@ -67,6 +68,7 @@ struct XmlIndex {
   std::map<std::string, int> line;         // "link NAME" / "joint NAME" -> line
   std::set<std::string> ranged;            // joints whose <limit> has lower or upper
   std::map<std::string, UrdfLeggedElement> legged;  // joint -> its <ccma_legged>
+  std::vector<internal::GazeboJoint> gazebo_joints;  // loops closed the Gazebo way
 };
 
 XmlIndex IndexXml(const std::string& text, const std::string& source) {
@@ -90,8 +92,9 @@ XmlIndex IndexXml(const std::string& text, const std::string& source) {
     }
     if (!link) IndexUrdfLegged(*e, name, source, &index.legged);
   }
+  index.gazebo_joints = internal::ReadGazeboJoints(*robot, source);
   if (index.links.size() > static_cast<std::size_t>(kMaxRobotLinks) ||
-      index.joints.size() > static_cast<std::size_t>(kMaxRobotJoints)) {
+      index.joints.size() + index.gazebo_joints.size() > static_cast<std::size_t>(kMaxRobotJoints)) {
     throw ModelError(source + ": " + std::to_string(index.links.size()) + " links and " +
                      std::to_string(index.joints.size()) + " joints: ccma imports at most " +
                      std::to_string(kMaxRobotLinks) + " links and " + std::to_string(kMaxRobotJoints) + " joints");
@@ -278,6 +281,7 @@ RobotDescription ReadUrdfFromString(const std::string& text, const std::string& 
   robot.name = urdf->getName();
   robot.source = urdf_path;
   WalkTree(*urdf, index, urdf_path, internal::AbsoluteFolderOf(urdf_path), &robot);
+  internal::AddGazeboJoints(index.gazebo_joints, urdf_path, &robot);
   return robot;
 }
 

@@ -592,3 +592,61 @@ TEST_F(ImportCli, AMalformedOffsetNamesItsLine) {
 
 }  // namespace import_cli_test
 }  // namespace ccma
+
+namespace ccma {
+namespace import_cli_test {
+
+// The four-bar of four_bar_loop.sdf as a URDF whose loop is closed the way
+// Gazebo's own four-bar URDF closes it: a revolute joint inside <gazebo>, at
+// B = (2, 0, 0) in the rocker's frame.
+constexpr char kGazeboFourBar[] = R"(<?xml version="1.0"?>
+<robot name="gazebo_four_bar">
+  <link name="world"/>
+  <link name="crank"/><link name="coupler"/><link name="rocker"/>
+  <joint name="drive" type="continuous"><parent link="world"/><child link="crank"/>
+    <origin xyz="-2 0 0" rpy="0 0 1.5707963267948966"/><axis xyz="0 0 1"/></joint>
+  <joint name="knee" type="continuous"><parent link="crank"/><child link="coupler"/>
+    <origin xyz="1 0 0" rpy="0 0 -1.3895166182633261"/><axis xyz="0 0 1"/></joint>
+  <joint name="hip" type="continuous"><parent link="world"/><child link="rocker"/>
+    <origin xyz="2 0 0" rpy="0 0 1.2018068856832935"/><axis xyz="0 0 1"/></joint>
+  <gazebo>
+    <joint name="coupler_rocker" type="revolute">
+      <parent>coupler</parent><child>rocker</child>
+      <pose>2 0 0 0 0 0</pose>
+      <axis><xyz>0 0 1</xyz></axis>
+    </joint>
+  </gazebo>
+</robot>
+)";
+
+TEST_F(ImportCli, AUrdfLoopClosedTheGazeboWayIsTheSdformatFourBar) {
+  const std::string urdf = Write("gazebo.urdf", kGazeboFourBar);
+  const ToolRun r = RunTool({"import", "--from=" + urdf, "--actuated=drive", "--end_effector=coupler:4.8,0,0",
+                             "--strict", "--out=" + Out()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["closures"], 1);  // one independent loop
+  EXPECT_EQ(j["joints"], 4);
+  const ToolRun sdf = RunTool({"import", "--from=" + std::string(CCMA_TEST_DATA_DIR) + "/four_bar_loop.sdf",
+                               "--actuated=crank", "--end_effector=coupler:4.8,0,0",
+                               "--out=" + (dir_ / "sdf.yaml").string()});
+  ASSERT_EQ(sdf.status, 0) << sdf.err;
+  const Model gazebo_model = LoadModel(Out()), sdf_model = LoadModel((dir_ / "sdf.yaml").string());
+  ForwardProblem a(gazebo_model), b(sdf_model);
+  for (const double u : {0.0, 0.5, -1.2, 2.5}) {
+    const Eigen::VectorXd controls = Eigen::VectorXd::Constant(1, u);
+    ASSERT_TRUE(a.Assemble(controls).assembled) << u;
+    ASSERT_TRUE(b.Assemble(controls).assembled) << u;
+    EXPECT_LT((a.end_effector().position - b.end_effector().position).norm(), 1e-9) << "u = " << u;
+  }
+  // A malformed one names its line.
+  std::filesystem::remove(Out());
+  std::string bad = kGazeboFourBar;
+  bad.replace(bad.find("type=\"revolute\">"), 16, "type=\"screw\">");
+  ExpectRefused({"import", "--from=" + Write("bad.urdf", bad), "--actuated=drive", "--end_effector=coupler",
+                 "--out=" + Out()},
+                "bad.urdf:12: gazebo joint 'coupler_rocker': type 'screw' is not supported");
+}
+
+}  // namespace import_cli_test
+}  // namespace ccma
