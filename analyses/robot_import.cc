@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "analyses/internal/import_collision.h"
+#include "analyses/internal/import_masses.h"
 #include "analyses/internal/import_mesh_paths.h"
 #include "analyses/internal/import_report.h"
 #include "analyses/internal/robot_model_builder.h"
@@ -278,12 +279,18 @@ void ReportChanges(const RobotDescription& robot, const Model& source, const Mod
 
 ImportedRobot ImportRobot(const RobotDescription& robot, const ImportOptions& options) {
   if (std::string why; !options.IsValid(&why)) throw std::invalid_argument(why);
-  const internal::RobotModel built = internal::BuildRobotModel(robot, options);
+  internal::RobotModel built = internal::BuildRobotModel(robot, options);
+  const std::string implausible = internal::InertialsBeyondAModel(robot);
+  if (!implausible.empty()) internal::DropMasses(&built.model);
   bool motors_held = true;
   const State assembled = AssembleTheSource(robot, built, &motors_held);
   Model home = Rehome(built, assembled, motors_held);
   ImportedRobot out;
   ReportChanges(robot, built.model, home, options, &out);
+  if (!implausible.empty()) {
+    out.warnings.push_back(robot.source + ": " + implausible + ": no masses imported (statics weighs nothing; give "
+                           "mass, com and inertia in the model file)");
+  }
   CheckLimits(home, robot.source);
   SetControlled(built, robot.source, &home, &out.warnings);
   out.controlled_chosen = built.controlled == internal::RobotModel::Controlled::kToChoose;

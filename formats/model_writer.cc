@@ -65,6 +65,20 @@ void WriteMeshes(const Body& body, std::ostringstream& out) {
   }
 }
 
+// mass, com and inertia (world coordinates and axes at home), those given.
+void WriteMass(const Body& body, const std::string& indent, std::ostringstream& out) {
+  const MassProperties& m = body.inertia;
+  if (m.mass > 0) {
+    out << indent << "mass: " << Num(m.mass) << "\n"
+        << indent << "com: " << Vec(body.R_WB_home * m.com_B + body.p_WB_home) << "\n";
+  }
+  if (!m.inertia_B.isZero(0)) {
+    const Eigen::Matrix3d I = body.R_WB_home * m.inertia_B * body.R_WB_home.transpose();
+    out << indent << "inertia: [" << Num(I(0, 0)) << ", " << Num(I(1, 1)) << ", " << Num(I(2, 2)) << ", "
+        << Num(I(0, 1)) << ", " << Num(I(0, 2)) << ", " << Num(I(1, 2)) << "]\n";
+  }
+}
+
 void WriteBodies(const Model& model, std::ostringstream& out) {
   bool any = false;
   for (const Body& body : model.bodies) any = any || !body.is_mobile_base();
@@ -73,6 +87,7 @@ void WriteBodies(const Model& model, std::ostringstream& out) {
     if (body.is_mobile_base()) continue;
     out << "  - name: " << YamlName(body.name) << "\n    position: " << Vec(body.p_WB_home) << "\n    rpy: "
         << Vec(RpyFromRotation(body.R_WB_home)) << "\n";
+    WriteMass(body, "    ", out);
     WriteMeshes(body, out);
   }
 }
@@ -113,6 +128,7 @@ void WriteBases(const Model& model, std::ostringstream& out) {
     if (collision.enabled && k < collision.base_radii.size() && collision.base_radii[k] != collision.base_radius) {
       out << "    radius: " << Num(collision.base_radii[k]) << "\n";
     }
+    WriteMass(model.bodies[base.body], "    ", out);
     WriteMeshes(model.bodies[base.body], out);
   }
 }

@@ -43,6 +43,11 @@ struct RobotMesh {
 struct RobotLink {
   std::string name;
   Eigen::Isometry3d X_WL = Eigen::Isometry3d::Identity();  // link frame in W, zero configuration
+  // <inertial>: mass [kg], centre of mass in W [m] and the inertia about it
+  // in W's axes [kg m^2], at the zero configuration (mass 0: none given).
+  double mass = 0;
+  Eigen::Vector3d com_W = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d inertia_W = Eigen::Matrix3d::Zero();
   std::vector<RobotMesh> meshes;
   int line = 0;  // source line of the link element (0: unknown)
 };

@@ -31,6 +31,7 @@
 #include "formats/internal/robot_xml.h"
 #include "formats/internal/sdf_extension_elements.h"
 #include "formats/internal/sdformat_console.h"
+#include "formats/internal/link_inertial.h"
 #include "formats/internal/root_weld.h"
 #include "formats/internal/sdformat_cost.h"
 #include "formats/model_loader.h"
@@ -202,6 +203,16 @@ RobotLink ReadLink(const sdf::Link& link, const Context& context) {
   if (!errors.empty()) ThrowSdfErrors(errors, where);
   out.X_WL = PoseInWorld(context, pose, where);
   ReadMeshes(link, context, &out);
+  // Only an <inertial> the file writes (libsdformat gives 1 kg to the others).
+  if (link.Element() != nullptr && link.Element()->HasElement("inertial")) {
+    const ignition::math::Inertiald& inertial = link.Inertial();
+    const ignition::math::Matrix3d& moi = inertial.MassMatrix().Moi();
+    Eigen::Matrix3d I;
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) I(r, c) = moi(r, c);
+    }
+    internal::SetLinkInertial(inertial.MassMatrix().Mass(), ToIsometry(inertial.Pose()), I, where, &out);
+  }
   return out;
 }
 

@@ -17,6 +17,7 @@
 #include "formats/closure_file.h"
 #include "formats/internal/gazebo_loop_joints.h"
 #include "formats/internal/legged_extension.h"
+#include "formats/internal/link_inertial.h"
 #include "formats/internal/library_message.h"
 #include "formats/internal/mesh_paths.h"
 #include "formats/internal/robot_xml.h"
@@ -260,6 +261,13 @@ void WalkTree(const urdf::ModelInterface& urdf, const XmlIndex& index, const std
     link.name = name;
     link.X_WL = X_WL.at(name);
     link.line = index.line.at("link " + name);
+    if (const urdf::InertialSharedPtr inertial = urdf.getLink(name)->inertial) {
+      Eigen::Matrix3d I;
+      I << inertial->ixx, inertial->ixy, inertial->ixz, inertial->ixy, inertial->iyy, inertial->iyz, inertial->ixz,
+          inertial->iyz, inertial->izz;
+      const std::string where = Where(index, source, "link", name);
+      internal::SetLinkInertial(inertial->mass, Isometry(inertial->origin, where + ": inertial"), I, where, &link);
+    }
     AddMeshes(*urdf.getLink(name), folder, Where(index, source, "link", name), &link);
     robot->links.push_back(link);
   }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -646,6 +647,75 @@ TEST_F(ImportCli, AUrdfLoopClosedTheGazeboWayIsTheSdformatFourBar) {
   ExpectRefused({"import", "--from=" + Write("bad.urdf", bad), "--actuated=drive", "--end_effector=coupler",
                  "--out=" + Out()},
                 "bad.urdf:12: gazebo joint 'coupler_rocker': type 'screw' is not supported");
+}
+
+}  // namespace import_cli_test
+}  // namespace ccma
+
+namespace ccma {
+namespace import_cli_test {
+
+// An arm held horizontal by its shoulder motor: 2 kg at 0.5 m along it (its
+// <inertial>), gravity -z, the shoulder turning about y: the motor holds
+// m g l = 2 * 9.81 * 0.5 = 9.81 N*m.
+constexpr char kHeavyArm[] = R"(<?xml version="1.0"?>
+<robot name="heavy_arm">
+  <link name="world"/>
+  <link name="arm">
+    <inertial><origin xyz="0.5 0 0" rpy="0 0 1.5707963267948966"/><mass value="2"/>
+      <inertia ixx="0.001" iyy="0.17" izz="0.17" ixy="0" ixz="0" iyz="0"/></inertial>
+  </link>
+  <joint name="shoulder" type="revolute"><parent link="world"/><child link="arm"/>
+    <origin xyz="0 0 1"/><axis xyz="0 1 0"/><limit lower="-2" upper="2" effort="100" velocity="1"/></joint>
+</robot>
+)";
+
+TEST_F(ImportCli, MassesComeAlongAndStaticsWeighsThem) {
+  const ToolRun r = RunTool({"import", "--from=" + Write("arm.urdf", kHeavyArm), "--actuated=shoulder",
+                             "--end_effector=arm:1,0,0", "--controlled=z", "--out=" + Out()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const Model model = LoadModel(Out());
+  const Body& arm = model.bodies[static_cast<std::size_t>(model.FindBody("arm"))];
+  EXPECT_EQ(arm.inertia.mass, 2);
+  EXPECT_LT((arm.R_WB_home * arm.inertia.com_B + arm.p_WB_home - Eigen::Vector3d(0.5, 0, 1)).norm(), 1e-12);
+  // The inertial frame is turned 90 degrees about z: ixx and iyy swap in the world's axes.
+  const Eigen::Matrix3d I_W = arm.R_WB_home * arm.inertia.inertia_B * arm.R_WB_home.transpose();
+  EXPECT_LT((I_W - Eigen::Vector3d(0.17, 0.001, 0.17).asDiagonal().toDenseMatrix()).norm(), 1e-12);
+  const ToolRun statics = RunTool({"statics", "--model=" + Out()});
+  ASSERT_EQ(statics.status, 0) << statics.err;
+  const nlohmann::json j = nlohmann::json::parse(statics.out);
+  ASSERT_EQ(j["actuators"].size(), 1u);
+  EXPECT_NEAR(std::abs(j["actuators"][0]["effort"].get<double>()), 2 * 9.81 * 0.5, 1e-9);
+}
+
+TEST_F(ImportCli, ATonneTooManyDropsTheMassesAndSaysSo) {
+  std::string heavy = kHeavyArm;
+  heavy.replace(heavy.find("<mass value=\"2\"/>"), 17, "<mass value=\"654498\"/>");
+  const ToolRun r = RunTool({"import", "--from=" + Write("heavy.urdf", heavy), "--actuated=shoulder",
+                             "--end_effector=arm:1,0,0", "--controlled=z", "--out=" + Out()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("link 'arm': <inertial> mass 654498 kg is outside [0, 1e4] kg: no masses imported"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(LoadModel(Out()).bodies[0].inertia.mass, 0);
+}
+
+TEST_F(ImportCli, AModelFileRefusesAnInertiaThatIsNotPhysical) {
+  std::ifstream in(std::string(CCMA_MODELS_DIR) + "/4dof_reduced.yaml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string model = text.str();
+  const std::string post = "{name: post0, position: [0, 0.583012702, 0.1]}";
+  const std::size_t at = model.find(post);
+  ASSERT_NE(at, std::string::npos);
+  model.replace(at, post.size(), "{name: post0, position: [0, 0.583012702, 0.1], mass: 1, inertia: [1, 1, 3, 0, 0, 0]}");
+  const ToolRun r = RunTool({"check", "--model=" + Write("bad_inertia.yaml", model)});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_EQ(r.out, "");
+  EXPECT_NE(r.err.find(".inertia: violates the triangle inequality: principal moment 3 kg*m^2 exceeds the sum of the "
+                       "other two (1 + 1)"),
+            std::string::npos)
+      << r.err;
 }
 
 }  // namespace import_cli_test

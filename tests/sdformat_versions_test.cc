@@ -61,6 +61,10 @@ TEST_P(SdformatVersionTest, ImportsBodyByBodyAsTheSameRobotIn1_7) {
     EXPECT_EQ(a.bodies[i].name, b.bodies[i].name);
     EXPECT_LT((a.bodies[i].p_WB_home - b.bodies[i].p_WB_home).norm(), 1e-12) << b.bodies[i].name;
     EXPECT_LT((a.bodies[i].R_WB_home - b.bodies[i].R_WB_home).norm(), 1e-12) << b.bodies[i].name;
+    // Each link's <inertial>: 1 kg at the middle of the bar, in every version.
+    EXPECT_EQ(b.bodies[i].inertia.mass, 1.0) << b.bodies[i].name;
+    EXPECT_LT((a.bodies[i].inertia.com_B - b.bodies[i].inertia.com_B).norm(), 1e-12) << b.bodies[i].name;
+    EXPECT_LT((a.bodies[i].inertia.inertia_B - b.bodies[i].inertia.inertia_B).norm(), 1e-12) << b.bodies[i].name;
   }
   ASSERT_EQ(a.joints.size(), b.joints.size());
   for (std::size_t j = 0; j < a.joints.size(); ++j) {

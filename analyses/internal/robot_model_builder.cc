@@ -83,6 +83,10 @@ void AddBodies(const RobotDescription& robot, const std::vector<int>& base_joint
     }
     body.R_WB_home = link.X_WL.linear();
     body.p_WB_home = link.X_WL.translation();
+    // The source's inertial, in the body frame (ccma/mass_properties.h).
+    body.inertia.mass = link.mass;
+    body.inertia.com_B = body.R_WB_home.transpose() * (link.com_W - body.p_WB_home);
+    body.inertia.inertia_B = body.R_WB_home.transpose() * link.inertia_W * body.R_WB_home;
     for (const RobotMesh& mesh : link.meshes) {
       BodyMesh m;
       m.file = mesh.file;

@@ -36,7 +36,7 @@ void ModelParser::ParseBases(const YAML::Node& bases_node, std::size_t num_bodie
 
 MobileBase ModelParser::ParseBase(const YAML::Node& at, const std::string& path) {
   const YAML::Node node = r_.Map(at, path);
-  r_.CheckKeys(node, {"name", "type", "actuation", "pose", "wheels", "meshes", "radius", "mass", "com", "push_limit",
+  r_.CheckKeys(node, {"name", "type", "actuation", "pose", "wheels", "meshes", "radius", "mass", "com", "inertia", "push_limit",
                       "stiffness", "body_height", "body_limits", "footprint"},
                path);
   MobileBase base;

@@ -14,7 +14,7 @@ void ModelParser::ParseBodies(const YAML::Node& bodies) {
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const std::string path = Indexed("bodies", i);
     const YAML::Node node = r_.Map(bodies[i], path);
-    r_.CheckKeys(node, {"name", "position", "rpy", "meshes", "mass", "com"}, path);
+    r_.CheckKeys(node, {"name", "position", "rpy", "meshes", "mass", "com", "inertia"}, path);
     Body body;
     body.name = AddBodyName(r_.Require(node, "name", path), path + ".name");
     body.p_WB_home = r_.Vector3(r_.Require(node, "position", path), path + ".position", "m");

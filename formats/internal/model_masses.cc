@@ -4,6 +4,7 @@
 #include <string>
 
 #include "ccma/internal/format.h"
+#include "ccma/mass_properties.h"
 #include "formats/internal/model_parser.h"
 
 namespace ccma {
@@ -20,6 +21,18 @@ MassProperties ModelParser::ParseMassProperties(const YAML::Node& node, const st
   if (YamlReader::Has(node, "com")) {
     const Eigen::Vector3d com_W = r_.Vector3(node["com"], path + ".com", "m");
     out.com_B = body.R_WB_home.transpose() * (com_W - body.p_WB_home);
+  }
+  if (YamlReader::Has(node, "inertia")) {
+    const std::string at = path + ".inertia";
+    const YAML::Node six = r_.Sequence(node["inertia"], at);
+    if (six.size() != 6) r_.Fail(node["inertia"], at, "must be [ixx, iyy, izz, ixy, ixz, iyz] (kg*m^2)");
+    double v[6];
+    for (std::size_t i = 0; i < 6; ++i) v[i] = r_.Number(six[i], Indexed(at, i), "kg*m^2");
+    Eigen::Matrix3d I_W;
+    I_W << v[0], v[3], v[4], v[3], v[1], v[5], v[4], v[5], v[2];
+    std::string why;
+    if (!IsPhysicalInertia(I_W, &why)) r_.Fail(node["inertia"], at, why);
+    out.inertia_B = body.R_WB_home.transpose() * I_W * body.R_WB_home;  // the file's world axes at home
   }
   return out;
 }
@@ -51,7 +64,7 @@ void ModelParser::ParseLoads(const YAML::Node& root, const YAML::Node& end_effec
   if (YamlReader::Has(root, "gravity")) model_.gravity = r_.Vector3(root["gravity"], "gravity", "m/s^2");
   if (!YamlReader::Has(end_effector, "payload")) return;
   const YAML::Node payload = r_.Map(end_effector["payload"], "end_effector.payload");
-  r_.CheckKeys(payload, {"mass", "com"}, "end_effector.payload");
+  r_.CheckKeys(payload, {"mass", "com", "inertia"}, "end_effector.payload");
   const Body& body = model_.bodies[static_cast<size_t>(model_.end_effector.body)];
   r_.Require(payload, "mass", "end_effector.payload");
   model_.end_effector.payload = ParseMassProperties(payload, "end_effector.payload", body);
