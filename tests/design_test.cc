@@ -371,7 +371,7 @@ TEST(DesignCommand, ABadOutIsRefusedBeforeTheRun) {
     EXPECT_NE(r.err.find("--out"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("'" + out + "'"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find(expected), std::string::npos) << r.err;
-    EXPECT_LT(r.seconds, 5) << "the design ran before --out was checked";
+    EXPECT_LT(r.seconds, 5 * ccma::testing::kTestTimeFactor) << "the design ran before --out was checked";
   }
   EXPECT_TRUE(std::filesystem::is_empty(dir));  // no temporary file left behind
 }

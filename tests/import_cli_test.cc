@@ -548,6 +548,23 @@ constexpr char kPosedFourBar[] = R"(<?xml version="1.0"?>
 </robot>
 )";
 
+// The model at `path` moves as the SDFormat four-bar (four_bar_loop.sdf,
+// crank actuated, end-effector at B) at several crank angles, to 1e-9 m.
+void ExpectTheSdformatFourBar(const std::string& path, const std::filesystem::path& dir) {
+  const std::string sdf_path = (dir / "sdf.yaml").string();
+  const ToolRun sdf = RunTool({"import", "--from=" + std::string(CCMA_TEST_DATA_DIR) + "/four_bar_loop.sdf",
+                               "--actuated=crank", "--end_effector=coupler:4.8,0,0", "--out=" + sdf_path});
+  ASSERT_EQ(sdf.status, 0) << sdf.err;
+  const Model model = LoadModel(path), sdf_model = LoadModel(sdf_path);
+  ForwardProblem a(model), b(sdf_model);
+  for (const double u : {0.0, 0.4, -0.9, 2.0}) {
+    const Eigen::VectorXd controls = Eigen::VectorXd::Constant(1, u);
+    ASSERT_TRUE(a.Assemble(controls).assembled) << u;
+    ASSERT_TRUE(b.Assemble(controls).assembled) << u;
+    EXPECT_LT((a.end_effector().position - b.end_effector().position).norm(), 1e-9) << "u = " << u;
+  }
+}
+
 TEST_F(ImportCli, AClosureOffsetClosesAGappedPairExactly) {
   const std::string urdf = Write("posed.urdf", kPosedFourBar);
   const std::string with_offset = Write("offset.yaml", "closed_loop: [['coupler', 'rocker_end']]\ntype: ['3d']\n"
@@ -559,20 +576,7 @@ TEST_F(ImportCli, AClosureOffsetClosesAGappedPairExactly) {
   EXPECT_LT(j["closure_gaps"][0]["gap_m"].get<double>(), 1e-12);
   EXPECT_EQ(j["motor_moves"][0]["move"].get<double>(), 0.0);
   // The same mechanism as the SDFormat four-bar, at every crank angle.
-  const Model urdf_model = LoadModel(Out());
-  const ToolRun sdf = RunTool({"import", "--from=" + std::string(CCMA_TEST_DATA_DIR) + "/four_bar_loop.sdf",
-                               "--actuated=crank", "--end_effector=coupler:4.8,0,0",
-                               "--out=" + (dir_ / "sdf.yaml").string()});
-  ASSERT_EQ(sdf.status, 0) << sdf.err;
-  const Model sdf_model = LoadModel((dir_ / "sdf.yaml").string());
-  ForwardProblem a(urdf_model), b(sdf_model);
-  for (const double u : {0.0, 0.4, -0.9, 2.0}) {
-    const Eigen::VectorXd controls = Eigen::VectorXd::Constant(1, u);
-    ASSERT_TRUE(a.Assemble(controls).assembled) << u;
-    ASSERT_TRUE(b.Assemble(controls).assembled) << u;
-    EXPECT_LT((a.end_effector().position - b.end_effector().position).norm(), 1e-9) << "u = " << u;
-  }
-  EXPECT_LT((a.end_effector().position - b.end_effector().position).norm(), 1e-9);
+  ExpectTheSdformatFourBar(Out(), dir_);
   // Without the offset the pair is 4.8 m apart: another mechanism, one that
   // cannot be assembled even with the motor free.
   std::filesystem::remove(Out());
@@ -598,51 +602,39 @@ namespace ccma {
 namespace import_cli_test {
 
 // The four-bar of four_bar_loop.sdf as a URDF whose loop is closed the way
-// Gazebo's own four-bar URDF closes it: a revolute joint inside <gazebo>, at
-// B = (2, 0, 0) in the rocker's frame.
-constexpr char kGazeboFourBar[] = R"(<?xml version="1.0"?>
-<robot name="gazebo_four_bar">
-  <link name="world"/>
-  <link name="crank"/><link name="coupler"/><link name="rocker"/>
-  <joint name="drive" type="continuous"><parent link="world"/><child link="crank"/>
-    <origin xyz="-2 0 0" rpy="0 0 1.5707963267948966"/><axis xyz="0 0 1"/></joint>
-  <joint name="knee" type="continuous"><parent link="crank"/><child link="coupler"/>
-    <origin xyz="1 0 0" rpy="0 0 -1.3895166182633261"/><axis xyz="0 0 1"/></joint>
-  <joint name="hip" type="continuous"><parent link="world"/><child link="rocker"/>
-    <origin xyz="2 0 0" rpy="0 0 1.2018068856832935"/><axis xyz="0 0 1"/></joint>
-  <gazebo>
+// Gazebo's own four-bar URDF closes it: kPosedFourBar without its rocker_end
+// link, and a revolute joint inside <gazebo> at B = (2, 0, 0) in the rocker's
+// frame.
+constexpr char kGazeboLoopJoint[] = R"(  <gazebo>
     <joint name="coupler_rocker" type="revolute">
       <parent>coupler</parent><child>rocker</child>
       <pose>2 0 0 0 0 0</pose>
       <axis><xyz>0 0 1</xyz></axis>
     </joint>
   </gazebo>
-</robot>
 )";
 
+std::string GazeboFourBar() {
+  std::string urdf = kPosedFourBar;
+  const std::string tip = urdf.substr(urdf.find("  <joint name=\"rocker_tip\""));
+  urdf.erase(urdf.find("  <joint name=\"rocker_tip\""), tip.find("\n") + 1);
+  urdf.erase(urdf.find("<link name=\"rocker_end\"/>"), 25);
+  urdf.insert(urdf.find("</robot>"), kGazeboLoopJoint);
+  return urdf;
+}
+
 TEST_F(ImportCli, AUrdfLoopClosedTheGazeboWayIsTheSdformatFourBar) {
-  const std::string urdf = Write("gazebo.urdf", kGazeboFourBar);
+  const std::string urdf = Write("gazebo.urdf", GazeboFourBar());
   const ToolRun r = RunTool({"import", "--from=" + urdf, "--actuated=drive", "--end_effector=coupler:4.8,0,0",
                              "--strict", "--out=" + Out()});
   ASSERT_EQ(r.status, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["closures"], 1);  // one independent loop
   EXPECT_EQ(j["joints"], 4);
-  const ToolRun sdf = RunTool({"import", "--from=" + std::string(CCMA_TEST_DATA_DIR) + "/four_bar_loop.sdf",
-                               "--actuated=crank", "--end_effector=coupler:4.8,0,0",
-                               "--out=" + (dir_ / "sdf.yaml").string()});
-  ASSERT_EQ(sdf.status, 0) << sdf.err;
-  const Model gazebo_model = LoadModel(Out()), sdf_model = LoadModel((dir_ / "sdf.yaml").string());
-  ForwardProblem a(gazebo_model), b(sdf_model);
-  for (const double u : {0.0, 0.5, -1.2, 2.5}) {
-    const Eigen::VectorXd controls = Eigen::VectorXd::Constant(1, u);
-    ASSERT_TRUE(a.Assemble(controls).assembled) << u;
-    ASSERT_TRUE(b.Assemble(controls).assembled) << u;
-    EXPECT_LT((a.end_effector().position - b.end_effector().position).norm(), 1e-9) << "u = " << u;
-  }
+  ExpectTheSdformatFourBar(Out(), dir_);
   // A malformed one names its line.
   std::filesystem::remove(Out());
-  std::string bad = kGazeboFourBar;
+  std::string bad = GazeboFourBar();
   bad.replace(bad.find("type=\"revolute\">"), 16, "type=\"screw\">");
   ExpectRefused({"import", "--from=" + Write("bad.urdf", bad), "--actuated=drive", "--end_effector=coupler",
                  "--out=" + Out()},

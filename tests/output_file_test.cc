@@ -252,7 +252,7 @@ TEST(OutputFileWriter, ASignalLeavesNoTemporaryBehind) {
       // 200 x 200 samples: minutes of work, stopped as soon as its output exists.
       std::vector<std::string> args = {"workspace", "--model=" + testing::ModelPath("4dof_reduced"),
                                        "--out=" + dir + "/map.csv", "--x=-0.35:0.35", "--z=0.35:1.0",
-                                       "--resolution=200"};
+                                       "--resolution=200", "--max_minutes=10080"};  // a week: never refused here
       if (store) args.push_back("--store=" + dir + "/store");
       const pid_t pid = testing::SpawnTool(args, 300);
       auto temporaries = [&dir] {

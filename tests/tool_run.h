@@ -20,6 +20,14 @@
 
 namespace ccma::testing {
 
+// How much longer the sanitized builds may take (scripts/sanitize.sh): a
+// test's bound on how long a refusal takes is multiplied by it.
+#ifdef CCMA_TEST_TIME_FACTOR
+constexpr double kTestTimeFactor = CCMA_TEST_TIME_FACTOR;
+#else
+constexpr double kTestTimeFactor = 1;
+#endif
+
 struct ToolRun {
   int status = -1;  // exit status, or -1 if killed
   std::string out, err;
