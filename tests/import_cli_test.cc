@@ -458,11 +458,6 @@ TEST_F(ImportCli, HostileRobotFilesAreRefusedEarlyNamingTheFile) {
                 "huge.urdf: 99998 links and 0 joints: ccma imports at most 2000 links");
 }
 
-}  // namespace
-}  // namespace ccma
-
-namespace ccma {
-namespace import_cli_test {
 
 // A four-bar whose loop cannot close with the crank at its source position:
 // crank 1 m from the origin and coupler 5.5 m along +x, rocker 2 m about
@@ -524,11 +519,6 @@ TEST_F(ImportCli, AClosedSourceHasNoGapsAndStrictAcceptsIt) {
   EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
 }
 
-}  // namespace import_cli_test
-}  // namespace ccma
-
-namespace ccma {
-namespace import_cli_test {
 
 // The four-bar of four_bar_loop.sdf as a URDF posed assembled, its loop
 // closed between the coupler's frame (at its pivot A on the crank, x toward
@@ -595,11 +585,6 @@ TEST_F(ImportCli, AMalformedOffsetNamesItsLine) {
                 "bad.yaml:4: offset[0]: must be [x, y, z, roll, pitch, yaw] (m, rad) or null");
 }
 
-}  // namespace import_cli_test
-}  // namespace ccma
-
-namespace ccma {
-namespace import_cli_test {
 
 // The four-bar of four_bar_loop.sdf as a URDF whose loop is closed the way
 // Gazebo's own four-bar URDF closes it: kPosedFourBar without its rocker_end
@@ -641,11 +626,6 @@ TEST_F(ImportCli, AUrdfLoopClosedTheGazeboWayIsTheSdformatFourBar) {
                 "bad.urdf:12: gazebo joint 'coupler_rocker': type 'screw' is not supported");
 }
 
-}  // namespace import_cli_test
-}  // namespace ccma
-
-namespace ccma {
-namespace import_cli_test {
 
 // An arm held horizontal by its shoulder motor: 2 kg at 0.5 m along it (its
 // <inertial>), gravity -z, the shoulder turning about y: the motor holds
