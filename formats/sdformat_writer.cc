@@ -163,8 +163,12 @@ std::string SdfBuilder::Text() const {
      << "     actuated joints (their controls follow the bases'); ccma:end_effector the end-effector. -->\n"
      << "<sdf version=\"1.7\" xmlns:ccma=\"" << internal::kCcmaSdfNamespace << "\">\n"
      << "  <model name=\"" << model_.name << "\">\n";
-  for (const SdfLink& link : links_) {
-    os << "    <link name=\"" << link.name << "\">\n      <pose>" << PoseText(link.X_W) << "</pose>\n    </link>\n";
+  for (std::size_t i = 0; i < links_.size(); ++i) {  // links 0 .. num_bodies - 1 are the bodies
+    const std::string inertial = static_cast<int>(i) < model_.num_bodies()
+                                     ? internal::InertialXml(model_, static_cast<int>(i), links_[i].X_W, true, "      ")
+                                     : "";
+    os << "    <link name=\"" << links_[i].name << "\">\n      <pose>" << PoseText(links_[i].X_W) << "</pose>\n"
+       << inertial << "    </link>\n";
   }
   for (const SdfJoint& s : joints_) WriteJoint(os, s);
   std::string actuated;

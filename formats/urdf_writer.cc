@@ -239,7 +239,14 @@ std::string UrdfBuilder::UrdfText() const {
      << "<!-- " << model_.name << ", written by `ccma export`; loop closures, motors and the end-effector\n"
      << "     are in the closure file beside this one (.closures.yaml). -->\n"
      << "<robot name=\"" << model_.name << "\">\n";
-  for (const UrdfLink& link : links_) os << "  <link name=\"" << link.name << "\"/>\n";
+  for (std::size_t i = 0; i < links_.size(); ++i) {
+    // Links 1 .. num_bodies are the bodies (Link(b)); the others are frames the writer adds.
+    const int body = static_cast<int>(i) - 1;
+    const std::string inertial = body >= 0 && body < model_.num_bodies()
+                                     ? internal::InertialXml(model_, body, links_[i].X_W, false, "    ")
+                                     : "";
+    os << "  <link name=\"" << links_[i].name << "\"" << (inertial.empty() ? "/>\n" : ">\n" + inertial + "  </link>\n");
+  }
   for (const UrdfJoint& u : joints_) {
     os << "  <joint name=\"" << u.name << "\" type=\"" << u.type << "\">\n"
        << "    <parent link=\"" << links_[u.parent].name << "\"/>\n"

@@ -658,6 +658,22 @@ TEST_F(ImportCli, MassesComeAlongAndStaticsWeighsThem) {
   const nlohmann::json j = nlohmann::json::parse(statics.out);
   ASSERT_EQ(j["actuators"].size(), 1u);
   EXPECT_NEAR(std::abs(j["actuators"][0]["effort"].get<double>()), 2 * 9.81 * 0.5, 1e-9);
+  // Exported back as <inertial> and imported again: the same mass, centre of mass and inertia.
+  for (const std::string format : {"urdf", "sdf"}) {
+    const std::string file = (dir_ / ("arm_out." + format)).string(), again = (dir_ / "again.yaml").string();
+    const ToolRun e = RunTool({"export", "--model=" + Out(), "--format=" + format, "--out=" + file});
+    ASSERT_EQ(e.status, 0) << e.err;
+    std::vector<std::string> args = {"import", "--from=" + file, "--end_effector=arm:1,0,0", "--controlled=z",
+                                     "--out=" + again};
+    if (format == "urdf") args.insert(args.begin() + 2, "--closures=" + (dir_ / "arm_out.closures.yaml").string());
+    const ToolRun i = RunTool(args);
+    ASSERT_EQ(i.status, 0) << i.err;
+    const Model back = LoadModel(again);
+    const Body& b = back.bodies[static_cast<std::size_t>(back.FindBody("arm"))];
+    EXPECT_EQ(b.inertia.mass, 2) << format;
+    EXPECT_LT((b.R_WB_home * b.inertia.com_B + b.p_WB_home - Eigen::Vector3d(0.5, 0, 1)).norm(), 1e-12) << format;
+    EXPECT_LT((b.R_WB_home * b.inertia.inertia_B * b.R_WB_home.transpose() - I_W).norm(), 1e-12) << format;
+  }
 }
 
 TEST_F(ImportCli, ATonneTooManyDropsTheMassesAndSaysSo) {

@@ -169,4 +169,30 @@ SpanningTree BuildSpanningTree(const Model& model) {
   return tree;
 }
 
+std::string InertialXml(const Model& model, int body, const Eigen::Isometry3d& X_WL, bool sdformat,
+                        const std::string& indent) {
+  const Body& b = model.bodies[static_cast<std::size_t>(body)];
+  const MassProperties& m = b.inertia;
+  if (!(m.mass > 0)) return "";
+  // Centre of mass and inertia in the link frame (the body frame moved to X_WL).
+  const Eigen::Isometry3d X_LB = X_WL.inverse() * HomePose(model, body);
+  const Eigen::Vector3d com_L = X_LB * m.com_B;
+  const Eigen::Matrix3d I = X_LB.linear() * m.inertia_B * X_LB.linear().transpose();
+  const std::string values[6][2] = {{"ixx", Number(I(0, 0))}, {"ixy", Number(I(0, 1))}, {"ixz", Number(I(0, 2))},
+                                    {"iyy", Number(I(1, 1))}, {"iyz", Number(I(1, 2))}, {"izz", Number(I(2, 2))}};
+  std::string xml = indent + "<inertial>\n";
+  if (sdformat) {
+    xml += indent + "  <pose>" + Triple(com_L) + " 0 0 0</pose>\n" + indent + "  <mass>" + Number(m.mass) +
+           "</mass>\n" + indent + "  <inertia>";
+    for (const auto& [name, value] : values) xml += "<" + name + ">" + value + "</" + name + ">";
+    xml += "</inertia>\n";
+  } else {
+    xml += indent + "  <origin xyz=\"" + Triple(com_L) + "\" rpy=\"0 0 0\"/>\n" + indent + "  <mass value=\"" +
+           Number(m.mass) + "\"/>\n" + indent + "  <inertia";
+    for (const auto& [name, value] : values) xml += " " + name + "=\"" + value + "\"";
+    xml += "/>\n";
+  }
+  return xml + indent + "</inertial>\n";
+}
+
 }  // namespace ccma::internal

@@ -20,6 +20,12 @@ namespace ccma::internal {
 
 // A body's frame in W at home (identity for kWorld).
 Eigen::Isometry3d HomePose(const Model& model, int body);
+
+// The body's mass as an <inertial> element in the frame of a link posed at
+// X_WL (URDF: <origin>, <mass value>, <inertia ixx=...>; SDFormat: <pose>,
+// <mass>, <inertia><ixx>...), each line after `indent`; "" without a mass.
+std::string InertialXml(const Model& model, int body, const Eigen::Isometry3d& X_WL, bool sdformat,
+                        const std::string& indent);
 // The name of a body, or "world" for kWorld.
 std::string BodyName(const Model& model, int body);
 
