@@ -51,42 +51,65 @@ void MostCompliant(const Eigen::Matrix<double, 6, 6>& C, ComplianceReport* out) 
   out->most_compliant_direction = v;
 }
 
-// C^-1 when C is regular: no direction rigid (a diagonal entry negligible
-// against the largest) and its correlation matrix (unit-free) regular. Where
-// it is not, the note says why: the mechanism holds some combination of
-// directions rigidly (`moved` < 6: decided on the geometry), or the
-// springs' stiffness spans so many orders of magnitude that C cannot be
-// inverted to rounding (every direction yields, some 1e10 times less).
-void StiffnessFromCompliance(const Eigen::Matrix<double, 6, 6>& C, int moved, ComplianceReport* out) {
-  if (!out->held) {
-    out->stiffness_note = "the mechanism is not held: some motion no spring resists moves the end-effector";
-    return;
+// C^-1 when C (a square block of the compliance) is regular: no direction
+// rigid (a diagonal entry negligible against the largest) and its
+// correlation matrix (unit-free) regular. Where it is not, *note says why:
+// the mechanism holds some combination of directions rigidly (`moved` <
+// C's size: decided on the geometry), or the springs' stiffness spans so
+// many orders of magnitude that C cannot be inverted to rounding (every
+// direction yields, some 1e10 times less).
+bool InvertCompliance(const Eigen::MatrixXd& C, int moved, Eigen::MatrixXd* K, std::string* note) {
+  const Eigen::Index n = C.rows();
+  if (n == 0) {
+    *note = "the model controls no component of the end-effector";
+    return false;
   }
-  const Eigen::Matrix<double, 6, 1> d = C.diagonal();
+  const Eigen::VectorXd d = C.diagonal();
   const double largest = d.maxCoeff();
-  if (moved < 6) {
-    out->stiffness_note = "the compliance is singular: the mechanism holds some combination of directions rigidly "
-                          "(compliance 0 along it)";
-    return;
+  if (moved < n) {
+    *note = "the compliance is singular: the mechanism holds some combination of directions rigidly "
+            "(compliance 0 along it)";
+    return false;
   }
   const char* const kIllConditioned =
       "the compliance is too ill-conditioned to invert: every direction yields, but the softest more than 1e10 "
       "times as much as the stiffest (the springs' stiffness values span too many orders of magnitude)";
-  if (!(largest > 0) || d.minCoeff() <= kComplianceRigid * largest) {
-    out->stiffness_note = kIllConditioned;
+  *note = kIllConditioned;
+  if (!(largest > 0) || d.minCoeff() <= kComplianceRigid * largest) return false;
+  const Eigen::VectorXd scale = d.cwiseSqrt().cwiseInverse();
+  const Eigen::MatrixXd correlation = scale.asDiagonal() * C * scale.asDiagonal();
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(correlation);
+  if (eig.eigenvalues()[0] <= kComplianceSingular * eig.eigenvalues()[n - 1]) return false;
+  const Eigen::MatrixXd inverse = C.ldlt().solve(Eigen::MatrixXd::Identity(n, n));
+  *K = 0.5 * (inverse + inverse.transpose());
+  if (!K->allFinite()) return false;
+  note->clear();
+  return true;
+}
+
+// ee_stiffness and controlled_stiffness from C. The whole end-effector's
+// stiffness needs every motion no spring resists to leave all six
+// components in place (`all_held`); the controlled block's, the controlled
+// ones (out->held).
+void StiffnessFromCompliance(const Model& model, const CompliantEquilibrium& system, const Eigen::MatrixXd& G,
+                             bool all_held, ComplianceReport* out) {
+  const char* const kNotHeld = "the mechanism is not held: some motion no spring resists moves the end-effector";
+  if (!out->held) {
+    out->stiffness_note = out->controlled_stiffness_note = kNotHeld;
     return;
   }
-  const Eigen::Matrix<double, 6, 1> scale = d.cwiseSqrt().cwiseInverse();
-  const Eigen::Matrix<double, 6, 6> correlation = scale.asDiagonal() * C * scale.asDiagonal();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig(correlation);
-  if (eig.eigenvalues()[0] <= kComplianceSingular * eig.eigenvalues()[5]) {
-    out->stiffness_note = kIllConditioned;
+  const Eigen::MatrixXd G_c = ControlledRows(model, G);
+  const Eigen::MatrixXd C_c = ControlledRows(model, ControlledRows(model, out->ee_compliance).transpose());
+  out->controlled_stiffness_defined =
+      InvertCompliance(C_c, system.MovedDirections(G_c), &out->controlled_stiffness, &out->controlled_stiffness_note);
+  if (!all_held) {
+    out->stiffness_note = "the end-effector body moves freely along components the model does not control (no spring "
+                          "resists it there): see controlled_stiffness";
     return;
   }
-  const Eigen::Matrix<double, 6, 6> K = C.ldlt().solve(Eigen::Matrix<double, 6, 6>::Identity());
-  out->ee_stiffness = 0.5 * (K + K.transpose());
-  out->stiffness_defined = out->ee_stiffness.allFinite();
-  if (!out->stiffness_defined) out->stiffness_note = kIllConditioned;
+  Eigen::MatrixXd K;
+  out->stiffness_defined = InvertCompliance(out->ee_compliance, system.MovedDirections(G), &K, &out->stiffness_note);
+  if (out->stiffness_defined) out->ee_stiffness = K;
 }
 
 }  // namespace
@@ -105,9 +128,9 @@ ComplianceReport ComputeCompliance(const Model& model, const State& s, const Com
   out.deflection = G * y;
   for (int b = 0; b < model.num_bodies(); ++b) out.max_body_m = std::max(out.max_body_m, y.segment<3>(6 * b + 3).norm());
   out.ee_compliance = system.Compliance(G);
-  out.held = system.UnheldMotion(G) <= kComplianceUnheld;
+  out.held = system.UnheldMotion(ControlledRows(model, G)) <= kComplianceUnheld;
   MostCompliant(out.ee_compliance, &out);
-  StiffnessFromCompliance(out.ee_compliance, system.MovedDirections(G), &out);
+  StiffnessFromCompliance(model, system, G, system.UnheldMotion(G) <= kComplianceUnheld, &out);
   double size = 0;
   for (int b = 0; b < model.num_bodies(); ++b) size = std::max(size, s.p_WB(b).norm());
   const double turn = out.deflection.tail<3>().norm();

@@ -38,14 +38,22 @@ struct ComplianceReport {
   bool stiffness_defined = false;  // C is regular: ee_stiffness = C^-1
   Eigen::Matrix<double, 6, 6> ee_stiffness = Eigen::Matrix<double, 6, 6>::Zero();
   std::string stiffness_note;  // why ee_stiffness is not given
+  // The inverse of C's block over the model's controlled components (rows and
+  // columns in x, y, z, roll, pitch, yaw order, less those not controlled),
+  // when that block is regular; else the note says why.
+  bool controlled_stiffness_defined = false;
+  Eigen::MatrixXd controlled_stiffness;
+  std::string controlled_stiffness_note;
   // The largest eigenvalue of C's translational 3 x 3 block [m/N] and its
   // unit eigenvector (largest component positive; where several directions
   // are equally soft, the one of them nearest the x axis, else y, else z).
   Eigen::Vector3d most_compliant_direction = Eigen::Vector3d::UnitX();
   double most_compliant = 0;
-  // Every motion that no spring resists leaves the end-effector in place;
-  // when false, the loaded mechanism is not held (C is then over the motions
-  // springs resist only, and ee_stiffness is not given).
+  // Every motion that no spring resists leaves the end-effector's controlled
+  // components in place; when false, the loaded mechanism is not held (C is
+  // then over the motions springs resist only, and neither stiffness is
+  // given). A free spin about an uncontrolled axis (a tripod's apex on three
+  // ball joints) leaves it held; only ee_stiffness is then not given.
   bool held = true;
   // Non-empty when the deflection is not small against the mechanism (a
   // body moves by more than 5 % of its size, 1 + the farthest body origin

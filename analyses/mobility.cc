@@ -193,13 +193,16 @@ MobilityReport AnalyzeMobility(const Model& model, const State& s, const Eigen::
   return report;
 }
 
-bool OnlyIdleMotions(const Model& model, const State& s, const MobilityReport& mobility) {
-  if (!mobility.free_motions_listed || mobility.free_motions.empty()) return false;
+FreeMotionReach ReachOfFreeMotions(const Model& model, const State& s, const MobilityReport& mobility) {
+  if (!mobility.free_motions_listed || mobility.free_motions.empty()) return FreeMotionReach::kControlled;
   const Eigen::MatrixXd dX_ds = EndEffectorJacobian(model, s);
+  const Eigen::MatrixXd dXc_ds = ControlledRows(model, dX_ds);
+  bool idle = true;
   for (const FreeMotion& motion : mobility.free_motions) {
-    if ((dX_ds * motion.direction).norm() > 1e-8) return false;
+    if ((dXc_ds * motion.direction).norm() > 1e-8) return FreeMotionReach::kControlled;
+    idle = idle && (dX_ds * motion.direction).norm() <= 1e-8;
   }
-  return true;
+  return idle ? FreeMotionReach::kIdle : FreeMotionReach::kUncontrolled;
 }
 
 ControlDependence ClassifyControls(const Model& model, const MobilityReport& mobility) {

@@ -99,11 +99,18 @@ struct MobilityReport {
 MobilityReport AnalyzeMobility(const Model& model, const State& s, const Eigen::VectorXd& u,
                                double rank_tolerance = 1e-8);
 
-// Whether every listed free motion of `mobility` (analysed at s) leaves the
-// end-effector where it is (|dX/ds * direction| <= 1e-8): idle motions, such
-// as a rod spinning about its axis (problems/internal/idle_motions.h). False
-// when none is listed.
-bool OnlyIdleMotions(const Model& model, const State& s, const MobilityReport& mobility);
+// What the free motions of `mobility` (analysed at s) move of the
+// end-effector, judged on |dX/ds * direction| <= 1e-8 over all listed motions.
+enum class FreeMotionReach {
+  kIdle,          // nothing: idle motions, such as a rod spinning about its
+                  // axis (problems/internal/idle_motions.h)
+  kUncontrolled,  // only components the model does not control (a tripod's
+                  // apex spinning on its ball joints): what is controlled is
+                  // determined by the controls
+  kControlled,    // some controlled component: simulation and control are
+                  // ill-posed; also when the motions are not listed
+};
+FreeMotionReach ReachOfFreeMotions(const Model& model, const State& s, const MobilityReport& mobility);
 
 // How the effective controls relate at home (`ccma check`'s note or warning).
 enum class ControlDependence {

@@ -24,4 +24,14 @@ Eigen::MatrixXd EndEffectorJacobian(const Model& model, const State& s) {
   return J;
 }
 
+Eigen::MatrixXd ControlledRows(const Model& model, const Eigen::MatrixXd& six_rows) {
+  int count = 0;
+  for (int c = 0; c < 6; ++c) count += model.end_effector.controlled[c] ? 1 : 0;
+  Eigen::MatrixXd rows(count, six_rows.cols());
+  for (int c = 0, r = 0; c < 6; ++c) {
+    if (model.end_effector.controlled[c]) rows.row(r++) = six_rows.row(c);
+  }
+  return rows;
+}
+
 }  // namespace ccma

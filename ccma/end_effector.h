@@ -29,6 +29,12 @@ EndEffectorPose ComputeEndEffectorPose(const Model& model, const State& s);
 // rotation increment in world axes [rad] (R_EE <- Exp(dtheta) R_EE).
 Eigen::MatrixXd EndEffectorJacobian(const Model& model, const State& s);
 
+// The rows of a 6-row end-effector measure (x, y, z, roll, pitch, yaw order,
+// as EndEffectorJacobian's) that the model's end_effector.controlled keeps,
+// in that order: what held / rigid / stiff is judged on (a spin of the
+// end-effector body about an axis nobody controls is not a failure).
+Eigen::MatrixXd ControlledRows(const Model& model, const Eigen::MatrixXd& six_rows);
+
 }  // namespace ccma
 
 #endif  // CCMA_END_EFFECTOR_H_

@@ -65,6 +65,23 @@ std::string FreeMotionText(const Model& model, const std::vector<FreeMotion>& mo
   return text;
 }
 
+// The end of the free-motion warning: what the motions do to the
+// end-effector, and so whether simulation and control are well-posed.
+std::string FreeMotionVerdict(const Model& model, FreeMotionReach reach) {
+  if (reach == FreeMotionReach::kIdle) {
+    return "; none moves the end-effector (idle motions, docs/numerics.md): control resolves them, simulation "
+           "leaves them where they are";
+  }
+  if (reach == FreeMotionReach::kControlled) return "; simulation and control are ill-posed";
+  std::string controlled, free;
+  for (int c = 0; c < 6; ++c) {
+    std::string& list = model.end_effector.controlled[c] ? controlled : free;
+    list += (list.empty() ? "" : ", ") + std::string(kEndEffectorComponentNames[c]);
+  }
+  return "; none moves what the model controls (" + controlled + "), which the controls determine; they move only "
+         "the end-effector's uncontrolled components (" + free + "), which simulation leaves where they are";
+}
+
 // What a user would not expect of the mechanism, one sentence each.
 nlohmann::json CheckWarnings(const Model& model, const MobilityReport& mobility, bool assembled) {
   const ForwardOptions defaults;
@@ -72,15 +89,13 @@ nlohmann::json CheckWarnings(const Model& model, const MobilityReport& mobility,
   for (int c = 0; c < 6; ++c) controlled_count += model.end_effector.controlled[c] ? 1 : 0;
   nlohmann::json warnings = nlohmann::json::array();
   if (!mobility.rigid_with_controls_fixed) {
-    const bool idle = OnlyIdleMotions(model, State::Home(model), mobility);
+    const FreeMotionReach reach = ReachOfFreeMotions(model, State::Home(model), mobility);
     warnings.push_back("not rigid with its controls fixed: " + std::to_string(mobility.dof_with_controls_fixed) +
                        " free motion(s) remain (smallest singular value of dC/ds " +
                        FormatG(mobility.smallest_singular_value) + "): " +
                        (mobility.free_motions_listed ? FreeMotionText(model, mobility.free_motions)
                                                      : std::string("too many to list them")) +
-                       (idle ? "; none moves the end-effector (idle motions, docs/numerics.md): control resolves "
-                               "them, simulation leaves them where they are"
-                             : "; simulation and control are ill-posed"));
+                       FreeMotionVerdict(model, reach));
   }
   if (!assembled) {
     warnings.push_back("not assembled at home: E = " + FormatG(mobility.energy) + " m^2 (above " +

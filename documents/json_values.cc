@@ -67,9 +67,9 @@ void AddClearance(const Model& model, const State& s, nlohmann::json* out, std::
 
 namespace {
 
-nlohmann::json MatrixRows(const Eigen::Matrix<double, 6, 6>& m) {
+nlohmann::json MatrixRows(const Eigen::MatrixXd& m) {
   nlohmann::json rows = nlohmann::json::array();
-  for (int r = 0; r < 6; ++r) rows.push_back(ToJson(Eigen::VectorXd(m.row(r).transpose())));
+  for (Eigen::Index r = 0; r < m.rows(); ++r) rows.push_back(ToJson(Eigen::VectorXd(m.row(r).transpose())));
   return rows;
 }
 
@@ -88,6 +88,12 @@ void AddComplianceJson(const StaticsReport& report, nlohmann::json* out) {
   } else {
     (*out)["ee_stiffness"] = nullptr;
     (*out)["ee_stiffness_note"] = c.stiffness_note;
+  }
+  if (c.controlled_stiffness_defined) {
+    (*out)["controlled_stiffness"] = MatrixRows(c.controlled_stiffness);
+  } else {
+    (*out)["controlled_stiffness"] = nullptr;
+    (*out)["controlled_stiffness_note"] = c.controlled_stiffness_note;
   }
   (*out)["most_compliant"] = {{"direction", ToJson(Eigen::VectorXd(c.most_compliant_direction))},
                               {"compliance", c.most_compliant}};

@@ -175,7 +175,7 @@ void SolveLoadedDense(const Model& model, const ConstraintSet& set, const State&
   out->unbalanced = at.unbalanced;
   Eigen::MatrixXd G = Eigen::MatrixXd::Zero(6, at.system->size());  // the end-effector's motion over [ds; delta]
   G.leftCols(model.state_size()) = EndEffectorJacobian(model, x->s);
-  out->held = at.system->UnheldMotion(G) <= kUnheldTolerance;
+  out->held = at.system->UnheldMotion(ControlledRows(model, G)) <= kUnheldTolerance;
   if (!out->converged) {
     out->message = !out->held ? "the loaded mechanism is not held: a motion that no spring resists moves the end-effector"
                               : "no equilibrium found: the springs held " + FormatG(100 * t, 3) +
@@ -185,14 +185,15 @@ void SolveLoadedDense(const Model& model, const ConstraintSet& set, const State&
   }
 }
 
-// Whether every motion no spring resists leaves the end-effector in place at x.
+// Whether every motion no spring resists leaves the end-effector's controlled
+// components in place at x.
 bool Held(const Model& model, const ConstraintSet& set, const Eigen::VectorXd& u, const Point& x) {
   const std::vector<int> compliant = CompliantEquilibrium::CompliantControls(model);
   const CompliantEquilibrium system(model, set, x.s, CommandedControls(u, compliant, x.delta),
                                     CompliantEquilibrium::Factorization::kIdleMotions);
   Eigen::MatrixXd G = Eigen::MatrixXd::Zero(6, system.size());
   G.leftCols(model.state_size()) = EndEffectorJacobian(model, x.s);
-  return system.UnheldMotion(G) <= kUnheldTolerance;
+  return system.UnheldMotion(ControlledRows(model, G)) <= kUnheldTolerance;
 }
 
 // Why the sparse path's equilibrium was not found.

@@ -362,6 +362,70 @@ TEST(Compliance, AMechanismItsSpringsDoNotHoldIsReportedWithoutNaN) {
 // Two actuated vertical slides at the same point carry one weight: rigid,
 // any split is an equilibrium (indeterminate, the minimum-norm one is half
 // each); compliant, the motors share it in proportion to their stiffness.
+// A tripod of telescopic legs, spherical at both ends, apex 1 m above the
+// centre of three feet on the unit circle (examples/statics/tripod.yaml, its
+// coordinates exact here), each leg's motor a spring of stiffness k along it.
+std::string SprungTripod(double k) {
+  std::ostringstream text;
+  text.precision(17);
+  text << "name: sprung_tripod\nbodies:\n  - {name: top, position: [0, 0, 1], mass: 3}\n";
+  std::ostringstream joints;
+  joints.precision(17);
+  for (int i = 0; i < 3; ++i) {
+    const double a = M_PI / 2 + 2 * M_PI * i / 3, c = std::cos(a), s = std::sin(a);
+    text << "  - {name: low" << i << ", position: [" << 0.75 * c << ", " << 0.75 * s << ", 0.25]}\n"
+         << "  - {name: up" << i << ", position: [" << 0.25 * c << ", " << 0.25 * s << ", 0.75]}\n";
+    joints << "  - {type: spherical, between: [world, low" << i << "], point: [" << c << ", " << s << ", 0]}\n"
+           << "  - {name: leg" << i << ", type: prismatic, actuated: true, stiffness: " << k << ", between: [low" << i
+           << ", up" << i << "], point: [" << 0.5 * c << ", " << 0.5 * s << ", 0.5], axis: [" << -c << ", " << -s
+           << ", 1]}\n"
+           << "  - {type: spherical, between: [up" << i << ", top], point: [0, 0, 1]}\n";
+  }
+  text << "joints:\n" << joints.str() << "end_effector: {body: top, point: [0, 0, 1], controlled: [x, y, z]}\n";
+  return text.str();
+}
+
+// The tripod's apex spins freely on its three ball joints, which moves
+// nothing it controls (x, y, z): held, with the controlled block's stiffness
+// the legs' k * sum n n^T = k diag(3/4, 3/4, 3/2) (legs at 45 degrees); the
+// whole end-effector's stiffness is not given, and says why. check calls
+// the free spins harmless, not ill-posed.
+TEST(Compliance, ATripodsFreeApexIsHeldInWhatItControls) {
+  const double k = 2e4;
+  const std::string path = ccma::testing::TestDir() + "/sprung_tripod.yaml";
+  std::ofstream(path) << SprungTripod(k);
+  const testing::ToolRun run = testing::RunTool({"statics", "--model=" + path});
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_EQ(run.err.find("not held"), std::string::npos) << run.err;
+  const nlohmann::json out = nlohmann::json::parse(run.out);
+  EXPECT_TRUE(out.at("deflection").at("held").get<bool>());
+  EXPECT_NEAR(out.at("deflection").at("end_effector")[2].get<double>(), -3 * 9.81 / (1.5 * k), 1e-15);
+  EXPECT_TRUE(out.at("ee_stiffness").is_null());
+  EXPECT_NE(out.at("ee_stiffness_note").get<std::string>().find("does not control"), std::string::npos);
+  const nlohmann::json& K = out.at("controlled_stiffness");
+  ASSERT_EQ(K.size(), 3u);
+  const double hand[3] = {0.75 * k, 0.75 * k, 1.5 * k};
+  for (int r = 0; r < 3; ++r) {
+    ASSERT_EQ(K[r].size(), 3u);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(K[r][c].get<double>(), r == c ? hand[r] : 0.0, 1e-9 * k) << r << c;
+  }
+  const testing::ToolRun check = testing::RunTool({"check", "--model=" + path});
+  ASSERT_EQ(check.status, 0) << check.err;
+  EXPECT_EQ(check.err.find("ill-posed"), std::string::npos) << check.err;
+  EXPECT_NE(check.err.find("none moves what the model controls (x, y, z)"), std::string::npos) << check.err;
+  // Controlling the apex's roll too makes its free spin a failure: not held.
+  std::string rolled = SprungTripod(k);
+  rolled.replace(rolled.find("controlled: [x, y, z]"), 21, "controlled: [x, y, z, roll]");
+  std::ofstream(path) << rolled;
+  const testing::ToolRun spun = testing::RunTool({"statics", "--model=" + path});
+  ASSERT_EQ(spun.status, 0) << spun.err;
+  const nlohmann::json spun_out = nlohmann::json::parse(spun.out);
+  EXPECT_FALSE(spun_out.at("deflection").at("held").get<bool>());
+  EXPECT_TRUE(spun_out.at("controlled_stiffness").is_null());
+  const testing::ToolRun spun_check = testing::RunTool({"check", "--model=" + path});
+  EXPECT_NE(spun_check.err.find("ill-posed"), std::string::npos) << spun_check.err;
+}
+
 TEST(Compliance, SpringsShareARedundantLoadInProportionToTheirStiffness) {
   const double k1 = 1e4, k2 = 3e4, W = 5 * 9.81;
   const std::string legs =

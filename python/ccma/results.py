@@ -129,6 +129,12 @@ class StaticsResult(Result):
     ee_stiffness = Field("ee_stiffness", "6x6 inverse of ee_compliance [N/m, N, N*m/rad]; None when it is "
                                          "singular (ee_stiffness_note says why) or without stiffness")
     ee_stiffness_note = Field("ee_stiffness_note", "why ee_stiffness is None; None when it is given")
+    controlled_stiffness = Field("controlled_stiffness", "the inverse of ee_compliance's block over the model's "
+                                                         "controlled components (their order); None when that "
+                                                         "block is singular or the mechanism is not held "
+                                                         "(controlled_stiffness_note says why) or without stiffness")
+    controlled_stiffness_note = Field("controlled_stiffness_note", "why controlled_stiffness is None; None when "
+                                                                   "it is given")
     most_compliant = Field("most_compliant", "Record {direction (unit), compliance [m/N]}: the largest eigenvalue "
                                              "of ee_compliance's translational block; None without stiffness")
     warning = Field("warning", "what makes the reactions doubtful ('' when nothing)", "")

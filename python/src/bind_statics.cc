@@ -60,7 +60,7 @@ void BindStatics(py::module_& m) {
       "kind, effort [N or N*m] per control), determinate, balanced, unbalanced_load, ee_covariance (6 x 6 "
       "[m^2, m rad, rad^2], from the bases' pose noise mocap_noise_m [m], mocap_noise_rad [rad]), within_limits, "
       "limiting and payload_capacity when the model gives limits, compliant_reactions, deflection, "
-      "ee_compliance, ee_stiffness (ee_stiffness_note), most_compliant when it has stiffness keys (compliance), "
+      "ee_compliance, ee_stiffness (ee_stiffness_note), controlled_stiffness (controlled_stiffness_note), most_compliant when it has stiffness keys (compliance), "
       "assembled, residual_energy, bodies, clearance, warning. wrench: fx, fy, fz [N] at the end-effector point, mx, my, mz [N*m], world frame.");
   m.def(
       "statics",
