@@ -160,6 +160,8 @@ ClosureFile ParseClosureFile(const std::string& text, const std::string& source)
     ReadOverrides(r, root, &file);
     ReadEndEffector(r, root, &file);
     ReadPositions(r, root, &file);
+    file.frames = Names(r, root, "frames");
+    if (internal::YamlReader::Has(root, "frames")) file.frames_line = root["frames"].Mark().line + 1;
   } catch (const YAML::Exception& e) {  // a conversion we did not foresee
     throw ModelError(internal::WithLine(source, e.mark) + ": " + internal::LibraryMessage(e.msg));
   }

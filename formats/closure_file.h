@@ -16,6 +16,9 @@
 //   q_home: {joint: q, ...}        the joint positions (rad or m) at which the
 //                                  URDF's links are read: the model's home,
 //                                  where the loops are closed
+//   frames: [link, ...]            links that are frames, not bodies: each is
+//                                  fused into the link it is welded to
+//                                  (formats/internal/frame_links.h)
 // Other keys are ignored.
 #ifndef CCMA_FORMATS_CLOSURE_FILE_H_
 #define CCMA_FORMATS_CLOSURE_FILE_H_
@@ -51,6 +54,8 @@ struct ClosureFile {
   int actuated_line = 0;
   std::vector<Override> overrides;
   std::vector<Position> positions;  // q_home, file order
+  std::vector<std::string> frames;  // links to fuse into their bodies
+  int frames_line = 0;
   bool has_end_effector = false;
   RobotEndEffector end_effector;
 };
@@ -64,7 +69,8 @@ ClosureFile ParseClosureFile(const std::string& text, const std::string& source)
 // Adds the file's closures, type overrides, actuated joints and end-effector
 // to `robot` (read from its URDF at its zero configuration), and moves its
 // links to the `q_home` joint positions (formats/internal/joint_positions.h)
-// before the closures' frames are taken. A frame name is a link name, or a
+// before the closures' frames are taken, then fuses the `frames` links into
+// their bodies (formats/internal/frame_links.h). A frame name is a link name, or a
 // joint name standing for its child link's frame. Throws ModelError
 // "closures.yaml:LINE: closed_loop[i]: unknown frame 'X' (no link or joint of
 // robot.urdf has that name)" and likewise for unknown joints; a q_home

@@ -93,6 +93,13 @@ class UrdfBuilder {
     return static_cast<int>(links_.size()) - 1;
   }
 
+  // A link that is a frame, not a body: listed in the closure file's
+  // `frames`, so that `ccma import` fuses it into its body again.
+  int AddFrame(const std::string& name, const Eigen::Isometry3d& X_W) {
+    frames_.push_back(name);
+    return AddLink(name, X_W);
+  }
+
   // The link frame of a body at home (header: bases keep their body frame,
   // others sit at their parent joint's point).
   Eigen::Isometry3d BodyLinkFrame(int body) const {
@@ -125,7 +132,7 @@ class UrdfBuilder {
     if ((X_J.translation() - X_B.translation()).norm() < 1e-12 && (X_J.linear() - X_B.linear()).norm() < 1e-12) {
       return Link(body);
     }
-    const int link = AddLink(names_.Claim(model_.bodies[body].name + "_joint_frame"), X_J);
+    const int link = AddFrame(names_.Claim(model_.bodies[body].name + "_joint_frame"), X_J);
     weld_after_.emplace_back(link, Link(body));
     return link;
   }
@@ -195,7 +202,7 @@ class UrdfBuilder {
 
   // A frame link fixed to `body` at X_W, named after the joint; returns its name.
   std::string AddFrameLink(const std::string& name, int body, const Eigen::Isometry3d& X_W) {
-    const int link = AddLink(name, X_W);
+    const int link = AddFrame(name, X_W);
     AddFixedJoint(name, Link(body), link);
     return name;
   }
@@ -213,7 +220,7 @@ class UrdfBuilder {
       closures_.push_back({name_a, AddFrameLink(name_b, joint.body_b, X_W), joint.type == JointType::kFixed});
       return;
     }
-    const int dummy = AddLink(name_a, X_W);
+    const int dummy = AddFrame(name_a, X_W);
     AddModelJoint(joint, joint.name, Link(joint.body_a), dummy, false);
     closures_.push_back({name_a, AddFrameLink(name_b, joint.body_b, X_W), true});
   }
@@ -230,6 +237,7 @@ class UrdfBuilder {
   std::vector<std::pair<std::string, std::string>> overrides_;  // joint_name, joint_type
   std::vector<std::pair<std::string, double>> positions_;       // joint, q_home (rad or m), when not 0
   std::vector<std::string> planar_joints_;                      // the bases' joints, base order
+  std::vector<std::string> frames_;                             // links that are frames, not bodies
   std::vector<std::pair<int, int>> weld_after_;                  // (joint frame link, body link) to weld
 };
 
@@ -301,6 +309,11 @@ std::string UrdfBuilder::ClosureText() const {
       os << (i > 0 ? ", '" : "'") << positions_[i].first << "': " << internal::Number(positions_[i].second);
     }
     os << "}\n";
+  }
+  if (!frames_.empty()) {
+    os << "# ccma's extension: links that are frames, not bodies; ccma import fuses each into the body it is "
+          "welded to.\n"
+       << "frames: " << QuotedList(frames_) << "\n";
   }
   const EndEffector& ee = model_.end_effector;
   const Eigen::Vector3d point = links_[Link(ee.body)].X_W.inverse() * ee.p_W_home;

@@ -34,6 +34,10 @@
 //  * name_mot: the bases' planar and floating joints in base order, then the actuated
 //    joints in file order (the model's control order). The end-effector goes
 //    to ccma's `end_effector` extension (link, point in the link frame).
+//  * the links that are frames, not bodies (`<body>_joint_frame`, J_A, J_B)
+//    are listed in the closure file's `frames` (ccma's extension): `ccma
+//    import` fuses each into the body it is welded to, so the import has the
+//    model's bodies, no more (formats/internal/frame_links.h).
 // Added names get a suffix "_2", ... when the model already uses them.
 // Numbers have 17 significant digits, so they read back to the same doubles.
 #ifndef CCMA_FORMATS_URDF_WRITER_H_

@@ -642,15 +642,35 @@ Model ImportUrdfExport(const Model& model) {
   return ImportRobot(ReadUrdf(urdf_path, closure_path), ImportOptions{}).model;
 }
 
+// The import has the model's bodies, no more (the URDF's frame links are
+// fused back: closure file `frames`), each at its home pose, and as many joints.
+void ExpectSameBodies(const Model& original, const Model& imported, const std::string& what) {
+  SCOPED_TRACE(what);
+  ASSERT_EQ(imported.num_bodies(), original.num_bodies());
+  EXPECT_EQ(imported.joints.size(), original.joints.size());
+  for (const Body& body : original.bodies) {
+    const int b = imported.FindBody(body.name);
+    ASSERT_GE(b, 0) << body.name;
+    EXPECT_LT((imported.bodies[b].p_WB_home - body.p_WB_home).norm(), kTolerance) << body.name;
+    EXPECT_LT((imported.bodies[b].R_WB_home - body.R_WB_home).norm(), kTolerance) << body.name;
+  }
+}
+
 TEST(ExportRoundTrip, UrdfGivesBackTheSameMechanism) {
   for (const std::string& name : testing::BundledModels()) {
     const Model model = LoadModel(testing::ModelPath(name));
     const Model imported = ImportUrdfExport(model);
+    ExpectSameBodies(model, imported, name);
     ExpectSameHomeControls(model, imported, name);
     ExpectSameMechanism(model, imported, name + " (urdf)");
   }
   const Model loop = LoadModelFromString(kLoopModel, "qhome_loop.yaml");
   const Model imported = ImportUrdfExport(loop);
+  ExpectSameBodies(loop, imported, "qhome_loop");
+  // Every revolute and prismatic joint keeps its name, the cut ones too.
+  for (const Joint& joint : loop.joints) {
+    if (joint.has_coordinate()) EXPECT_GE(imported.FindJoint(joint.name), 0) << joint.name;
+  }
   // The closure file's q_home puts the links at home: the same home controls
   // (crank_joint's q_home is 0.3), every joint with its coordinate.
   EXPECT_LT((imported.home_controls() - loop.home_controls()).norm(), 1e-12);

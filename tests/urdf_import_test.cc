@@ -324,6 +324,34 @@ void ExpectRefused(const std::string& closures, const std::string& message) {
   }
 }
 
+// ---- The closure file's frames (ccma's own key, written by `ccma export`) ----
+
+// c, welded to b by the fixed j3, is a frame: it is fused into b, j3 goes,
+// and a closure that named c names b, at the same world frames.
+TEST(ClosureFileFrames, AFrameLinkIsFusedIntoTheBodyItIsWeldedTo) {
+  const RobotDescription robot = ChainWith("closed_loop: [['c', 'a']]\ntype: ['3d']\nframes: ['c']\n");
+  EXPECT_LT(robot.FindLink("c"), 0);
+  EXPECT_LT(robot.FindJoint("j3"), 0);
+  ASSERT_EQ(robot.links.size(), 2u);  // a, b
+  ASSERT_EQ(robot.closures.size(), 1u);
+  EXPECT_EQ(robot.closures[0].link_a, "b");
+  // The closure's frame A is still c's frame: b's origin raised by 1 along z.
+  EXPECT_LT((robot.closures[0].X_WA.translation() - (LinkOf(robot, "b").X_WL.translation() +
+                                                      Eigen::Vector3d(0, 0, 1))).norm(), 1e-15);
+  // The same chain without `frames` keeps c and j3: the key is what fuses.
+  const RobotDescription kept = ChainWith("closed_loop: [['c', 'a']]\ntype: ['3d']\n");
+  EXPECT_GE(kept.FindLink("c"), 0);
+  EXPECT_GE(kept.FindJoint("j3"), 0);
+}
+
+TEST(ClosureFileFrames, HostileEntriesAreRefusedWithFileLineAndLink) {
+  ExpectRefused("frames: ['nope']\n", "chain.yaml:1: frames: 'nope' is not a link of chain.urdf");
+  ExpectRefused("frames: ['world']\n", "chain.yaml:1: frames: 'world' is not a link of chain.urdf");
+  ExpectRefused("frames: ['a']\n", "chain.yaml:1: frames: link 'a' is welded (by a fixed joint or a 6d closure) to no body");
+  ExpectRefused("frames: ['b', 'c']\n", "frames: link 'b' is welded (by a fixed joint or a 6d closure) to no body");
+  ExpectRefused("frames: 'c'\n", "chain.yaml:1: frames: must be a list");
+}
+
 TEST(ClosureFileQHome, HostileEntriesAreRefusedWithFileLineAndJoint) {
   ExpectRefused("q_home: {'nope': 1}\n", "chain.yaml:1: q_home: unknown joint 'nope' (not a joint of chain.urdf)");
   ExpectRefused("name_mot: ['j1']\nq_home: {'j3': 1}\n", "chain.yaml:2: q_home: joint 'j3' is not revolute or prismatic");

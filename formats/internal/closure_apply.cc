@@ -6,6 +6,7 @@
 
 #include "ccma/internal/format.h"
 #include "formats/closure_file.h"
+#include "formats/internal/frame_links.h"
 #include "formats/internal/joint_positions.h"
 #include "formats/model_loader.h"
 
@@ -113,6 +114,9 @@ void ApplyClosureFile(const ClosureFile& file, RobotDescription* robot) {
   if (file.has_end_effector) {
     robot->has_end_effector = true;
     robot->end_effector = file.end_effector;
+  }
+  if (!file.frames.empty()) {
+    internal::FuseFrameLinks(file.frames, file.source + ":" + std::to_string(file.frames_line) + ": frames", robot);
   }
 }
 
