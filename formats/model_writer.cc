@@ -6,17 +6,13 @@
 #include <utility>
 
 #include "ccma/base_kind.h"
+#include "ccma/internal/format.h"
 #include "ccma/rotation.h"
 
 namespace ccma {
 namespace {
 
-std::string Num(double value) {
-  if (value == 0.0) return "0";  // also turns -0 into 0
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.17g", value);
-  return text;
-}
+std::string Num(double value) { return FormatExact(value); }
 
 std::string Vec(const Eigen::Vector3d& v) { return "[" + Num(v.x()) + ", " + Num(v.y()) + ", " + Num(v.z()) + "]"; }
 
@@ -203,6 +199,7 @@ std::string WriteModelYaml(const Model& model, const std::string& header) {
   for (std::string line; std::getline(lines, line);) out << "# " << line << "\n";
   out << "name: " << YamlName(model.name) << "\n";
   if (!model.description.empty()) out << "description: " << Quoted(model.description) << "\n";
+  if (model.gravity != Model().gravity) out << "gravity: " << Vec(model.gravity) << "\n";
   WriteBodies(model, out);
   WriteBases(model, out);
   out << "joints:\n";

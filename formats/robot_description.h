@@ -105,6 +105,10 @@ struct RobotDescription {
   std::vector<std::string> actuated;  // joint names, in control order
   bool has_end_effector = false;
   RobotEndEffector end_effector;
+  // Gravity in W [m/s^2], when the source gives it (an SDFormat world's
+  // <gravity>); else the model's default.
+  bool has_gravity = false;
+  Eigen::Vector3d gravity = Eigen::Vector3d(0, 0, -9.81);
   // What the reader skipped, one line each ("file:line: key: what"); the
   // command prints them on stderr.
   std::vector<std::string> warnings;

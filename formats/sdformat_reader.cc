@@ -31,6 +31,7 @@
 #include "formats/internal/robot_xml.h"
 #include "formats/internal/sdf_extension_elements.h"
 #include "formats/internal/sdformat_console.h"
+#include "formats/internal/world_includes.h"
 #include "formats/internal/link_inertial.h"
 #include "formats/internal/root_weld.h"
 #include "formats/internal/sdformat_cost.h"
@@ -120,6 +121,20 @@ void CheckMemory(const internal::RobotXmlSummary& summary, const std::string& so
                    " MB allowed (docs/import.md)");
 }
 
+// SDFormat 1.11's <inertial auto="true"> (computed from the collisions'
+// density) needs libsdformat 14; Debian's reads it as the default inertial.
+void WarnOfComputedInertials(const TiXmlElement& e, const std::string& source, std::vector<std::string>* warnings) {
+  for (const TiXmlElement* c = e.FirstChildElement(); c != nullptr; c = c->NextSiblingElement()) {
+    const char* automatic = c->Attribute("auto");
+    if (std::string(c->Value()) == "inertial" && automatic != nullptr && std::string(automatic) == "true") {
+      warnings->push_back(source + ":" + std::to_string(c->Row()) + ": <inertial auto=\"true\">: computing it from the "
+                          "collisions needs libsdformat 14; this libsdformat reads it as SDFormat's default, 1 kg, "
+                          "inertia diag(1, 1, 1) kg m^2 at the link's origin");
+    }
+    WarnOfComputedInertials(*c, source, warnings);
+  }
+}
+
 // The file as ccma accepts it before libsdformat sees it: the plain XML of
 // formats/internal/robot_xml.h with an <sdf> root (libsdformat, when it
 // cannot read an <sdf>, reads the text again as a URDF and follows what that
@@ -130,13 +145,13 @@ void CheckMemory(const internal::RobotXmlSummary& summary, const std::string& so
 // in its version: a 1.4 joint axis in the model frame, a 1.5 or 1.6 one
 // with <use_parent_model_frame>; the reader then resolves every axis and
 // pose through libsdformat's frame graph, so each keeps that meaning).
-void CheckXml(const std::string& text, const std::string& source) {
+//
+// A world's own <include>s (the ground plane and the sun of a Gazebo world)
+// are blanked out of the text, each with a warning: they name models outside
+// the file, which are not the robot. An <include> anywhere else is refused.
+// Returns the text libsdformat reads.
+std::string CheckXml(const std::string& text, const std::string& source, std::vector<std::string>* warnings) {
   const internal::RobotXmlSummary summary = internal::CheckRobotXml(text, source, "sdf", "an SDFormat file");
-  const auto include = summary.names.find("include");
-  if (include != summary.names.end()) {
-    throw ModelError(source + ":" + std::to_string(include->second.first_line) +
-                     ": <include> is not supported: put the included model's links and joints in the file");
-  }
   CheckMemory(summary, source);
   TiXmlDocument document;  // safe now: TinyXML reads the same elements, at most 100 deep
   document.Parse(text.c_str(), nullptr, TIXML_ENCODING_UTF8);
@@ -144,6 +159,9 @@ void CheckXml(const std::string& text, const std::string& source) {
     throw ModelError(source + ":" + std::to_string(document.ErrorRow()) +
                      ": not valid XML: " + document.ErrorDesc());
   }
+  std::string kept = text;
+  if (summary.names.count("include") != 0) kept = internal::BlankWorldIncludes(document, text, source, warnings);
+  WarnOfComputedInertials(*document.RootElement(), source, warnings);
   const TiXmlElement* root = document.RootElement();
   const char* version = root->Attribute("version");
   int major = 0, minor = 0;
@@ -152,6 +170,7 @@ void CheckXml(const std::string& text, const std::string& source) {
     throw ModelError(source + ":" + std::to_string(root->Row()) + ": sdf version " +
                      Quote(version ? version : "") + ": SDFormat 1.4 or later is needed");
   }
+  return kept;
 }
 
 // libsdformat's errors, less the one it reports for each `planar` and
@@ -203,8 +222,10 @@ RobotLink ReadLink(const sdf::Link& link, const Context& context) {
   if (!errors.empty()) ThrowSdfErrors(errors, where);
   out.X_WL = PoseInWorld(context, pose, where);
   ReadMeshes(link, context, &out);
-  // Only an <inertial> the file writes (libsdformat gives 1 kg to the others).
-  if (link.Element() != nullptr && link.Element()->HasElement("inertial")) {
+  // A link without <inertial> has SDFormat's default (libsdformat's): 1 kg,
+  // inertia diag(1, 1, 1) kg m^2 at the link's origin (the reader says so:
+  // DefaultInertialsWarning).
+  {
     const ignition::math::Inertiald& inertial = link.Inertial();
     const ignition::math::Matrix3d& moi = inertial.MassMatrix().Moi();
     Eigen::Matrix3d I;
@@ -425,14 +446,34 @@ void ReadEndEffector(const sdf::Model& model, const Context& context, RobotDescr
   out->has_end_effector = true;
 }
 
-// The file's one <model>, or the one model of its one <world>.
-const sdf::Model& TheModel(const sdf::Root& root, const std::string& source) {
+// The file's one <model>, or the one model of its one <world> that is not
+// static (a world's ground plane is a static model: skipped, with a warning).
+const sdf::Model& TheModel(const sdf::Root& root, const std::string& source, std::vector<std::string>* warnings) {
   const sdf::Model* model = root.Model();
-  if (model == nullptr && root.WorldCount() == 1 && root.WorldByIndex(0)->ModelCount() == 1) {
-    model = root.WorldByIndex(0)->ModelByIndex(0);
+  if (model == nullptr && root.WorldCount() == 1) {
+    const sdf::World& world = *root.WorldByIndex(0);
+    std::vector<const sdf::Model*> moving;
+    std::string skipped;
+    for (uint64_t i = 0; i < world.ModelCount(); ++i) {
+      const sdf::Model* m = world.ModelByIndex(i);
+      if (m->Static()) {
+        skipped += (skipped.empty() ? "" : ", ") + Quote(m->Name());
+      } else {
+        moving.push_back(m);
+      }
+    }
+    if (moving.size() == 1) {
+      model = moving.front();
+      if (!skipped.empty()) warnings->push_back(source + ": static model(s) " + skipped + " of the world skipped");
+    } else if (moving.size() > 1) {
+      std::string names;
+      for (const sdf::Model* m : moving) names += (names.empty() ? "" : ", ") + Quote(m->Name());
+      throw ModelError(source + ": the world holds " + std::to_string(moving.size()) + " models that are not static (" +
+                       names + "): ccma imports one robot; put it in a file of its own");
+    }
   }
   if (model == nullptr)
-    throw ModelError(source + ": the file must hold one <model> (or one <world> with one model)");
+    throw ModelError(source + ": the file must hold one <model> (or one <world> with one model that is not static)");
   if (model->ModelCount() > 0) {
     throw ModelError(Where(Context{source, "", {}}, model->ModelByIndex(0)->Element()) +
                      ": model " + Quote(model->ModelByIndex(0)->Name()) +
@@ -445,6 +486,39 @@ const sdf::Model& TheModel(const sdf::Root& root, const std::string& source) {
                      std::to_string(kMaxRobotLinks) + " links and " + std::to_string(kMaxRobotJoints) + " joints");
   }
   return *model;
+}
+
+// SDFormat gives a link without <inertial> 1 kg and a unit inertia, as
+// Gazebo simulates it; the import takes that too, and names those links.
+void AddDefaultInertialsWarning(const sdf::Model& model, const std::string& source, RobotDescription* robot) {
+  std::string names;
+  int count = 0;
+  for (uint64_t i = 0; i < model.LinkCount(); ++i) {
+    const sdf::Link& link = *model.LinkByIndex(i);
+    const sdf::ElementPtr element = link.Element();
+    if (element != nullptr && element->HasElement("inertial")) continue;
+    if (++count <= 5) names += (names.empty() ? "" : ", ") + Quote(link.Name());
+  }
+  if (count == 0) return;
+  if (count > 5) names += " and " + std::to_string(count - 5) + " more";
+  robot->warnings.push_back(source + ": " + std::to_string(count) + " link(s) without <inertial> (" + names +
+                            ") get SDFormat's default, as Gazebo simulates them: 1 kg, inertia diag(1, 1, 1) kg m^2 "
+                            "at the link's origin");
+}
+
+// A world's <gravity> (SDFormat 1.5 on; 1.4's <physics><gravity> is
+// converted to it), when the world gives one: the robot's gravity.
+void ReadWorldGravity(const sdf::Root& root, const std::string& source, RobotDescription* robot) {
+  if (root.Model() != nullptr || root.WorldCount() != 1) return;
+  const sdf::World& world = *root.WorldByIndex(0);
+  if (world.Element() == nullptr || !world.Element()->HasElement("gravity")) return;
+  const ignition::math::Vector3d g = world.Gravity();
+  const Eigen::Vector3d gravity(g.X(), g.Y(), g.Z());
+  if (!gravity.allFinite() || gravity.norm() > 1e3) {
+    throw ModelError(source + ": <world><gravity>: three finite numbers of at most 1000 m/s^2 are needed");
+  }
+  robot->has_gravity = true;
+  robot->gravity = gravity;
 }
 
 // [A-Za-z0-9_-] only, at most kMaxNameLength characters, never empty.
@@ -463,11 +537,12 @@ RobotDescription ReadSdformatFromString(const std::string& text, const std::stri
     throw ModelError(path + ": larger than " + std::to_string(kMaxSdformatFileBytes) + " bytes");
   }
   internal::QuietSdformatConsole();  // before anything of libsdformat: no log file, nothing printed
-  CheckXml(text, path);
+  std::vector<std::string> warnings;
+  const std::string kept = CheckXml(text, path, &warnings);
   sdf::Root root;
-  const sdf::Errors errors = Unforgiven(root.LoadSdfString(text));
+  const sdf::Errors errors = Unforgiven(root.LoadSdfString(kept));
   if (!errors.empty()) ThrowSdfErrors(errors, path);
-  const sdf::Model& model = TheModel(root, path);
+  const sdf::Model& model = TheModel(root, path, &warnings);
   Context context{path, internal::AbsoluteFolderOf(path), {}};
   ignition::math::Pose3d model_pose;
   if (!model.SemanticPose().Resolve(model_pose).empty()) model_pose = model.RawPose();
@@ -475,8 +550,11 @@ RobotDescription ReadSdformatFromString(const std::string& text, const std::stri
   RobotDescription robot;
   robot.name = CleanName(model.Name());
   robot.source = path;
+  robot.warnings = warnings;
+  ReadWorldGravity(root, path, &robot);
   for (uint64_t i = 0; i < model.LinkCount(); ++i)
     robot.links.push_back(ReadLink(*model.LinkByIndex(i), context));
+  AddDefaultInertialsWarning(model, path, &robot);
   for (uint64_t i = 0; i < model.JointCount(); ++i)
     robot.joints.push_back(ReadJoint(*model.JointByIndex(i), context));
   internal::WeldTheRoot(model.Name(), &robot);

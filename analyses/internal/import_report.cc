@@ -1,6 +1,9 @@
 #include "analyses/internal/import_report.h"
 
 #include <cmath>
+#include <functional>
+#include <map>
+#include <string>
 
 #include <Eigen/Geometry>
 
@@ -9,8 +12,36 @@
 
 namespace ccma::internal {
 
+namespace {
+
+// The joints that close loops in the source itself (SDFormat's, a Gazebo
+// <joint> in a URDF): those a spanning tree grown from the ground over the
+// joints in file order leaves out. Each is posed once, in W, with both
+// links at their source poses: gap 0 by construction.
+std::vector<std::string> LoopJoints(const RobotDescription& robot) {
+  std::map<std::string, std::string> root;  // union-find over link names
+  const std::function<std::string(const std::string&)> find = [&](const std::string& link) {
+    auto it = root.find(link);
+    if (it == root.end() || it->second == link) return link;
+    return it->second = find(it->second);
+  };
+  std::vector<std::string> loops;
+  for (const RobotJoint& joint : robot.joints) {
+    const std::string a = find(joint.parent), b = find(joint.child);
+    if (a == b) {
+      loops.push_back(joint.name);
+    } else {
+      root[a] = b;
+    }
+  }
+  return loops;
+}
+
+}  // namespace
+
 std::vector<ClosureGap> ClosureGaps(const RobotDescription& robot) {
   std::vector<ClosureGap> gaps;
+  for (const std::string& name : LoopJoints(robot)) gaps.push_back({CcmaName(name), 0.0, 0.0});
   for (const RobotClosure& c : robot.closures) {
     ClosureGap gap;
     gap.name = CcmaName(c.frame_a + "__" + c.frame_b);

@@ -11,9 +11,12 @@
 
 namespace ccma::internal {
 
-// Every closure of `robot` at the source's joint positions, named as the
-// model's closing joint (A__B): the origins' distance [m] and, for a 6d
-// closure, the angle between the frames [rad].
+// Every closure of `robot` at the source's joint positions: first the
+// source's own loop-closing joints (SDFormat's, a URDF's Gazebo <joint>s:
+// those a spanning tree in file order leaves out, gap 0 since each is posed
+// once), then the closure file's, named as the model's closing joint (A__B):
+// the origins' distance [m] and, for a 6d closure, the angle between the
+// frames [rad]. As many as the import's `closures`.
 std::vector<ClosureGap> ClosureGaps(const RobotDescription& robot);
 
 // Every actuated revolute or prismatic joint: its home position in `home`

@@ -347,6 +347,7 @@ RobotModel BuildRobotModel(const RobotDescription& robot, const ImportOptions& o
   Model& model = out.model;
   model.name = options.model_name.empty() ? ImportedModelName(robot) : CcmaName(options.model_name);
   model.description = "Imported by ccma import from " + robot.source.substr(robot.source.find_last_of('/') + 1);
+  if (robot.has_gravity) model.gravity = robot.gravity;
   std::map<std::string, int> bodies;
   AddBodies(robot, bases, &model, &bodies);
   AddJoints(robot, motors, bodies, &out);

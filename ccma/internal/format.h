@@ -3,6 +3,7 @@
 #define CCMA_INTERNAL_FORMAT_H_
 
 #include <cstdio>
+#include <cstdlib>
 #include <initializer_list>
 #include <string>
 #include <utility>
@@ -76,6 +77,18 @@ inline std::string FormatG(double value, int digits = 6) {
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
   return buffer;
+}
+
+// The shortest %g text (15, 16 or 17 significant digits) that reads back to
+// exactly `value`: files and messages say 0.6, not 0.59999999999999998,
+// and still round-trip. 0 for both zeros.
+inline std::string FormatExact(double value) {
+  if (value == 0.0) return "0";
+  for (int digits = 15; digits < 17; ++digits) {
+    const std::string text = FormatG(value, digits);
+    if (std::strtod(text.c_str(), nullptr) == value) return text;
+  }
+  return FormatG(value, 17);
 }
 
 }  // namespace ccma

@@ -6,6 +6,7 @@
 #include <queue>
 #include <stdexcept>
 
+#include "ccma/internal/format.h"
 #include "ccma/rotation.h"
 
 namespace ccma::internal {
@@ -38,12 +39,7 @@ Eigen::Matrix3d FrameFromAxes(const Eigen::Vector3d& x, const Eigen::Vector3d& y
   return R;
 }
 
-std::string Number(double value) {
-  if (value == 0.0) return "0";  // also turns -0 into 0
-  char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.17g", value);
-  return buffer;
-}
+std::string Number(double value) { return FormatExact(value); }
 
 std::string Triple(const Eigen::Vector3d& v) { return Number(v.x()) + " " + Number(v.y()) + " " + Number(v.z()); }
 

@@ -13,8 +13,10 @@ namespace ccma::internal {
 
 // When no joint of `robot` has `world` as parent: adds a fixed joint
 // `world__ROOT` from `world` to ROOT, the first link in file order that is no
-// joint's child, at ROOT's frame, and a warning naming `model_name`, ROOT
-// and the joint. Nothing otherwise (nor when every link is some joint's child).
+// joint's child (or, when every link is some joint's child, a closed loop
+// floating free: the first link, SDFormat's canonical link), at ROOT's
+// frame, and a warning naming `model_name`, ROOT and the joint. Nothing
+// otherwise (nor for a robot without links).
 void WeldTheRoot(const std::string& model_name, RobotDescription* robot);
 
 }  // namespace ccma::internal
