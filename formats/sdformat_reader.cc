@@ -506,12 +506,12 @@ void AddDefaultInertialsWarning(const sdf::Model& model, const std::string& sour
                             "at the link's origin");
 }
 
-// A world's <gravity> (SDFormat 1.5 on; 1.4's <physics><gravity> is
-// converted to it), when the world gives one: the robot's gravity.
+// A world's gravity (its <gravity>, 1.4's <physics><gravity> converted to
+// it, or SDFormat's default for a world, (0, 0, -9.8) m/s^2, as Gazebo
+// simulates it): the robot's gravity. A file of one <model> keeps ccma's.
 void ReadWorldGravity(const sdf::Root& root, const std::string& source, RobotDescription* robot) {
   if (root.Model() != nullptr || root.WorldCount() != 1) return;
   const sdf::World& world = *root.WorldByIndex(0);
-  if (world.Element() == nullptr || !world.Element()->HasElement("gravity")) return;
   const ignition::math::Vector3d g = world.Gravity();
   const Eigen::Vector3d gravity(g.X(), g.Y(), g.Z());
   if (!gravity.allFinite() || gravity.norm() > 1e3) {
