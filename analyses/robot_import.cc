@@ -300,6 +300,8 @@ ImportedRobot ImportRobot(const RobotDescription& robot, const ImportOptions& op
   const std::string folder = options.model_folder.empty()
                                  ? std::filesystem::absolute(robot.source).parent_path().string()
                                  : options.model_folder;
+  const std::vector<std::string> undrawable = internal::UndrawableMeshes(robot.source, home);
+  out.warnings.insert(out.warnings.end(), undrawable.begin(), undrawable.end());
   const std::string outside = internal::RelateMeshPaths(folder, robot.source, &home);
   if (options.collision_radius > 0) {
     const internal::ImportCollisionCounts counts =

@@ -506,6 +506,23 @@ void AddDefaultInertialsWarning(const sdf::Model& model, const std::string& sour
                             "at the link's origin");
 }
 
+// A link's <gravity>false</gravity> (gravity does not act on it in Gazebo):
+// ccma weighs every mass, and says which links the file exempts.
+void AddWeightlessLinksWarning(const sdf::Model& model, const std::string& source, RobotDescription* robot) {
+  std::string names;
+  int count = 0;
+  for (uint64_t i = 0; i < model.LinkCount(); ++i) {
+    const sdf::ElementPtr element = model.LinkByIndex(i)->Element();
+    if (element == nullptr || !element->HasElement("gravity") || element->Get<bool>("gravity")) continue;
+    if (++count <= 5) names += (names.empty() ? "" : ", ") + Quote(model.LinkByIndex(i)->Name());
+  }
+  if (count == 0) return;
+  if (count > 5) names += " and " + std::to_string(count - 5) + " more";
+  robot->warnings.push_back(source + ": " + std::to_string(count) + " link(s) with <gravity>false</gravity> (" + names +
+                            "): ccma applies gravity to every mass, so statics weighs them too (remove their mass "
+                            "from the model file to leave them weightless)");
+}
+
 // A world's gravity (its <gravity>, 1.4's <physics><gravity> converted to
 // it, or SDFormat's default for a world, (0, 0, -9.8) m/s^2, as Gazebo
 // simulates it): the robot's gravity. A file of one <model> keeps ccma's.
@@ -555,6 +572,7 @@ RobotDescription ReadSdformatFromString(const std::string& text, const std::stri
   for (uint64_t i = 0; i < model.LinkCount(); ++i)
     robot.links.push_back(ReadLink(*model.LinkByIndex(i), context));
   AddDefaultInertialsWarning(model, path, &robot);
+  AddWeightlessLinksWarning(model, path, &robot);
   for (uint64_t i = 0; i < model.JointCount(); ++i)
     robot.joints.push_back(ReadJoint(*model.JointByIndex(i), context));
   internal::WeldTheRoot(model.Name(), &robot);

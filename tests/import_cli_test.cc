@@ -513,7 +513,11 @@ TEST_F(ImportCli, AClosedSourceHasNoGapsAndStrictAcceptsIt) {
                              "--actuated=crank", "--end_effector=coupler:4.8,0,0", "--strict", "--out=" + Out()});
   ASSERT_EQ(r.status, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
-  EXPECT_TRUE(j["closure_gaps"].empty());  // SDFormat closes its loops with joints
+  // SDFormat closes its loops with joints, each posed once: gap 0, named.
+  ASSERT_EQ(j["closure_gaps"].size(), 1u);
+  EXPECT_EQ(j["closure_gaps"][0]["gap_m"].get<double>(), 0.0);
+  EXPECT_EQ(j["closure_gaps"][0]["gap_rad"].get<double>(), 0.0);
+  EXPECT_EQ(j["closures"].get<int>(), 1);
   ASSERT_EQ(j["motor_moves"].size(), 1u);
   EXPECT_EQ(j["motor_moves"][0]["move"].get<double>(), 0.0);
   EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;

@@ -266,6 +266,129 @@ TEST(RobotCorpus, GzPhysicsFreeLoopInAWorldWithAGroundPlane) { ExpectTheRobotItD
 
 TEST(RobotCorpus, GzPhysicsSdformat1_11FourBarWithFramesAndDegrees) { ExpectTheRobotItDescribes(PoleFourBar()); }
 
+// ArchiRob/delta_2's delta robot (SDFormat 1.4 model: every <axis><xyz> in
+// the model frame, 1.4's meaning; no joint to world). Three motorised arms,
+// each carrying a parallelogram of two ball-ball rods to the platform, which
+// therefore only translates: its position t is where three spheres meet, of
+// radius the rod length about each arm's ball-pair midpoint less the
+// platform's ball-pair midpoint (the ideal delta's closed form). Numbers as
+// the file writes them (its rounded yaws put the rods about 1e-7 m off an
+// exact parallelogram, which moves the platform by less than 1e-12 m).
+class Delta {
+ public:
+  Delta() {
+    const double yaw[3] = {0.523599, 2.61799, 4.71239};
+    const Eigen::Vector3d proximal[3] = {{0.1299037937375349, 0.07500002915063418, 0.02},
+                                         {-0.1299037937375349, 0.07500002915063418, 0.02},
+                                         {0.0, -0.15, 0.02}};
+    axis_[0] = Eigen::Vector3d(0.5000001943375613, -0.8660252915835662, 0).normalized();
+    axis_[1] = Eigen::Vector3d(0.5000001943375613, 0.8660252915835662, 0).normalized();
+    axis_[2] = Eigen::Vector3d(-1, 0, 0);
+    // The distal links' poses (two per arm) and the platform's balls, in the file's order.
+    const Eigen::Vector3d distal[6] = {{0.13133329519352216, 0.032524076829499225, 0.12917082497169285},
+                                       {0.09383328061820506, 0.0974759736982667, 0.12917082497169285},
+                                       {-0.09383328061820506, 0.0974759736982667, 0.12917082497169285},
+                                       {-0.13133329519352216, 0.032524076829499225, 0.12917082497169285},
+                                       {-0.0375, -0.13, 0.12917082497169285},
+                                       {0.0375, -0.13, 0.12917082497169285}};
+    const Eigen::Vector3d platform_ball[6] = {{0.06205127186683686, -0.007475938717505671, 0},
+                                              {0.02455125729151977, 0.0574759581512618, 0},
+                                              {-0.02455125729151977, 0.0574759581512618, 0},
+                                              {-0.06205127186683686, -0.007475938717505671, 0},
+                                              {-0.0375, -0.05, 0},
+                                              {0.0375, -0.05, 0}};
+    t0_ = Eigen::Vector3d(0, 0, 0.23834164994338572);
+    for (int i = 0; i < 3; ++i) {
+      // The arm's pivot: joint pose (-0.06 0 0) in the proximal link's frame.
+      pivot_[i] = proximal[i] + Rz(yaw[i]) * Eigen::Vector3d(-0.06, 0, 0);
+      Eigen::Vector3d arm_balls = Eigen::Vector3d::Zero(), platform_balls = Eigen::Vector3d::Zero();
+      double length = 0;
+      for (int k = 2 * i; k < 2 * i + 2; ++k) {
+        // The arm's ball: joint pose (0.135345 0 0) in the distal link's frame.
+        const Eigen::Vector3d ball = distal[k] + (Rz(yaw[i]) * Ry(0.9383966687035906) * Rx(1.57075)) *
+                                                     Eigen::Vector3d(0.135345, 0, 0);
+        arm_balls += 0.5 * ball;
+        platform_balls += 0.5 * platform_ball[k];
+        length += 0.5 * (t0_ + platform_ball[k] - ball).norm();
+      }
+      arm_ball0_[i] = arm_balls;
+      platform_offset_[i] = platform_balls;
+      length_[i] = length;
+    }
+  }
+
+  // The platform's position at the arms' angles u [rad], and dt/du (3 x 3).
+  Eigen::Vector3d At(const Eigen::Vector3d& u, Eigen::Matrix3d* dt_du) const {
+    Eigen::Vector3d c[3], dc[3];
+    for (int i = 0; i < 3; ++i) {
+      const Eigen::Vector3d ball = pivot_[i] + Eigen::AngleAxisd(u[i], axis_[i]) * (arm_ball0_[i] - pivot_[i]);
+      c[i] = ball - platform_offset_[i];
+      dc[i] = axis_[i].cross(ball - pivot_[i]);
+    }
+    // Three spheres: two solutions mirrored about the centres' plane; the
+    // one on the home side.
+    const Eigen::Vector3d ex = (c[1] - c[0]).normalized();
+    const double d = (c[1] - c[0]).norm(), i = ex.dot(c[2] - c[0]);
+    const Eigen::Vector3d ey = (c[2] - c[0] - i * ex).normalized(), ez = ex.cross(ey);
+    const double j = ey.dot(c[2] - c[0]);
+    const double x = (length_[0] * length_[0] - length_[1] * length_[1] + d * d) / (2 * d);
+    const double y = (length_[0] * length_[0] - length_[2] * length_[2] + i * i + j * j) / (2 * j) - i / j * x;
+    const double z = std::sqrt(length_[0] * length_[0] - x * x - y * y);
+    const Eigen::Vector3d a = c[0] + x * ex + y * ey + z * ez, b = c[0] + x * ex + y * ey - z * ez;
+    const Eigen::Vector3d t = (a - t0_).norm() < (b - t0_).norm() ? a : b;
+    // (t - c_i) . (dt - dc_i du_i) = 0 for each arm.
+    Eigen::Matrix3d M;
+    for (int k = 0; k < 3; ++k) M.row(k) = (t - c[k]).transpose();
+    Eigen::Matrix3d rhs = Eigen::Matrix3d::Zero();
+    for (int k = 0; k < 3; ++k) rhs(k, k) = (t - c[k]).dot(dc[k]);
+    *dt_du = M.inverse() * rhs;
+    return t;
+  }
+
+ private:
+  Eigen::Vector3d axis_[3], pivot_[3], arm_ball0_[3], platform_offset_[3], t0_;
+  double length_[3];
+};
+
+TEST(RobotCorpus, DeltaInSdformat1_4IsTheDeltaItDescribes) {
+  const std::string file = kCorpus + "delta_2/delta_robot.model.sdf";
+  const RobotDescription robot =
+      ReadSdformat(file, {"proximal_link_1_joint", "proximal_link_3_joint", "proximal_link_5_joint"});
+  // Its rods and platform are weightless in Gazebo; ccma weighs them, and says so.
+  int said = 0;
+  for (const std::string& w : robot.warnings) said += w.find("<gravity>false</gravity>") != std::string::npos;
+  EXPECT_EQ(said, 1);
+  ImportOptions options;
+  options.end_effector_link = "platform_link";
+  const ImportedRobot imported = ImportRobot(robot, options);
+  const Model& model = imported.model;
+  ASSERT_EQ(model.num_controls(), 3);
+  EXPECT_EQ(imported.closures, 5);  // six rods to one platform
+  EXPECT_EQ(imported.closure_gaps.size(), 5u);
+  const Delta delta;
+  const Eigen::Vector3d F(2, -1, -5);  // N, at the platform's origin
+  for (const Eigen::Vector3d u : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0.3, 0.3, 0.3),
+                                  Eigen::Vector3d(0.2, -0.1, 0.4), Eigen::Vector3d(-0.5, 0.6, 0.1)}) {
+    Eigen::Matrix3d dt_du;
+    const Eigen::Vector3d t = delta.At(u, &dt_du);
+    ForwardProblem forward(model);
+    ASSERT_TRUE(forward.Assemble(u).assembled) << u.transpose();
+    EXPECT_LT((forward.end_effector().position - t).norm(), 1e-9) << u.transpose();
+    EXPECT_LT(forward.end_effector().rpy.norm(), 1e-9) << u.transpose();  // it translates
+    // The motors' efforts against F by virtual work, -F . dt/du: the
+    // difference of statics with and without F (the weights cancel).
+    ExternalWrench wrench;
+    wrench.force = F;
+    const StaticsReport loaded = ComputeStatics(model, forward.state(), forward.controls(), wrench);
+    const StaticsReport unloaded = ComputeStatics(model, forward.state(), forward.controls());
+    for (int k = 0; k < 3; ++k) {
+      const double hand = -F.dot(dt_du.col(k));
+      EXPECT_NEAR(loaded.actuators[k].effort - unloaded.actuators[k].effort, hand, 1e-9 * std::abs(hand) + 1e-12)
+          << "motor " << k << " at " << u.transpose();
+    }
+  }
+}
+
 // The closed form can fail: the anchored loop's crank cannot turn to -0.4
 // (the bars would need 1.093 m; they reach 1.0), and ccma says so too.
 TEST(RobotCorpus, TheClosedFormAndTheImportAgreeWhereTheLoopCannotClose) {

@@ -143,8 +143,12 @@ TEST(SdformatVersions, AModelWithoutAJointToWorldHasItsRootWelded) {
 </sdf>
 )";
   const RobotDescription robot = ReadSdformatFromString(text, "/tmp/arm.sdf", {"shoulder"});
-  ASSERT_EQ(robot.warnings.size(), 1u);
+  // Its links have no <inertial>: SDFormat's default, said first.
+  ASSERT_EQ(robot.warnings.size(), 2u);
   EXPECT_EQ(robot.warnings[0],
+            "/tmp/arm.sdf: 2 link(s) without <inertial> ('pedestal', 'link') get SDFormat's default, as Gazebo "
+            "simulates them: 1 kg, inertia diag(1, 1, 1) kg m^2 at the link's origin");
+  EXPECT_EQ(robot.warnings[1],
             "model 'arm' has no joint to world: its root link 'pedestal' is welded to world where it is posed "
             "(joint 'world__pedestal'), as a URDF's root is");
   ImportOptions options;
@@ -156,12 +160,14 @@ TEST(SdformatVersions, AModelWithoutAJointToWorldHasItsRootWelded) {
               1e-9)
         << "u = " << u;
   }
-  // With a joint to world, nothing is welded and nothing said.
+  // With a joint to world, nothing is welded and nothing said of it (only
+  // of the default inertials).
   std::string attached = text;
   attached.replace(attached.find("<parent>pedestal</parent>"), 25, "<parent>world</parent>");
   attached.replace(attached.find("<link name=\"pedestal\">"), 0, "");
   const RobotDescription plain = ReadSdformatFromString(attached, "/tmp/arm.sdf", {"shoulder"});
-  EXPECT_TRUE(plain.warnings.empty());
+  ASSERT_EQ(plain.warnings.size(), 1u);
+  EXPECT_NE(plain.warnings[0].find("without <inertial>"), std::string::npos);
   EXPECT_LT(plain.FindJoint("world__pedestal"), 0);
 }
 

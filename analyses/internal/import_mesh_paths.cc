@@ -1,5 +1,6 @@
 #include "analyses/internal/import_mesh_paths.h"
 
+#include <cctype>
 #include <filesystem>
 #include <system_error>
 
@@ -30,6 +31,31 @@ std::string MeshPathRelativeTo(const std::string& mesh, const std::string& folde
   const fs::path base = Canonical(folder.empty() ? fs::path(".") : fs::path(folder));
   const fs::path relative = resolved.lexically_relative(base);
   return relative.empty() ? resolved.generic_string() : relative.generic_string();
+}
+
+std::vector<std::string> UndrawableMeshes(const std::string& source, const Model& model) {
+  int missing = 0, other = 0;
+  std::string first_missing, first_other;
+  for (const Body& body : model.bodies) {
+    for (const BodyMesh& mesh : body.meshes) {
+      std::error_code error;
+      if (!fs::is_regular_file(fs::path(mesh.file), error) && missing++ == 0) first_missing = mesh.file;
+      std::string extension = fs::path(mesh.file).extension().string();
+      for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      if (extension != ".stl" && other++ == 0) first_other = mesh.file;
+    }
+  }
+  std::vector<std::string> out;
+  if (missing > 0) {
+    out.push_back(source + ": " + std::to_string(missing) + " mesh file(s) are not there (the first: " +
+                  Quote(first_missing) + "): written into the model, but `ccma view --meshes` cannot draw them");
+  }
+  if (other > 0) {
+    out.push_back(source + ": " + std::to_string(other) + " mesh file(s) are not STL (the first: " + Quote(first_other) +
+                  "): written into the model, but `ccma view --meshes` draws STL only (convert them, e.g. with "
+                  "meshlab or assimp, and change the model's mesh paths)");
+  }
+  return out;
 }
 
 std::string RelateMeshPaths(const std::string& folder, const std::string& source, Model* model) {

@@ -7,6 +7,7 @@
 #define CCMA_ANALYSES_INTERNAL_IMPORT_MESH_PATHS_H_
 
 #include <string>
+#include <vector>
 
 #include "ccma/model.h"
 
@@ -23,6 +24,12 @@ std::string MeshPathRelativeTo(const std::string& mesh, const std::string& folde
 // mesh when some lie outside `folder` (`ccma view --meshes` reads those only
 // with --mesh_root), else "".
 std::string RelateMeshPaths(const std::string& folder, const std::string& source, Model* model);
+
+// What `ccma view --meshes` will not draw of the model's meshes (absolute
+// paths, before RelateMeshPaths): files that are not there, and files that
+// are not STL (.dae, .obj: the viewer reads STL only). One warning each
+// kind, naming `source`, how many and the first; none when all are drawable.
+std::vector<std::string> UndrawableMeshes(const std::string& source, const Model& model);
 
 }  // namespace internal
 }  // namespace ccma
