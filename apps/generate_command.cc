@@ -1,5 +1,5 @@
-// `ccma generate --agents=N --out=FILE`: write a Stewart-like model with N
-// mobile bases (the family of 6dof_six_agents; see formats/model_generator.h).
+// `ccma generate --agents=N [--kind=K] --out=FILE`: flags in, the generated
+// model file out (documents/generate_document.h decides and builds it).
 #include <fstream>
 
 #include <gflags/gflags.h>
@@ -9,6 +9,7 @@
 #include "apps/commands.h"
 #include "apps/json_output.h"
 #include "apps/output_file.h"
+#include "documents/generate_document.h"
 
 DEFINE_int32(agents, 0, "number of mobile bases (or legs with --kind=stewart_gough), 3..1000 [agents]");
 DEFINE_string(kind, "ccma",
@@ -20,31 +21,17 @@ namespace ccma::cli {
 
 int RunGenerate(const std::vector<std::string>& args) {
   ParseCommandFlags(args, "generate");
-  if (FLAGS_agents < 3) throw UsageError("ccma generate: --agents must be an integer >= 3");
-  if (FLAGS_agents > 1000) throw UsageError("ccma generate: --agents must be at most 1000");
+  documents::GenerateSettings settings;
+  settings.kind = FLAGS_kind;
+  settings.agents = FLAGS_agents;
+  if (std::string why; !settings.IsValid(&why)) throw UsageError("ccma generate: " + why);
   const std::string out_path = RequireFlag(FLAGS_out, "out", "generate");
-  StewartOptions options;
-  options.agents = FLAGS_agents;
-  if (FLAGS_kind != "ccma" && FLAGS_kind != "stewart_gough" && FLAGS_kind != "legged") {
-    throw UsageError("ccma generate: --kind must be ccma, stewart_gough or legged");
-  }
-  if (FLAGS_kind == "stewart_gough" && FLAGS_agents < 6) {
-    throw UsageError("ccma generate: --kind=stewart_gough needs --agents >= 6");
-  }
-  LeggedOptions legged;
-  legged.agents = FLAGS_agents;
-  const std::string text = FLAGS_kind == "ccma"            ? GenerateStewartModel(options)
-                           : FLAGS_kind == "legged"        ? GenerateLeggedModel(legged)
-                                                           : GenerateStewartGoughModel(options);
-  const Model model = LoadModelFromString(text, out_path);  // validate before writing
+  documents::Generated generated = documents::GenerateModel(settings, out_path);
   OutputFile out(out_path, "out");
-  out.stream() << text;
+  out.stream() << generated.text;
   out.Commit();
-  nlohmann::json summary = {{"model", model.name},       {"agents", model.num_bases()},
-                            {"actuated_joints", model.num_actuated_joints()},
-                            {"bodies", model.num_bodies()}, {"state_size", model.state_size()},
-                            {"controls", model.num_controls()}, {"out", out_path}};
-  PrintJson(summary);
+  generated.document.json["out"] = out_path;
+  PrintJson(generated.document.json);
   return 0;
 }
 

@@ -37,11 +37,12 @@ from ._ccma import *  # noqa: F401,F403
 from ._ccma import __version__  # noqa: F401
 from ._records import Record  # noqa: F401
 from ._tables import Table  # noqa: F401
-from .results import (CheckResult, DesignResult, DesignSweepResult, ExportResult, ImportResult,  # noqa: F401
-                      PlanResult, ReplayResult, StaticsResult, TrajectoryResult, ViewResult, WorkspaceResult)
+from .results import (CheckResult, DesignResult, DesignSweepResult, ExportResult, GenerateResult,  # noqa: F401
+                      ImportResult, PlanResult, ReplayResult, StaticsResult, TrajectoryResult, ViewResult, WorkspaceResult)
 from .viewer import view  # noqa: F401
 from .workspace import workspace  # noqa: F401
 from .design import design  # noqa: F401
 from .design_sweep import design_sweep  # noqa: F401
 from .replay import replay  # noqa: F401
 from .robots import export, import_robot  # noqa: F401
+from .generate import generate  # noqa: F401

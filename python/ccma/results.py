@@ -288,6 +288,29 @@ class ExportResult(Result):
     loops = Field("loops", "loop-closing joints")
 
 
+class GenerateResult(Result):
+    """`ccma generate` (ccma.generate): the generated model's counts as attributes;
+    `new_model` is the generated ccma.Model and `text` its model file."""
+
+    out = Field("out", "the model file written; None when out= was not given")
+    model = Field("model", "the model's name")
+    agents = Field("agents", "mobile bases (0 for stewart_gough)")
+    actuated_joints = Field("actuated_joints", "actuated joints")
+    bodies = Field("bodies", "bodies")
+    state_size = Field("state_size", "6 per body and base")
+    controls = Field("controls", "controls")
+
+    @property
+    def new_model(self):
+        """The generated ccma.Model."""
+        return self._new_model
+
+    @property
+    def text(self):
+        """The model file (YAML text), as `ccma generate` writes it."""
+        return self._text
+
+
 class ViewResult(Result):
     """`ccma view` (ccma.view with out=, ccma.view_html): the page's summary."""
 

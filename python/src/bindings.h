@@ -21,6 +21,7 @@ void BindForward(pybind11::module_& m);    // ForwardOptions, ForwardProblem, re
 void BindControl(pybind11::module_& m);    // ControlOptions, ControlProblem, paths, sensitivities
 void BindAnalysis(pybind11::module_& m);   // mobility
 void BindReplay(pybind11::module_& m);     // waypoints and the simulated closed loop
+void BindGenerate(pybind11::module_& m);   // generated model files (private; ccma.generate wraps it)
 void BindView(pybind11::module_& m);       // the 3D viewer's HTML
 void BindWorkspace(pybind11::module_& m);  // workspace maps (private; ccma.workspace wraps them)
 void BindDesign(pybind11::module_& m);     // design parameters: ds/dp and the design loop

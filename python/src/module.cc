@@ -17,6 +17,7 @@ PYBIND11_MODULE(_ccma, m) {
   ccma::python::BindDesign(m);
   ccma::python::BindWorkspace(m);
   ccma::python::BindImport(m);
+  ccma::python::BindGenerate(m);
   ccma::python::BindCollision(m);
   ccma::python::BindStatics(m);
 }

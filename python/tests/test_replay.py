@@ -29,6 +29,20 @@ def test_replay_matches_cli(tmp_path):
     assert r.torn_samples == cli["torn_samples"] == 0
 
 
+def test_replay_takes_paths_as_the_command_does():
+    """ccma.replay(model_path, "walk.csv"): the paths the command takes, the same numbers."""
+    import pathlib
+    model_path = ROOT / "models" / "4dof_reduced.yaml"
+    waypoints = ROOT / "models" / "paths" / "4dof_sequential.csv"
+    by_path = ccma.replay(str(model_path), pathlib.Path(waypoints))
+    by_object = ccma.replay(ccma.load_model(str(model_path)), ccma.load_waypoints(str(waypoints)))
+    assert by_path.samples == by_object.samples
+    np.testing.assert_array_equal(by_path.table["x_m"], by_object.table["x_m"])
+    import pytest
+    with pytest.raises(ccma.WaypointError):
+        ccma.replay(str(model_path), str(ROOT / "models" / "no_such_walk.csv"))
+
+
 def test_replay_takes_an_array_and_options():
     model = ccma.load_model(str(ROOT / "models" / "4dof_reduced.yaml"))
     waypoints = np.array([[0, 0, 0, 0.6, 0, 0, 0], [2, 0, 0.02, 0.6, 0, 0, 0]])
