@@ -31,7 +31,7 @@ void ApplyGait(const Model& model, const Gait& gait, double t, const Eigen::Vect
     // Standing still (no x, y motion) a quadruped does not step.
     if (std::hypot(set_velocity[i], set_velocity[i + 1]) <= 1e-9) continue;
     (*controls)[i + 3] += gait.bob_m * std::sin(phase);
-    (*controls)[i + 4] += gait.sway_rad * std::cos(phase);
+    (*controls)[i + 4] += gait.sway_rad * std::sin(phase);
   }
 }
 

@@ -26,9 +26,12 @@ struct Gait {
 // Whether any base of `model` is legged (only then does a gait apply).
 bool HasLeggedBases(const Model& model);
 
-// Adds the gait at time t [s] to the height and roll of every legged base
-// that walks (set_velocity, the set-points' rate of change, moves its x or y):
-//   height += bob_m sin(2 pi hz t),  roll += sway_rad cos(2 pi hz t).
+// Adds the gait at time t [s] (from the replay's start) to the height and
+// roll of every legged base that walks (set_velocity, the set-points' rate of
+// change, moves its x or y); a base standing still has none:
+//   height += bob_m sin(2 pi hz t),  roll += sway_rad sin(2 pi hz t):
+// both symmetric about the set-point (up and down, left and right) and zero
+// at the start, so a walk from rest begins without a jump.
 void ApplyGait(const Model& model, const Gait& gait, double t, const Eigen::VectorXd& set_velocity,
                Eigen::VectorXd* controls);
 

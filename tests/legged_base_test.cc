@@ -1,6 +1,7 @@
 // Legged bases (docs/model_format.md, "Legged agents"): closed forms of a
 // body pose driven by six controls, the loader's messages, body limits held
 // by simulate and control, and the tool's columns.
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <random>
@@ -13,6 +14,7 @@
 #include "analyses/statics.h"
 #include "ccma/rotation.h"
 #include "cost_functions/legged_base_motor_cost.h"
+#include "execution/gait.h"
 #include "formats/model_loader.h"
 #include "problems/control_problem.h"
 #include "problems/forward_problem.h"
@@ -301,6 +303,42 @@ TEST(LeggedBase, TheGaitIsEvaluatedAtTheControllerRate) {
   EXPECT_NE(fast.err.find("a gait of 26 Hz (gait_hz) needs a controller rate (controller_hz) of at least 104 Hz"),
             std::string::npos)
       << fast.err;
+}
+
+// The gait in closed form: nothing while a base stands still; walking, the
+// height and roll move by bob sin(2 pi f t) and sway sin(2 pi f t), zero at
+// the start and as far below the set-point as above it over a period.
+TEST(LeggedBase, TheGaitIsZeroAtRestAndSymmetricWhileWalking) {
+  const Model model = LoadModel(testing::ModelPath("6dof_three_legged"));
+  Gait gait;
+  gait.hz = 2;
+  const Eigen::VectorXd home = model.home_controls();
+  Eigen::VectorXd standing = Eigen::VectorXd::Zero(home.size()), walking = standing;
+  walking[model.base_control(0)] = 0.05;  // base 0 walks along x
+  Eigen::VectorXd u = home;
+  ApplyGait(model, gait, 0.1, standing, &u);
+  EXPECT_EQ(u, home);
+  double low = 0, high = 0, left = 0, right = 0;
+  for (int k = 0; k < 40; ++k) {
+    const double t = k / 80.0;  // one period in 40 steps
+    u = home;
+    ApplyGait(model, gait, t, walking, &u);
+    const int i = model.base_control(0);
+    EXPECT_NEAR(u[i + 3] - home[i + 3], gait.bob_m * std::sin(2 * M_PI * 2 * t), 1e-15);
+    EXPECT_NEAR(u[i + 4] - home[i + 4], gait.sway_rad * std::sin(2 * M_PI * 2 * t), 1e-15);
+    EXPECT_EQ(u.segment(model.base_control(1), 6), home.segment(model.base_control(1), 6));  // base 1 stands
+    low = std::min(low, u[i + 3] - home[i + 3]);
+    high = std::max(high, u[i + 3] - home[i + 3]);
+    left = std::min(left, u[i + 4] - home[i + 4]);
+    right = std::max(right, u[i + 4] - home[i + 4]);
+  }
+  EXPECT_NEAR(high, gait.bob_m, 1e-15);
+  EXPECT_NEAR(low, -gait.bob_m, 1e-15);
+  EXPECT_NEAR(right, gait.sway_rad, 1e-15);
+  EXPECT_NEAR(left, -gait.sway_rad, 1e-15);
+  u = home;
+  ApplyGait(model, gait, 0.0, walking, &u);
+  EXPECT_EQ(u, home);  // the walk starts without a jump
 }
 
 TEST(LeggedBase, WorkspaceMapsAndPlansHoldTheBodyLimits) {
