@@ -187,13 +187,15 @@ Command ImportCommand() {
           "joint points (robot files' collision meshes are not used), so that --obstacles and clearance\n"
           "work; pairs of bodies closer than the margin at home are ignored (they touch by design).\n"
           "SDFormat 1.4 to 1.6 is read with its own version's meaning; a model with no joint to world has its\n"
-          "root link welded to world (said on stderr). The JSON's closure_gaps give how far apart each closure's\n"
-          "frames are in the source and motor_moves how far assembling moved each motor; any beyond 1e-6 is\n"
-          "named on stderr, and --strict refuses the import then (exit 2).\n"
+          "root link welded to world (said on stderr). A Gazebo world (.world or .sdf) gives its one model that\n"
+          "is not static and its gravity; its own <include>s are skipped (said). Links without <inertial> get\n"
+          "SDFormat's default, 1 kg (said). The JSON's closure_gaps give how far apart each closure's\n"
+          "frames are in the source (a source's own loop joints: 0) and motor_moves how far assembling moved\n"
+          "each motor; any beyond 1e-6 is named on stderr, and --strict refuses the import then (exit 2).\n"
           "Exit 2 naming the file, the element and the name for a malformed source, an unknown name, a\n"
           "closure that cannot be assembled, or --controlled components the motors cannot move.",
           {"from", "closures", "actuated", "end_effector", "controlled", "collision_radius", "strict", "out"}, RunImport,
-          {{"from", "the robot file: URDF (.urdf, .xml) or SDFormat (.sdf), at most 16 MiB [path]"},
+          {{"from", "the robot file: URDF (.urdf, .xml) or SDFormat (.sdf, .world), at most 16 MiB [path]"},
            {"out", "the model file to write (YAML); mesh paths are written relative to its folder [path]"}}};
 
 }
@@ -339,13 +341,17 @@ Command DesignCommand() {
 }
 
 Command ExportCommand() {
-  return {"export", "write a model as URDF (tree + closure file) or SDFormat (with its loops)",
-          "ccma export --model=FILE --format=urdf|sdf --out=FILE",
+  return {"export", "write a model as URDF (tree + closure file), SDFormat or MuJoCo MJCF (with its loops)",
+          "ccma export --model=FILE --format=urdf|sdf|mjcf --out=FILE",
           "Writes the model as URDF (a spanning tree; the joints that close loops, the motors and the\n"
           "end-effector go to a closure file beside it, OUT with the extension .closures.yaml) or as\n"
           "SDFormat 1.7 with its loops (links posed at home). `ccma import` of the output gives back the same\n"
-          "mechanism: the same end-effector pose at the same controls. Prints {out, format, closures (path or\n"
-          "null), links, joints, loops}.",
+          "mechanism: the same end-effector pose at the same controls, the same bodies (the closure file's\n"
+          "`frames` names the URDF's frame links, which import fuses into their bodies). --format=mjcf: MuJoCo's\n"
+          "XML, a body tree at the assembled home (qpos0) with the cut joints as equality constraints\n"
+          "(connect, weld), a position actuator per control (its value: its joint's qpos), gravity, an\n"
+          "end_effector site and a home keyframe (docs/import.md, \"MuJoCo\"). Prints {out, format, closures\n"
+          "(path or null), links, joints, loops} (mjcf: bodies, joints, equalities, actuators, loops).",
           {"model", "format", "out"}, RunExport,
           {{"out", "the URDF or SDFormat file to write (URDF: also its closure file OUT.closures.yaml) [path]"}}};
 }

@@ -1,4 +1,4 @@
-// `ccma export --model=FILE --format=urdf|sdf --out=FILE`: the model as URDF
+// `ccma export --model=FILE --format=urdf|sdf|mjcf --out=FILE`: the model as URDF
 // plus a closure file beside it (formats/urdf_writer.h), or as SDFormat with
 // its loops (formats/sdformat_writer.h). `ccma import` of the output gives
 // back the same mechanism.
@@ -15,7 +15,7 @@
 #include "apps/output_file.h"
 #include "documents/export_document.h"
 
-DEFINE_string(format, "", "export: the file format to write [urdf|sdf]");
+DEFINE_string(format, "", "export: the file format to write [urdf|sdf|mjcf]");
 
 namespace ccma::cli {
 
@@ -23,7 +23,9 @@ int RunExport(const std::vector<std::string>& args) {
   ParseCommandFlags(args, "export");
   const std::string model_path = RequireFlag(FLAGS_model, "model", "export");
   const std::string format = RequireFlag(FLAGS_format, "format", "export");
-  if (format != "urdf" && format != "sdf") throw UsageError("ccma export: --format must be urdf or sdf");
+  if (!documents::IsExportFormat(format)) {
+    throw UsageError(std::string("ccma export: --format must be ") + documents::kExportFormats);
+  }
   const std::string out_path = RequireFlag(FLAGS_out, "out", "export");
   const Model model = LoadModelOrThrow(model_path);
   documents::Export exported = documents::ExportModel(model, format, out_path);

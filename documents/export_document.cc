@@ -2,10 +2,13 @@
 
 #include <stdexcept>
 
+#include "formats/mjcf_writer.h"
 #include "formats/sdformat_writer.h"
 #include "formats/urdf_writer.h"
 
 namespace ccma::documents {
+
+bool IsExportFormat(const std::string& format) { return format == "urdf" || format == "sdf" || format == "mjcf"; }
 
 Export ExportModel(const Model& model, const std::string& format, const std::string& out) {
   Export e;
@@ -26,8 +29,16 @@ Export ExportModel(const Model& model, const std::string& format, const std::str
     json["links"] = sdf.links;
     json["joints"] = sdf.joints;
     json["loops"] = sdf.loops;
+  } else if (format == "mjcf") {
+    MjcfExport mjcf = WriteMjcf(model);
+    e.files.push_back({out, std::move(mjcf.mjcf), false});
+    json["bodies"] = mjcf.bodies;
+    json["joints"] = mjcf.joints;
+    json["equalities"] = mjcf.equalities;
+    json["actuators"] = mjcf.actuators;
+    json["loops"] = mjcf.loops;
   } else {
-    throw std::invalid_argument("format must be urdf or sdf");
+    throw std::invalid_argument(std::string("format must be ") + kExportFormats);
   }
   return e;
 }

@@ -31,7 +31,7 @@ RobotDescription ReadRobotFile(const std::string& path, RobotFileFormat format, 
     case RobotFileFormat::kUnknown:
       break;
   }
-  throw std::invalid_argument("the robot file must be a .urdf or .sdf file");
+  throw std::invalid_argument("the robot file must be a .urdf, .xml, .sdf or .world file");
 }
 
 }  // namespace ccma

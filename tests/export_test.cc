@@ -7,6 +7,7 @@
 // body frames and joint axes are the model's, limits round-trip exactly.
 // Imported again (`ccma import`), both give back the same mechanism.
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -555,7 +556,7 @@ TEST(ExportCommand, ALinkPlantedAtTheClosureFileIsReplaced) {
 TEST(ExportCommand, BadInputExitsTwoWithNothingOnStdout) {
   const std::string out = testing::ScratchPath("export", "bad.urdf");
   const std::vector<std::vector<std::string>> cases = {
-      {"export", "--model=" + testing::ModelPath("4dof_reduced"), "--format=mjcf", "--out=" + out},
+      {"export", "--model=" + testing::ModelPath("4dof_reduced"), "--format=step", "--out=" + out},
       {"export", "--model=" + testing::ModelPath("4dof_reduced"), "--out=" + out},
       {"export", "--model=" + testing::ModelPath("4dof_reduced"), "--format=urdf"},
       {"export", "--model=/nonexistent.yaml", "--format=sdf", "--out=" + out},
@@ -566,6 +567,32 @@ TEST(ExportCommand, BadInputExitsTwoWithNothingOnStdout) {
     EXPECT_TRUE(run.out.empty()) << run.out;
     EXPECT_FALSE(run.err.empty());
   }
+}
+
+// MJCF closes a loop with an equality, which exists for a cut spherical,
+// fixed or revolute joint only: a loop that only a prismatic joint closes
+// is refused, naming it, and nothing is written.
+TEST(ExportCommand, MjcfRefusesALoopOnlyAPrismaticJointCloses) {
+  const std::string model = testing::ScratchPath("export", "two_slides.yaml");
+  std::ofstream(model) << "name: two_slides\nbodies:\n  - {name: slider, position: [0, 0, 0.5]}\njoints:\n"
+                          "  - {name: drive, type: prismatic, actuated: true, between: [world, slider], point: [0, 0, 0.5], "
+                          "axis: [1, 0, 0]}\n"
+                          "  - {name: guide, type: prismatic, between: [world, slider], point: [0, 0.2, 0.5], axis: [1, 0, 0]}\n"
+                          "end_effector: {body: slider, point: [0, 0, 0.5], controlled: [x]}\n";
+  const std::string out = testing::ScratchPath("export", "two_slides.xml");
+  std::remove(out.c_str());
+  const testing::ToolRun run = testing::RunTool({"export", "--model=" + model, "--format=mjcf", "--out=" + out});
+  EXPECT_EQ(run.status, 2) << run.err;
+  EXPECT_TRUE(run.out.empty()) << run.out;
+  EXPECT_NE(run.err.find("joint 'guide': a loop of this model can only be cut at this prismatic joint"), std::string::npos)
+      << run.err;
+  EXPECT_FALSE(std::ifstream(out).good());
+  // The same model with the guide a revolute joint about x is written.
+  std::string text = testing::Slurp(model);
+  const std::string prismatic = "{name: guide, type: prismatic";
+  text.replace(text.find(prismatic), prismatic.size(), "{name: guide, type: revolute");
+  std::ofstream(model) << text;
+  EXPECT_EQ(testing::RunTool({"export", "--model=" + model, "--format=mjcf", "--out=" + out}).status, 0);
 }
 
 // ------------------------------------------------------------- round trip ---

@@ -72,19 +72,22 @@ std::vector<std::string> ControlledNames(const Model& model) {
 
 namespace {
 
-// Lower: kept in the tree first.
-int TreePriority(JointType type) {
-  switch (type) {
-    case JointType::kRevolute:
+// Lower: kept in the tree first. MJCF keeps actuated joints too (an
+// equality has no actuator).
+int TreePriority(const Joint& joint, TreePreference preference) {
+  if (preference == TreePreference::kMjcf && joint.actuated) return 1;
+  switch (joint.type) {
     case JointType::kPrismatic:
     case JointType::kUniversal:
       return 1;
+    case JointType::kRevolute:
+      return preference == TreePreference::kMjcf ? 2 : 1;
     case JointType::kFixed:
-      return 2;
-    case JointType::kSpherical:
       return 3;
+    case JointType::kSpherical:
+      return 4;
   }
-  return 3;
+  return 4;
 }
 
 // Union-find over nodes 0 (world) and 1 + body.
@@ -99,12 +102,12 @@ struct Edge {
   int priority;
 };
 
-std::vector<Edge> GraphEdges(const Model& model) {
+std::vector<Edge> GraphEdges(const Model& model, TreePreference preference) {
   std::vector<Edge> edges;
   for (int k = 0; k < model.num_bases(); ++k) edges.push_back({-1 - k, 0, 1 + model.mobile_bases[k].body, 0});
   for (int j = 0; j < static_cast<int>(model.joints.size()); ++j) {
     const Joint& joint = model.joints[j];
-    edges.push_back({j, 1 + joint.body_a, 1 + joint.body_b, TreePriority(joint.type)});
+    edges.push_back({j, 1 + joint.body_a, 1 + joint.body_b, TreePriority(joint, preference)});
   }
   std::stable_sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return x.priority < y.priority; });
   return edges;
@@ -144,7 +147,7 @@ void Orient(const Model& model, const std::vector<Edge>& kept, SpanningTree* tre
 
 }  // namespace
 
-SpanningTree BuildSpanningTree(const Model& model) {
+SpanningTree BuildSpanningTree(const Model& model, TreePreference preference) {
   const int n = model.num_bodies();
   SpanningTree tree;
   tree.parent_joint.assign(n, -1);
@@ -154,7 +157,7 @@ SpanningTree BuildSpanningTree(const Model& model) {
   std::vector<int> up(n + 1);
   std::iota(up.begin(), up.end(), 0);
   std::vector<Edge> kept;
-  for (const Edge& e : GraphEdges(model)) {
+  for (const Edge& e : GraphEdges(model, preference)) {
     const int ra = Root(up, e.a), rb = Root(up, e.b);
     if (ra == rb) continue;
     up[ra] = rb;

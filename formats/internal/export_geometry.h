@@ -40,7 +40,7 @@ JointWorld JointInWorld(const Model& model, const Joint& joint);
 // Rotation whose columns are x, y and x cross y (a universal joint's frame).
 Eigen::Matrix3d FrameFromAxes(const Eigen::Vector3d& x, const Eigen::Vector3d& y);
 
-// `value` with 17 significant digits (reads back to the same double).
+// `value` in the fewest digits (15 to 17) that read back to the same double.
 std::string Number(double value);
 // "x y z" (Number each).
 std::string Triple(const Eigen::Vector3d& v);
@@ -78,8 +78,13 @@ struct SpanningTree {
   std::vector<bool> in_tree;  // per model joint
   std::vector<int> order;     // bodies, each after its parent (breadth first from world)
 };
+// Which joints the tree keeps first. kUrdf: revolute, prismatic and universal
+// alike. kMjcf: actuated, prismatic and universal joints before revolute
+// (MuJoCo's equalities express a cut revolute, fixed or spherical joint, not
+// the others, and carry no actuator).
+enum class TreePreference { kUrdf, kMjcf };
 // Throws std::invalid_argument when a body is not connected to world.
-SpanningTree BuildSpanningTree(const Model& model);
+SpanningTree BuildSpanningTree(const Model& model, TreePreference preference = TreePreference::kUrdf);
 
 }  // namespace ccma::internal
 

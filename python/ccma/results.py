@@ -280,12 +280,15 @@ class ImportResult(Result):
 class ExportResult(Result):
     """`ccma export` (ccma.export): what was written."""
 
-    out = Field("out", "the URDF or SDFormat file written")
-    format = Field("format", "'urdf' or 'sdf'")
-    closures = Field("closures", "the closure file written beside the URDF; None for sdf")
-    links = Field("links", "links written")
+    out = Field("out", "the URDF, SDFormat or MJCF file written")
+    format = Field("format", "'urdf', 'sdf' or 'mjcf'")
+    closures = Field("closures", "the closure file written beside the URDF; None for sdf and mjcf")
+    links = Field("links", "links written (urdf, sdf)")
     joints = Field("joints", "joints written")
     loops = Field("loops", "loop-closing joints")
+    bodies = Field("bodies", "bodies written (mjcf)")
+    equalities = Field("equalities", "connect and weld constraints written (mjcf)")
+    actuators = Field("actuators", "position actuators written, one per control (mjcf)")
 
 
 class GenerateResult(Result):

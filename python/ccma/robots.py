@@ -70,7 +70,8 @@ def export(model, format, out):
     its loops in a closure file beside it, OUT with the extension .closures.yaml) or as
     SDFormat (with its loops). `ccma.import_robot` of the output gives back the mechanism.
 
-    model: a ccma.Model or a model file's path (as --model); format: 'urdf' or 'sdf'; out:
+    model: a ccma.Model or a model file's path (as --model); format: 'urdf', 'sdf' or 'mjcf'
+    (MuJoCo's XML, loops as equality constraints, written at the assembled home); out:
     the file to write (replaced atomically, never through a planted link). Returns a
     ccma.ExportResult: the command's JSON as attributes (to_dict()): out, format, closures
     (the closure file's path, None for sdf), links, joints, loops."""

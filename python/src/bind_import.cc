@@ -64,7 +64,9 @@ py::tuple ImportRobotFile(const std::filesystem::path& from, const std::optional
 // `ccma export` without the files: its JSON (without "out") and "files", the
 // (path, text) pairs to write, last to first (ccma/robots.py writes them).
 py::dict ExportModel(const Model& model, const std::string& format, const std::string& out) {
-  if (format != "urdf" && format != "sdf") throw py::value_error("export: format must be 'urdf' or 'sdf'");
+  if (!documents::IsExportFormat(format)) {
+    throw py::value_error(std::string("export: format must be ") + documents::kExportFormats);
+  }
   const documents::Export exported = documents::ExportModel(model, format, out);
   py::dict d = ToPython(exported.document.json);
   py::list files;
