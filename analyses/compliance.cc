@@ -9,6 +9,7 @@
 
 #include "ccma/end_effector.h"
 #include "ccma/internal/constraint_set.h"
+#include "ccma/internal/dense_factorizations.h"
 #include "ccma/internal/format.h"
 #include "problems/internal/compliant_equilibrium.h"
 
@@ -78,7 +79,7 @@ bool InvertCompliance(const Eigen::MatrixXd& C, int moved, Eigen::MatrixXd* K, s
   if (!(largest > 0) || d.minCoeff() <= kComplianceRigid * largest) return false;
   const Eigen::VectorXd scale = d.cwiseSqrt().cwiseInverse();
   const Eigen::MatrixXd correlation = scale.asDiagonal() * C * scale.asDiagonal();
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(correlation);
+  const SymmetricEigenSolver eig(correlation);
   if (eig.eigenvalues()[0] <= kComplianceSingular * eig.eigenvalues()[n - 1]) return false;
   const Eigen::MatrixXd inverse = C.ldlt().solve(Eigen::MatrixXd::Identity(n, n));
   *K = 0.5 * (inverse + inverse.transpose());

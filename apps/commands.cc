@@ -171,8 +171,8 @@ Command GenerateCommand() {
 }
 
 Command ImportCommand() {
-  return {"import", "convert a URDF (with a closure file) or SDFormat robot into a model file",
-          "ccma import --from=FILE.urdf|FILE.sdf [--closures=FILE.yaml] [--actuated=J,...]\n"
+  return {"import", "convert a URDF (with closures), SDFormat or MuJoCo MJCF robot into a model file",
+          "ccma import --from=FILE.urdf|FILE.sdf|FILE.xml [--closures=FILE.yaml] [--actuated=J,...] [--keyframe=NAME]\n"
           "            --end_effector=LINK[:px,py,pz] [--controlled=x,y,z,roll,pitch,yaw] [--collision_radius=R]\n"
           "            [--strict] --out=MODEL.yaml",
           "Converts a robot described elsewhere into a model file (docs/import.md): every link a body, every\n"
@@ -187,15 +187,16 @@ Command ImportCommand() {
           "joint points (robot files' collision meshes are not used), so that --obstacles and clearance\n"
           "work; pairs of bodies closer than the margin at home are ignored (they touch by design).\n"
           "SDFormat 1.4 to 1.6 is read with its own version's meaning; a model with no joint to world has its\n"
-          "root link welded to world (said on stderr). A Gazebo world (.world or .sdf) gives its one model that\n"
-          "is not static and its gravity; its own <include>s are skipped (said). Links without <inertial> get\n"
-          "SDFormat's default, 1 kg (said). The JSON's closure_gaps give how far apart each closure's\n"
-          "frames are in the source (a source's own loop joints: 0) and motor_moves how far assembling moved\n"
-          "each motor; any beyond 1e-6 is named on stderr, and --strict refuses the import then (exit 2).\n"
+          "root link welded (said). A Gazebo world gives its one model that is not static and its gravity;\n"
+          "its own <include>s are skipped (said). An .xml whose root is <mujoco> is MuJoCo MJCF, compiled by\n"
+          "MuJoCo after ccma's checks, read at --keyframe (default qpos0). closure_gaps give how far apart\n"
+          "each closure's frames are in the source, motor_moves how far assembling moved each motor; any\n"
+          "beyond 1e-6 is named on stderr, and --strict refuses the import then (exit 2).\n"
           "Exit 2 naming the file, the element and the name for a malformed source, an unknown name, a\n"
           "closure that cannot be assembled, or --controlled components the motors cannot move.",
-          {"from", "closures", "actuated", "end_effector", "controlled", "collision_radius", "strict", "out"}, RunImport,
-          {{"from", "the robot file: URDF (.urdf, .xml) or SDFormat (.sdf, .world), at most 16 MiB [path]"},
+          {"from", "closures", "actuated", "end_effector", "controlled", "collision_radius", "keyframe", "strict", "out"},
+          RunImport,
+          {{"from", "the robot file: URDF (.urdf, .xml), SDFormat (.sdf, .world) or MJCF (.xml), at most 16 MiB [path]"},
            {"out", "the model file to write (YAML); mesh paths are written relative to its folder [path]"}}};
 
 }
@@ -341,17 +342,12 @@ Command DesignCommand() {
 }
 
 Command ExportCommand() {
-  return {"export", "write a model as URDF (tree + closure file), SDFormat or MuJoCo MJCF (with its loops)",
+  return {"export", "write a model as URDF (+ closure file), SDFormat or MuJoCo MJCF, loops included",
           "ccma export --model=FILE --format=urdf|sdf|mjcf --out=FILE",
-          "Writes the model as URDF (a spanning tree; the joints that close loops, the motors and the\n"
-          "end-effector go to a closure file beside it, OUT with the extension .closures.yaml) or as\n"
-          "SDFormat 1.7 with its loops (links posed at home). `ccma import` of the output gives back the same\n"
-          "mechanism: the same end-effector pose at the same controls, the same bodies (the closure file's\n"
-          "`frames` names the URDF's frame links, which import fuses into their bodies). --format=mjcf: MuJoCo's\n"
-          "XML, a body tree at the assembled home (qpos0) with the cut joints as equality constraints\n"
-          "(connect, weld), a position actuator per control (its value: its joint's qpos), gravity, an\n"
-          "end_effector site and a home keyframe (docs/import.md, \"MuJoCo\"). Prints {out, format, closures\n"
-          "(path or null), links, joints, loops} (mjcf: bodies, joints, equalities, actuators, loops).",
+          "Writes the model as URDF (a spanning tree; loop joints, motors, end-effector in OUT.closures.yaml),\n"
+          "SDFormat 1.7 with its loops (links at home), or MuJoCo MJCF at the assembled home (qpos0), cut joints\n"
+          "as connect or weld equalities, a position actuator per control; `ccma import` gives each back. Prints\n"
+          "{out, format, closures, links, joints, loops} (mjcf: bodies, joints, equalities, actuators, loops).",
           {"model", "format", "out"}, RunExport,
           {{"out", "the URDF or SDFormat file to write (URDF: also its closure file OUT.closures.yaml) [path]"}}};
 }

@@ -1,4 +1,4 @@
-// `ccma import --from=FILE.urdf|FILE.sdf [--closures=FILE.yaml] [--actuated=J,...]
+// `ccma import --from=FILE.urdf|FILE.sdf|FILE.xml [--closures=FILE.yaml] [--actuated=J,...] [--keyframe=NAME]
 //  --end_effector=LINK[:px,py,pz] [--controlled=x,y,z,...] [--collision_radius=R] --out=MODEL.yaml`:
 // a robot described elsewhere -> a model file assembled at home
 // (analyses/robot_import.h, docs/import.md).
@@ -33,6 +33,7 @@ DEFINE_double(collision_radius, 0,
               "import: give every body capsules of this radius along the segments between its joint points "
               "(0: no collision geometry) [m, 0 or in [1e-4, 10]]");
 
+DEFINE_string(keyframe, "", "import: an MJCF file's keyframe to read the robot at (default: its qpos0) [name]");
 DEFINE_bool(strict, false,
             "import: refuse (status 2) an import that joins a closure's frames that are apart in the source or moves "
             "a motor from its source position by more than 1e-6 [flag]");
@@ -72,7 +73,10 @@ int RunImport(const std::vector<std::string>& args) {
   const std::string from = RequireFlag(FLAGS_from, "from", "import");
   const std::string out_path = RequireFlag(FLAGS_out, "out", "import");
   const RobotFileFormat format = RobotFileFormatOf(from);
-  if (format == RobotFileFormat::kUnknown) throw UsageError("ccma import: --from must be a .urdf or .sdf file");
+  if (format == RobotFileFormat::kUnknown) {
+    throw UsageError("ccma import: --from must be a .urdf, .xml (URDF or MuJoCo MJCF), .sdf or .world file");
+  }
+  if (FLAGS_keyframe.size() > kMaxImportNameBytes) throw UsageError("--keyframe: a name of at most 256 bytes");
   if (format == RobotFileFormat::kSdformat && !FLAGS_closures.empty()) {
     throw UsageError("ccma import: --closures is for URDF (SDFormat holds its loops)");
   }
@@ -87,7 +91,7 @@ int RunImport(const std::vector<std::string>& args) {
   OutputFile out(out_path, "out");  // checked before the work
   // Mesh paths relative to the model file: the two can be moved together.
   options.model_folder = std::filesystem::absolute(out_path).parent_path().string();
-  const RobotDescription robot = ReadRobotFile(from, format, FLAGS_closures, options.actuated);
+  const RobotDescription robot = ReadRobotFile(from, format, FLAGS_closures, options.actuated, FLAGS_keyframe);
   for (const std::string& warning : robot.warnings) std::cerr << "ccma import: warning: " << warning << "\n";
   const ImportedRobot imported = ImportRobot(robot, options);
   documents::Document document = documents::ImportDocument(imported, options);

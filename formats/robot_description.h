@@ -87,7 +87,13 @@ struct RobotClosure {
   Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();  // frame B in W, zero configuration
   bool six_d = true;             // false: 3d (origins only)
   int line = 0;                  // line in the closure file (or SDFormat file)
+  std::string name;              // the closing joint's name; "" for frame_a__frame_b
 };
+
+// The name of the joint a closure becomes (before ccma's name cleaning).
+inline std::string ClosureJointName(const RobotClosure& c) {
+  return c.name.empty() ? c.frame_a + "__" + c.frame_b : c.name;
+}
 
 // An end-effector stored in the source by `ccma export` (optional).
 struct RobotEndEffector {

@@ -32,7 +32,7 @@ PACKAGES=(clang  # the compiler of a new build/ (below: a fifth less compile tim
           libceres-dev libeigen3-dev libgoogle-glog-dev libgflags-dev
           libyaml-cpp-dev nlohmann-json3-dev
           liburdfdom-dev libsdformat-dev  # ccma import: URDF and SDFormat robot files
-          libmujoco-dev  # MuJoCo 2.2.2: judges the MJCF that ccma export writes (tests)
+          libmujoco-dev  # MuJoCo 2.2.2: ccma import of MJCF files; judges what ccma export writes
           ca-certificates)  # HTTPS: the build fetches three.js and esbuild for the viewer from the npm registry
 # What only running the tool or the tests needs: installed in the background
 # while the build runs (the build needs none of them), waited for before

@@ -222,7 +222,7 @@ TEST(MjcfExport, DrivenToOtherControlsTheEndEffectorSettlesWhereCcmaPutsIt) {
     ControlProblem control(model);
     const EndEffectorPose home = ComputeEndEffectorPose(model, State::Home(model));
     PoseTarget target;
-    target.position = home.position + Eigen::Vector3d(step(rng), step(rng), step(rng));
+    target.position = home.position + Eigen::Vector3d{step(rng), step(rng), step(rng)};
     target.rpy = home.rpy;
     ASSERT_TRUE(control.MoveTo(target).assembled);
     ForwardProblem forward(model);

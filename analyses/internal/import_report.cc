@@ -44,7 +44,7 @@ std::vector<ClosureGap> ClosureGaps(const RobotDescription& robot) {
   for (const std::string& name : LoopJoints(robot)) gaps.push_back({CcmaName(name), 0.0, 0.0});
   for (const RobotClosure& c : robot.closures) {
     ClosureGap gap;
-    gap.name = CcmaName(c.frame_a + "__" + c.frame_b);
+    gap.name = CcmaName(ClosureJointName(c));
     gap.gap_m = (c.X_WA.translation() - c.X_WB.translation()).norm();
     if (c.six_d) gap.gap_rad = Eigen::AngleAxisd(c.X_WA.linear().transpose() * c.X_WB.linear()).angle();
     gaps.push_back(gap);

@@ -155,7 +155,7 @@ Joint TreeJoint(const RobotDescription& robot, const RobotJoint& source, const M
 Joint ClosureJoint(const RobotDescription& robot, const RobotClosure& c, const Model& model,
                    const std::map<std::string, int>& bodies) {
   Joint joint;
-  joint.name = CcmaName(c.frame_a + "__" + c.frame_b);
+  joint.name = CcmaName(ClosureJointName(c));
   joint.type = c.six_d ? JointType::kFixed : JointType::kSpherical;
   joint.body_a = BodyOf(bodies, c.link_a);
   joint.body_b = BodyOf(bodies, c.link_b);

@@ -23,11 +23,13 @@ def _end_effector(text):
 
 
 def import_robot(from_, closures=None, actuated=(), end_effector="", controlled=(), collision_radius=0.0, out=None,
-                 strict=False):
-    """`ccma import`: a URDF (with its closure file, the example-parallel-robots convention) or
-    an SDFormat file as a ccma model assembled at home.
+                 strict=False, keyframe=""):
+    """`ccma import`: a URDF (with its closure file, the example-parallel-robots convention),
+    an SDFormat file or a MuJoCo MJCF file (an .xml with a <mujoco> root) as a ccma model
+    assembled at home.
 
-    from_: the .urdf or .sdf file (--from; `from` is a Python keyword); closures: the URDF's
+    from_: the .urdf, .sdf, .world or .xml file (--from; `from` is a Python keyword); keyframe:
+    an MJCF file's keyframe to read the robot at (--keyframe; default its qpos0); closures: the URDF's
     closure file (closed_loop, type, name_mot); actuated: joint names (URDF default: the
     closure file's name_mot); end_effector: 'LINK' or 'LINK:px,py,pz', the link that carries
     it and the controlled point in that link's frame [m] (default: the one `ccma export`
@@ -57,7 +59,7 @@ def import_robot(from_, closures=None, actuated=(), end_effector="", controlled=
     folder = None if out is None else _os.path.dirname(_os.path.abspath(out))
     link, point = _end_effector(str(end_effector))
     model, text, document = _ccma._import_robot(from_, closures, list(actuated), link, point, list(controlled),
-                                                folder, float(collision_radius), bool(strict))
+                                                folder, float(collision_radius), bool(strict), str(keyframe))
     if out is not None:
         _write_replacing(out, text.encode("utf-8"))
         model = _ccma.load_model(out)

@@ -31,7 +31,7 @@ py::tuple ImportRobotFile(const std::filesystem::path& from, const std::optional
                           const std::vector<std::string>& actuated, const std::string& end_effector,
                           const Eigen::Vector3d& point, const std::vector<std::string>& controlled,
                           const std::optional<std::filesystem::path>& model_folder, double collision_radius,
-                          bool strict) {
+                          bool strict, const std::string& keyframe) {
   const std::string path = from.string();
   ImportOptions options;
   options.actuated = actuated;
@@ -49,7 +49,7 @@ py::tuple ImportRobotFile(const std::filesystem::path& from, const std::optional
   std::vector<std::string> warnings;
   {
     py::gil_scoped_release release;
-    const RobotDescription robot = ReadRobotFile(path, format, closures ? closures->string() : "", actuated);
+    const RobotDescription robot = ReadRobotFile(path, format, closures ? closures->string() : "", actuated, keyframe);
     warnings = robot.warnings;
     imported = ImportRobot(robot, options);
   }
@@ -90,6 +90,7 @@ void BindImport(py::module_& m) {
         py::arg("actuated") = std::vector<std::string>{}, py::arg("end_effector") = "",
         py::arg("point") = Eigen::Vector3d::Zero(), py::arg("controlled") = std::vector<std::string>{},
         py::arg("model_folder") = py::none(), py::arg("collision_radius") = 0.0, py::arg("strict") = false,
+        py::arg("keyframe") = "",
         "Private: ccma.import_robot. Converts a URDF (with its closure file, the example-parallel-robots convention) or an "
         "SDFormat file into a Model assembled at home, as `ccma import` (docs/import.md): "
         "actuated: joint names (URDF default: the closure file's name_mot); end_effector: the "

@@ -346,11 +346,11 @@ def test_control_of_an_imported_idle_spin_robot_equals_cli(tmp_path):
         "half_hachil_rode", "half_hachil_rode_2", "half_planta_rode", "half_planta_rode_2"]
 
 
-@pytest.mark.parametrize("fmt", ["urdf", "sdf"])
+@pytest.mark.parametrize("fmt", ["urdf", "sdf", "mjcf"])
 def test_export_equals_cli(tmp_path, fmt):
     (tmp_path / "cli").mkdir()
     (tmp_path / "py").mkdir()
-    name = "robot." + fmt
+    name = "robot." + ("xml" if fmt == "mjcf" else fmt)
     cli = run_tool("export", "--model=" + MODEL_4DOF, "--format=" + fmt, "--out=" + str(tmp_path / "cli" / name))
     result = ccma.export(MODEL_4DOF, fmt, tmp_path / "py" / name)
     assert_agrees(result, cli, ignore={"closures"})
@@ -362,6 +362,11 @@ def test_export_equals_cli(tmp_path, fmt):
             (tmp_path / "cli" / "robot.closures.yaml").read_text()
     else:
         assert result.closures is None and cli["closures"] is None
+    if fmt == "mjcf":
+        assert result.equalities == cli["equalities"] and result.actuators == cli["actuators"] == 9
+        # MuJoCo's XML comes back through import_robot, at its keyframe `home`.
+        back = ccma.import_robot(tmp_path / "py" / name, keyframe="home")
+        assert back.new_model.num_controls == 9 and back.assembled
 
 
 def test_view_equals_cli(tmp_path):
