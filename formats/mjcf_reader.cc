@@ -23,6 +23,10 @@
 namespace ccma {
 namespace {
 
+// mjData's stack and user data at most this much (a delta robot's needs
+// about 1 MB).
+constexpr double kMaxMjcfDataMegabytes = 256;
+
 [[noreturn]] void Fail(const std::string& source, int line, const std::string& what) {
   throw ModelError(source + ":" + std::to_string(line) + ": " + what);
 }
@@ -332,6 +336,13 @@ RobotDescription ReadMjcfFromString(const std::string& text, const std::string& 
                      " closures");
   }
   if (m->ntendon > 0) throw ModelError(path + ": tendons are not supported: ccma has none");
+  // mjData's memory, which the file sets (<size nstack, nuserdata>): MuJoCo
+  // ends the process when it cannot allocate it, so it is bounded first.
+  const double megabytes = (static_cast<double>(m->nstack) + m->nuserdata) * sizeof(mjtNum) / (1 << 20);
+  if (m->nstack < 0 || m->nuserdata < 0 || megabytes > kMaxMjcfDataMegabytes) {
+    throw ModelError(path + ": <size>: MuJoCo's data would take " + FormatG(megabytes, 3) + " MB, more than the " +
+                     FormatG(kMaxMjcfDataMegabytes) + " MB ccma allows");
+  }
   const std::unique_ptr<mjData, DataDeleter> d(mj_makeData(m.get()));
   if (!options.keyframe.empty()) {
     const int key = mj_name2id(m.get(), mjOBJ_KEY, options.keyframe.c_str());

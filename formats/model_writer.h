@@ -1,6 +1,7 @@
 // Model -> model file text (YAML, shared/model_format.md): what `ccma import`
-// writes. Everything is written in world coordinates at home, numbers with
-// 17 significant digits, so LoadModelFromString(WriteModelYaml(m)) gives back
+// writes. Everything is written in world coordinates at home, numbers in the
+// fewest digits (15 to 17) that read back exactly (FormatExact: 0.6, not
+// 0.59999999999999998), so LoadModelFromString(WriteModelYaml(m)) gives back
 // m's geometry to rounding. Every revolute and prismatic joint carries
 // `q_home` (0 included). Omni bases are written with their default wheels
 // (the wheel list is not written). Collision geometry is written when the

@@ -26,7 +26,7 @@
 //    (the controls after the bases', whose joints come first in the
 //    file, in base order), and <ccma:end_effector link=".." point="x y z"
 //    controlled=".."/> the end-effector (point in the link frame, m).
-// Numbers have 17 significant digits, so they read back to the same doubles.
+// Numbers are written in the fewest digits (15 to 17) that read back to the same doubles.
 #ifndef CCMA_FORMATS_SDFORMAT_WRITER_H_
 #define CCMA_FORMATS_SDFORMAT_WRITER_H_
 

@@ -39,7 +39,7 @@
 //    import` fuses each into the body it is welded to, so the import has the
 //    model's bodies, no more (formats/internal/frame_links.h).
 // Added names get a suffix "_2", ... when the model already uses them.
-// Numbers have 17 significant digits, so they read back to the same doubles.
+// Numbers are written in the fewest digits (15 to 17) that read back to the same doubles.
 #ifndef CCMA_FORMATS_URDF_WRITER_H_
 #define CCMA_FORMATS_URDF_WRITER_H_
 

@@ -163,6 +163,14 @@ TEST(MjcfImport, WhatCcmaCannotRepresentIsRefusedNamingTheElement) {
       EXPECT_NE(std::string(e.what()).find(c.message), std::string::npos) << e.what();
     }
   }
+  // Memory the file asks of MuJoCo's data beyond ccma's bound: refused before
+  // MuJoCo would allocate it (and end the process when it cannot).
+  try {
+    ReadMjcfFromString("<mujoco model=\"m\"><size nstack=\"2000000000\"/><worldbody/></mujoco>", "big.xml", {});
+    ADD_FAILURE() << "a 15 GB stack was accepted";
+  } catch (const ModelError& e) {
+    EXPECT_NE(std::string(e.what()).find("big.xml: <size>: MuJoCo's data would take"), std::string::npos) << e.what();
+  }
   // Nesting deeper than robot_xml.h allows: refused before any parser.
   std::string deep = "<mujoco model=\"m\"><worldbody>";
   for (int i = 0; i < 200; ++i) deep += "<body>";

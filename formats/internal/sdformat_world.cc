@@ -27,39 +27,44 @@ void WarnOfComputedInertials(const TiXmlElement& e, const std::string& source, s
   }
 }
 
-// SDFormat gives a link without <inertial> 1 kg and a unit inertia, as
-// Gazebo simulates it; the import takes that too, and names those links.
-void AddDefaultInertialsWarning(const sdf::Model& model, const std::string& source, RobotDescription* robot) {
+namespace {
+
+// "N link(s) WHAT ('a', 'b', ... and k more) THEN" for the links of `model`
+// whose element `picked` says yes; "" for none.
+std::string LinksSentence(const sdf::Model& model, bool (*picked)(const sdf::ElementPtr&), const std::string& what,
+                          const std::string& then) {
   std::string names;
   int count = 0;
   for (uint64_t i = 0; i < model.LinkCount(); ++i) {
     const sdf::Link& link = *model.LinkByIndex(i);
-    const sdf::ElementPtr element = link.Element();
-    if (element != nullptr && element->HasElement("inertial")) continue;
+    if (!picked(link.Element())) continue;
     if (++count <= 5) names += (names.empty() ? "" : ", ") + Quote(link.Name());
   }
-  if (count == 0) return;
+  if (count == 0) return "";
   if (count > 5) names += " and " + std::to_string(count - 5) + " more";
-  robot->warnings.push_back(source + ": " + std::to_string(count) + " link(s) without <inertial> (" + names +
-                            ") get SDFormat's default, as Gazebo simulates them: 1 kg, inertia diag(1, 1, 1) kg m^2 "
-                            "at the link's origin");
+  return std::to_string(count) + " link(s) " + what + " (" + names + ")" + then;
+}
+
+}  // namespace
+
+// SDFormat gives a link without <inertial> 1 kg and a unit inertia, as
+// Gazebo simulates it; the import takes that too, and names those links.
+void AddDefaultInertialsWarning(const sdf::Model& model, const std::string& source, RobotDescription* robot) {
+  const std::string sentence = LinksSentence(
+      model, [](const sdf::ElementPtr& e) { return e == nullptr || !e->HasElement("inertial"); }, "without <inertial>",
+      " get SDFormat's default, as Gazebo simulates them: 1 kg, inertia diag(1, 1, 1) kg m^2 at the link's origin");
+  if (!sentence.empty()) robot->warnings.push_back(source + ": " + sentence);
 }
 
 // A link's <gravity>false</gravity> (gravity does not act on it in Gazebo):
 // ccma weighs every mass, and says which links the file exempts.
 void AddWeightlessLinksWarning(const sdf::Model& model, const std::string& source, RobotDescription* robot) {
-  std::string names;
-  int count = 0;
-  for (uint64_t i = 0; i < model.LinkCount(); ++i) {
-    const sdf::ElementPtr element = model.LinkByIndex(i)->Element();
-    if (element == nullptr || !element->HasElement("gravity") || element->Get<bool>("gravity")) continue;
-    if (++count <= 5) names += (names.empty() ? "" : ", ") + Quote(model.LinkByIndex(i)->Name());
-  }
-  if (count == 0) return;
-  if (count > 5) names += " and " + std::to_string(count - 5) + " more";
-  robot->warnings.push_back(source + ": " + std::to_string(count) + " link(s) with <gravity>false</gravity> (" + names +
-                            "): ccma applies gravity to every mass, so statics weighs them too (remove their mass "
-                            "from the model file to leave them weightless)");
+  const std::string sentence = LinksSentence(
+      model, [](const sdf::ElementPtr& e) { return e != nullptr && e->HasElement("gravity") && !e->Get<bool>("gravity"); },
+      "with <gravity>false</gravity>",
+      ": ccma applies gravity to every mass, so statics weighs them too (remove their mass from the model file to "
+      "leave them weightless)");
+  if (!sentence.empty()) robot->warnings.push_back(source + ": " + sentence);
 }
 
 // A world's gravity (its <gravity>, 1.4's <physics><gravity> converted to
