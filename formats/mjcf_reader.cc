@@ -242,6 +242,10 @@ class MjcfConverter {
     if (type == mjJNT_HINGE || type == mjJNT_SLIDE) {
       joint.axis_W = Vec(d_->xaxis + 3 * j).normalized();
       joint.position = d_->qpos[m_->jnt_qposadr[j]];
+      if (!std::isfinite(joint.position) || std::abs(joint.position) > kMaxMagnitude) {
+        throw ModelError(source_ + ": joint '" + name + "': its position " + FormatG(joint.position) +
+                         " (qpos, from its ref or the keyframe) is not a finite number in [-1e4, 1e4] (m or rad)");
+      }
       joint.limited = m_->jnt_limited[j] != 0;
       joint.lower = m_->jnt_range[2 * j];
       joint.upper = m_->jnt_range[2 * j + 1];

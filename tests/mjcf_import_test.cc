@@ -163,6 +163,16 @@ TEST(MjcfImport, WhatCcmaCannotRepresentIsRefusedNamingTheElement) {
       EXPECT_NE(std::string(e.what()).find(c.message), std::string::npos) << e.what();
     }
   }
+  // A joint whose ref puts it beyond ccma's range (found by fuzzing):
+  // refused naming it, not left to the solver's checks.
+  try {
+    ReadMjcfFromString("<mujoco model=\"m\"><worldbody><body name=\"a\"><joint name=\"far\" type=\"slide\" "
+                       "ref=\"35010.8\"/><inertial pos=\"0 0 0\" mass=\"1\" diaginertia=\"1 1 1\"/></body>"
+                       "</worldbody></mujoco>", "far.xml", {});
+    ADD_FAILURE() << "a position of 35010 m was accepted";
+  } catch (const ModelError& e) {
+    EXPECT_NE(std::string(e.what()).find("far.xml: joint 'far': its position 35010.8"), std::string::npos) << e.what();
+  }
   // Memory the file asks of MuJoCo's data beyond ccma's bound: refused before
   // MuJoCo would allocate it (and end the process when it cannot).
   try {
