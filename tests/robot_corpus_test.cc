@@ -21,6 +21,7 @@
 
 #include "analyses/robot_import.h"
 #include "analyses/statics.h"
+#include "formats/model_loader.h"
 #include "formats/sdformat_reader.h"
 #include "problems/forward_problem.h"
 
@@ -387,6 +388,39 @@ TEST(RobotCorpus, DeltaInSdformat1_4IsTheDeltaItDescribes) {
           << "motor " << k << " at " << u.transpose();
     }
   }
+}
+
+// The delta's 1.4 file and its hand conversion to 1.7 (each axis
+// expressed_in the model frame, 1.4's meaning) import body by body as the
+// same robot; the 1.4 file with only its version changed is another robot
+// (its axes then in the joint frames: the motors move x, y, roll, not z).
+TEST(RobotCorpus, TheDeltaIn1_4EqualsItsHandConversionTo1_7BodyByBody) {
+  const std::vector<std::string> motors = {"proximal_link_1_joint", "proximal_link_3_joint", "proximal_link_5_joint"};
+  ImportOptions options;
+  options.end_effector_link = "platform_link";
+  const std::string folder = kCorpus + "delta_2/";
+  const ImportedRobot v14 = ImportRobot(ReadSdformat(folder + "delta_robot.model.sdf", motors), options);
+  const ImportedRobot v17 = ImportRobot(ReadSdformat(folder + "delta_robot_1_7_hand_converted.sdf", motors), options);
+  ASSERT_EQ(v14.model.num_bodies(), v17.model.num_bodies());
+  ASSERT_EQ(v14.model.joints.size(), v17.model.joints.size());
+  for (int b = 0; b < v14.model.num_bodies(); ++b) {
+    const Body& a = v14.model.bodies[b];
+    const Body& c = v17.model.bodies[v17.model.FindBody(a.name)];
+    EXPECT_LT((a.p_WB_home - c.p_WB_home).norm(), 1e-12) << a.name;
+    EXPECT_LT((a.R_WB_home - c.R_WB_home).norm(), 1e-12) << a.name;
+    EXPECT_NEAR(a.inertia.mass, c.inertia.mass, 1e-15) << a.name;
+  }
+  EXPECT_EQ(v14.controlled, v17.controlled);
+  for (const Eigen::Vector3d u : {Eigen::Vector3d(0.3, -0.2, 0.1), Eigen::Vector3d(-0.4, 0.2, 0.5)}) {
+    ForwardProblem a(v14.model), c(v17.model);
+    ASSERT_TRUE(a.Assemble(u).assembled && c.Assemble(u).assembled);
+    EXPECT_LT((a.end_effector().position - c.end_effector().position).norm(), 1e-12);
+  }
+  std::string text, error;
+  ASSERT_TRUE(internal::ReadRegularFile(folder + "delta_robot.model.sdf", 1 << 20, "file", &text, &error)) << error;
+  text.replace(text.find("version=\"1.4\""), 13, "version=\"1.7\"");
+  const ImportedRobot bumped = ImportRobot(ReadSdformatFromString(text, "bumped.sdf", motors), options);
+  EXPECT_NE(bumped.controlled, v14.controlled);  // x, y, roll instead of x, y, z
 }
 
 // The closed form can fail: the anchored loop's crank cannot turn to -0.4
