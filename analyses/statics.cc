@@ -193,9 +193,12 @@ EffortEvaluator::EffortEvaluator(const Model& model) : model_(model), set_(std::
 EffortEvaluator::~EffortEvaluator() = default;
 
 StaticsReport EffortEvaluator::At(const State& s, const Eigen::VectorXd& u, const ExternalWrench& wrench) const {
+  return AtLoads(s, u, GeneralizedLoads(model_, s, wrench));
+}
+
+StaticsReport EffortEvaluator::AtLoads(const State& s, const Eigen::VectorXd& u, const Eigen::VectorXd& Q) const {
   const Model& model = model_;
   const ConstraintSet& set = *set_;
-  const Eigen::VectorXd Q = GeneralizedLoads(model, s, wrench);
   StaticsReport out;
   out.compliant = model.compliant();
   Eigen::VectorXd effort;

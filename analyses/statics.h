@@ -96,6 +96,11 @@ class EffortEvaluator {
   explicit EffortEvaluator(const Model& model);  // keeps a reference to `model`
   ~EffortEvaluator();
   StaticsReport At(const State& s, const Eigen::VectorXd& u, const ExternalWrench& wrench = {}) const;
+  // The same under any generalized loads Q (s.tangent_size(), loads.h's
+  // layout): At is AtLoads(s, u, GeneralizedLoads(model, s, wrench)), and
+  // inverse dynamics adds the inertial loads (analyses/dynamics.h), so that
+  // at rest the two give the same numbers by the same operations.
+  StaticsReport AtLoads(const State& s, const Eigen::VectorXd& u, const Eigen::VectorXd& Q) const;
 
  private:
   const Model& model_;

@@ -52,6 +52,7 @@ int RunControl(const std::vector<std::string>& args);
 int RunTrajectory(const std::vector<std::string>& args);
 int RunPlan(const std::vector<std::string>& args);
 int RunStatics(const std::vector<std::string>& args);
+int RunDynamics(const std::vector<std::string>& args);
 int RunGenerate(const std::vector<std::string>& args);
 int RunImport(const std::vector<std::string>& args);
 int RunBench(const std::vector<std::string>& args);

@@ -1,5 +1,6 @@
 #include "ccma/loads.h"
 
+#include "ccma/internal/masses.h"
 #include "ccma/rotation.h"
 
 namespace ccma {
@@ -8,13 +9,10 @@ namespace {
 // Every point force on a body: fn(body, lever r = p - p_WB [m], F [N]).
 template <typename Fn>
 void ForEachPointForce(const Model& model, const State& s, const ExternalWrench& wrench, const Fn& fn) {
-  for (int b = 0; b < model.num_bodies(); ++b) {
-    const MassProperties& m = model.bodies[static_cast<size_t>(b)].inertia;
-    if (m.mass > 0) fn(b, Eigen::Vector3d(s.R_WB(b) * m.com_B), Eigen::Vector3d(m.mass * model.gravity));
-  }
+  internal::ForEachMass(model, [&](int b, const MassProperties& m) {
+    fn(b, Eigen::Vector3d(s.R_WB(b) * m.com_B), Eigen::Vector3d(m.mass * model.gravity));
+  });
   const int ee = model.end_effector.body;
-  const MassProperties& payload = model.end_effector.payload;
-  if (payload.mass > 0) fn(ee, Eigen::Vector3d(s.R_WB(ee) * payload.com_B), Eigen::Vector3d(payload.mass * model.gravity));
   fn(ee, Eigen::Vector3d(s.R_WB(ee) * model.end_effector.p_B), wrench.force);
 }
 

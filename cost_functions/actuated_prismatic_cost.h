@@ -3,6 +3,7 @@
 //   r = a . d - (u - q_home),   a = R_A a_A (unit, fixed in A),  d = p_B(r_B) - p_A(r_A)
 // q_home [m]: the coordinate's value at home (model.h).
 // 1 row. Parameters: pose of A, pose of B (7 each, state.h), control u (1, m).
+// Linear in u: no control curvature (FramedCost::AddControlCurvature's default).
 #ifndef CCMA_COST_FUNCTIONS_ACTUATED_PRISMATIC_COST_H_
 #define CCMA_COST_FUNCTIONS_ACTUATED_PRISMATIC_COST_H_
 

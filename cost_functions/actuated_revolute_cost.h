@@ -63,6 +63,13 @@ class ActuatedRevoluteCost final : public SizedCost<2, kPoseAmbientSize, kPoseAm
     }
   }
 
+  // r = (...) - (cos v, sin v) with v = u - q_home: (cos v, sin v) dv^2.
+  void AddControlCurvature(double const* const* parameters, const double* du, double* out) const override {
+    const double v = parameters[2][0] - q_home_, dv2 = du[0] * du[0];
+    out[0] += std::cos(v) * dv2;
+    out[1] += std::sin(v) * dv2;
+  }
+
  private:
   const Eigen::Vector3d e_A_[2];
   const Eigen::Vector3d w_B_;

@@ -162,6 +162,14 @@ class FramedCost {
   // The same from the parameters alone (frames computed here; tests).
   virtual void AddWeightedHessian(double const* const* parameters, const double* weights,
                                   TangentHessian H) const = 0;
+  // Adds to out[k] (one per residual) d^2 r_k / dt^2 along the controls
+  // u(t) = u + t du at t = 0, the poses held: the controls' own curvature,
+  // which inverse dynamics needs beside the poses' (analyses/dynamics.h).
+  // `parameters` as for Evaluate (the control block after the poses), `du`
+  // the change of that control block. Zero for the costs that do not read
+  // controls or read them linearly (the prismatic motor): the default.
+  virtual void AddControlCurvature(double const* const* /*parameters*/, const double* /*du*/,
+                                   double* /*out*/) const {}
 };
 
 namespace internal {

@@ -65,6 +65,25 @@ class LeggedBaseMotorCost final : public SizedCost<9, kPoseAmbientSize, kLeggedC
                            RotationHessian(Eigen::Map<const Eigen::Vector3d>(weights + 6), body.R_WB.col(1));
   }
 
+  // Rows 3-8 are (...) - R_t(u) e for e = e_x, e_y; position rows are
+  // linear. Along u(t), R_t' = [w]x R_t with the angular velocity w = h' e_z
+  // + p' a_pitch + r' a_roll (ControlJacobian's axes), so (R_t e)'' = w' x v +
+  // w x (w x v), v = R_t e, where the axes turn: a_pitch' = h' e_z x a_pitch,
+  // a_roll' = (h' e_z + p' a_pitch) x a_roll.
+  void AddControlCurvature(double const* const* parameters, const double* du, double* out) const override {
+    const double* u = parameters[1];
+    const Eigen::Matrix3d R_t = LeggedBodyRotation(u);
+    const double ch = std::cos(u[2]), sh = std::sin(u[2]), cp = std::cos(u[5]), sp = std::sin(u[5]);
+    const Eigen::Vector3d e_z = Eigen::Vector3d::UnitZ(), a_pitch(-sh, ch, 0.0), a_roll(ch * cp, sh * cp, -sp);
+    const double dh = du[2], dr = du[4], dp = du[5];
+    const Eigen::Vector3d w = dh * e_z + dp * a_pitch + dr * a_roll;
+    const Eigen::Vector3d w_dot = dp * (dh * e_z).cross(a_pitch) + dr * (dh * e_z + dp * a_pitch).cross(a_roll);
+    for (int c = 0; c < 2; ++c) {
+      const Eigen::Vector3d v = R_t.col(c);
+      Eigen::Map<Eigen::Vector3d>(out + 3 + 3 * c) -= w_dot.cross(v) + w.cross(w.cross(v));
+    }
+  }
+
  private:
   // dr/du: -1 on x, y, height; a rotation's column v = R_t e turns about the
   // axis of each angle: d(R_t e)/d(angle) = axis x (R_t e), with the axes

@@ -59,6 +59,13 @@ class OmniBaseMotorCost final : public SizedCost<5, kPoseAmbientSize, kWheeledCo
     const BodyFrame& base = *frames[0];
     H.block<3, 3>(0, 0) += RotationHessian(Eigen::Map<const Eigen::Vector3d>(weights + 2), base.R_WB.col(0));
   }
+
+  // Rows 2-3 are (...) - (cos u_theta, sin u_theta); x and y enter linearly.
+  void AddControlCurvature(double const* const* parameters, const double* du, double* out) const override {
+    const double theta = parameters[1][2], dtheta2 = du[2] * du[2];
+    out[2] += std::cos(theta) * dtheta2;
+    out[3] += std::sin(theta) * dtheta2;
+  }
 };
 
 

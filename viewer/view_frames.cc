@@ -148,6 +148,10 @@ std::vector<ViewFrame> FramesFromTrajectoryReader(const Model& model, CsvReader&
 
 }  // namespace
 
+std::vector<std::string> TrajectoryControlColumns(const Model& model) {
+  return Names(ControlColumnNames(model, "u", true), {});
+}
+
 int MaxViewFrames(const Model& model) {
   const long by_poses = kMaxViewPoses / std::max(1, model.num_bodies());
   return static_cast<int>(std::max(2L, std::min<long>(kMaxViewFrames, by_poses)));

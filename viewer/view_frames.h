@@ -44,6 +44,11 @@ struct ViewFrame {
 // At most kMaxViewFrames frames, and at most kMaxViewPoses poses in all.
 int MaxViewFrames(const Model& model);
 
+// The control columns of a trajectory CSV for this model, in control order
+// (u<k>_x_m, u<k>_y_m, u<k>_theta_rad ..., then u_<joint>_rad|_m): the
+// names `ccma trajectory` writes and `ccma dynamics` reads.
+std::vector<std::string> TrajectoryControlColumns(const Model& model);
+
 // Rows of a `ccma trajectory` CSV: controls from u<k>_x_m, u<k>_y_m,
 // u<k>_theta_rad and u_<joint>_rad|_m; commanded = target_x_m.., tracked =
 // x_m..; flagged where reached is 0. Throws ViewInputError (naming file,

@@ -121,6 +121,15 @@ class ConstraintSet {
   // curvature in a Lagrangian's Hessian (problems/loaded_equilibrium.h).
   void AddWeightedHessian(const State& s, const Eigen::VectorXd& u, const Eigen::VectorXd& w, Eigen::MatrixXd* H) const;
 
+  // h = d^2/dt^2 C(s (+) t ds, u + t du) at t = 0 (num_rows()): the
+  // constraints' curvature along a motion (ds over the state tangent, du over
+  // the controls), exact from the cost functions' second-order terms (no
+  // term couples s and u at second order). Along an assembled motion
+  // J_s s'' + J_u u'' + h(s', u') = 0 (analyses/dynamics.h). `frames` is a
+  // workspace (BodyFrames). In constraint_curvature.cc.
+  void CurvatureAlong(const State& s, const Eigen::VectorXd& u, const Eigen::VectorXd& ds, const Eigen::VectorXd& du,
+                      Eigen::VectorXd* h, BodyFrames* frames) const;
+
   // Where block b's derivatives land in the value arrays of the patterns
   // (indices into valuePtr()), computed once in the constructor. Public only
   // for the accumulation helper in constraint_set.cc.
