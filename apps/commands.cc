@@ -160,25 +160,6 @@ Command StaticsCommand() {
           {"model", "controls", "wrench", "mocap_noise_m", "mocap_noise_rad", "obstacles"}, RunStatics, kPoseNoiseHelp};
 }
 
-Command DynamicsCommand() {
-  return {"dynamics", "inverse dynamics along a trajectory CSV: every control's effort while it moves",
-          "ccma dynamics --model=FILE --trajectory=FILE.csv [--out=FILE.csv] [--wrench=fx,fy,fz,mx,my,mz]",
-          "The efforts a motion takes: the trajectory's controls (time_s and its control columns, as ccma\n"
-          "trajectory and ccma plan write them) as a natural cubic spline in time; at every row the mechanism\n"
-          "is assembled, its bodies' velocities and accelerations follow from the controls' through the exact\n"
-          "first- and second-order sensitivities, and the effort of every control is statics' plus the inertia\n"
-          "of every mass (mass, com, inertia; the payload): Newton-Euler with the constraint multipliers, the\n"
-          "same code as ccma statics, so at rest the two agree exactly. Prints rows, duration_s, assembled,\n"
-          "actuators [{name, kind, peak_effort, peak_time_s, rms_effort, limit, within_limits}],\n"
-          "within_limits, limiting, energy_J (the trapezoid of power_W over the rows), max_power_W. --out:\n"
-          "one row per input row: time_s, an effort column per control (u0_x_N, u0_theta_Nm, u_<joint>_Nm),\n"
-          "kinetic_J, potential_J, power_W. A CSV of another model (its x_m, y_m, z_m not where this model's\n"
-          "end-effector assembles), times that do not increase or a bad cell: exit 2 naming file, line, column.",
-          {"model", "trajectory", "out", "wrench"}, RunDynamics,
-          {{"trajectory", "the trajectory CSV to run (ccma trajectory's or ccma plan's --out) [file]"},
-           {"out", "the CSV to write, one row per trajectory row: efforts, energies, power [path]"}}};
-}
-
 Command GenerateCommand() {
   return {"generate", "write a generated model (N-base CCMA, Stewart-Gough platform or N quadrupeds)",
           "ccma generate --agents=N [--kind=ccma|stewart_gough|legged] --out=FILE.yaml",

@@ -53,6 +53,8 @@ int RunTrajectory(const std::vector<std::string>& args);
 int RunPlan(const std::vector<std::string>& args);
 int RunStatics(const std::vector<std::string>& args);
 int RunDynamics(const std::vector<std::string>& args);
+// `ccma dynamics`' entry in Commands() (apps/dynamics_command.cc: with its code).
+Command DynamicsCommand();
 int RunGenerate(const std::vector<std::string>& args);
 int RunImport(const std::vector<std::string>& args);
 int RunBench(const std::vector<std::string>& args);

@@ -166,6 +166,7 @@ def runs(tmp, f):
         ("control", [model("4dof_reduced"), "--target=0.1,0,0.6,0", "--obstacles=" + f["pillar"]]),
         ("control", ["--model=" + example("statics/4dof_payload.yaml"), "--target=0,0,0.65,0"]),
         ("trajectory", [model("4dof_reduced"), seq, o("seq.csv")]),
+        ("dynamics", [model("4dof_reduced"), f"--trajectory={tmp}/seq.csv", o("seq_dynamics.csv")]),
         ("trajectory", [model("4dof_reduced"), "--waypoints=" + f["far"], o("far_out.csv"), "--secondary=travel"]),
         ("trajectory", [model("4dof_reduced"), seq, o("pillar.csv"), "--obstacles=" + f["pillar"]]),
         ("plan", ["--model=" + example("obstacles/pillar_detour.yaml"),
