@@ -116,16 +116,12 @@ def _run_chunks(chunks, evaluate, client, text, window, store, progress, columns
             finished(i, _as_arrays(evaluate(text, chunks[i])))
         return parts
     from ._dask_tasks import DaskTasks
-    # hash=False, as in ccma.workspace: a fresh key per call. A key hashed
-    # from the text would be shared with an earlier call on this client, and
-    # releasing that call's future would cancel this call's tasks.
-    text_future = client.scatter(text, broadcast=True, hash=False)
-    tasks, pending, queue = DaskTasks(client), {}, list(reversed(todo))
+    tasks, pending, queue = DaskTasks(client, text), {}, list(reversed(todo))
 
     def submit():
         while queue and len(pending) < window:
             i = queue.pop()
-            pending[tasks.submit(evaluate, text_future, chunks[i])] = i
+            pending[tasks.submit(evaluate, chunks[i])] = i
 
     submit()
     while pending:

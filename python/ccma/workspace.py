@@ -149,15 +149,11 @@ class _DaskRunner:
 
     def __init__(self, client, text, args, control):
         from ._dask_tasks import DaskTasks
-        # hash=False: a fresh key per call (a hashed key shared with an earlier
-        # call would be released, and its tasks cancelled, when that call's
-        # future is dropped).
-        self._text = client.scatter(text, broadcast=True, hash=False)
         self._call = (args, dict(control))
-        self._tasks = DaskTasks(client)
+        self._tasks = DaskTasks(client, text)
 
     def submit(self, group, inputs, priority):
-        return self._tasks.submit(_evaluate_tiles, self._text, *self._call, group, inputs, priority=priority)
+        return self._tasks.submit(_evaluate_tiles, *self._call, group, inputs, priority=priority)
 
     def next_done(self, pending):
         del pending
