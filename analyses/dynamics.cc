@@ -39,6 +39,13 @@ DynamicsPoint InverseDynamics::At(const State& s, const Eigen::VectorXd& u, cons
 
 namespace {
 
+std::string Where(const ControlPath& path, size_t row) {
+  const int line = row < path.lines.size() ? path.lines[row] : 0;
+  return path.source + (line > 0 ? ":" + std::to_string(line) : "");
+}
+
+}  // namespace
+
 // Base headings (theta, heading) unwrapped along the rows, so that the
 // spline does not turn a base the long way round where the file wrapped an
 // angle to (-pi, pi].
@@ -58,13 +65,8 @@ std::vector<Eigen::VectorXd> UnwrappedControls(const Model& model, std::vector<E
   return controls;
 }
 
-std::string Where(const ControlPath& path, size_t row) {
-  const int line = row < path.lines.size() ? path.lines[row] : 0;
-  return path.source + (line > 0 ? ":" + std::to_string(line) : "");
-}
-
 // The assembled end-effector against the file's reached point.
-void CheckSameModel(const Model& model, const State& s, const ControlPath& path, size_t row) {
+void CheckReachedPoint(const Model& model, const State& s, const ControlPath& path, size_t row) {
   if (row >= path.reached.size() || !path.reached[row]) return;
   const Eigen::Vector3d p = ComputeEndEffectorPose(model, s).position;
   const double gap = (p - *path.reached[row]).norm();
@@ -73,6 +75,8 @@ void CheckSameModel(const Model& model, const State& s, const ControlPath& path,
                                 std::to_string(gap) + " m away from the row's (a trajectory of another model?)");
   }
 }
+
+namespace {
 
 // Each control's name and kind, in control order, and its effort limit.
 std::vector<ActuatorSummary> Actuators(const Model& model) {
@@ -163,7 +167,7 @@ DynamicsReport ComputeDynamics(const Model& model, const ControlPath& path, cons
     row.residual_energy = assembly.residual_energy;
     row.rates = spline.KnotRate(static_cast<int>(r));
     if (row.assembled) {
-      CheckSameModel(model, forward.state(), path, r);
+      CheckReachedPoint(model, forward.state(), path, r);
       const DynamicsPoint p = dynamics.At(forward.state(), forward.controls(), row.rates,
                                           spline.KnotAcceleration(static_cast<int>(r)), wrench);
       row.efforts = p.efforts.control_efforts;

@@ -109,6 +109,16 @@ struct DynamicsReport {
   double max_rate_inconsistency = 0;  // max over rows of ControlMotion::Inconsistency
 };
 
+// The controls with every base heading (theta, heading) unwrapped along the
+// rows, so that a spline does not turn a base the long way round where the
+// file wrapped an angle to (-pi, pi].
+std::vector<Eigen::VectorXd> UnwrappedControls(const Model& model, std::vector<Eigen::VectorXd> controls);
+
+// Throws std::invalid_argument naming the path's source and line when the
+// row's reached point (if the file gives one) is more than 1e-6 m from the
+// end-effector assembled at `s`: a trajectory of another model.
+void CheckReachedPoint(const Model& model, const State& s, const ControlPath& path, size_t row);
+
 // Inverse dynamics at every row of `path`. Throws std::invalid_argument
 // naming source and line when the path is not this model's (a row's reached
 // point more than 1e-6 m from the assembled end-effector) or too large

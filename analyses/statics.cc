@@ -215,4 +215,18 @@ StaticsReport EffortEvaluator::AtLoads(const State& s, const Eigen::VectorXd& u,
   return out;
 }
 
+Eigen::MatrixXd EffortEvaluator::EffortsUnder(const State& s, const Eigen::VectorXd& u,
+                                              const Eigen::MatrixXd& loads) const {
+  Eigen::MatrixXd out(model_.num_controls(), loads.cols());
+  if (model_.compliant()) {
+    const CompliantEquilibrium system(model_, *set_, s, u, CompliantEquilibrium::Factorization::kEfforts);
+    double residual = 0;
+    for (Eigen::Index j = 0; j < loads.cols(); ++j) out.col(j) = system.Efforts(loads.col(j), &residual);
+  } else {
+    const Equilibrium equilibrium(*set_, s, u);
+    for (Eigen::Index j = 0; j < loads.cols(); ++j) out.col(j) = equilibrium.Efforts(equilibrium.Multipliers(loads.col(j)));
+  }
+  return out;
+}
+
 }  // namespace ccma

@@ -101,6 +101,11 @@ class EffortEvaluator {
   // inverse dynamics adds the inertial loads (analyses/dynamics.h), so that
   // at rest the two give the same numbers by the same operations.
   StaticsReport AtLoads(const State& s, const Eigen::VectorXd& u, const Eigen::VectorXd& Q) const;
+  // The control efforts (num_controls x k) under each of the k columns of
+  // `loads`, through one factorisation: efforts are linear in the loads,
+  // so retime's efforts a s'' + b s'^2 + c come from three columns
+  // (analyses/retime.h). Column j equals AtLoads(s, u, loads.col(j)).
+  Eigen::MatrixXd EffortsUnder(const State& s, const Eigen::VectorXd& u, const Eigen::MatrixXd& loads) const;
 
  private:
   const Model& model_;

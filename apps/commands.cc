@@ -362,7 +362,7 @@ const std::vector<Command>& Commands() {
       TrajectoryCommand(),
       PlanCommand(),
       StaticsCommand(),
-      DynamicsCommand(),
+      DynamicsCommand(),  RetimeCommand(),
       GenerateCommand(),
       ImportCommand(),
       ExportCommand(),

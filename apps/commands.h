@@ -55,6 +55,9 @@ int RunStatics(const std::vector<std::string>& args);
 int RunDynamics(const std::vector<std::string>& args);
 // `ccma dynamics`' entry in Commands() (apps/dynamics_command.cc: with its code).
 Command DynamicsCommand();
+// `ccma retime` (apps/retime_command.cc).
+int RunRetime(const std::vector<std::string>& args);
+Command RetimeCommand();
 int RunGenerate(const std::vector<std::string>& args);
 int RunImport(const std::vector<std::string>& args);
 int RunBench(const std::vector<std::string>& args);

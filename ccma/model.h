@@ -102,6 +102,10 @@ struct MobileBase {
   // The largest horizontal force the base can exert [N] (`push_limit`);
   // 0: not given.
   double push_limit = 0;
+  // How fast `ccma retime` may drive it (`velocity_limit`): empty, or
+  // [V m/s over the floor, W rad/s turn rate] (a legged base adds its
+  // height, roll and pitch rates: [V, W, Vz m/s, Wr rad/s, Wp rad/s]).
+  std::vector<double> velocity_limit;
   // Its `stiffness` (ccma/stiffness.h); rigid when not given.
   BaseStiffness stiffness;
 };
@@ -140,6 +144,9 @@ struct Joint {
   double lower = 0, upper = 0;
   // Actuated joints: the range of the motor's effort (`effort_limits`).
   EffortLimits effort;
+  // Actuated joints: the largest |q'| `ccma retime` may drive [rad/s or m/s]
+  // (`velocity_limit`); 0: not given.
+  double velocity_limit = 0;
   // Its `stiffness` (ccma/stiffness.h); rigid when not given.
   JointStiffness stiffness;
   int line = 0;  // source line in the model file (for messages)

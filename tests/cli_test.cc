@@ -342,7 +342,7 @@ TEST(Cli, GlobalHelpHasOneLinePerCommand) {
     EXPECT_LE(line.size(), 100u) << line;
     listed.push_back(name);
   }
-  EXPECT_EQ(listed, (std::vector<std::string>{"check", "simulate", "control", "trajectory", "plan", "statics", "dynamics", "generate", "import",
+  EXPECT_EQ(listed, (std::vector<std::string>{"check", "simulate", "control", "trajectory", "plan", "statics", "dynamics", "retime", "generate", "import",
                                               "export", "bench", "replay", "view", "workspace", "design"}))
       << r.out;
   for (const std::string& name : listed) {
@@ -381,6 +381,7 @@ TEST(Cli, EachCommandHasItsOwnHelpWithUnits) {
                    "max_step_rad", "lambda"}},
       {"statics", {"model", "controls", "wrench", "mocap_noise_m", "mocap_noise_rad", "obstacles"}},
       {"dynamics", {"model", "trajectory", "out", "wrench"}},
+      {"retime", {"model", "trajectory", "out"}},
       {"plan", {"model", "waypoints", "out", "controls", "obstacles", "plan_iterations", "plan_time_s", "path_weight",
                 "smoothness_weight", "travel_weight", "max_step_m", "max_step_rad", "lambda"}},
       {"trajectory", {"model", "waypoints", "out", "controls", "obstacles", "compensate", "wrench", "max_minutes",

@@ -36,7 +36,7 @@ void ModelParser::ParseBases(const YAML::Node& bases_node, std::size_t num_bodie
 
 MobileBase ModelParser::ParseBase(const YAML::Node& at, const std::string& path) {
   const YAML::Node node = r_.Map(at, path);
-  r_.CheckKeys(node, {"name", "type", "actuation", "pose", "wheels", "meshes", "radius", "mass", "com", "inertia", "push_limit",
+  r_.CheckKeys(node, {"name", "type", "actuation", "pose", "wheels", "meshes", "radius", "mass", "com", "inertia", "push_limit", "velocity_limit",
                       "stiffness", "body_height", "body_limits", "footprint"},
                path);
   MobileBase base;
@@ -57,6 +57,7 @@ MobileBase ModelParser::ParseBase(const YAML::Node& at, const std::string& path)
   }
   base.stiffness = ParseBaseStiffness(node, path);
   base.push_limit = ParsePushLimit(node, path);
+  base.velocity_limit = ParseBaseVelocityLimit(node, path, base.type);
   if (YamlReader::Has(node, "wheels")) {
     if (base.type == BaseType::kDifferential) {
       base.differential = ParseDifferentialWheels(node["wheels"], path + ".wheels");

@@ -19,7 +19,7 @@ void ModelParser::ParseJoints(const YAML::Node& joints) {
   for (std::size_t j = 0; j < joints.size(); ++j) {
     const std::string path = Indexed("joints", j);
     const YAML::Node node = r_.Map(joints[j], path);
-    r_.CheckKeys(node, {"type", "between", "point", "axis", "axes", "name", "actuated", "limits", "q_home", "effort_limits", "stiffness"}, path);
+    r_.CheckKeys(node, {"type", "between", "point", "axis", "axes", "name", "actuated", "limits", "q_home", "effort_limits", "velocity_limit", "stiffness"}, path);
     if (YamlReader::Has(node, "name")) {
       const std::string name = r_.Name(node["name"], path + ".name");
       const auto it = names.find(name);
@@ -83,6 +83,7 @@ Joint ModelParser::ParseJoint(const YAML::Node& node, const std::string& path) {
   ParseJointGeometry(node, path, &joint);
   ParseActuationAndLimits(node, path, &joint);
   ParseEffortLimits(node, path, &joint);
+  ParseJointVelocityLimit(node, path, &joint);
   ParseJointStiffness(node, path, &joint);
   if (joint.body_a == kWorld || joint.body_b == kWorld) {
     grounded_bodies_.push_back(joint.body_a == kWorld ? joint.body_b : joint.body_a);

@@ -128,6 +128,10 @@ class ModelParser {
   MassProperties ParseMassProperties(const YAML::Node& node, const std::string& path, const Body& body) const;
   void ParseEffortLimits(const YAML::Node& node, const std::string& path, Joint* joint) const;
   double ParsePushLimit(const YAML::Node& node, const std::string& path) const;
+
+  // model_velocity_limits.cc
+  void ParseJointVelocityLimit(const YAML::Node& node, const std::string& path, Joint* joint) const;
+  std::vector<double> ParseBaseVelocityLimit(const YAML::Node& node, const std::string& path, BaseType type) const;
   void ParseLoads(const YAML::Node& root, const YAML::Node& end_effector);
 
   // model_stiffness.cc
