@@ -8,21 +8,26 @@
 #include "ccma/base_kind.h"
 #include "ccma/end_effector.h"
 #include "ccma/inertial_loads.h"
+#include "analyses/internal/motion_limits.h"
 #include "ccma/internal/constraint_set.h"
 #include "problems/forward_problem.h"
 #include "problems/internal/control_motion.h"
+#include "problems/internal/hessian_solver.h"
 #include "problems/natural_spline.h"
 
 namespace ccma {
 
 InverseDynamics::InverseDynamics(const Model& model)
-    : model_(model), set_(std::make_unique<ConstraintSet>(model)), efforts_(model) {}
+    : model_(model),
+      set_(std::make_unique<ConstraintSet>(model)),
+      symbolic_(std::make_unique<const HessianSolver>(*set_)),
+      efforts_(model) {}
 InverseDynamics::~InverseDynamics() = default;
 
 DynamicsPoint InverseDynamics::At(const State& s, const Eigen::VectorXd& u, const Eigen::VectorXd& du,
                                   const Eigen::VectorXd& ddu, const ExternalWrench& wrench) const {
   DynamicsPoint out;
-  const ControlMotion motion(*set_, s, u);
+  const ControlMotion motion(*set_, *symbolic_, s, u);
   out.velocity = motion.Velocity(du);
   out.acceleration = motion.Acceleration(du, ddu, out.velocity);
   out.rate_inconsistency = motion.Inconsistency(out.velocity, du);
@@ -30,7 +35,7 @@ DynamicsPoint InverseDynamics::At(const State& s, const Eigen::VectorXd& u, cons
   // exactly zero and the sum is statics' Q bit for bit.
   Eigen::VectorXd Q = GeneralizedLoads(model_, s, wrench);
   Q += InertialLoads(model_, s, out.velocity, out.acceleration);
-  out.efforts = efforts_.AtLoads(s, u, Q);
+  out.efforts = efforts_.AtLoads(s, u, Q, motion.factorization());
   out.kinetic = KineticEnergy(model_, s, out.velocity);
   out.potential = PotentialEnergy(model_, s);
   out.power = out.efforts.control_efforts.dot(du);
@@ -117,6 +122,8 @@ void Summarise(const Model& model, DynamicsReport* report) {
     }
     for (size_t i = 0; i < out.actuators.size(); ++i) {
       ActuatorSummary& a = out.actuators[i];
+      const double rate = row.rates[static_cast<Eigen::Index>(i)];
+      if (std::abs(rate) > std::abs(a.peak_rate)) a.peak_rate = rate;
       const double e = row.efforts[static_cast<Eigen::Index>(i)];
       if (std::abs(e) > std::abs(a.peak_effort)) {
         a.peak_effort = e;
@@ -146,6 +153,27 @@ void MarkLimits(const std::vector<std::string>& limiting, DynamicsReport* report
     }
     if (std::find(report->limiting.begin(), report->limiting.end(), name) == report->limiting.end()) {
       report->limiting.push_back(name);
+    }
+  }
+}
+
+// The rates against every velocity_limit (internal/motion_limits.h), at
+// the assembled rows: each control's rate_limit, and the controls and
+// names beyond one (1e-9 relative: a retimed path sits on its limits).
+void JudgeRates(const Model& model, DynamicsReport* report) {
+  for (const internal::MotionLimit& limit : internal::MotionLimits(model)) {
+    if (limit.kind != internal::MotionLimit::Kind::kVelocity) continue;
+    for (const int c : limit.controls) report->actuators[static_cast<size_t>(c)].rate_limit = limit.upper;
+    bool beyond = false;
+    for (DynamicsRow& row : report->rows) {
+      if (!row.assembled || internal::Utilisation(limit, row.efforts, row.rates) <= 1 + 1e-9) continue;
+      row.within_limits = false;
+      beyond = true;
+    }
+    if (!beyond) continue;
+    for (const int c : limit.controls) report->actuators[static_cast<size_t>(c)].within_limits = false;
+    if (std::find(report->limiting.begin(), report->limiting.end(), limit.name) == report->limiting.end()) {
+      report->limiting.push_back(limit.name);
     }
   }
 }
@@ -185,6 +213,7 @@ DynamicsReport ComputeDynamics(const Model& model, const ControlPath& path, cons
   }
   Summarise(model, &out);
   for (const std::vector<std::string>& names : limiting) MarkLimits(names, &out);
+  JudgeRates(model, &out);
   out.within_limits = out.limiting.empty();
   return out;
 }

@@ -72,6 +72,7 @@ class InverseDynamics {
  private:
   const Model& model_;
   std::unique_ptr<const ConstraintSet> set_;
+  std::unique_ptr<const HessianSolver> symbolic_;  // of set_, copied by every row's factorisation
   EffortEvaluator efforts_;
 };
 
@@ -93,7 +94,13 @@ struct ActuatorSummary {
   double peak_time = 0;     // s
   double rms_effort = 0;    // sqrt(integral e^2 dt / duration), trapezoid
   std::optional<std::pair<double, double>> limit;  // [lo, hi]; a base's x, y: [-push_limit, push_limit]
-  bool within_limits = true;  // at every assembled row (a base's push: |(e_x, e_y)| <= push_limit)
+  double peak_rate = 0;     // the signed rate u' of largest magnitude [m/s or rad/s]
+  // velocity_limit on this control: a joint's; a base's V on |(x', y')| for
+  // x and y, W on theta' (legged: Vz, Wr, Wp on height', roll', pitch').
+  std::optional<double> rate_limit;
+  // At every assembled row: the effort (a base's push: |(e_x, e_y)| <=
+  // push_limit) and the rate (a base's |(x', y')| <= V).
+  bool within_limits = true;
 };
 
 struct DynamicsReport {

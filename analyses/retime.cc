@@ -27,6 +27,14 @@ constexpr double kRoomSlack = 1.02;     // over the room a row beyond a limit mu
 constexpr double kScaleSlack = 1e-9;     // over the exact uniform stretch (rounding)
 constexpr double kMaxDuration = 1e9;     // s: beyond, a limit leaves no room to move
 
+// The model's constraints and the symbolic analysis every row's
+// factorisation copies.
+struct Constraints {
+  explicit Constraints(const Model& model) : set(model), symbolic(set) {}
+  const ConstraintSet set;
+  const HessianSolver symbolic;
+};
+
 // Per row, along s = (t - t_0) / T: efforts a s'' + b s'^2 + c, rates u_s s'.
 // Kept per row, the verification passes need no assembly and no
 // factorisation: e = c + M Q_in(v, acc) with v, acc from the row's motion.
@@ -41,7 +49,7 @@ struct RowData {
 // Dense entries all rows' factorisations may keep (doubles: 400 MB).
 constexpr long kMaxKeptEntries = 50000000;
 
-std::vector<RowData> PathData(const Model& model, const ConstraintSet& set, const ControlPath& path,
+std::vector<RowData> PathData(const Model& model, const Constraints& constraints, const ControlPath& path,
                               std::optional<RetimeInfeasible>* failed) {
   const double T = path.times.back() - path.times.front();
   const NaturalCubicSpline spline(path.times, UnwrappedControls(model, path.controls));
@@ -66,22 +74,22 @@ std::vector<RowData> PathData(const Model& model, const ConstraintSet& set, cons
     row.u = forward.controls();
     row.u_s = T * spline.KnotRate(static_cast<int>(r));
     const Eigen::VectorXd u_ss = T * T * spline.KnotAcceleration(static_cast<int>(r));
-    auto motion = std::make_shared<const ControlMotion>(set, s, forward.controls());
+    auto motion = std::make_shared<const ControlMotion>(constraints.set, constraints.symbolic, s, forward.controls());
     const Eigen::VectorXd q_s = motion->Velocity(row.u_s);
     const Eigen::VectorXd q_ss = motion->Acceleration(row.u_s, u_ss, q_s);
     const Eigen::Index n = q_s.size();
-    // One factorisation: the statics, s'' q_s, s'^2 (q_ss, q_s x q_s) and every unit load.
+    // The motion's factorisation: the statics, s'' q_s, s'^2 (q_ss, q_s x q_s) and every unit load.
     Eigen::MatrixXd Q(n, 3 + n);
     Q.col(0) = GeneralizedLoads(model, s);
     Q.col(1) = InertialLoads(model, s, Eigen::VectorXd::Zero(n), q_s);
     Q.col(2) = InertialLoads(model, s, q_s, q_ss);
     Q.rightCols(n).setIdentity();
-    const Eigen::MatrixXd E = evaluator.EffortsUnder(s, forward.controls(), Q);
+    const Eigen::MatrixXd E = evaluator.EffortsUnder(s, forward.controls(), Q, motion->factorization());
     row.c = E.col(0);
     row.a = E.col(1);
     row.b = E.col(2);
     row.M = E.rightCols(n);
-    const long kept = static_cast<long>(path.times.size()) * (motion->J_s().size() + motion->J_u().size()) * 2;
+    const long kept = static_cast<long>(path.times.size()) * motion->factorization().stored_doubles();
     if (kept <= kMaxKeptEntries) row.motion = std::move(motion);
     rows.push_back(std::move(row));
   }
@@ -176,7 +184,7 @@ std::vector<double> ToppTiming(const ControlPath& path, const std::vector<RowDat
 // ComputeDynamics' numbers to rounding (the same spline and motion at the
 // configurations PathData assembled as it does, and the same linear map
 // from loads to efforts), without assembling or factorising again.
-double NeededStretch(const Model& model, const ConstraintSet& set, const ControlPath& path,
+double NeededStretch(const Model& model, const Constraints& constraints, const ControlPath& path,
                      const std::vector<double>& times, const std::vector<RowData>& rows,
                      const std::vector<MotionLimit>& limits, std::vector<double>* per_row) {
   const NaturalCubicSpline spline(times, UnwrappedControls(model, path.controls));
@@ -186,7 +194,7 @@ double NeededStretch(const Model& model, const ConstraintSet& set, const Control
     const Eigen::VectorXd du = spline.KnotRate(static_cast<int>(r));
     const RowData& row = rows[r];
     std::optional<ControlMotion> fresh;  // when the row's factorisation was not kept
-    if (!row.motion) fresh.emplace(set, *row.s, row.u);
+    if (!row.motion) fresh.emplace(constraints.set, constraints.symbolic, *row.s, row.u);
     const ControlMotion& motion = row.motion ? *row.motion : *fresh;
     const Eigen::VectorXd v = motion.Velocity(du);
     const Eigen::VectorXd acc = motion.Acceleration(du, spline.KnotAcceleration(static_cast<int>(r)), v);
@@ -211,7 +219,7 @@ std::vector<double> Stretched(const std::vector<double>& times, double k) {
 // then leave the motion less room (by the square of their stretch: the
 // motion's efforts go as s'^2) and TOPP-RA runs again. The fastest
 // candidate wins. Empty when TOPP-RA finds no profile.
-std::vector<double> VerifiedTopp(const Model& model, const ConstraintSet& set, const ControlPath& path,
+std::vector<double> VerifiedTopp(const Model& model, const Constraints& constraints, const ControlPath& path,
                                  const std::vector<RowData>& rows,
                                  const std::vector<MotionLimit>& limits, double scale, std::vector<int>* active,
                                  double* verified_scale) {
@@ -220,7 +228,7 @@ std::vector<double> VerifiedTopp(const Model& model, const ConstraintSet& set, c
     std::vector<int> pass_active;
     const std::vector<double> times = ToppTiming(path, rows, limits, room, scale, &pass_active);
     if (times.empty() || !std::isfinite(times.back())) break;
-    const double k = NeededStretch(model, set, path, times, rows, limits, &need);
+    const double k = NeededStretch(model, constraints, path, times, rows, limits, &need);
     // Within to rounding (ComputeDynamics may differ in the last bits): stretched a hair.
     const std::vector<double> candidate =
         k > 1 - kScaleSlack ? Stretched(times, std::max(k, 1.0) * (1 + kScaleSlack)) : times;
@@ -281,8 +289,8 @@ RetimeReport Retime(const Model& model, const ControlPath& path) {
   }
   RetimeReport out;
   out.original_duration = path.times.back() - path.times.front();
-  const ConstraintSet set(model);
-  const std::vector<RowData> rows = PathData(model, set, path, &out.infeasible);
+  const Constraints constraints(model);
+  const std::vector<RowData> rows = PathData(model, constraints, path, &out.infeasible);
   if (out.infeasible) return out;
   out.infeasible = AtRest(path, rows, limits);
   if (out.infeasible) return out;
@@ -312,7 +320,7 @@ RetimeReport Retime(const Model& model, const ControlPath& path) {
   std::vector<int> active;
   const double scale = k_uniform > 0 ? out.uniform_duration : T;
   const std::vector<double> topp = rows.size() >= 3
-                                       ? VerifiedTopp(model, set, path, rows, limits, scale, &active, &out.verified_scale)
+                                       ? VerifiedTopp(model, constraints, path, rows, limits, scale, &active, &out.verified_scale)
                                        : std::vector<double>{};
   const bool topp_ok = !topp.empty() && std::isfinite(topp.back()) && topp.back() - topp.front() <= kMaxDuration;
   if (!topp_ok && uniform.empty()) {

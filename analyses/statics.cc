@@ -10,6 +10,7 @@
 #include "ccma/end_effector.h"
 #include "ccma/internal/constraint_set.h"
 #include "problems/internal/compliant_equilibrium.h"
+#include "problems/internal/constraint_factorization.h"
 #include "problems/internal/equilibrium.h"
 
 namespace ccma {
@@ -96,9 +97,13 @@ namespace {
 Eigen::VectorXd RigidStatics(const Model& model, const State& s, const Eigen::VectorXd& u, const Eigen::VectorXd& Q,
                              StaticsReport* out) {
   const ConstraintSet set(model);
-  const Equilibrium equilibrium(set, s, u);
+  const Equilibrium equilibrium(set, s, u);  // the rank decisions (determinacy)
+  // The multipliers and efforts as EffortEvaluator and inverse dynamics get
+  // them (the same factorisation and operations): at rest `ccma dynamics`
+  // is `ccma statics` bit for bit.
+  const ConstraintFactorization factored{set, HessianSolver{set}, s, u};
   const Eigen::MatrixXd& J_s = equilibrium.J_s();
-  const Eigen::VectorXd lambda = equilibrium.Multipliers(Q);
+  const Eigen::VectorXd lambda = factored.Multipliers(Q);
   out->determinate = equilibrium.rank() == J_s.rows() || ReactionsDetermined(set, J_s, equilibrium.J_u());
   out->residual = Q.size() > 0 ? (J_s.transpose() * lambda + Q).lpNorm<Eigen::Infinity>() : 0.0;
   out->balanced = out->residual <= 1e-8 * (1.0 + (Q.size() > 0 ? Q.lpNorm<Eigen::Infinity>() : 0.0));
@@ -106,7 +111,7 @@ Eigen::VectorXd RigidStatics(const Model& model, const State& s, const Eigen::Ve
   for (size_t j = 0; j < model.joints.size(); ++j) {
     out->joints.push_back(Reaction(s, model.joints[j], [&](int body) { return OnBody(set, blocks[j], J_s, lambda, body); }));
   }
-  return equilibrium.Efforts(lambda);
+  return factored.Efforts(lambda);
 }
 
 // The compliant mechanism (problems/internal/compliant_equilibrium.h): a
@@ -189,7 +194,10 @@ StaticsReport ComputeStatics(const Model& model, const State& s, const Eigen::Ve
   return out;
 }
 
-EffortEvaluator::EffortEvaluator(const Model& model) : model_(model), set_(std::make_unique<ConstraintSet>(model)) {}
+EffortEvaluator::EffortEvaluator(const Model& model)
+    : model_(model),
+      set_(std::make_unique<ConstraintSet>(model)),
+      symbolic_(std::make_unique<const HessianSolver>(*set_)) {}
 EffortEvaluator::~EffortEvaluator() = default;
 
 StaticsReport EffortEvaluator::At(const State& s, const Eigen::VectorXd& u, const ExternalWrench& wrench) const {
@@ -197,34 +205,55 @@ StaticsReport EffortEvaluator::At(const State& s, const Eigen::VectorXd& u, cons
 }
 
 StaticsReport EffortEvaluator::AtLoads(const State& s, const Eigen::VectorXd& u, const Eigen::VectorXd& Q) const {
-  const Model& model = model_;
-  const ConstraintSet& set = *set_;
+  if (model_.compliant()) return Solve(s, u, Q, nullptr);
+  const ConstraintFactorization factored(*set_, *symbolic_, s, u);
+  return Solve(s, u, Q, &factored);
+}
+
+StaticsReport EffortEvaluator::AtLoads(const State& s, const Eigen::VectorXd& u, const Eigen::VectorXd& Q,
+                                       const ConstraintFactorization& factored) const {
+  return Solve(s, u, Q, &factored);
+}
+
+// `factored` is read only for a rigid model (and then not null).
+StaticsReport EffortEvaluator::Solve(const State& s, const Eigen::VectorXd& u, const Eigen::VectorXd& Q,
+                                     const ConstraintFactorization* factored) const {
   StaticsReport out;
-  out.compliant = model.compliant();
+  out.compliant = model_.compliant();
   Eigen::VectorXd effort;
   if (out.compliant) {
-    const CompliantEquilibrium system(model, set, s, u, CompliantEquilibrium::Factorization::kEfforts);
+    const CompliantEquilibrium system(model_, *set_, s, u, CompliantEquilibrium::Factorization::kEfforts);
     effort = system.Efforts(Q, &out.residual);
   } else {
-    const Equilibrium equilibrium(set, s, u);
-    const Eigen::VectorXd lambda = equilibrium.Multipliers(Q);
-    out.residual = Q.size() > 0 ? (equilibrium.J_s().transpose() * lambda + Q).lpNorm<Eigen::Infinity>() : 0.0;
-    effort = equilibrium.Efforts(lambda);
+    const Eigen::VectorXd lambda = factored->Multipliers(Q);
+    out.residual = Q.size() > 0 ? (factored->J_s().transpose() * lambda + Q).lpNorm<Eigen::Infinity>() : 0.0;
+    effort = factored->Efforts(lambda);
   }
-  FillEfforts(model, u, effort, &out);
+  FillEfforts(model_, u, effort, &out);
   return out;
 }
 
 Eigen::MatrixXd EffortEvaluator::EffortsUnder(const State& s, const Eigen::VectorXd& u,
                                               const Eigen::MatrixXd& loads) const {
+  if (model_.compliant()) return SolveMany(s, u, loads, nullptr);
+  const ConstraintFactorization factored(*set_, *symbolic_, s, u);
+  return SolveMany(s, u, loads, &factored);
+}
+
+Eigen::MatrixXd EffortEvaluator::EffortsUnder(const State& s, const Eigen::VectorXd& u, const Eigen::MatrixXd& loads,
+                                              const ConstraintFactorization& factored) const {
+  return SolveMany(s, u, loads, &factored);
+}
+
+Eigen::MatrixXd EffortEvaluator::SolveMany(const State& s, const Eigen::VectorXd& u, const Eigen::MatrixXd& loads,
+                                           const ConstraintFactorization* factored) const {
   Eigen::MatrixXd out(model_.num_controls(), loads.cols());
   if (model_.compliant()) {
     const CompliantEquilibrium system(model_, *set_, s, u, CompliantEquilibrium::Factorization::kEfforts);
     double residual = 0;
     for (Eigen::Index j = 0; j < loads.cols(); ++j) out.col(j) = system.Efforts(loads.col(j), &residual);
   } else {
-    const Equilibrium equilibrium(*set_, s, u);
-    for (Eigen::Index j = 0; j < loads.cols(); ++j) out.col(j) = equilibrium.Efforts(equilibrium.Multipliers(loads.col(j)));
+    for (Eigen::Index j = 0; j < loads.cols(); ++j) out.col(j) = factored->Efforts(factored->Multipliers(loads.col(j)));
   }
   return out;
 }

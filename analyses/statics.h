@@ -7,8 +7,11 @@
 // body [M; F]: moment about the body's origin and force, world frame, the
 // work conjugates of (dphi, dp), state.h). Equilibrium is Q + J_s^T lambda = 0
 // with J_s = dC/ds of every constraint row: lambda is its least-squares,
-// minimum-norm solution (a complete orthogonal decomposition), unique when
-// the rows are independent (`determinate`). A joint's reaction on a body is
+// minimum-norm solution, unique when the rows are independent
+// (`determinate`). Where J_s has full column rank it comes from the sparse
+// normal equations with a refinement step, elsewhere from a complete
+// orthogonal decomposition (problems/internal/constraint_factorization.h),
+// by the same operations in statics, EffortEvaluator and inverse dynamics. A joint's reaction on a body is
 // its rows' J_s^T lambda on that body; a control's effort is
 // -(dC/du)^T lambda, which obeys virtual work: effort . du = -Q . ds along
 // every motion that keeps the constraints (J_s ds + J_u du = 0). Analytic:
@@ -86,6 +89,8 @@ StaticsReport ComputeStatics(const Model& model, const State& s, const Eigen::Ve
                              const ExternalWrench& wrench = {});
 
 class ConstraintSet;  // internal (ccma/internal/constraint_set.h)
+class ConstraintFactorization;  // internal (problems/internal/constraint_factorization.h)
+class HessianSolver;            // internal (problems/internal/hessian_solver.h)
 
 // The efforts alone, at many configurations of one model: control_efforts,
 // actuators, residual and the limits (no joint reactions, no compliance
@@ -106,10 +111,23 @@ class EffortEvaluator {
   // so retime's efforts a s'' + b s'^2 + c come from three columns
   // (analyses/retime.h). Column j equals AtLoads(s, u, loads.col(j)).
   Eigen::MatrixXd EffortsUnder(const State& s, const Eigen::VectorXd& u, const Eigen::MatrixXd& loads) const;
+  // Both with the constraints at (s, u) already factorised (inverse dynamics
+  // shares the factorisation with the motion, problems/internal/
+  // control_motion.h): the same numbers by the same operations. A compliant
+  // model ignores it.
+  StaticsReport AtLoads(const State& s, const Eigen::VectorXd& u, const Eigen::VectorXd& Q,
+                        const ConstraintFactorization& factored) const;
+  Eigen::MatrixXd EffortsUnder(const State& s, const Eigen::VectorXd& u, const Eigen::MatrixXd& loads,
+                               const ConstraintFactorization& factored) const;
 
  private:
+  StaticsReport Solve(const State& s, const Eigen::VectorXd& u, const Eigen::VectorXd& Q,
+                      const ConstraintFactorization* factored) const;
+  Eigen::MatrixXd SolveMany(const State& s, const Eigen::VectorXd& u, const Eigen::MatrixXd& loads,
+                            const ConstraintFactorization* factored) const;
   const Model& model_;
   std::unique_ptr<const ConstraintSet> set_;
+  std::unique_ptr<const HessianSolver> symbolic_;  // of set_
 };
 
 }  // namespace ccma

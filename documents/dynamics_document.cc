@@ -49,6 +49,8 @@ nlohmann::json ActuatorJson(const ActuatorSummary& a) {
                       {"peak_time_s", a.peak_time}, {"rms_effort", a.rms_effort},
                       {"within_limits", a.within_limits}};
   j["limit"] = a.limit ? nlohmann::json::array({a.limit->first, a.limit->second}) : nlohmann::json(nullptr);
+  j["peak_rate"] = a.peak_rate;
+  j["rate_limit"] = a.rate_limit ? nlohmann::json(*a.rate_limit) : nlohmann::json(nullptr);
   return j;
 }
 
@@ -59,8 +61,11 @@ std::string Warnings(const DynamicsReport& report) {
                     " rows did not assemble (their efforts are empty in the CSV and left out of the summary)",
                 &warning);
   }
-  if (!report.within_limits) JoinWarning("beyond the effort limits of " + std::to_string(report.limiting.size()) +
-                                             " actuator(s) (limiting)", &warning);
+  if (!report.within_limits) {
+    JoinWarning("beyond the effort or rate limits of " + std::to_string(report.limiting.size()) +
+                    " actuator(s) (limiting)",
+                &warning);
+  }
   if (report.max_rate_inconsistency > 1e-6) {
     JoinWarning("the spline's control rates are not rates the mechanism admits (by up to " +
                     FormatG(report.max_rate_inconsistency) +

@@ -24,7 +24,7 @@ std::vector<std::string> EffortColumns(const Model& model);
 Table DynamicsTable(const Model& model, const DynamicsReport& report);
 
 // rows, duration_s, assembled, actuators [{name, kind, peak_effort,
-// peak_time_s, rms_effort, limit, within_limits}], within_limits, limiting,
+// peak_time_s, rms_effort, limit, peak_rate, rate_limit, within_limits}], within_limits, limiting,
 // energy_J, max_power_W, not_assembled_rows, max_rate_inconsistency; the
 // warnings (rows not assembled, limits exceeded, inconsistent rates).
 Document DynamicsDocument(const DynamicsReport& report);

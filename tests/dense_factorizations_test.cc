@@ -87,6 +87,27 @@ TEST(DenseFactorizations, MinimumNormSolverAndNullSpaces) {
   }
 }
 
+// solveTransposed: the minimum-norm least-squares solution of A^T y = c from
+// A's decomposition (normal equations, nothing along null(A^T)), as a
+// decomposition of A^T gives it.
+TEST(DenseFactorizations, MinimumNormSolverSolvesTheTransposedSystem) {
+  std::mt19937 rng(10);
+  for (const auto& [rows, cols, r] : {std::tuple{8, 5, 3}, std::tuple{5, 8, 3}, std::tuple{6, 6, 6}}) {
+    const Eigen::MatrixXd A = RankDeficient(rows, cols, r, &rng);
+    MinimumNormSolver solver, transposed;
+    solver.setThreshold(1e-10).compute(A);
+    transposed.setThreshold(1e-10).compute(A.transpose());
+    Eigen::VectorXd c(cols);
+    for (int i = 0; i < cols; ++i) c[i] = std::normal_distribution<double>()(rng);
+    const Eigen::VectorXd y = solver.solveTransposed(c);
+    ASSERT_EQ(y.size(), rows);
+    EXPECT_LT((A * (A.transpose() * y - c)).cwiseAbs().maxCoeff(), 1e-11);
+    const Eigen::MatrixXd L = solver.leftNullSpace();
+    if (L.size() > 0) EXPECT_LT((L.transpose() * y).cwiseAbs().maxCoeff(), 1e-12);
+    EXPECT_LT((y - transposed.solve(c)).cwiseAbs().maxCoeff(), 1e-11);
+  }
+}
+
 // Both methods: the rank of L R (rank r, singular values of order 1 and
 // rounding), orthonormal bases of null(A) and its complement.
 TEST(DenseFactorizations, RankRevealingDecompositionsGiveRankAndBases) {

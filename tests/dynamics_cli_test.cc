@@ -82,6 +82,31 @@ TEST(DynamicsCli, ArmAtConstantRateIsItsClosedForm) {
   EXPECT_NEAR(j["actuators"][0]["peak_effort"].get<double>(), m * 9.81 * l * std::cos(-0.01), 1e-9);
 }
 
+// Rates are judged against velocity_limit: the arm turns at 1.3 rad/s.
+TEST(DynamicsCli, RatesAreJudgedAgainstTheVelocityLimit) {
+  const std::string path = Write("arm_path.csv", LinearArmPath(-0.4, 1.3, 11, 0.1));
+  for (const double limit : {1.0, 1.5}) {
+    std::string text = kArm;
+    text.replace(text.find("axis: [0, -1, 0]}"), 17, "axis: [0, -1, 0], velocity_limit: " + std::to_string(limit) + "}");
+    const std::string model = Write("arm_rate.yaml", text);
+    const ToolRun r = RunTool({"dynamics", "--model=" + model, "--trajectory=" + path});
+    ASSERT_EQ(r.status, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    const nlohmann::json& hinge = j["actuators"][0];
+    EXPECT_NEAR(hinge["peak_rate"].get<double>(), 1.3, 1e-12);
+    EXPECT_EQ(hinge["rate_limit"].get<double>(), limit);
+    EXPECT_TRUE(hinge["limit"].is_null());
+    EXPECT_EQ(hinge["within_limits"].get<bool>(), limit > 1.3) << limit;
+    EXPECT_EQ(j["within_limits"].get<bool>(), limit > 1.3) << limit;
+    EXPECT_EQ(j["limiting"].size(), limit > 1.3 ? 0u : 1u) << limit;
+    EXPECT_EQ(r.err.find("rate limits") != std::string::npos, limit < 1.3) << r.err;
+  }
+  // Without a velocity_limit there is nothing to judge the rate against.
+  const ToolRun r = RunTool({"dynamics", "--model=" + Write("arm.yaml", kArm), "--trajectory=" + path});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(nlohmann::json::parse(r.out)["actuators"][0]["rate_limit"].is_null());
+}
+
 TEST(DynamicsCli, AtRestIsCcmaStatics) {
   const std::string model = Write("arm.yaml", kArm);
   const std::string path = Write("rest.csv", "time_s,u_hinge_rad\n0,0.7\n1,0.7\n2,0.7\n");

@@ -193,7 +193,7 @@ AccelerationCheck CheckAcceleration(const Model& model, int seed, bool drop_curv
   if (!forward.Assemble(u0).assembled) return out;
   const State s0 = forward.state();
   const ConstraintSet set(model);
-  const ControlMotion motion(set, s0, u0);
+  const ControlMotion motion(set, HessianSolver(set), s0, u0);
   const Eigen::VectorXd ds = motion.Velocity(du);
   if (motion.rank() < s0.tangent_size() || motion.Inconsistency(ds, du) > 1e-9) return out;
   const Eigen::VectorXd dds = drop_curvature ? motion.Velocity(ddu) : motion.Acceleration(du, ddu, ds);

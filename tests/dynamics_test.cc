@@ -12,6 +12,7 @@
 #include "problems/forward_problem.h"
 #include "problems/natural_spline.h"
 #include "tests/bundled_models.h"
+#include "tests/dynamics_fixtures.h"
 
 namespace ccma {
 namespace dynamics_test {
@@ -125,45 +126,8 @@ TEST(InverseDynamics, AtRestIsStaticsExactly) {
   }
 }
 
-// Seeded masses, centres and physical inertias on every body, and a payload.
-Model WithMasses(Model model, int seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> d(-1, 1);
-  for (Body& body : model.bodies) {
-    body.inertia.mass = 1.25 + 0.75 * d(rng);
-    body.inertia.com_B = Eigen::Vector3d{0.05 * d(rng), 0.05 * d(rng), 0.05 * d(rng)};
-    const Eigen::Vector3d moments{0.02 + 0.01 * d(rng), 0.02 + 0.01 * d(rng), 0.02 + 0.01 * d(rng)};
-    const Eigen::Matrix3d R = Eigen::AngleAxisd(3 * d(rng), Eigen::Vector3d::UnitZ()).toRotationMatrix() *
-                              Eigen::AngleAxisd(3 * d(rng), Eigen::Vector3d::UnitX()).toRotationMatrix();
-    body.inertia.inertia_B = R * moments.asDiagonal() * R.transpose();  // principal moments within the triangle
-  }
-  model.end_effector.payload.mass = 2.0;
-  model.end_effector.payload.com_B = Eigen::Vector3d(0.01, -0.02, 0.05);
-  return model;
-}
-
-// A smooth path of every control (a sine about home, seeded amplitudes and
-// phases) sampled at `rows` rows over `duration` s, when every row
-// assembles; empty when the controls are tied (over-actuated models).
-ControlPath SinePath(const Model& model, int seed, int rows, double duration) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> d(-1, 1);
-  const Eigen::VectorXd home = model.home_controls();
-  Eigen::VectorXd amplitude(home.size()), phase(home.size());
-  for (Eigen::Index i = 0; i < home.size(); ++i) amplitude[i] = 0.04 * d(rng);
-  for (Eigen::Index i = 0; i < home.size(); ++i) phase[i] = 3 * d(rng);
-  ControlPath path;
-  path.source = "sine";
-  ForwardProblem forward(model);
-  for (int r = 0; r < rows; ++r) {
-    const double t = duration * r / (rows - 1);
-    const Eigen::VectorXd u = home + amplitude.cwiseProduct((phase.array() + 2 * M_PI * t / duration).sin().matrix());
-    if (!forward.Assemble(u).assembled) return {};
-    path.times.push_back(t);
-    path.controls.push_back(u);
-  }
-  return path;
-}
+using testing::SinePath;
+using testing::WithMasses;
 
 // The work of the controls equals the change of kinetic plus potential
 // energy along the spline's motion: power_W integrated by 3-point

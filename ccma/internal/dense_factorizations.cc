@@ -116,6 +116,9 @@ Eigen::Index MinimumNormSolver::cols() const { return impl_->cod.cols(); }
 Eigen::Index MinimumNormSolver::rank() const { return impl_->cod.rank(); }
 Eigen::VectorXd MinimumNormSolver::solve(const Eigen::VectorXd& b) const { return impl_->cod.solve(b); }
 Eigen::MatrixXd MinimumNormSolver::solveMatrix(const Eigen::MatrixXd& B) const { return impl_->cod.solve(B); }
+Eigen::VectorXd MinimumNormSolver::solveTransposed(const Eigen::VectorXd& b) const {
+  return impl_->cod.transpose().solve(b);
+}
 Eigen::MatrixXd MinimumNormSolver::nullSpace() const {
   const Eigen::Index n = cols(), r = rank();
   return impl_->cod.colsPermutation() * impl_->cod.matrixZ().transpose().rightCols(n - r);

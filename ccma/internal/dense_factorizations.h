@@ -129,6 +129,10 @@ class MinimumNormSolver {
   Eigen::Index rank() const;
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
   Eigen::MatrixXd solveMatrix(const Eigen::MatrixXd& B) const;  // column by column, as Eigen's solve
+  // The minimum-norm least-squares solution of A^T x = b (b: cols(),
+  // x: rows()) from the same decomposition (Eigen's transpose().solve()):
+  // a caller that needs both A's and A^T's solutions factorises once.
+  Eigen::VectorXd solveTransposed(const Eigen::VectorXd& b) const;
   // Orthonormal bases from the decomposition A P = Q [T 0; 0 0] Z: of the
   // null space of A (P Z^T [0; I], cols x (cols - rank)) and of the null
   // space of A^T (Q [0; I], rows x (rows - rank)).

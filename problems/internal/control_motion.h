@@ -11,9 +11,11 @@
 // ConstraintSet::CurvatureAlong. So q' = S u' and q'' = S u'' + S'(u', u')
 // with S = ds/du, the implicit-function sensitivity, and S'(u', u') = -J_s^+ h.
 // Both are minimum-norm least-squares solutions through one complete
-// orthogonal decomposition of J_s: exact where the controls fix the
-// mechanism, and free of idle motions (a leg spinning about its own axis)
-// where they do not. At the chart's centre delta' and delta'' are exactly
+// orthogonal decomposition: exact where the controls fix the mechanism, and
+// free of idle motions (a leg spinning about its own axis) where they do
+// not. The factorisation (constraint_factorization.h) also gives the
+// efforts of the same configuration (analyses/statics.h's EffortEvaluator),
+// so inverse dynamics factorises once per row. At the chart's centre delta' and delta'' are exactly
 // the bodies' [omega; v] and [alpha; a] (inertial_loads.h).
 #ifndef CCMA_PROBLEMS_INTERNAL_CONTROL_MOTION_H_
 #define CCMA_PROBLEMS_INTERNAL_CONTROL_MOTION_H_
@@ -21,17 +23,18 @@
 #include <Eigen/Core>
 
 #include "ccma/internal/constraint_set.h"
-#include "ccma/internal/dense_factorizations.h"
+#include "problems/internal/constraint_factorization.h"
+#include "problems/internal/hessian_solver.h"
 #include "ccma/state.h"
 
 namespace ccma {
 
 class ControlMotion {
  public:
-  // Evaluates J_s, J_u at (s, u) and factorises J_s (rank threshold 1e-10
-  // relative). Throws std::invalid_argument when rows x state size exceeds
-  // kMaxStaticsEntries (ccma/limits.h), as Equilibrium does.
-  ControlMotion(const ConstraintSet& set, const State& s, const Eigen::VectorXd& u);
+  // Evaluates J_s, J_u at (s, u) and factorises (ConstraintFactorization;
+  // `symbolic`: a HessianSolver of `set`). Throws std::invalid_argument when
+  // the dense path's rows x state size exceeds kMaxStaticsEntries.
+  ControlMotion(const ConstraintSet& set, const HessianSolver& symbolic, const State& s, const Eigen::VectorXd& u);
 
   // delta' (state tangent) for control rates du (num_controls).
   Eigen::VectorXd Velocity(const Eigen::VectorXd& du) const;
@@ -42,16 +45,17 @@ class ControlMotion {
   // du inconsistent) [m/s or rad/s per row].
   double Inconsistency(const Eigen::VectorXd& ds, const Eigen::VectorXd& du) const;
 
-  int rank() const { return static_cast<int>(cod_.rank()); }
-  const Eigen::MatrixXd& J_s() const { return J_s_; }
-  const Eigen::MatrixXd& J_u() const { return J_u_; }
+  int rank() const { return factorization_.rank(); }
+  const SparseRowMajor& J_s() const { return factorization_.J_s(); }
+  const SparseRowMajor& J_u() const { return factorization_.J_u(); }
+  // The same configuration's factorisation, for its efforts.
+  const ConstraintFactorization& factorization() const { return factorization_; }
 
  private:
   const ConstraintSet& set_;
   const State s_;  // copies: the motion belongs to this configuration
   const Eigen::VectorXd u_;
-  Eigen::MatrixXd J_s_, J_u_;
-  MinimumNormSolver cod_;  // of J_s
+  const ConstraintFactorization factorization_;
   mutable BodyFrames frames_;
 };
 

@@ -20,24 +20,11 @@ Equilibrium::Equilibrium(const ConstraintSet& set, const State& s, const Eigen::
   cod_.compute(J_s_.transpose());
 }
 
-const MinimumNormSolver& Equilibrium::TransposedFactor() const {
-  if (cod_t_.rows() != J_s_.rows() || cod_t_.cols() != J_s_.cols()) {
-    cod_t_.setThreshold(1e-10);
-    cod_t_.compute(J_s_);
-  }
-  return cod_t_;
-}
-
-Eigen::VectorXd Equilibrium::StateMotion(const Eigen::VectorXd& du) const {
-  return TransposedFactor().solve(-(J_u_ * du));
-}
-
 Equilibrium::Adjoint Equilibrium::AdjointOf(const Eigen::VectorXd& w, const Eigen::VectorXd& Q) const {
-  TransposedFactor();
   Adjoint a;
   a.lambda = Multipliers(Q);
   const Eigen::VectorXd Juw = J_u_ * w;
-  a.mu = cod_t_.solve(Juw);
+  a.mu = StateSolution(Juw);
   a.zeta = Juw - J_s_ * a.mu;
   const double scale = 1.0 + Juw.lpNorm<Eigen::Infinity>();
   a.unique = a.zeta.size() == 0 || a.zeta.lpNorm<Eigen::Infinity>() <= 1e-8 * scale;
@@ -47,7 +34,7 @@ Equilibrium::Adjoint Equilibrium::AdjointOf(const Eigen::VectorXd& w, const Eige
     a.zeta.setZero();
     a.eta = Eigen::VectorXd::Zero(J_s_.cols());
   } else {
-    a.eta = cod_t_.solve(a.lambda);
+    a.eta = StateSolution(a.lambda);
   }
   return a;
 }

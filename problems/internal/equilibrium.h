@@ -58,15 +58,15 @@ class Equilibrium {
   // controls fix the mechanism, and leaves out idle motions (a leg spinning
   // about its own axis) where they do not: those change no effort, but a
   // sensitivity through a singular dG/ds may carry them at any size.
-  Eigen::VectorXd StateMotion(const Eigen::VectorXd& du) const;
+  Eigen::VectorXd StateMotion(const Eigen::VectorXd& du) const { return StateSolution(-(J_u_ * du)); }
+  // The minimum-norm least-squares solution x of J_s x = b (b: rows), from
+  // the same factorisation as the multipliers (one per configuration: the
+  // motion and the efforts of inverse dynamics share it).
+  Eigen::VectorXd StateSolution(const Eigen::VectorXd& b) const { return cod_.solveTransposed(b); }
 
  private:
   Eigen::MatrixXd J_s_, J_u_;
   MinimumNormSolver cod_;   // of J_s^T
-  const MinimumNormSolver& TransposedFactor() const;
-  // Of J_s, computed on first use (TransposedFactor()) (most callers never need it);
-  // so an Equilibrium is one user's workspace, not shared between threads.
-  mutable MinimumNormSolver cod_t_;
 };
 
 // L (above) at (s, u) on `set`, with Q the loads of `loads_model` at s

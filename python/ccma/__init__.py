@@ -37,8 +37,9 @@ from ._ccma import *  # noqa: F401,F403
 from ._ccma import __version__  # noqa: F401
 from ._records import Record  # noqa: F401
 from ._tables import Table  # noqa: F401
-from .results import (CheckResult, DesignResult, DesignSweepResult, ExportResult, GenerateResult,  # noqa: F401
-                      ImportResult, PlanResult, ReplayResult, StaticsResult, TrajectoryResult, ViewResult, WorkspaceResult)
+from .results import (CheckResult, DesignResult, DesignSweepResult, DynamicsResult, ExportResult,  # noqa: F401
+                      GenerateResult, ImportResult, PlanResult, ReplayResult, RetimeResult, StaticsResult,
+                      TrajectoryResult, ViewResult, WorkspaceResult)
 from .viewer import view  # noqa: F401
 from .workspace import workspace  # noqa: F401
 from .design import design  # noqa: F401

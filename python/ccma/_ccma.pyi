@@ -12,7 +12,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ._records import Record
-from .results import CheckResult, PlanResult, StaticsResult, TrajectoryResult, ViewResult
+from .results import CheckResult, DynamicsResult, PlanResult, RetimeResult, StaticsResult, TrajectoryResult, ViewResult
+from ._tables import Table
 
 __version__: str
 """The ccma version, e.g. '0.1.0' (the CMake project version)."""
@@ -840,6 +841,39 @@ def statics(
 def statics(
     problem: ControlProblem, wrench: ArrayLike | None = None, mocap_noise_m: float = 0.001, mocap_noise_rad: float = 0.003
 ) -> StaticsResult:
+    """The same for a ControlProblem."""
+
+# -------------------------------------------------------- dynamics, retime ----
+
+@overload
+def dynamics(
+    problem: ForwardProblem,
+    trajectory: str | os.PathLike[str] | Table | TrajectoryResult | PlanResult,
+    wrench: ArrayLike | None = None,
+    out: Optional[str | os.PathLike[str]] = None,
+) -> DynamicsResult:
+    """`ccma dynamics`: inverse dynamics along a trajectory (a CSV path, a ccma.Table, or follow's / plan's result): the command's JSON as attributes, its --out CSV as `table`; out=PATH writes it."""
+@overload
+def dynamics(
+    problem: ControlProblem,
+    trajectory: str | os.PathLike[str] | Table | TrajectoryResult | PlanResult,
+    wrench: ArrayLike | None = None,
+    out: Optional[str | os.PathLike[str]] = None,
+) -> DynamicsResult:
+    """The same for a ControlProblem."""
+@overload
+def retime(
+    problem: ForwardProblem,
+    trajectory: str | os.PathLike[str] | Table | TrajectoryResult | PlanResult,
+    out: Optional[str | os.PathLike[str]] = None,
+) -> RetimeResult:
+    """`ccma retime`: the fastest rest-to-rest timing of the trajectory's path within every limit: the command's JSON as attributes, the retimed CSV as `table` and `csv_text`; out=PATH writes it when feasible."""
+@overload
+def retime(
+    problem: ControlProblem,
+    trajectory: str | os.PathLike[str] | Table | TrajectoryResult | PlanResult,
+    out: Optional[str | os.PathLike[str]] = None,
+) -> RetimeResult:
     """The same for a ControlProblem."""
 
 # --------------------------------------------------------------- waypoints ----

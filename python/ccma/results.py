@@ -340,6 +340,59 @@ class ViewResult(Result):
     workspace_reachable = Field("workspace_reachable", "reachable points of a workspace map; else None")
 
 
+class DynamicsResult(_Tabled):
+    """`ccma dynamics` (ccma.dynamics): inverse dynamics along a trajectory; the JSON
+    summary as attributes, the --out CSV (one row per trajectory row: time_s, an
+    effort column per control [N or N*m], kinetic_J, potential_J, power_W) as `table`."""
+
+    _main_table = "dynamics"
+    _elsewhere = {
+        "efforts": "per-row efforts are the table's columns: result.table['u_<joint>_Nm'] ...",
+        "power_W": "result.table['power_W']",
+    }
+    rows = Field("rows", "rows of the trajectory")
+    duration_s = Field("duration_s", "[s] the last row's time minus the first's")
+    assembled = Field("assembled", "every row assembled (bool)")
+    not_assembled_rows = Field("not_assembled_rows", "rows that did not (empty cells in the table)")
+    actuators = Field("actuators", "list of Record {name, kind, peak_effort [N or N*m], peak_time_s [s], rms_effort, "
+                                   "limit ([lo, hi] or None), peak_rate [m/s or rad/s], rate_limit (velocity_limit "
+                                   "or None), within_limits (effort and rate)}, in control order")
+    within_limits = Field("within_limits", "every actuator within its limits at every assembled row")
+    limiting = Field("limiting", "names of the actuators beyond a limit somewhere")
+    energy_J = Field("energy_J", "[J] the net work of all controls (trapezoid of power_W)")
+    max_power_W = Field("max_power_W", "[W] the largest power_W")
+    max_rate_inconsistency = Field("max_rate_inconsistency", "largest |J_s q' + J_u u'| over the rows")
+    out = Field("out", "the CSV file written (dynamics(..., out=PATH)); None when none was written")
+    warning = Field("warning", "rows not assembled, a limit exceeded or inconsistent rates ('' when none)", "")
+
+
+class RetimeResult(_Tabled):
+    """`ccma retime` (ccma.retime): the fastest rest-to-rest timing of a trajectory's
+    path within every limit; the JSON summary as attributes, the retimed CSV (the
+    input with new time_s cells) as `table` and `csv_text` (None when infeasible)."""
+
+    _main_table = "trajectory"
+    feasible = Field("feasible", "a timing within every limit was found (bool)")
+    rows = Field("rows", "rows of the trajectory")
+    original_duration_s = Field("original_duration_s", "[s] the input's last time minus its first")
+    duration_s = Field("duration_s", "[s] the retimed path's; None when infeasible")
+    uniform_duration_s = Field("uniform_duration_s", "[s] the best uniform time scaling's; None when infeasible "
+                                                     "or unbounded")
+    method = Field("method", "'topp-ra' or 'uniform': which verified timing was faster; None when infeasible")
+    verified_scale = Field("verified_scale", "the factor the verification stretched TOPP-RA's timing by (1: none)")
+    limiting = Field("limiting", "list of Record {name, kind ('effort', 'push', 'velocity'), share}: the limits "
+                                 "that set the speed, largest share first")
+    infeasible = Field("infeasible", "when infeasible: Record {row, line, time_s, kind, control, effort, limit}, "
+                                     "the first row beyond a limit at rest; None otherwise")
+    out = Field("out", "the CSV file written (retime(..., out=PATH), when feasible); None otherwise")
+    warning = Field("warning", "why it is infeasible ('' when feasible)", "")
+
+    @property
+    def csv_text(self):
+        """The retimed CSV's text: the input, every byte as it was but the time_s cells; None when infeasible."""
+        return self._csv_text
+
+
 class ReplayResult(_Tabled):
     """`ccma replay` (ccma.replay): the summary as attributes, the two CSV files as
     tables: `tables['end_effector']` (time_s, cmd_*, the tracked pose, err_* [mm or

@@ -28,6 +28,7 @@ void BindDesign(pybind11::module_& m);     // design parameters: ds/dp and the d
 void BindImport(pybind11::module_& m);     // robots described elsewhere (URDF, SDFormat)
 void BindCollision(pybind11::module_& m);  // clearance, whole-trajectory planning
 void BindStatics(pybind11::module_& m);    // joint reactions and control efforts
+void BindDynamics(pybind11::module_& m);   // inverse dynamics and retiming along a trajectory
 void BindWorkEstimate(pybind11::module_& m);  // WorkBoundError, the bound on a run's estimated time
 
 }  // namespace ccma::python

@@ -20,4 +20,5 @@ PYBIND11_MODULE(_ccma, m) {
   ccma::python::BindGenerate(m);
   ccma::python::BindCollision(m);
   ccma::python::BindStatics(m);
+  ccma::python::BindDynamics(m);
 }
