@@ -237,50 +237,6 @@ Command ReplayCommand() {
           RunReplay, {{"out", "folder for the CSVs, the RMSE table and the plots, created if missing [path]"}}};
 }
 
-Command ViewCommand() {
-  return {"view", "write a self-contained 3D HTML view (animated for a trajectory or replay)",
-          "ccma view --model=FILE [--trajectory=FILE.csv | --replay=DIR | --workspace=MAP.csv | --controls=...]\n"
-          "          [--meshes [--mesh_root=DIR,...]] [--obstacles=FILE.yaml] [--color_by=body|load]\n"
-          "          [--deflection=SCALE [--wrench=fx,fy,fz,mx,my,mz]] --out=FILE.html",
-          "Writes one self-contained HTML page (three.js inlined; it fetches nothing) that shows the\n"
-          "mechanism in 3D: links as capsules between joint points, bases as discs with a heading arrow,\n"
-          "joint markers by type, the end-effector's frame, the ground grid, orbit controls. With a\n"
-          "trajectory CSV (`ccma trajectory`) or a replay directory (`ccma replay`) it is animated (play,\n"
-          "pause, time slider) with the end-effector's commanded and tracked paths and the bases' paths.\n"
-          "Each frame is re-assembled from its controls; frames that are flagged, not assembled or reached\n"
-          "by a branch jump are marked red (and counted on stderr and in the JSON). Work bound: a frame more\n"
-          "than 1000 assembly sub-steps (20 m or rad of control change) from the last frame assembled, or\n"
-          "past 200000 sub-steps in all, is not attempted (flagged, drawn as the last frame assembled;\n"
-          "JSON beyond_work_bound_frames). With a workspace map (`ccma workspace`, alone) the model at home\n"
-          "under the map's end-effector positions as a point cloud: reachable points coloured by sigma_min\n"
-          "[m or rad per control unit], the others grey. With --meshes, the bodies' meshes (`meshes:` in\n"
-          "the model: binary or ASCII STL, paths absolute or relative to the model file's folder) are read,\n"
-          "embedded and drawn at their pose on each body instead of its capsules; at most 16 MiB per file and\n"
-          "64 MiB for all distinct files. Meshes are read only from inside the model file's folder (symlinks\n"
-          "resolved) and the folders given with --mesh_root; the page names them relative to the model's\n"
-          "folder (or by file name), never by an absolute path. A mesh file outside, missing, unreadable,\n"
-          "too large or not a valid STL: exit 2, naming the model file and line, the body and the mesh file\n"
-          "(JSON mesh_files, mesh_bytes).\n"
-          "With collision geometry (`collision:`, `obstacles:` or --obstacles) the obstacles, bases' cylinders\n"
-          "and link capsules are drawn see-through with each frame's clearance and pair; a frame below\n"
-          "collision.margin reads \"below margin\", its pair turns red and it is flagged (JSON\n"
-          "clearance_below_margin_frames). With --color_by=load each frame's statics is solved (gravity on\n"
-          "the masses and payload, no wrench) and each link is coloured by its load, the largest reaction\n"
-          "force of the joints that touch it [N], on a scale from 0 to the page's largest (JSON max_load,\n"
-          "unbalanced_frames, indeterminate_frames); statics beyond its bounds: exit 2.\n"
-          "With --controls (alone, no trajectory, replay or map) the model is shown assembled at those controls.\n"
-          "With --deflection=SCALE (a compliant model: stiffness keys; a static view, at home or --controls)\n"
-          "the loaded shape, the loaded equilibrium of `ccma simulate --loaded` under gravity, the payload and\n"
-          "--wrench, is drawn over the rigid one with every body's displacement multiplied by SCALE (in\n"
-          "(0, 1e6]), each body coloured by its deflection (the largest displacement of its joint points) from\n"
-          "0 to the largest, with the scale and the largest deflection in the page (JSON deflection_scale,\n"
-          "max_deflection_m, deflection_converged, load_fraction). A rigid model, a bad SCALE or controls that\n"
-          "do not assemble: exit 2.",
-          {"model", "trajectory", "replay", "workspace", "controls", "meshes", "mesh_root", "color_by", "deflection",
-           "wrench", "out", "obstacles"},
-          RunView, {{"out", "the HTML page to write [path]"}}};
-}
-
 Command WorkspaceCommand() {
   return {"workspace", "map the reachable end-effector poses and their conditioning",
           "ccma workspace --model=FILE --out=FILE.csv [--x=lo:hi] [--y=lo:hi] [--z=lo:hi] [--roll=lo:hi]\n"

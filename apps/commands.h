@@ -63,6 +63,7 @@ int RunImport(const std::vector<std::string>& args);
 int RunBench(const std::vector<std::string>& args);
 int RunReplay(const std::vector<std::string>& args);
 int RunView(const std::vector<std::string>& args);
+Command ViewCommand();  // (apps/view_command.cc, with its flags)
 int RunWorkspace(const std::vector<std::string>& args);
 int RunDesign(const std::vector<std::string>& args);
 int RunExport(const std::vector<std::string>& args);

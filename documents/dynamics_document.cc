@@ -8,21 +8,11 @@
 
 namespace ccma::documents {
 
-std::vector<std::string> EffortColumns(const Model& model) {
-  std::vector<std::string> out;
-  for (std::string name : viewer::TrajectoryControlColumns(model)) {
-    const size_t cut = name.rfind('_');
-    const std::string unit = name.substr(cut + 1);
-    out.push_back(name.substr(0, cut) + (unit == "rad" ? "_Nm" : "_N"));
-  }
-  return out;
-}
-
 Table DynamicsTable(const Model& model, const DynamicsReport& report) {
   Table table;
   Column& time = table.Add("time_s");
   for (const DynamicsRow& row : report.rows) time.values.push_back(row.time);
-  const std::vector<std::string> names = EffortColumns(model);
+  const std::vector<std::string> names = viewer::EffortColumns(model);
   for (size_t i = 0; i < names.size(); ++i) {
     Column& c = table.Add(names[i]);
     for (const DynamicsRow& row : report.rows) {

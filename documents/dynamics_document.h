@@ -14,12 +14,7 @@
 
 namespace ccma::documents {
 
-// The effort column of each control, control order: the trajectory CSV's
-// control column with its unit replaced (u0_x_m -> u0_x_N, u0_theta_rad ->
-// u0_theta_Nm, u_<joint>_rad -> u_<joint>_Nm, u_<joint>_m -> u_<joint>_N).
-std::vector<std::string> EffortColumns(const Model& model);
-
-// time_s, the effort columns, kinetic_J, potential_J, power_W; one row per
+// time_s, the effort columns (viewer::EffortColumns), kinetic_J, potential_J, power_W; one row per
 // path row (empty effort cells where a row did not assemble).
 Table DynamicsTable(const Model& model, const DynamicsReport& report);
 

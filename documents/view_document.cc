@@ -79,6 +79,14 @@ Document ViewDocument(const Model& model, const viewer::SceneSummary& summary, s
     out["deflection_converged"] = e.converged;
     out["load_fraction"] = e.load_fraction;
   }
+  if (summary.max_effort_share) {
+    out["max_effort_share"] = *summary.max_effort_share;
+    out["effort_frames_beyond_limit"] = summary.effort_frames_beyond_limit;
+    if (summary.effort_frames_beyond_limit > 0) {
+      doc.warnings.push_back(std::to_string(summary.effort_frames_beyond_limit) +
+                             " frame(s) with an actuator beyond its effort or push limit (magenta)");
+    }
+  }
   if (workspace) {
     out["workspace_points"] = summary.workspace_points;
     out["workspace_reachable"] = summary.workspace_reachable;

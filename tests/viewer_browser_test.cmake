@@ -3,9 +3,10 @@
 # with KIND=workspace, under the cloud of a small `ccma workspace` map over
 # x, y, z, reachable and unreachable points both; with KIND=meshes, with
 # `--meshes`; with KIND=collision, MODEL given capsules and obstacles; with
-# KIND=load, `--color_by=load`; with KIND=deflection, `--deflection=100`) and opens it with
+# KIND=load, `--color_by=load`; with KIND=deflection, `--deflection=100`; with KIND=effort,
+# `--dynamics` of a retimed trajectory) and opens it with
 # viewer/js/test/browser_test.mjs in headless Chromium.
-#   cmake -DTOOL=.. -DNODE=.. -DTEST_JS=.. -DMODEL=.. -DWORK=.. -DKIND=model|trajectory|replay|workspace|meshes|collision|load|deflection
+#   cmake -DTOOL=.. -DNODE=.. -DTEST_JS=.. -DMODEL=.. -DWORK=.. -DKIND=model|trajectory|replay|workspace|meshes|collision|load|deflection|effort
 #         [-DWAYPOINTS=..] -P viewer_browser_test.cmake
 # Skipped (CTest's SKIP_REGULAR_EXPRESSION on "SKIPPED: chromium", with the
 # reason printed) only when Chromium is missing; never a silent pass.
@@ -69,6 +70,16 @@ elseif(KIND STREQUAL "load")
     list(APPEND source "--trajectory=${WORK}/path.csv")
     set(animation --expect-animation)
   endif()
+elseif(KIND STREQUAL "effort")
+  # --dynamics (browser_test.mjs checks the colours, the legend and the bar's
+  # effort line): MODEL (with push limits) along WAYPOINTS, retimed to the
+  # fastest timing within its limits (shares up to about 1), then its
+  # `ccma dynamics --out`.
+  run("${TOOL}" trajectory "--model=${MODEL}" "--waypoints=${WAYPOINTS}" "--out=${WORK}/path.csv")
+  run("${TOOL}" retime "--model=${MODEL}" "--trajectory=${WORK}/path.csv" "--out=${WORK}/fast.csv")
+  run("${TOOL}" dynamics "--model=${MODEL}" "--trajectory=${WORK}/fast.csv" "--out=${WORK}/efforts.csv")
+  set(source "--trajectory=${WORK}/fast.csv" "--dynamics=${WORK}/efforts.csv")
+  set(animation --expect-animation)
 elseif(KIND STREQUAL "deflection")
   # --deflection (browser_test.mjs checks the legend, the colours and the
   # loaded copy's poses): MODEL is compliant, seen at home, exaggerated 100 times.

@@ -409,7 +409,7 @@ double FlagEnergyFor(const std::string& source) {
 
 std::string BuildScene(const Model& model, const std::vector<ViewFrame>& frames, const std::string& source,
                        SceneSummary* summary, const WorkspaceCloud* workspace, const MeshFiles* meshes,
-                       ColorBy color_by, const DeflectionRequest* deflection) {
+                       ColorBy color_by, const DeflectionRequest* deflection, const FrameEfforts* efforts) {
   const double scale = Scale(model, workspace);
   json scene = {{"format", "ccma-scene-1"}, {"model", model.name},    {"description", model.description},
                 {"scale", Round(scale)},     {"bodies", Bodies(model, scale, meshes)}, {"joints", Joints(model)},
@@ -442,6 +442,13 @@ std::string BuildScene(const Model& model, const std::vector<ViewFrame>& frames,
   // No key without collision geometry: the scene of any other model is as it was.
   if (model.collision.enabled) scene["collision"] = Collision(model);
   if (loads) scene["loads"] = Loads(*loads, &s);  // no key unless colouring by load
+  if (efforts != nullptr) {  // no key unless --dynamics
+    scene["efforts"] = FrameEffortsJson(*efforts);
+    s.max_effort_share = efforts->max;
+    for (const std::vector<double>& row : efforts->shares) {
+      s.effort_frames_beyond_limit += std::any_of(row.begin(), row.end(), [](double x) { return x > 1 + 1e-9; });
+    }
+  }
   if (deflection != nullptr) {  // a static view: the state drawn is its only frame's
     if (s.not_assembled > 0) throw DeflectionError("the mechanism is not assembled at these controls");
     const ForwardProblem& forward = assembler.forward();

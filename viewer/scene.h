@@ -9,6 +9,7 @@
 
 #include "ccma/model.h"
 #include "viewer/deflection_shape.h"
+#include "viewer/frame_efforts.h"
 #include "viewer/frame_loads.h"
 #include "viewer/mesh_files.h"
 #include "viewer/view_frames.h"
@@ -41,6 +42,10 @@ struct SceneSummary {
   int indeterminate_frames = 0;
   // With a DeflectionRequest: the loaded shape drawn (else empty).
   std::optional<DeflectedShape> deflected;
+  // With FrameEfforts (else empty / 0): the largest effort share of the
+  // page, and the frames where some actuator is beyond its limit.
+  std::optional<double> max_effort_share;
+  int effort_frames_beyond_limit = 0;
 };
 
 // The residual energy E [m^2] above which a re-assembled frame counts as
@@ -70,13 +75,15 @@ double FlagEnergyFor(const std::string& source);
 // state drawn (ComputeDeflectedShape; summary->deflected); throws
 // DeflectionError when that frame is not assembled or the loaded
 // equilibrium is beyond its bounds. Without, no deflection key appears.
+// With `efforts` (ReadFrameEfforts of the same frames), the scene's
+// "efforts" object holds every frame's actuator shares of their limits.
 // Returns the JSON text
 // (numbers rounded to 1e-7: display precision, a tenth of a micrometre;
 // never NaN).
 std::string BuildScene(const Model& model, const std::vector<ViewFrame>& frames, const std::string& source,
                        SceneSummary* summary, const WorkspaceCloud* workspace = nullptr,
                        const MeshFiles* meshes = nullptr, ColorBy color_by = ColorBy::kBody,
-                       const DeflectionRequest* deflection = nullptr);
+                       const DeflectionRequest* deflection = nullptr, const FrameEfforts* efforts = nullptr);
 
 }  // namespace ccma::viewer
 

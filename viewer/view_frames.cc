@@ -152,6 +152,15 @@ std::vector<std::string> TrajectoryControlColumns(const Model& model) {
   return Names(ControlColumnNames(model, "u", true), {});
 }
 
+std::vector<std::string> EffortColumns(const Model& model) {
+  std::vector<std::string> out;
+  for (const std::string& name : TrajectoryControlColumns(model)) {
+    const size_t cut = name.rfind('_');
+    out.push_back(name.substr(0, cut) + (name.substr(cut + 1) == "rad" ? "_Nm" : "_N"));
+  }
+  return out;
+}
+
 int MaxViewFrames(const Model& model) {
   const long by_poses = kMaxViewPoses / std::max(1, model.num_bodies());
   return static_cast<int>(std::max(2L, std::min<long>(kMaxViewFrames, by_poses)));

@@ -49,6 +49,11 @@ int MaxViewFrames(const Model& model);
 // names `ccma trajectory` writes and `ccma dynamics` reads.
 std::vector<std::string> TrajectoryControlColumns(const Model& model);
 
+// The effort column of each control in a `ccma dynamics` CSV, control order:
+// the control column with its unit replaced (u0_x_m -> u0_x_N, u0_theta_rad
+// -> u0_theta_Nm, u_<joint>_rad -> u_<joint>_Nm, u_<joint>_m -> u_<joint>_N).
+std::vector<std::string> EffortColumns(const Model& model);
+
 // Rows of a `ccma trajectory` CSV: controls from u<k>_x_m, u<k>_y_m,
 // u<k>_theta_rad and u_<joint>_rad|_m; commanded = target_x_m.., tracked =
 // x_m..; flagged where reached is 0. Throws ViewInputError (naming file,

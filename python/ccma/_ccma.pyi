@@ -1072,6 +1072,7 @@ def view_html(
     controls: Optional[ArrayLike] = None,
     deflection: Optional[float] = None,
     wrench: Optional[ArrayLike] = None,
+    dynamics: Optional[str] = None,
 ) -> Tuple[str, ViewResult]:
     """(html, info): the self-contained page of `ccma view` and its summary (a ViewResult: the command's JSON without out), animated along a trajectory CSV or a replay
     directory, or with a `ccma workspace` CSV drawn as a point cloud (at most one of the three);

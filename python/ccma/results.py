@@ -336,6 +336,9 @@ class ViewResult(Result):
     max_deflection_m = Field("max_deflection_m", "deflection=: the largest body deflection [m]; else None")
     deflection_converged = Field("deflection_converged", "deflection=: the loaded equilibrium was found; else None")
     load_fraction = Field("load_fraction", "deflection=: the fraction of the loads the shape holds; else None")
+    max_effort_share = Field("max_effort_share", "dynamics=: the largest effort share of a limit; else None")
+    effort_frames_beyond_limit = Field("effort_frames_beyond_limit",
+                                       "dynamics=: frames with an actuator beyond its limit; else None")
     workspace_points = Field("workspace_points", "points of a workspace map; else None")
     workspace_reachable = Field("workspace_reachable", "reachable points of a workspace map; else None")
 

@@ -69,7 +69,7 @@ def _write_replacing(path, data):
 
 
 def view(model, trajectory=None, replay=None, out=None, height=600, workspace=None, meshes=False,
-         color_by="body", mesh_root=None, controls=None, deflection=None, wrench=None):
+         color_by="body", mesh_root=None, controls=None, deflection=None, wrench=None, dynamics=None):
     """Shows `model` (a ccma.Model or a model file path) in 3D.
 
     trajectory: a CSV written by `ccma trajectory` (or ControlProblem.follow
@@ -94,6 +94,10 @@ def view(model, trajectory=None, replay=None, out=None, height=600, workspace=No
     world frame), as `ccma view --deflection=SCALE --wrench=...`; at home or
     at `controls`. ValueError for a rigid model, a bad scale, or with a
     trajectory, replay, workspace or color_by="load".
+    dynamics: with trajectory, its `ccma dynamics --out` CSV (or
+    ccma.dynamics(..., out=PATH)): every actuator with an effort_limits or
+    push_limit colours the body it drives by its effort as a share of the
+    limit, magenta beyond it, as `ccma view --dynamics`.
     out: write the self-contained HTML page there and return a ccma.ViewResult,
     the JSON `ccma view` prints as attributes (out, bytes, frames, source,
     flagged_frames, ...; to_dict() is that JSON). Without `out`, inside Jupyter
@@ -111,7 +115,8 @@ def view(model, trajectory=None, replay=None, out=None, height=600, workspace=No
                                   bool(meshes), str(color_by), mesh_root,
                                   None if controls is None else [float(v) for v in controls],
                                   None if deflection is None else float(deflection),
-                                  None if wrench is None else [float(v) for v in wrench])
+                                  None if wrench is None else [float(v) for v in wrench],
+                                  None if dynamics is None else _os.fspath(dynamics))
     if out is not None:
         out = _os.fspath(out)
         _write_replacing(out, page.encode("utf-8"))

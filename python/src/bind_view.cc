@@ -91,7 +91,8 @@ std::vector<viewer::ViewFrame> ViewFramesFrom(const Model& model, const std::opt
 py::tuple ViewHtml(const Model& model, std::optional<std::string> trajectory, std::optional<std::string> replay,
                    std::optional<std::string> workspace, bool meshes, const std::string& color_by,
                    const py::object& mesh_root, const std::optional<Eigen::VectorXd>& controls,
-                   const std::optional<double>& deflection, const std::optional<Eigen::VectorXd>& wrench) {
+                   const std::optional<double>& deflection, const std::optional<Eigen::VectorXd>& wrench,
+                   std::optional<std::string> dynamics) {
   const std::vector<std::string> roots = MeshRoots(mesh_root);
   if (!roots.empty() && !meshes) throw py::value_error("mesh_root goes with meshes=True");
   if (int(bool(trajectory)) + int(bool(replay)) + int(bool(workspace)) > 1) {
@@ -100,6 +101,8 @@ py::tuple ViewHtml(const Model& model, std::optional<std::string> trajectory, st
   if (color_by != "body" && color_by != "load") {
     throw py::value_error("color_by must be 'body' or 'load', not '" + color_by + "'");
   }
+  if (dynamics && !trajectory) throw py::value_error("dynamics goes with trajectory (the trajectory its efforts are of)");
+  if (dynamics && color_by != "body") throw py::value_error("dynamics colours the bodies by effort: not with color_by='load'");
   const std::optional<viewer::DeflectionRequest> loaded =
       StaticViewArguments(model, controls, deflection, wrench, trajectory || replay || workspace, color_by);
   const viewer::ColorBy colors = color_by == "load" ? viewer::ColorBy::kLoad : viewer::ColorBy::kBody;
@@ -117,12 +120,16 @@ py::tuple ViewHtml(const Model& model, std::optional<std::string> trajectory, st
       source = "workspace";
     }
     const std::vector<viewer::ViewFrame> frames = ViewFramesFrom(model, trajectory, replay, controls, &source);
+    std::optional<viewer::FrameEfforts> efforts;
+    if (dynamics) efforts = viewer::ReadFrameEfforts(model, *dynamics, frames);
     html = viewer::ViewerHtml(viewer::BuildScene(model, frames, source, &summary, cloud ? &*cloud : nullptr,
                                                  mesh_files ? &*mesh_files : nullptr, colors,
-                                                 loaded ? &*loaded : nullptr),
+                                                 loaded ? &*loaded : nullptr, efforts ? &*efforts : nullptr),
                               model.name);
   } catch (const viewer::DeflectionError& e) {
     throw py::value_error(std::string("deflection: ") + e.what());
+  } catch (const std::invalid_argument& e) {  // no limits to colour the efforts by
+    throw py::value_error(std::string("dynamics: ") + e.what());
   }
   const documents::Document document =
       documents::ViewDocument(model, summary, html.size(), source, mesh_files ? &*mesh_files : nullptr,
@@ -145,7 +152,7 @@ void BindView(py::module_& m) {
       "view_html", &ViewHtml, py::arg("model"), py::arg("trajectory") = py::none(), py::arg("replay") = py::none(),
       py::arg("workspace") = py::none(), py::arg("meshes") = false, py::arg("color_by") = "body",
       py::arg("mesh_root") = py::none(), py::arg("controls") = py::none(), py::arg("deflection") = py::none(),
-      py::arg("wrench") = py::none(),
+      py::arg("wrench") = py::none(), py::arg("dynamics") = py::none(),
       "(html, info): the self-contained page of `ccma view` and its summary, a ccma.ViewResult (the command's "
       "JSON without out: bytes, frames, source, flagged_frames, ...), for the model, animated along a "
       "trajectory CSV or a replay directory, or with a `ccma workspace` CSV as a point cloud; "
@@ -157,6 +164,9 @@ void BindView(py::module_& m) {
       "'controls'); deflection=SCALE: the loaded shape of a compliant model exaggerated SCALE times over the "
       "rigid one, under gravity, the payload and wrench (fx, fy, fz, mx, my, mz; `ccma view --deflection`; "
       "info gains deflection_scale, max_deflection_m [m], deflection_converged, load_fraction); "
+      "dynamics: with trajectory, its `ccma dynamics --out` CSV: each actuator with a limit colours the body it "
+      "drives by its effort as a share of the limit (`ccma view --dynamics`; info gains max_effort_share, "
+      "effort_frames_beyond_limit); "
       "raises ccma.ViewInputError on a bad file, ValueError on bad arguments.");
 }
 

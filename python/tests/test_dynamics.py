@@ -109,3 +109,27 @@ def test_bad_input_is_a_value_error_naming_line_and_column(tmp_path):
     unlimited = ARM.replace(", effort_limits: [-30, 30], velocity_limit: 1.5", "")
     with pytest.raises(ValueError, match="retime"):
         ccma.retime(ccma.ForwardProblem(ccma.load_model_from_string(unlimited, "free.yaml")), arm_path(tmp_path))
+
+
+def test_view_colours_the_efforts_of_a_trajectory(tmp_path):
+    if not ccma.viewer_available():
+        pytest.skip("this build carries no viewer JavaScript")
+    heavy = ARM.replace("effort_limits: [-30, 30]", "effort_limits: [-20, 9]")
+    model = ccma.load_model_from_string(heavy, "heavy.yaml")
+    path = tmp_path / "arm_view.csv"
+    rows = ["time_s,target_x_m,target_y_m,target_z_m,x_m,y_m,z_m,u_hinge_rad"]
+    for r in range(11):
+        q = -0.4 + 0.13 * r
+        x, z = 0.5 * math.cos(q), 0.5 * math.sin(q)
+        rows.append("%.17g,%.17g,0,%.17g,%.17g,0,%.17g,%.17g" % (0.1 * r, x, z, x, z, q))
+    path.write_text("\n".join(rows) + "\n")
+    efforts = tmp_path / "arm_efforts.csv"
+    r = ccma.dynamics(ccma.ForwardProblem(model), path, out=efforts)
+    page, info = ccma.view_html(model, trajectory=str(path), dynamics=str(efforts))
+    # The share of the 9 N m limit: the largest gravity torque over 9.
+    peak = max(abs(a.peak_effort) for a in r.actuators)
+    assert info.max_effort_share == pytest.approx(peak / 9, rel=1e-9)
+    assert info.effort_frames_beyond_limit == sum(1 for e in r.table["u_hinge_Nm"] if e > 9)
+    assert '"efforts"' in page
+    with pytest.raises(ValueError, match="dynamics goes with trajectory"):
+        ccma.view_html(model, dynamics=str(efforts))

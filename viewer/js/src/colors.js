@@ -23,6 +23,7 @@ export const COLORS = {
   tracked: 0x7c3aed,
   basePath: 0x1e40af,
   flagged: 0xdc2626,
+  beyond: 0xd946ef,  // an effort beyond its limit (efforts.js): apart from the load map's dark-red end
   unreachable: 0x8b929c,
   axisX: 0xe53935,
   axisY: 0x43a047,

@@ -7,6 +7,7 @@ import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { buildCollision, clearanceAt } from './collision.js';
 import { COLORS, css } from './colors.js';
 import { deflectionColors, fadeRigid, showDeflected } from './deflection.js';
+import { effortColors } from './efforts.js';
 import { loadColors } from './loads.js';
 import { buildMechanism, sceneSize } from './mechanism.js';
 import { buildOverlay, showError } from './overlay.js';
@@ -68,6 +69,8 @@ function start() {
   const collision = buildCollision(scene, world);
   mechanism.pose(frames, 0);
   if (collision) collision.pose(0);
+  // Colouring by effort (`--dynamics`): bodies no limited actuator drives keep these.
+  const ownColors = mechanism.bodyColors().map((c) => c.map((x) => x / 255));
   // The loaded shape (`--deflection`): a second copy over the faded rigid one.
   const deflected = scene.deflection ? buildMechanism(scene, world, size) : null;
   if (deflected) {
@@ -107,6 +110,10 @@ function start() {
     if (scene.loads) {
       mechanism.paint(loadColors(scene, current));
       ui.load(current);
+    }
+    if (scene.efforts) {
+      mechanism.paint(effortColors(scene, current, ownColors), { shells: true });
+      ui.effort(current);
     }
     ui.slider.value = String(current);
     ui.label.textContent = `t = ${frames.time[current].toFixed(2)} s (frame ${current + 1}/${n})`;
@@ -195,6 +202,7 @@ function start() {
     // loads at frame f give it (sRGB 0..255).
     loads: scene.loads ? { max: scene.loads.max, masses: scene.loads.masses } : null,
     bodyColors: () => mechanism.bodyColors(),
+    shellColors: () => mechanism.shellColors(),
     // The loaded shape (`--deflection`): its bodies' points on screen and
     // colours as drawn, and the colours the scene's deflections give them (sRGB 0..255).
     deflection: scene.deflection ? { scale: scene.deflection.scale, max: scene.deflection.max } : null,
@@ -203,6 +211,10 @@ function start() {
     deflectionColors: () => (scene.deflection ? deflectionColors(scene).map((c) => c.map((x) => Math.round(255 * x))) : null),
     showRigid: (visible) => { mechanism.setVisible(visible); render(); },
     loadColorsAt: (f) => (scene.loads ? loadColors(scene, f).map((c) => c.map((x) => Math.round(255 * x))) : null),
+    // Colouring by effort: the colours the scene's efforts give the bodies at frame f (sRGB 0..255).
+    efforts: scene.efforts ? { max: scene.efforts.max, actuators: scene.efforts.actuators.length } : null,
+    effortColorsAt: (f) => (scene.efforts
+      ? effortColors(scene, f, ownColors).map((c) => c.map((x) => Math.round(255 * x))) : null),
   };
 }
 

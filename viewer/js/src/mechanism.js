@@ -27,6 +27,7 @@ function leggedShape(body, u) {
   const mat = material(COLORS.legged, { roughness: 0.7 });
   const box = new Mesh(new BoxGeometry(length, width, thickness), mat);
   group.add(box);
+  group.userData.shell = mat;  // recoloured by effort (efforts.js)
   const legMat = material(COLORS.wheel, { roughness: 0.9 });
   const legLength = body.body_height > 0 ? body.body_height : 0.4;
   const r = Math.max(0.08 * width, 0.004 * u);
@@ -54,6 +55,7 @@ function baseShape(body, u) {
   disc.rotation.x = Math.PI / 2;  // cylinder axis (y) -> body z
   disc.position.z = thickness / 2;
   group.add(disc);
+  group.userData.shell = disc.material;  // recoloured by effort (efforts.js)
   group.add(arrow([0, 0, thickness], [1, 0, 0], 1.35 * r, Math.max(0.06 * r, 0.004 * u), COLORS.heading));
   if (body.kind === 'differential') {
     const wheelMat = material(COLORS.wheel, { roughness: 0.9 });
@@ -69,13 +71,14 @@ function baseShape(body, u) {
 // A body's group; a body with meshes (`ccma view --meshes`) shows them
 // instead of its capsules, which are pushed onto `meshes`. The materials of
 // its capsules, balls and meshes (not a base's disc) are kept in
-// userData.materials: colouring by load recolours them.
+// userData.materials: colouring by load recolours them; a base's disc or
+// body box is userData.shell, which colouring by effort recolours too.
 function bodyGroup(body, u, geometries, meshes) {
   const group = new Group();
   group.name = body.name;
   const isBase = body.kind === 'omni' || body.kind === 'differential' || body.kind === 'legged';
-  if (body.kind === 'legged') group.add(leggedShape(body, u));
-  else if (isBase) group.add(baseShape(body, u));
+  const shape = body.kind === 'legged' ? leggedShape(body, u) : isBase ? baseShape(body, u) : null;
+  if (shape) group.add(shape);
   const color = !isBase ? COLORS.link : COLORS[body.kind];
   const mat = material(color);
   const own = addBodyMeshes(group, body, geometries);
@@ -85,6 +88,7 @@ function bodyGroup(body, u, geometries, meshes) {
   }
   for (const p of body.points) group.add(ball(p, SIZE.point * u, mat));
   group.userData.materials = [...new Set([mat, ...own.map((m) => m.material)])];
+  group.userData.shell = shape ? shape.userData.shell : null;  // a base's disc or body box
   return group;
 }
 
@@ -181,8 +185,13 @@ export function buildMechanism(scene, root, u) {
     // Colours each body's capsules, balls and meshes: colors[b] is sRGB
     // [r, g, b] in 0..1 (loads.js); and each body's colour as drawn, sRGB
     // 0..255 (the browser test compares them with the scene's loads).
-    paint(colors) {
-      bodies.forEach((g, b) => g.userData.materials.forEach((m) => m.color.setRGB(...colors[b], SRGBColorSpace)));
+    // With shells (colouring by effort: a base is the actuator), a base's disc
+    // or body box too.
+    paint(colors, { shells = false } = {}) {
+      bodies.forEach((g, b) => {
+        const all = shells && g.userData.shell ? [...g.userData.materials, g.userData.shell] : g.userData.materials;
+        all.forEach((m) => m.color.setRGB(...colors[b], SRGBColorSpace));
+      });
     },
     // The links and balls see-through (the rigid shape under a loaded one, deflection.js).
     fade(opacity) {
@@ -195,6 +204,14 @@ export function buildMechanism(scene, root, u) {
     bodyColors() {
       return bodies.map((g) => {
         const c = g.userData.materials[0].color.clone().convertLinearToSRGB();
+        return [c.r, c.g, c.b].map((x) => Math.round(255 * x));
+      });
+    },
+    // Each base's disc or body box colour as drawn (sRGB 0..255; null for a link).
+    shellColors() {
+      return bodies.map((g) => {
+        if (!g.userData.shell) return null;
+        const c = g.userData.shell.color.clone().convertLinearToSRGB();
         return [c.r, c.g, c.b].map((x) => Math.round(255 * x));
       });
     },

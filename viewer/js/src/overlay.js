@@ -3,9 +3,11 @@
 // slider and label, a badge for flagged frames, the frame's clearance (with
 // collision geometry), the workspace cloud's colour scale and its
 // "unreachable" switch, the load scale and the frame's loads (colouring by
-// load, loads.js); and the error panel.
+// load, loads.js); the effort scale and the frame's largest effort share
+// (colouring by effort, efforts.js); and the error panel.
 import { COLORS, css } from './colors.js';
 import { deflectionLegend } from './deflection.js';
+import { effortLabel, effortLegend } from './efforts.js';
 import { loadLabel, loadLegend } from './loads.js';
 import { rampGradient } from './workspace.js';
 
@@ -87,6 +89,7 @@ function legend(scene, gridStep, cloud) {
   const panel = el('div', { ...PANEL, top: '10px', right: '10px' });
   const toggle = cloud ? workspaceLegend(panel, scene, cloud) : null;
   if (scene.loads) loadLegend(panel, scene);
+  if (scene.efforts) effortLegend(panel, scene);
   if (scene.deflection) deflectionLegend(panel, scene);
   const item = (kind, colors, label) => {
     const row = el('div', { display: 'flex', alignItems: 'center', gap: '8px', margin: '3px 0' });
@@ -95,9 +98,10 @@ function legend(scene, gridStep, cloud) {
   };
   const kinds = new Set(scene.bodies.map((b) => b.kind));
   const joints = scene.joints || [];
-  if (kinds.has('omni')) item('block', [COLORS.omni], 'omni base (arrow: heading)');
-  if (kinds.has('differential')) item('block', [COLORS.differential], 'differential base (arrow: heading)');
-  if (kinds.has('legged')) item('block', [COLORS.legged], 'legged base: body box on four legs (arrow: heading)');
+  const byEffort = scene.efforts ? '; coloured by effort when limited' : '';
+  if (kinds.has('omni')) item('block', [COLORS.omni], `omni base (arrow: heading${byEffort})`);
+  if (kinds.has('differential')) item('block', [COLORS.differential], `differential base (arrow: heading${byEffort})`);
+  if (kinds.has('legged')) item('block', [COLORS.legged], `legged base: body box on four legs (arrow: heading${byEffort})`);
   const withMeshes = scene.bodies.filter((b) => (b.meshes || []).length > 0).length;
   if (withMeshes < scene.bodies.length && !scene.loads) item('block', [COLORS.link], scene.deflection ? 'link (rigid shape, faded)' : 'link');
   if (withMeshes > 0 && !scene.loads) item('block', [COLORS.mesh], 'body mesh (STL)');
@@ -151,9 +155,10 @@ export function buildOverlay(scene, frames, gridStep, cloud = null) {
   bar.append(play, slider, label);
   const clearance = scene.collision ? clearanceLabel(bar) : null;
   const load = scene.loads ? loadLabel(bar, scene) : null;
+  const effort = scene.efforts ? effortLabel(bar, scene) : null;
   bar.append(badge);
   document.body.append(bar);
-  return { play, slider, label, badge, unreachable: toggle, clearance, load };
+  return { play, slider, label, badge, unreachable: toggle, clearance, load, effort };
 }
 
 // The frame's clearance: its value and pair, and "below margin" in red.

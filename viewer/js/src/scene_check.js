@@ -2,9 +2,10 @@
 // drawn, so that a malformed page shows one readable message instead of a
 // half-built view or an exception from deep inside three.js. Returns a list
 // of problems (empty when the scene is usable). Optional parts (joints,
-// end_effector, paths, flags, workspace, meshes, collision, loads, deflection) are checked only when present.
+// end_effector, paths, flags, workspace, meshes, collision, loads, efforts, deflection) are checked only when present.
 import { checkCollision } from './collision.js';
 import { checkDeflection } from './deflection.js';
+import { checkEfforts } from './efforts.js';
 import { checkLoads } from './loads.js';
 import { checkMeshes } from './meshes.js';
 
@@ -74,6 +75,7 @@ export function checkScene(scene) {
   problems.push(...checkMeshes(scene));
   problems.push(...checkCollision(scene));
   problems.push(...checkLoads(scene));
+  problems.push(...checkEfforts(scene));
   problems.push(...checkDeflection(scene));
   return problems;
 }

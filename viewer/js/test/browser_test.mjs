@@ -29,6 +29,9 @@
 //   p, q, r. (pages with a loaded shape, `ccma view --deflection`) the
 //      legend's scale, each loaded body in its deflection's colour, the
 //      loaded copy at the scene's poses: test/deflection_checks.mjs;
+//   s, t, u. (pages coloured by effort, `ccma view --dynamics`) the effort
+//      legend, each driven body (and base shape) in its share's colour, the
+//      bar's effort line: test/effort_checks.mjs;
 //   f. (--screenshot OUT.png) saves the 1200x800 picture at frame 0 (or at
 //      --screenshot-frame N), also of a failed page.
 // Prints one JSON line; exit 0 when every check passes, 1 otherwise, 77 when
@@ -41,6 +44,7 @@ import { pathToFileURL } from 'node:url';
 import { chromium } from 'playwright-core';
 import { checkCollision } from './collision_checks.mjs';
 import { checkDeflection } from './deflection_checks.mjs';
+import { checkEfforts } from './effort_checks.mjs';
 import { checkLoads } from './load_checks.mjs';
 import { checkMeshes } from './mesh_checks.mjs';
 import { decodePng } from './png.mjs';
@@ -204,6 +208,9 @@ try {
     // p, q, r. The loaded shape: its legend, colours and poses.
     const hasDeflection = await page.evaluate(() => Boolean(JSON.parse(document.getElementById('ccma-scene').textContent).deflection));
     if (hasDeflection) failures.push(...await checkDeflection(page, result));
+    // s, t, u. The actuators coloured by effort, the legend and the bar's line.
+    const hasEfforts = await page.evaluate(() => Boolean(JSON.parse(document.getElementById('ccma-scene').textContent).efforts));
+    if (hasEfforts) failures.push(...await checkEfforts(page, result));
 
     // e. The slider (through the UI) and play move the end-effector.
     if (args.includes('--expect-animation') && view.frames < 2) {

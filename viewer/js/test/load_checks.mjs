@@ -17,7 +17,7 @@ import { rotate } from './mesh_checks.mjs';
 const STOPS = [[59, 76, 192], [42, 161, 152], [224, 180, 58], [240, 123, 44], [180, 4, 38]];
 
 // sRGB 0..255 of the map at t in [0, 1], linear between evenly spaced stops.
-function mapColor(t) {
+export function mapColor(t) {
   const x = Math.min(Math.max(t, 0), 1) * (STOPS.length - 1);
   const i = Math.min(Math.floor(x), STOPS.length - 2), f = x - i;
   return [0, 1, 2].map((k) => STOPS[i][k] * (1 - f) + STOPS[i + 1][k] * f);
