@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -70,6 +71,41 @@ inline ControlPath SinePath(const Model& model, int seed, int rows, double durat
     path.controls.push_back(u);
   }
   return path;
+}
+
+// The rows ControlProblem::FollowWaypoints makes along a loop of the
+// end-effector about its home position (x = r sin, y = r (1 - cos),
+// z = r/2 sin over `duration` s, one waypoint per 50 ms), as ccma
+// trajectory writes them, on the second of two laps (the first turns
+// differential bases towards their travel, in place). Controls that
+// over-actuated models tie stay consistent: the smooth path of a model whose
+// controls a sine cannot move. Control steps of at most max_step_m [m] (and
+// half that in rad); empty when some waypoint is not reached.
+inline ControlPath FollowedPath(const Model& model, double radius, double duration, double max_step_m) {
+  ControlOptions options;
+  options.max_step_m = max_step_m;
+  options.max_step_rad = max_step_m / 2;
+  ControlProblem control(model, options);
+  const Eigen::Vector3d p0 = control.CurrentPose().position;
+  std::vector<Waypoint> waypoints;
+  const int n = static_cast<int>(std::lround(duration / 0.05));
+  for (int i = 0; i <= 2 * n; ++i) {
+    const double t = duration * i / n, a = 2 * M_PI * t / duration;
+    Waypoint w;
+    w.time = t;
+    w.position = p0 + radius * Eigen::Vector3d(std::sin(a), 1 - std::cos(a), 0.5 * std::sin(a));
+    w.rpy = control.CurrentPose().rpy;
+    waypoints.push_back(w);
+  }
+  ControlPath path;
+  path.source = "followed";
+  const TrajectoryResult r = FollowWaypoints(control, waypoints, [&](const TrajectoryStep& step) {
+    if (step.time < duration) return;  // the first lap
+    if (!path.times.empty() && step.time <= path.times.back()) return;  // one row per time
+    path.times.push_back(step.time);
+    path.controls.push_back(step.controls);
+  });
+  return r.converged ? path : ControlPath{};
 }
 
 }  // namespace ccma::testing
