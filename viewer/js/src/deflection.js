@@ -6,6 +6,7 @@
 // end-effector's) and the check of the scene's "deflection" object.
 import { COLORS, css, gradientOf, rampAt } from './colors.js';
 import { LOAD_RAMP } from './loads.js';
+import { el } from './dom.js';
 
 const isVec = (v, n) => Array.isArray(v) && v.length === n && v.every(Number.isFinite);
 
@@ -49,13 +50,6 @@ export function formatLength(m) {
   const a = Math.abs(m);
   const [unit, f] = a < 1e-3 ? ['\u00b5m', 1e6] : a < 1 ? ['mm', 1e3] : ['m', 1];
   return `${Number((m * f).toPrecision(3))} ${unit}`;
-}
-
-function el(tag, style, text) {
-  const e = document.createElement(tag);
-  Object.assign(e.style, style);
-  if (text !== undefined) e.textContent = text;
-  return e;
 }
 
 // The legend's block: "deflection (drawn x SCALE)", the colour scale from 0

@@ -6,6 +6,7 @@
 // bar's line for the frame shown.
 import { COLORS, css, gradientOf, rampAt } from './colors.js';
 import { LOAD_RAMP } from './loads.js';
+import { el } from './dom.js';
 
 // Problems of the scene's "efforts" object (none when it is absent or valid).
 export function checkEfforts(scene) {
@@ -51,13 +52,6 @@ export function effortColors(scene, f, base) {
 }
 
 const percent = (x) => `${Math.round(100 * x)} %`;
-
-function el(tag, style, text) {
-  const e = document.createElement(tag);
-  Object.assign(e.style, style);
-  if (text !== undefined) e.textContent = text;
-  return e;
-}
 
 // The legend's block: "effort / limit", the scale from 0 to 100 %, magenta
 // beyond, grey not assembled, and which bodies are coloured.

@@ -4,6 +4,7 @@
 // frame shown (its largest load, and whether its statics is unbalanced or
 // only the minimum-norm loads).
 import { COLORS, css, gradientOf, rampAt } from './colors.js';
+import { el } from './dom.js';
 
 // The load map, low to high: evenly spaced sRGB stops from deep blue through
 // teal and gold to orange and dark red. Its lightness rises to gold and
@@ -45,13 +46,6 @@ export function loadColors(scene, f) {
 }
 
 const number = (x) => (x === 0 ? '0' : Number(x.toPrecision(3)).toString());
-
-function el(tag, style, text) {
-  const e = document.createElement(tag);
-  Object.assign(e.style, style);
-  if (text !== undefined) e.textContent = text;
-  return e;
-}
 
 // The legend's block: "joint load [N]", the scale from 0 to the page's
 // largest load, what a link's load is; "no masses in the model" when so.

@@ -10,13 +10,7 @@ import { deflectionLegend } from './deflection.js';
 import { effortLabel, effortLegend } from './efforts.js';
 import { loadLabel, loadLegend } from './loads.js';
 import { rampGradient } from './workspace.js';
-
-function el(tag, style, text) {
-  const e = document.createElement(tag);
-  Object.assign(e.style, style);
-  if (text !== undefined) e.textContent = text;
-  return e;
-}
+import { el } from './dom.js';
 
 const round = (x) => Number(x.toPrecision(6));  // 0.30000000000000004 -> 0.3
 
