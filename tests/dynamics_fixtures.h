@@ -80,8 +80,10 @@ inline ControlPath SinePath(const Model& model, int seed, int rows, double durat
 // differential bases towards their travel, in place). Controls that
 // over-actuated models tie stay consistent: the smooth path of a model whose
 // controls a sine cannot move. Control steps of at most max_step_m [m] (and
-// half that in rad); empty when some waypoint is not reached.
-inline ControlPath FollowedPath(const Model& model, double radius, double duration, double max_step_m) {
+// half that in rad); empty when some waypoint is not reached. `vertical`:
+// z = r sin alone (radial bases move along their headings, no turning).
+inline ControlPath FollowedPath(const Model& model, double radius, double duration, double max_step_m,
+                                bool vertical = false) {
   ControlOptions options;
   options.max_step_m = max_step_m;
   options.max_step_rad = max_step_m / 2;
@@ -93,7 +95,8 @@ inline ControlPath FollowedPath(const Model& model, double radius, double durati
     const double t = duration * i / n, a = 2 * M_PI * t / duration;
     Waypoint w;
     w.time = t;
-    w.position = p0 + radius * Eigen::Vector3d(std::sin(a), 1 - std::cos(a), 0.5 * std::sin(a));
+    w.position = p0 + radius * (vertical ? Eigen::Vector3d(0, 0, std::sin(a))
+                                         : Eigen::Vector3d(std::sin(a), 1 - std::cos(a), 0.5 * std::sin(a)));
     w.rpy = control.CurrentPose().rpy;
     waypoints.push_back(w);
   }

@@ -184,10 +184,10 @@ TEST(InverseDynamics, ControlsWorkIsTheChangeOfEnergyOnBundledModels) {
 // dense rows ControlProblem::FollowWaypoints makes (0.5 mm steps): between
 // consistent rows the spline's controls stay consistent to 1e-6 or better
 // (their max_rate_inconsistency), and the balance holds to 1e-6 (measured:
-// 1e-11 to 4e-8). Differential-drive bases are left out: they turn in place
-// towards their travel within one row (100 rad/s and more on this loop), a
-// kink no spline of the rows follows, so the balance there measures the
-// path's discretisation (8e-5, halving with the step), not the efforts.
+// 1e-11 to 4e-8). A model with differential-drive bases follows a vertical
+// loop: its radial bases then drive along their headings; on a horizontal
+// loop they turn in place towards their travel within one row (100 rad/s and
+// more), a kink no spline of the rows follows.
 TEST(InverseDynamics, ControlsWorkIsTheChangeOfEnergyOnTiedModels) {
   int checked = 0;
   for (const std::string& name : testing::BundledModels()) {
@@ -195,8 +195,7 @@ TEST(InverseDynamics, ControlsWorkIsTheChangeOfEnergyOnTiedModels) {
     if (!SinePath(model, 41, 101, 1.5).times.empty()) continue;  // checked above
     const bool differential = std::any_of(model.mobile_bases.begin(), model.mobile_bases.end(),
                                           [](const MobileBase& b) { return b.type == BaseType::kDifferential; });
-    if (differential) continue;
-    const ControlPath path = testing::FollowedPath(model, 0.03, 1.2, 0.0005);
+    const ControlPath path = testing::FollowedPath(model, 0.03, 1.2, 0.0005, differential);
     ASSERT_FALSE(path.times.empty()) << name;
     double change = 0, scale = 0;
     const double work = WorkAlong(model, path, &change, &scale);
@@ -204,8 +203,9 @@ TEST(InverseDynamics, ControlsWorkIsTheChangeOfEnergyOnTiedModels) {
     EXPECT_NEAR(work, change, 1e-6 * std::abs(change)) << name;
     ++checked;
   }
-  // 4dof_complete, 4dof_reduced, 6dof_asymmetric, 6dof_six_agents, 6dof_three_legged, hybrid_ccma.
-  EXPECT_GE(checked, 6);
+  // 4dof_complete, 4dof_differential, 4dof_reduced, 6dof_asymmetric, 6dof_six_agents,
+  // 6dof_three_legged, hybrid_ccma.
+  EXPECT_GE(checked, 7);
 }
 
 // The slow limit: the same path 1000 times slower gives statics' efforts.
